@@ -1,0 +1,111 @@
+"""Every file-system location the project uses, in one place.
+
+Nothing else in the package builds a path from ``__file__`` or hard-codes a folder name: import
+the constants (or call :func:`build_dir`) from here.
+
+Layout
+------
+``REPO_ROOT``
+    The repository checkout (the folder holding ``pyproject.toml``).
+``DATA_DIR``
+    Committed inputs with their sources (``data/``).
+``NOTEBOOKS_DIR`` / ``REGISTRY_FILE``
+    Notebook sources, committed without outputs, and ``notebooks/registry.toml`` listing them.
+``BOOK_DIR``
+    The book's own pages and ``references.bib`` (``book/``).
+``build_dir()``
+    The build area (git-ignored), ``_build/`` by default. Set the environment variable
+    ``SSS_LOCUS_BUILD_DIR`` to put it elsewhere; the tests do this so that a test build never
+    overwrites the ``book``-profile outputs. The build area is also the *staged* book source:
+    ``sss-locus book`` copies ``_config.yml``, ``_toc.yml`` and ``book/`` into it next to the
+    executed notebooks, and Jupyter Book writes the site to ``<build>/_build/html``.
+
+    - ``executed/<name>.ipynb``: executed notebook copies (what the book renders),
+    - ``_extra/``: copied verbatim to the site root by Sphinx (``html_extra_path``); holds
+      ``_extra/figures/<label>.{png,svg,pdf,csv,json,bib}`` (exported, citable figures, served by
+      the site at ``figures/<label>.png`` etc.) and ``_extra/mathjax/`` (MathJax 3, served
+      locally so math renders without internet),
+    - ``jupyter/``: IPython, Jupyter and Matplotlib state of the kernels (hermetic runs),
+    - ``_build/html/index.html``: the built book.
+``cache_dir()``
+    On-disk cache of expensive results (``.cache/`` by default, git-ignored; override with
+    ``SSS_LOCUS_CACHE_DIR``). Entries are keyed on notebook, parameters, seed and package version,
+    so a test build and the book build can share it safely.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+REPO_ROOT: Path = Path(__file__).resolve().parents[1]
+DATA_DIR: Path = REPO_ROOT / "data"
+NOTEBOOKS_DIR: Path = REPO_ROOT / "notebooks"
+REGISTRY_FILE: Path = NOTEBOOKS_DIR / "registry.toml"
+BOOK_DIR: Path = REPO_ROOT / "book"
+CONFIG_FILE: Path = REPO_ROOT / "_config.yml"
+TOC_FILE: Path = REPO_ROOT / "_toc.yml"
+LOCK_FILE: Path = REPO_ROOT / "environment.lock"
+CITATION_FILE: Path = REPO_ROOT / "CITATION.cff"
+
+BUILD_DIR_ENV = "SSS_LOCUS_BUILD_DIR"
+CACHE_DIR_ENV = "SSS_LOCUS_CACHE_DIR"
+
+#: Folder names inside the build area (also used in ``_toc.yml`` and ``_config.yml``).
+EXECUTED_SUBDIR = "executed"
+FIGURES_SUBDIR = "figures"
+#: Folder whose contents Sphinx copies verbatim to the site root (``html_extra_path``).
+EXTRA_SUBDIR = "_extra"
+MATHJAX_SUBDIR = "mathjax"
+
+
+def build_dir() -> Path:
+    """Root of the build area: ``$SSS_LOCUS_BUILD_DIR`` or ``<repo>/_build``."""
+    override = os.environ.get(BUILD_DIR_ENV)
+    return Path(override).resolve() if override else REPO_ROOT / "_build"
+
+
+def executed_dir() -> Path:
+    """Folder of executed notebook copies (``<build>/executed``)."""
+    return build_dir() / EXECUTED_SUBDIR
+
+
+def extra_dir() -> Path:
+    """Staged ``html_extra_path`` folder (``<build>/_extra``): copied to the site root."""
+    return build_dir() / EXTRA_SUBDIR
+
+
+def figures_dir() -> Path:
+    """Folder of exported figures (``<build>/_extra/figures``), served at ``<site>/figures/``."""
+    return extra_dir() / FIGURES_SUBDIR
+
+
+def mathjax_dir() -> Path:
+    """Local MathJax 3 copy (``<build>/_extra/mathjax``), served at ``<site>/mathjax/``."""
+    return extra_dir() / MATHJAX_SUBDIR
+
+
+def jupyter_dir() -> Path:
+    """Kernel state (IPython, Jupyter data/runtime, Matplotlib config) for hermetic runs."""
+    return build_dir() / "jupyter"
+
+
+def html_dir() -> Path:
+    """Built site (``<build>/_build/html``)."""
+    return build_dir() / "_build" / "html"
+
+
+def index_html() -> Path:
+    """The built book's front page."""
+    return html_dir() / "index.html"
+
+
+def cache_dir() -> Path:
+    """Root of the result cache: ``$SSS_LOCUS_CACHE_DIR`` or ``<repo>/.cache``."""
+    override = os.environ.get(CACHE_DIR_ENV)
+    return Path(override).resolve() if override else REPO_ROOT / ".cache"
+
+
+def site_url(path: Path) -> str:
+    """URL, relative to the site root, of a file under :func:`extra_dir` (``figures/x.png``)."""
+    return path.resolve().relative_to(extra_dir().resolve()).as_posix()

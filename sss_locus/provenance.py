@@ -1,0 +1,83 @@
+"""Provenance of a run: package version, git commit, lock-file hash, notebook identity.
+
+Used by :mod:`sss_locus.figures` (figure manifests) and :mod:`sss_locus.cache` (cache keys).
+Every function returns a string and never raises: outside a git checkout the commit is
+``"unknown"``, and so on.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import subprocess
+from datetime import datetime, timezone
+from importlib import metadata
+from pathlib import Path
+
+from sss_locus import paths
+
+DISTRIBUTION = "sss-locus"
+
+#: Environment variables set by the notebook runner (``sss-locus run`` / ``sss-locus book``)
+#: so that code running inside a kernel knows which notebook and profile it belongs to.
+NOTEBOOK_ENV = "SSS_LOCUS_NOTEBOOK"
+PROFILE_ENV = "SSS_LOCUS_PROFILE"
+
+
+def package_version() -> str:
+    """Installed version of the ``sss-locus`` distribution (``"unknown"`` if not installed)."""
+    try:
+        return metadata.version(DISTRIBUTION)
+    except metadata.PackageNotFoundError:
+        return "unknown"
+
+
+def git_commit(repo: Path | None = None) -> str:
+    """Commit hash of the checkout, with ``+dirty`` when tracked files are modified."""
+    repo = paths.REPO_ROOT if repo is None else repo
+    try:
+        commit = subprocess.run(
+            ["git", "rev-parse", "HEAD"], cwd=repo, capture_output=True, text=True, timeout=10
+        )
+        if commit.returncode != 0:
+            return "unknown"
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no"],
+            cwd=repo, capture_output=True, text=True, timeout=10,
+        )
+        suffix = "+dirty" if dirty.returncode == 0 and dirty.stdout.strip() else ""
+        return commit.stdout.strip() + suffix
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def file_sha256(path: Path) -> str:
+    """SHA-256 hex digest of a file's bytes (``"missing"`` if it does not exist)."""
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except OSError:
+        return "missing"
+
+
+def lock_sha256() -> str:
+    """SHA-256 of ``environment.lock``: identifies the exact software environment."""
+    return file_sha256(paths.LOCK_FILE)
+
+
+def current_notebook() -> str:
+    """Repository-relative path of the notebook being run, as told by the runner.
+
+    ``"interactive"`` when the code is not run by ``sss-locus run``/``book`` (for example a
+    plain ``papermill`` call or an interactive session).
+    """
+    return os.environ.get(NOTEBOOK_ENV, "interactive")
+
+
+def current_profile() -> str:
+    """Parameter profile of the current run (``"none"`` outside the runner)."""
+    return os.environ.get(PROFILE_ENV, "none")
+
+
+def utc_now() -> str:
+    """Current UTC time, ISO 8601 with seconds."""
+    return datetime.now(timezone.utc).isoformat(timespec="seconds")
