@@ -1,0 +1,322 @@
+"""Sonars, vehicles and transducer mountings, read from ``data/platforms.toml``.
+
+Frames
+------
+Vehicle frame
+    ``x`` forward (bow / nose), ``y`` to port (left), ``z`` up; origin at the platform's reference
+    point (``reference_point`` in the TOML: the waterline on the centreline for the boat, the hull
+    axis at mid-length for the AUV).
+World frame
+    ``x`` along vehicle 1's heading, ``y`` to its port, ``z`` up (vehicle 1 at zero yaw, pitch and
+    roll). Vehicle attitude: ``R_world_vehicle = Rz(yaw) Ry(-pitch) Rx(roll)`` with yaw positive
+    toward port (counter-clockwise seen from above) and **pitch positive nose-up** (a positive
+    rotation about the port-pointing ``y`` axis would be nose-down, hence the minus sign).
+Sensor (transducer) frame, the paper's (Sec. III-A)
+    ``x`` along the boresight, which points outward (to port for the port transducer) and is
+    tilted down from the horizontal by ``tilt_deg``; ``y`` lies in the vertical across-track plane
+    (so the wide azimuth fan is across-track and vertical); ``z = x × y`` is along-track, so a
+    sensor's *elevation* is its along-track angle. With ``azimuth_positive = "down"`` (the default
+    of both shipped platforms, an assumption), ``+y`` points down and inboard, so a **positive
+    azimuth is further below the boresight** (steeper, toward nadir) on both sides; then ``+z``
+    points aft for the port transducer and forward for the starboard one (the two frames are
+    mirror images). With ``"up"`` the signs of ``y`` and ``z`` flip.
+
+The depression angle below the horizontal of a point at azimuth ``theta`` and elevation ``phi`` of
+a level vehicle's transducer is ``tilt + theta`` (for ``"down"``) when ``phi = 0``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from .paths import DATA_DIR
+
+PLATFORMS_FILE: Path = DATA_DIR / "platforms.toml"
+SIDES: tuple[str, str] = ("port", "starboard")
+AZIMUTH_POSITIVE: tuple[str, str] = ("down", "up")
+
+
+@dataclass(frozen=True)
+class Sonar:
+    """One sidescan transducer model (the paper's Table I). Angles are FULL apertures, degrees."""
+
+    key: str
+    name: str
+    azimuth_deg: float
+    elevation_deg: float
+    max_range_m: float
+    min_range_m: float = 0.0
+
+    def aperture(self):
+        """The kernel's :class:`sss_locus.aperture.Aperture` for this sonar."""
+        from .aperture import Aperture
+
+        return Aperture(self.azimuth_deg, self.elevation_deg, self.max_range_m, self.min_range_m)
+
+
+@dataclass(frozen=True)
+class Transducer:
+    """Mounting of one transducer on its vehicle.
+
+    Parameters
+    ----------
+    side : {"port", "starboard"}
+    forward_offset_m : float
+        Position along the vehicle ``x`` axis from the reference point, metres.
+    lateral_offset_m : float
+        Distance outboard of the centreline, metres (>= 0; to port for the port transducer).
+    depth_m : float
+        Distance below the reference point (waterline or hull axis), metres.
+    tilt_deg : float
+        Downward tilt of the boresight from the horizontal, degrees, in [-90, 90].
+    azimuth_positive : {"down", "up"}
+        Which way positive azimuth points within the vertical fan (see the module docstring).
+    """
+
+    side: str
+    forward_offset_m: float
+    lateral_offset_m: float
+    depth_m: float
+    tilt_deg: float
+    azimuth_positive: str = "down"
+
+    @property
+    def position_m(self) -> np.ndarray:
+        """Transducer origin in the vehicle frame, metres, shape (3,)."""
+        s = 1.0 if self.side == "port" else -1.0
+        return np.array([self.forward_offset_m, s * self.lateral_offset_m, -self.depth_m])
+
+    @property
+    def rotation(self) -> Rotation:
+        """Sensor-to-vehicle rotation: ``p_vehicle = rotation.apply(p_sensor) + position_m``.
+
+        The matrix columns are the sensor axes expressed in the vehicle frame: boresight
+        ``x = (0, s cos(tilt), -sin(tilt))`` with ``s = +1`` (port) or ``-1`` (starboard);
+        ``y = ±(0, -s sin(tilt), -cos(tilt))`` (``+`` for ``azimuth_positive == "down"``);
+        ``z = x × y`` (along-track).
+        """
+        s = 1.0 if self.side == "port" else -1.0
+        tau = math.radians(self.tilt_deg)
+        x = np.array([0.0, s * math.cos(tau), -math.sin(tau)])
+        y = np.array([0.0, -s * math.sin(tau), -math.cos(tau)])
+        if self.azimuth_positive == "up":
+            y = -y
+        z = np.cross(x, y)
+        return Rotation.from_matrix(np.column_stack([x, y, z]))
+
+
+@dataclass(frozen=True)
+class Platform:
+    """A vehicle with two side-looking transducers, its attitude limits and depth envelope.
+
+    ``depth_min_m``/``depth_max_m`` bound the depth of the vehicle reference point below the sea
+    surface; a platform with ``depth_min_m == depth_max_m`` (a surface vessel) keeps it fixed, so
+    two poses of it share the same draft exactly. ``provenance`` maps each key path of the TOML
+    (e.g. ``"platforms.auv.transducers.port.tilt_deg"``) to ``"source: ..."`` or
+    ``"assumption: ..."``.
+    """
+
+    key: str
+    name: str
+    sonar: Sonar
+    transducers: Mapping[str, Transducer]
+    roll_max_deg: float
+    pitch_max_deg: float
+    depth_min_m: float
+    depth_max_m: float
+    length_m: float | None = None
+    reference_point: str = ""
+    altitude_fraction_of_range: float | None = None
+    provenance: Mapping[str, str] = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def fixed_depth(self) -> bool:
+        """True for a platform whose reference point stays at one depth (a surface vessel)."""
+        return self.depth_min_m == self.depth_max_m
+
+    def with_attitude_limits(self, *, pitch_max_deg: float | None = None,
+                             roll_max_deg: float | None = None) -> "Platform":
+        """A copy with other attitude limits (e.g. the +-15 deg survey envelope of Sec. IV-D)."""
+        changes = {}
+        for name, value in (("pitch_max_deg", pitch_max_deg), ("roll_max_deg", roll_max_deg)):
+            if value is not None:
+                changes[name] = _check_range(float(value), name, 0.0, 90.0)
+        return dataclasses.replace(self, **changes)
+
+
+# --------------------------------------------------------------------------------------------
+# Reading and validation
+# --------------------------------------------------------------------------------------------
+def _check_range(value: float, path: str, lo: float, hi: float) -> float:
+    if not (math.isfinite(value) and lo <= value <= hi):
+        raise ValueError(f"{path} must be a finite number in [{lo}, {hi}]; got {value!r}")
+    return value
+
+
+def _table(doc: Mapping[str, Any], key: str, path: str) -> Mapping[str, Any]:
+    full = f"{path}.{key}" if path else key
+    if key not in doc:
+        raise ValueError(f"missing table {full}")
+    value = doc[key]
+    if not isinstance(value, Mapping):
+        raise ValueError(f"{full} must be a table; got {type(value).__name__}")
+    return value
+
+
+def _string(doc: Mapping[str, Any], key: str, path: str) -> str:
+    full = f"{path}.{key}"
+    if key not in doc:
+        raise ValueError(f"missing key {full}")
+    if not isinstance(doc[key], str) or not doc[key].strip():
+        raise ValueError(f"{full} must be a non-empty string; got {doc[key]!r}")
+    return doc[key]
+
+
+def _sourced(doc: Mapping[str, Any], key: str, path: str, provenance: dict[str, str], *,
+             lo: float | None = None, hi: float | None = None, choices: tuple[str, ...] = ()):
+    """Read ``{value = ..., source|assumption = "..."}``; record the provenance; check the range."""
+    entry = _table(doc, key, path)
+    full = f"{path}.{key}"
+    unknown = set(entry) - {"value", "source", "assumption"}
+    if unknown:
+        raise ValueError(f"{full} has unknown keys {sorted(unknown)}; allowed: value, source, assumption")
+    if "value" not in entry:
+        raise ValueError(f"missing key {full}.value")
+    notes = [k for k in ("source", "assumption") if k in entry]
+    if len(notes) != 1:
+        raise ValueError(f"{full} needs exactly one of 'source' or 'assumption'; found {notes or 'none'}")
+    note = entry[notes[0]]
+    if not isinstance(note, str) or not note.strip():
+        raise ValueError(f"{full}.{notes[0]} must be a non-empty string; got {note!r}")
+    provenance[full] = f"{notes[0]}: {note}"
+    value = entry["value"]
+    if choices:
+        if value not in choices:
+            raise ValueError(f"{full}.value must be one of {list(choices)}; got {value!r}")
+        return value
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError(f"{full}.value must be a number; got {value!r}")
+    return _check_range(float(value), f"{full}.value",
+                        -math.inf if lo is None else lo, math.inf if hi is None else hi)
+
+
+def _sonar(key: str, doc: Mapping[str, Any], provenance: dict[str, str]) -> Sonar:
+    path = f"sonars.{key}"
+    sonar = Sonar(
+        key=key,
+        name=_string(doc, "name", path),
+        azimuth_deg=_sourced(doc, "azimuth_deg", path, provenance, lo=1e-9, hi=360.0),
+        elevation_deg=_sourced(doc, "elevation_deg", path, provenance, lo=1e-9, hi=180.0),
+        max_range_m=_sourced(doc, "max_range_m", path, provenance, lo=1e-9),
+        min_range_m=_sourced(doc, "min_range_m", path, provenance, lo=0.0),
+    )
+    if not sonar.max_range_m > sonar.min_range_m:
+        raise ValueError(f"{path}.max_range_m must exceed {path}.min_range_m")
+    return sonar
+
+
+def _platform(key: str, doc: Mapping[str, Any], sonars: Mapping[str, Sonar],
+              provenance: dict[str, str]) -> Platform:
+    path = f"platforms.{key}"
+    sonar_key = _string(doc, "sonar", path)
+    if sonar_key not in sonars:
+        raise ValueError(f"{path}.sonar names unknown sonar {sonar_key!r}; known: {sorted(sonars)}")
+    positive = _sourced(doc, "azimuth_positive", path, provenance, choices=AZIMUTH_POSITIVE)
+    att = _table(doc, "attitude", path)
+    depth = _table(doc, "depth_m", path)
+    tables = _table(doc, "transducers", path)
+    transducers = {}
+    for side in SIDES:
+        tpath = f"{path}.transducers"
+        t = _table(tables, side, tpath)
+        tpath = f"{tpath}.{side}"
+        transducers[side] = Transducer(
+            side=side,
+            forward_offset_m=_sourced(t, "forward_offset_m", tpath, provenance),
+            lateral_offset_m=_sourced(t, "lateral_offset_m", tpath, provenance, lo=0.0),
+            depth_m=_sourced(t, "depth_m", tpath, provenance),
+            tilt_deg=_sourced(t, "tilt_deg", tpath, provenance, lo=-90.0, hi=90.0),
+            azimuth_positive=positive,
+        )
+    extra = set(tables) - set(SIDES)
+    if extra:
+        raise ValueError(f"{path}.transducers has unknown tables {sorted(extra)}; allowed: {list(SIDES)}")
+    depth_min = _sourced(depth, "min", f"{path}.depth_m", provenance, lo=0.0)
+    depth_max = _sourced(depth, "max", f"{path}.depth_m", provenance, lo=0.0)
+    if depth_max < depth_min:
+        raise ValueError(f"{path}.depth_m.max must be >= {path}.depth_m.min")
+    survey = doc.get("survey", {})
+    return Platform(
+        key=key,
+        name=_string(doc, "name", path),
+        sonar=sonars[sonar_key],
+        transducers=transducers,
+        roll_max_deg=_sourced(att, "roll_max_deg", f"{path}.attitude", provenance, lo=0.0, hi=90.0),
+        pitch_max_deg=_sourced(att, "pitch_max_deg", f"{path}.attitude", provenance, lo=0.0, hi=90.0),
+        depth_min_m=depth_min,
+        depth_max_m=depth_max,
+        length_m=(_sourced(doc, "length_m", path, provenance, lo=0.0) if "length_m" in doc else None),
+        reference_point=doc.get("reference_point", ""),
+        altitude_fraction_of_range=(
+            _sourced(survey, "altitude_fraction_of_range", f"{path}.survey", provenance, lo=0.0)
+            if "altitude_fraction_of_range" in survey else None),
+        provenance={k: v for k, v in provenance.items() if k.startswith(path + ".")
+                    or k.startswith(f"sonars.{sonar_key}.")},
+    )
+
+
+def parse_platforms(doc: Mapping[str, Any]) -> dict[str, Platform]:
+    """Validate a parsed TOML document and return its platforms by key.
+
+    Raises
+    ------
+    ValueError
+        Naming the full key path of the first missing or malformed entry.
+    """
+    provenance: dict[str, str] = {}
+    sonar_docs = _table(doc, "sonars", "")
+    sonars = {k: _sonar(k, _table(sonar_docs, k, "sonars"), provenance) for k in sonar_docs}
+    platform_docs = _table(doc, "platforms", "")
+    if not platform_docs:
+        raise ValueError("platforms must contain at least one [platforms.<key>] table")
+    return {k: _platform(k, _table(platform_docs, k, "platforms"), sonars, provenance)
+            for k in platform_docs}
+
+
+def load_platforms(path: str | Path | None = None) -> dict[str, Platform]:
+    """Read and validate ``data/platforms.toml`` (or ``path``); platforms by key."""
+    path = Path(path) if path is not None else PLATFORMS_FILE
+    with open(path, "rb") as fh:
+        try:
+            doc = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{path} is not valid TOML: {exc}") from exc
+    return parse_platforms(doc)
+
+
+def load_platform(key: str, path: str | Path | None = None) -> Platform:
+    """One platform by key (e.g. ``"boat"`` or ``"auv"``)."""
+    platforms = load_platforms(path)
+    if key not in platforms:
+        raise ValueError(f"platform must be one of {sorted(platforms)}; got {key!r}")
+    return platforms[key]
+
+
+def provenance_table(platform: Platform):
+    """The platform's numbers with their sources / assumptions, as a pandas DataFrame."""
+    import pandas as pd
+
+    rows = []
+    for key, note in platform.provenance.items():
+        kind, _, text = note.partition(": ")
+        rows.append({"key": key, "kind": kind, "note": text})
+    return pd.DataFrame(rows)
