@@ -1,0 +1,112 @@
+"""Analysis statistics against independent references (scipy, brute force, closed forms)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+from scipy import stats
+
+from sss_locus.analysis import (
+    agree_sig,
+    binned_median,
+    binned_profile,
+    fmt_sig,
+    median_grid,
+    round_sig,
+    spearman_table,
+    with_derived,
+)
+
+
+def _frame(n, r, seed=0, ties=False):
+    rng = np.random.default_rng(seed)
+    x = rng.normal(size=n)
+    y = r * x + math.sqrt(1 - r * r) * rng.normal(size=n)
+    if ties:
+        x = np.round(x, 1)
+    return pd.DataFrame({"x": x, "y": y, "z": rng.normal(size=n)})
+
+
+def test_point_estimate_is_scipy_spearman():
+    df = _frame(1500, 0.6, ties=True)
+    tab = spearman_table(df, ["x", "z"], ["y"], n_resamples=20)
+    for q in ("x", "z"):
+        ref = stats.spearmanr(df[q], df["y"]).statistic
+        assert tab.set_index("quantity").loc[q, "rho"] == pytest.approx(ref, abs=1e-12)
+
+
+def test_matches_gaussian_closed_form():
+    # bivariate normal: rho_s = (6 / pi) asin(r / 2)
+    df = _frame(100_000, 0.5, seed=3)
+    tab = spearman_table(df, ["x"], ["y"], n_resamples=50).iloc[0]
+    expect = 6 / math.pi * math.asin(0.25)
+    assert tab["ci_low"] - 0.005 < expect < tab["ci_high"] + 0.005
+    assert tab["rho"] == pytest.approx(expect, abs=0.01)
+
+
+def test_interval_agrees_with_scipy_bootstrap():
+    df = _frame(400, 0.4, seed=5)
+    tab = spearman_table(df, ["x"], ["y"], n_resamples=2000, seed=1).iloc[0]
+    ref = stats.bootstrap((df["x"].to_numpy(), df["y"].to_numpy()),
+                          lambda a, b: stats.spearmanr(a, b).statistic, paired=True,
+                          vectorized=False, n_resamples=2000, method="percentile",
+                          rng=np.random.default_rng(2))
+    assert tab["ci_low"] == pytest.approx(ref.confidence_interval.low, abs=0.03)
+    assert tab["ci_high"] == pytest.approx(ref.confidence_interval.high, abs=0.03)
+    assert tab["ci_low"] < tab["rho"] < tab["ci_high"]
+
+
+def test_sorted_by_magnitude_and_errors():
+    df = _frame(500, -0.8)
+    tab = spearman_table(df, ["z", "x"], ["y"], n_resamples=20)
+    assert list(tab["quantity"]) == ["x", "z"] and tab["rho"].iloc[0] < -0.7
+    with pytest.raises(ValueError, match="lacks columns"):
+        spearman_table(df, ["nope"], ["y"])
+    df["c"] = 1.0
+    with pytest.raises(ValueError, match="constant"):
+        spearman_table(df, ["c"], ["y"], drop_constant=False)
+    kept = spearman_table(df, ["c", "x"], ["y"], n_resamples=20)
+    assert list(kept["quantity"]) == ["x"] and kept.attrs["dropped"] == ["c"]
+    with pytest.raises(ValueError, match="constant"):
+        spearman_table(df, ["x"], ["c"])
+
+
+def test_binned_median_brute_force():
+    rng = np.random.default_rng(9)
+    df = pd.DataFrame({"a": rng.uniform(-1, 1, 3000), "b": rng.uniform(0, 10, 3000),
+                       "v": rng.exponential(size=3000)})
+    df.loc[0, "a"] = 1.0  # the last edge is inclusive
+    df.loc[1, "a"] = 1.5  # outside: ignored
+    xe, ye = np.linspace(-1, 1, 5), np.linspace(0, 10, 4)
+    out = binned_median(df, "a", "b", "v", x_edges=xe, y_edges=ye, min_count=200)
+    assert len(out) == 12 and out["count"].sum() == 2999
+    for _, row in out.iterrows():
+        top_a = row.x_hi == xe[-1]
+        top_b = row.y_hi == ye[-1]
+        sel = ((df.a >= row.x_lo) & ((df.a <= row.x_hi) if top_a else (df.a < row.x_hi))
+               & (df.b >= row.y_lo) & ((df.b <= row.y_hi) if top_b else (df.b < row.y_hi)))
+        assert row["count"] == sel.sum()
+        assert row["median"] == pytest.approx(df.v[sel].median())
+        assert row["masked"] == (sel.sum() < 200)
+    x, y, z = median_grid(out)
+    assert z.shape == (3, 4) and np.allclose(x, xe) and np.allclose(y, ye)
+    assert np.isnan(z).sum() == out["masked"].sum()
+    prof = binned_profile(df, "a", "v", edges=xe, min_count=1)
+    assert prof["count"].sum() == 2999
+    with pytest.raises(ValueError, match="x_edges"):
+        binned_median(df, "a", "b", "v", x_edges=[1, 0], y_edges=ye)
+
+
+def test_significant_figures():
+    assert np.allclose(round_sig([0.012345, 123.4, -0.0999]), [0.012, 120.0, -0.1])
+    assert agree_sig(0.4449, 0.4401) and not agree_sig(0.445, 0.455)
+    assert fmt_sig(0.012345) == "0.012" and fmt_sig(123.4) == "120" and fmt_sig(2.0) == "2.0"
+
+
+def test_with_derived_adds_magnitudes():
+    df = pd.DataFrame({"yaw2_deg": [-170.0, 20.0], "psi1_deg": [-3.0, 4.0]})
+    out = with_derived(df)
+    assert list(out["abs_yaw2_deg"]) == [170.0, 20.0] and list(out["abs_psi1_deg"]) == [3.0, 4.0]
