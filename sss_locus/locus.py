@@ -1,0 +1,287 @@
+"""The two-view ambiguity locus: closed-form circle, exactly cropped to both apertures.
+
+Two range measurements ``r1``, ``r2`` of one feature, with the relative pose ``p2 = R p1 + t``
+known, put the feature (in sensor 1's frame) on the sphere ``|p1| = r1`` and on the plane
+``2 u . p1 = C`` with ``u = R^T t`` and ``C = r2^2 - r1^2 - |t|^2`` (Norman & Mangelson, eq. 5).
+Sphere and plane meet in a circle; the part of it inside both sensors' apertures is the
+ambiguity locus. Its length is computed here exactly (see :mod:`sss_locus.arcs`).
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validation import as_float_array, as_positive_array, as_rotation_matrices, broadcast_leading
+from .aperture import Aperture
+from .arcs import crop_circle
+
+MAX_ARCS = 8
+"""Width of the arc arrays: eight half-space conditions (four per aperture) bound at most eight
+disjoint arcs."""
+
+COINCIDENT_RTOL = 1e-12
+"""Sensor origins closer than ``COINCIDENT_RTOL * (r1 + r2)`` count as coincident."""
+
+TANGENT_RTOL = 1e-13
+"""A circle with ``radius**2 <= TANGENT_RTOL * r1**2`` (radius below about 3.2e-7 r1) is a
+tangent point; a negative ``radius**2`` beyond that means the spheres do not meet."""
+
+_CHUNK = 32768
+
+
+class LocusStatus(enum.IntEnum):
+    """What the two range spheres and the apertures give for one configuration."""
+
+    CIRCLE = 0
+    """The spheres meet in a circle; ``length`` is the part of it inside both apertures."""
+    TANGENT = 1
+    """The spheres touch in one point (``center``); ``length`` is 0, ``n_arcs`` is 1 if the
+    point is inside both apertures (its arc has ``arc_start == arc_end == 0``), else 0."""
+    NO_INTERSECTION = 2
+    """The spheres do not meet (the ranges are inconsistent with the pose); empty locus."""
+    COINCIDENT_ORIGINS = 3
+    """The sensor origins coincide: the plane is undefined (equal ranges give the whole sphere,
+    unequal ranges nothing). Reported as an empty locus with zero centre, normal and radius."""
+    OUT_OF_RANGE = 4
+    """The circle exists but a measured range lies outside its aperture's
+    ``[min_range, max_range]``: nothing was observable, empty locus."""
+
+
+@dataclass(frozen=True)
+class LocusResult:
+    """The ambiguity locus for a batch of two-view configurations (leading shape ``S``).
+
+    All vectors are in sensor 1's frame (x boresight, y left, z up), lengths in metres, angles in
+    radians. The circle is ``p1(alpha) = center + radius (cos(alpha) basis1 + sin(alpha) basis2)``.
+
+    Attributes
+    ----------
+    u : ndarray, shape S + (3,)
+        ``R^T t``; the plane is ``2 u . p1 = C``.
+    C : ndarray, shape S
+        ``r2**2 - r1**2 - |t|**2`` (m^2).
+    center, normal, basis1, basis2 : ndarray, shape S + (3,)
+        Circle centre (m) and unit normal, and the in-plane unit vectors of its parametrisation.
+        Zero where the origins coincide.
+    radius : ndarray, shape S
+        Circle radius (m); 0 unless the status is ``CIRCLE`` (or ``OUT_OF_RANGE`` with a circle).
+    exists : ndarray of bool, shape S
+        The spheres meet (in a circle or a tangent point).
+    status : ndarray of int8, shape S
+        :class:`LocusStatus` codes.
+    in_range : ndarray of bool, shape S
+        Both measured ranges lie within their apertures' range limits.
+    length : ndarray, shape S
+        Locus length (m): arc length of the circle inside both apertures. Never NaN.
+    n_arcs : ndarray of int, shape S
+        Number of disjoint arcs; ``> 1`` means the locus is fragmented. A circle wholly inside
+        both apertures is one arc.
+    arc_start, arc_end : ndarray, shape S + (MAX_ARCS,)
+        Arc end points in ``alpha``: ``arc_start`` in [-pi, pi), ``arc_start < arc_end <=
+        arc_start + 2 pi``; NaN-padded beyond ``n_arcs``.
+    """
+
+    u: np.ndarray
+    C: np.ndarray
+    center: np.ndarray
+    normal: np.ndarray
+    basis1: np.ndarray
+    basis2: np.ndarray
+    radius: np.ndarray
+    exists: np.ndarray
+    status: np.ndarray
+    in_range: np.ndarray
+    length: np.ndarray
+    n_arcs: np.ndarray
+    arc_start: np.ndarray
+    arc_end: np.ndarray
+    R: np.ndarray
+    t: np.ndarray
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Batch shape ``S``."""
+        return self.length.shape
+
+    def point_at(self, alpha, frame: int = 1) -> np.ndarray:
+        """Points of the circle at angles ``alpha`` (shape ``S`` or ``S + (n,)``), in frame 1 or 2."""
+        alpha = np.asarray(alpha, dtype=np.float64)
+        extra = alpha.ndim - len(self.shape)
+        if extra < 0 or alpha.shape[: len(self.shape)] != self.shape:
+            raise ValueError(f"alpha must have shape {self.shape} + (...); got {alpha.shape}")
+        expand = (Ellipsis,) + (None,) * extra + (slice(None),)
+        r = self.radius[(Ellipsis,) + (None,) * extra][..., None]
+        p = self.center[expand] + r * (
+            np.cos(alpha)[..., None] * self.basis1[expand] + np.sin(alpha)[..., None] * self.basis2[expand]
+        )
+        if frame == 1:
+            return p
+        if frame == 2:
+            R = self.R[(Ellipsis,) + (None,) * extra + (slice(None), slice(None))]
+            return np.einsum("...ij,...j->...i", R, p) + self.t[expand]
+        raise ValueError(f"frame must be 1 or 2; got {frame!r}")
+
+    def points(self, n_per_arc: int = 64, frame: int = 1) -> np.ndarray:
+        """Points along every arc of the locus, for figures.
+
+        Returns
+        -------
+        ndarray, shape S + (MAX_ARCS, n_per_arc, 3)
+            Evenly spaced in ``alpha`` from each arc's start to its end, in sensor ``frame``'s
+            coordinates (m); NaN for arcs beyond ``n_arcs``.
+        """
+        if not (isinstance(n_per_arc, (int, np.integer)) and n_per_arc >= 2):
+            raise ValueError(f"n_per_arc must be an integer >= 2; got {n_per_arc!r}")
+        s = np.linspace(0.0, 1.0, int(n_per_arc))
+        alpha = self.arc_start[..., None] + (self.arc_end - self.arc_start)[..., None] * s
+        flat = alpha.reshape(self.shape + (-1,))
+        return self.point_at(flat, frame).reshape(self.shape + (MAX_ARCS, int(n_per_arc), 3))
+
+    def angle_of(self, p1) -> np.ndarray:
+        """Circle angle ``alpha`` of points ``p1`` (frame 1, shape ``S + (3,)``), by projection."""
+        d = as_float_array(p1, "p1", tail=(3,)) - self.center
+        return np.arctan2(np.sum(d * self.basis2, axis=-1), np.sum(d * self.basis1, axis=-1))
+
+
+def _constraints(ap: Aperture, r: np.ndarray, R: np.ndarray | None, t: np.ndarray | None):
+    """Half-space normals (N, 4, 3) in frame 1 and offsets (N, 4) for one aperture."""
+    el, az, union = ap.halfspace_normals()
+    normals = np.concatenate([el[:, :3], az], axis=0)  # (4, 3) in the aperture's own frame
+    offsets = np.concatenate([el[:, 3][None, :] * r[:, None], np.zeros((r.shape[0], 2))], axis=1)
+    if R is None:
+        return np.broadcast_to(normals, (r.shape[0], 4, 3)), offsets, union
+    # a2 . (R p1 + t) = (R^T a2) . p1 + a2 . t
+    return np.einsum("kj,nji->nki", normals, R), offsets + t @ normals.T, union
+
+
+def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture):
+    n = r1.shape[0]
+    u = np.einsum("nji,nj->ni", R, t)
+    tt = np.einsum("ni,ni->n", t, t)
+    C = r2 * r2 - r1 * r1 - tt
+    unorm = np.sqrt(np.einsum("ni,ni->n", u, u))
+    coincident = np.sqrt(tt) <= COINCIDENT_RTOL * (r1 + r2)
+    safe = np.where(coincident, 1.0, unorm)
+    normal = np.where(coincident[:, None], 0.0, u / safe[:, None])
+    d = np.where(coincident, 0.0, C / (2.0 * safe))
+    rho2 = (r1 - d) * (r1 + d)
+    tangent = ~coincident & (np.abs(rho2) <= TANGENT_RTOL * r1 * r1)
+    circle = ~coincident & ~tangent & (rho2 > 0.0)
+    exists = circle | tangent
+    radius = np.where(circle, np.sqrt(np.maximum(rho2, 0.0)), 0.0)
+    center = normal * d[:, None]
+
+    # In-plane basis: e1 perpendicular to the normal and to the coordinate axis it is least
+    # aligned with (well conditioned), e2 = normal x e1.
+    axis = np.eye(3)[np.argmin(np.abs(normal), axis=1)]
+    e1 = np.cross(axis, normal)
+    e1_norm = np.linalg.norm(e1, axis=1)
+    e1 = np.where(coincident[:, None], 0.0, e1 / np.where(e1_norm > 0, e1_norm, 1.0)[:, None])
+    e2 = np.cross(normal, e1)
+
+    n1, o1, union1 = _constraints(ap1, r1, None, None)
+    n2, o2, union2 = _constraints(ap2, r2, R, t)
+    normals = np.concatenate([n1, n2], axis=1)  # (n, 8, 3) in frame 1
+    offsets = np.concatenate([o1, o2], axis=1)
+    A = radius[:, None] * np.einsum("nkj,nj->nk", normals, e1)
+    B = radius[:, None] * np.einsum("nkj,nj->nk", normals, e2)
+    D = np.einsum("nkj,nj->nk", normals, center) + offsets
+    groups = [
+        ([0, 1, 4, 5], "all"),
+        ([2, 3], "any" if union1 else "all"),
+        ([6, 7], "any" if union2 else "all"),
+    ]
+    angle, n_arcs, start, end = crop_circle(A, B, D, groups, MAX_ARCS)
+
+    in_range = ap1.range_ok(r1) & ap2.range_ok(r2)
+    observable = exists & in_range
+    length = np.where(circle & in_range, angle * radius, 0.0)
+    n_arcs = np.where(observable, n_arcs, 0)
+    start = np.where(observable[:, None], start, np.nan)
+    end = np.where(observable[:, None], end, np.nan)
+    point = tangent & observable & (n_arcs > 0)
+    start[point, 0] = 0.0
+    end[point, 0] = 0.0
+
+    status = np.full(n, LocusStatus.CIRCLE, dtype=np.int8)
+    status[tangent] = LocusStatus.TANGENT
+    status[exists & ~in_range] = LocusStatus.OUT_OF_RANGE
+    status[~exists] = LocusStatus.NO_INTERSECTION
+    status[coincident] = LocusStatus.COINCIDENT_ORIGINS
+    return dict(
+        u=u, C=C, center=center, normal=normal, basis1=e1, basis2=e2, radius=radius,
+        exists=exists, status=status, in_range=in_range, length=length,
+        n_arcs=n_arcs.astype(np.int64), arc_start=start, arc_end=end,
+    )
+
+
+def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> LocusResult:
+    """Ambiguity locus of a feature seen by two sidescan sensors with known relative pose.
+
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3), or scipy.spatial.transform.Rotation
+        Rotation taking sensor-1 coordinates to sensor-2 coordinates: ``p2 = R p1 + t``.
+    t : array_like, shape (..., 3)
+        Translation (m) of the same transform: sensor 1's origin expressed in frame 2.
+    r1, r2 : array_like, shape (...)
+        Measured ranges (m) to the feature from sensor 1 and sensor 2; must be > 0.
+    aperture1, aperture2 : Aperture
+        Fields of view of the two sensors, each in its own frame.
+
+    The batch shapes of ``R``, ``t``, ``r1`` and ``r2`` broadcast together to ``S``.
+
+    Returns
+    -------
+    LocusResult
+        Circle geometry, status flags, locus length, arc count and arcs, batch shape ``S``.
+
+    Raises
+    ------
+    ValueError
+        If ``R`` is not a proper rotation (orthonormal with determinant +1, to 1e-9), any input is
+        NaN or infinite, a range is not positive, an aperture is not an :class:`Aperture`, or
+        the batch shapes do not broadcast.
+
+    Notes
+    -----
+    Exact: each aperture bound is an affine half-space on the circle (the elevation bound is
+    affine because ``|p1| = r1`` on the circle), giving closed-form boundary angles; the locus is
+    the arrangement of these arcs. Nothing samples the circle. Degenerate cases are reported
+    through :class:`LocusStatus`, never as NaN lengths.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sss_locus import Aperture, two_view_locus
+    >>> ap = Aperture(130.0, 0.27, 150.0)
+    >>> res = two_view_locus(np.eye(3), [0.0, 0.0, -1.0], 50.0, 50.0, ap, ap)
+    >>> float(res.radius) > 0
+    True
+    """
+    for name, ap in (("aperture1", aperture1), ("aperture2", aperture2)):
+        if not isinstance(ap, Aperture):
+            raise ValueError(f"{name} must be an sss_locus.Aperture; got {type(ap).__name__}")
+    R = as_rotation_matrices(R, "R")
+    t = as_float_array(t, "t", tail=(3,))
+    r1 = as_positive_array(r1, "r1")
+    r2 = as_positive_array(r2, "r2")
+    shape = broadcast_leading({"R": R.shape[:-2], "t": t.shape[:-1], "r1": r1.shape, "r2": r2.shape})
+    n = int(np.prod(shape, dtype=np.int64))
+    Rf = np.broadcast_to(R, shape + (3, 3)).reshape(n, 3, 3)
+    tf = np.broadcast_to(t, shape + (3,)).reshape(n, 3)
+    r1f = np.broadcast_to(r1, shape).reshape(n)
+    r2f = np.broadcast_to(r2, shape).reshape(n)
+
+    parts = [
+        _locus_chunk(Rf[i : i + _CHUNK], tf[i : i + _CHUNK], r1f[i : i + _CHUNK], r2f[i : i + _CHUNK],
+                     aperture1, aperture2)
+        for i in range(0, max(n, 1), _CHUNK)
+    ] if n else [_locus_chunk(Rf, tf, r1f, r2f, aperture1, aperture2)]
+    out = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+    tails = {k: v.shape[1:] for k, v in out.items()}
+    fields = {k: v.reshape(shape + tails[k]) for k, v in out.items()}
+    return LocusResult(R=Rf.reshape(shape + (3, 3)), t=tf.reshape(shape + (3,)), **fields)
