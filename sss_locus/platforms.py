@@ -320,3 +320,28 @@ def provenance_table(platform: Platform):
         kind, _, text = note.partition(": ")
         rows.append({"key": key, "kind": kind, "note": text})
     return pd.DataFrame(rows)
+
+
+def frustum_points(sonar: Sonar, transducer: Transducer, plot_range_m: float,
+                   n: int = 25) -> np.ndarray:
+    """Points outlining a transducer's aperture frustum, in the vehicle frame (for drawing).
+
+    The frustum is the set of points within ``plot_range_m`` of the transducer inside its
+    azimuth and elevation apertures; returned are its apex (the transducer origin) followed by
+    an ``n`` x ``n`` grid over the far cap (azimuth x elevation at ``plot_range_m``). For
+    apertures up to 180 deg in azimuth the frustum is the convex hull of these points.
+
+    Returns
+    -------
+    numpy.ndarray, shape (1 + n * n, 3), metres.
+    """
+    if not (math.isfinite(plot_range_m) and plot_range_m > 0):
+        raise ValueError(f"plot_range_m must be a positive number of metres; got {plot_range_m!r}")
+    if int(n) < 2:
+        raise ValueError(f"n must be >= 2; got {n}")
+    th = np.radians(np.linspace(-sonar.azimuth_deg / 2, sonar.azimuth_deg / 2, int(n)))
+    ph = np.radians(np.linspace(-sonar.elevation_deg / 2, sonar.elevation_deg / 2, int(n)))
+    T, P = np.meshgrid(th, ph, indexing="ij")
+    cap = plot_range_m * np.stack([np.cos(T) * np.cos(P), np.sin(T) * np.cos(P), np.sin(P)], -1)
+    local = np.concatenate([np.zeros((1, 3)), cap.reshape(-1, 3)])
+    return transducer.rotation.apply(local) + transducer.position_m

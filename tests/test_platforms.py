@@ -157,3 +157,24 @@ def test_up_convention_flips_azimuth():
     d_up = up.rotation.apply([math.cos(0.2), math.sin(0.2), 0.0])
     assert d_up[2] > tr.rotation.apply([1.0, 0, 0])[2] > d_down[2]
     assert np.allclose(up.rotation.apply([1.0, 0, 0]), tr.rotation.apply([1.0, 0, 0]))
+
+
+def test_frustum_points_lie_in_the_aperture():
+    from sss_locus.platforms import frustum_points
+
+    pf = load_platform("auv")
+    tr = pf.transducers["starboard"]
+    pts = frustum_points(pf.sonar, tr, 2.0, n=9)
+    assert np.allclose(pts[0], tr.position_m)
+    local = tr.rotation.inv().apply(pts[1:] - tr.position_m)
+    assert np.allclose(np.linalg.norm(local, axis=1), 2.0)
+    from sss_locus import Aperture
+
+    loose = Aperture(pf.sonar.azimuth_deg + 1e-6, pf.sonar.elevation_deg + 1e-6, 2.0 + 1e-9)
+    assert loose.contains(local).all()
+    # the fan's deepest ray is at depression tilt + azimuth/2 below the horizontal
+    depth = -(pts[1:, 2] - tr.position_m[2])
+    expect = 2.0 * math.sin(math.radians(min(90.0, tr.tilt_deg + pf.sonar.azimuth_deg / 2)))
+    assert depth.max() == pytest.approx(expect, rel=1e-3)
+    with pytest.raises(ValueError, match="plot_range_m"):
+        frustum_points(pf.sonar, tr, -1.0)
