@@ -50,17 +50,6 @@ IMAGE_FORMATS = ("png", "svg", "pdf")
 _SAVE_METADATA = {"svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate": None}}
 
 
-def _json_default(value: Any) -> Any:
-    """Make numpy scalars/arrays and paths JSON-serialisable."""
-    if isinstance(value, np.generic):
-        return value.item()
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, Path):
-        return value.as_posix()
-    raise TypeError(f"parameter value {value!r} of type {type(value).__name__} is not JSON-serialisable")
-
-
 def _check_label(label: str) -> None:
     if not isinstance(label, str) or not LABEL_PATTERN.match(label):
         raise ValueError(
@@ -212,7 +201,7 @@ def export_figure(
     if not isinstance(dpi, (int, np.integer)) or dpi < MIN_DPI:
         raise ValueError(f"dpi must be an integer >= {MIN_DPI}, got {dpi!r}")
     frames = _normalise_data(label, data)
-    params = json.loads(json.dumps(dict(parameters), default=_json_default))
+    params = json.loads(json.dumps(dict(parameters), default=provenance.json_default))
     if seed is None and "seed" in params:
         seed = params["seed"]
 
@@ -238,7 +227,7 @@ def export_figure(
         "notebook": notebook or provenance.current_notebook(),
         "profile": provenance.current_profile(),
         "parameters": params,
-        "seed": json.loads(json.dumps(seed, default=_json_default)),
+        "seed": json.loads(json.dumps(seed, default=provenance.json_default)),
         "git_commit": provenance.git_commit(),
         "lock_sha256": provenance.lock_sha256(),
         "package_version": provenance.package_version(),

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+from typing import Any
 import subprocess
 from datetime import datetime, timezone
 from importlib import metadata
@@ -22,6 +23,22 @@ DISTRIBUTION = "sss-locus"
 #: so that code running inside a kernel knows which notebook and profile it belongs to.
 NOTEBOOK_ENV = "SSS_LOCUS_NOTEBOOK"
 PROFILE_ENV = "SSS_LOCUS_PROFILE"
+
+
+def json_default(value: Any) -> Any:
+    """``default=`` hook for :func:`json.dumps`: numpy scalars/arrays and paths become JSON."""
+    import numpy as np
+
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, Path):
+        return value.as_posix()
+    raise ValueError(
+        f"value {value!r} of type {type(value).__name__} is not JSON-like "
+        "(use numbers, strings, bools, None, lists, dicts or numpy scalars)"
+    )
 
 
 def package_version() -> str:
@@ -62,6 +79,34 @@ def file_sha256(path: Path) -> str:
 def lock_sha256() -> str:
     """SHA-256 of ``environment.lock``: identifies the exact software environment."""
     return file_sha256(paths.LOCK_FILE)
+
+
+def tree_sha256(*roots: Path, patterns: tuple[str, ...] = ("*",)) -> str:
+    """One SHA-256 over the relative names and bytes of every file under ``roots``.
+
+    Files in ``__pycache__`` folders and hidden files are skipped.
+    """
+    digest = hashlib.sha256()
+    for root in roots:
+        root = Path(root)
+        files = sorted({p for pattern in patterns for p in root.rglob(pattern) if p.is_file()})
+        for path in files:
+            rel = path.relative_to(root)
+            if "__pycache__" in rel.parts or any(part.startswith(".") for part in rel.parts):
+                continue
+            digest.update(f"{root.name}/{rel.as_posix()}\0".encode())
+            digest.update(hashlib.sha256(path.read_bytes()).digest())
+    return digest.hexdigest()
+
+
+def code_sha256() -> str:
+    """Fingerprint of the package source and its inputs: ``sss_locus/*.py`` and ``data/``.
+
+    The package version alone does not change when the code is edited in place (editable
+    install), so caches and up-to-date checks key on this as well.
+    """
+    parts = tree_sha256(paths.REPO_ROOT / "sss_locus", patterns=("*.py",)) + tree_sha256(paths.DATA_DIR)
+    return hashlib.sha256(parts.encode()).hexdigest()
 
 
 def current_notebook() -> str:

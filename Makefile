@@ -1,0 +1,55 @@
+# Two commands: `make book` and `make test`. Everything else is set up on demand.
+#
+# .venv is (re)built from environment.lock whenever the lock or pyproject.toml changes: the stamp
+# file name carries their hash. uv (pinned and hash-checked in the lock itself) does the install;
+# if uv is unavailable the fallback is pip with --require-hashes.
+
+SHELL := /bin/bash
+.SHELLFLAGS := -eu -o pipefail -c
+PYTHON ?= python3
+VENV := .venv
+VPY := $(VENV)/bin/python
+ENV_KEY := $(shell cat environment.lock pyproject.toml | $(PYTHON) -c "import hashlib, sys; print(hashlib.sha256(sys.stdin.buffer.read()).hexdigest()[:16])")
+STAMP := $(VENV)/.installed-$(ENV_KEY)
+
+.PHONY: book quick-book test venv lock clean
+
+book: $(STAMP)
+	$(VENV)/bin/sss-locus book
+
+# The same book from the fast `quick` parameter profile (seconds per notebook).
+quick-book: $(STAMP)
+	$(VENV)/bin/sss-locus book --profile quick
+
+test: $(STAMP)
+	$(VPY) -m pytest
+
+venv: $(STAMP)
+
+$(STAMP): environment.lock pyproject.toml
+	@$(PYTHON) -c "import sys; sys.exit(0 if sys.version_info >= (3, 11) else 'Python >= 3.11 is required (found ' + sys.version.split()[0] + '); set PYTHON=/path/to/python3.11')"
+	@echo "== building $(VENV) from environment.lock ($(ENV_KEY))"
+	rm -rf $(VENV)
+	$(PYTHON) -m venv $(VENV)
+	$(PYTHON) -c "import re, sys; t = open('environment.lock').read(); m = re.search(r'^uv==.*?(?=^\S)', t, re.M | re.S); sys.exit('no uv pin in environment.lock') if not m else open('$(VENV)/uv-requirement.txt', 'w').write(m.group(0))"
+	if $(VPY) -m pip install --quiet --require-hashes --no-deps -r $(VENV)/uv-requirement.txt \
+	   && $(VENV)/bin/uv pip sync --quiet --python $(VPY) --require-hashes environment.lock; then \
+	  $(VENV)/bin/uv pip install --quiet --python $(VPY) --no-deps --no-build-isolation -e . ; \
+	else \
+	  echo "== uv unavailable or failed: falling back to pip"; \
+	  $(VPY) -m pip install --quiet --require-hashes --no-deps -r environment.lock; \
+	  $(VPY) -m pip install --quiet --no-deps --no-build-isolation -e . ; \
+	fi
+	touch $(STAMP)
+	@echo "== $(VENV) ready"
+
+# Regenerate environment.lock from pyproject.toml (needs internet). Keeps existing pins where
+# possible; add --upgrade to move everything to the newest allowed versions.
+lock:
+	$(PYTHON) -m venv _build/lock-tools
+	_build/lock-tools/bin/pip install --quiet uv
+	_build/lock-tools/bin/uv pip compile --universal --generate-hashes --python-version 3.11 \
+	  pyproject.toml --extra book --extra test --extra bootstrap -o environment.lock
+
+clean:
+	rm -rf _build

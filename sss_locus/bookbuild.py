@@ -1,0 +1,149 @@
+"""Stage the book source in the build area and build it with Jupyter Book.
+
+The build area (:func:`sss_locus.paths.build_dir`) is the book's source root: it receives
+copies of ``_config.yml``, ``_toc.yml`` and ``book/`` next to the executed notebooks
+(``executed/``), the exported figures and a local MathJax (``_extra/``, copied verbatim to the
+site root by ``html_extra_path``). The figures page is generated from the figure manifests.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from importlib import metadata
+from pathlib import Path
+from typing import Any
+
+from sss_locus import figures, paths
+from sss_locus.runner import hermetic_env
+
+FIGURES_PAGE = "figures.md"
+FIGURES_MARKER = "<!-- FIGURES-INDEX -->"
+MATHJAX_DIST = "sphinx-mathjax-offline"
+JB_FLAGS = ("-W", "-n", "--keep-going")
+
+
+def copy_mathjax() -> Path:
+    """Copy the MathJax 3 files shipped by ``sphinx-mathjax-offline`` to ``_extra/mathjax``."""
+    dist = metadata.distribution(MATHJAX_DIST)
+    source = Path(dist.locate_file("sphinx-mathjax-offline/static/mathjax"))
+    if not (source / "tex-chtml.js").is_file():
+        raise FileNotFoundError(f"MathJax files not found in {source} (package {MATHJAX_DIST} {dist.version})")
+    target = paths.mathjax_dir()
+    stamp = target / ".version"
+    if stamp.is_file() and stamp.read_text() == dist.version:
+        return target
+    shutil.rmtree(target, ignore_errors=True)
+    shutil.copytree(source, target)
+    stamp.write_text(dist.version)
+    return target
+
+
+def _file_links(manifest: dict[str, Any]) -> str:
+    names = sorted(manifest["files"])
+    kinds = {".png": "PNG", ".svg": "SVG", ".pdf": "PDF", ".bib": "BibTeX"}
+    links = []
+    for name in names:
+        suffix = Path(name).suffix
+        text = kinds.get(suffix) or ("data " + name.removeprefix(manifest["label"]).strip("-.") if suffix == ".csv" else name)
+        links.append(f'<a href="../{manifest["files"][name]["url"]}">{text}</a>')
+    links.append(f'<a href="../{paths.FIGURES_SUBDIR}/{manifest["label"]}.json">manifest (JSON)</a>')
+    return " · ".join(links)
+
+
+def figures_index(manifests: list[dict[str, Any]]) -> str:
+    """Markdown (MyST) listing every exported figure with its files, provenance and BibTeX."""
+    if not manifests:
+        return "No figures have been exported yet.\n"
+    out = []
+    for m in manifests:
+        label = m["label"]
+        params = ", ".join(f"`{k} = {json.dumps(v)}`" for k, v in sorted(m["parameters"].items())) or "none"
+        out += [
+            f"## `{label}`",
+            "",
+            f"{{numref}}`Figure %s <{label}>` in the notebook `{m['notebook']}` (profile `{m['profile']}`).",
+            "",
+            f'<a href="../{paths.FIGURES_SUBDIR}/{label}.png"><img src="../{paths.FIGURES_SUBDIR}/{label}.png" '
+            f'alt="{label}" style="max-width: 28em; width: 100%;"></a>',
+            "",
+            f"<p>{_file_links(m)}</p>",
+            "",
+            f"Parameters: {params}; seed `{m['seed']}`; commit `{m['git_commit'][:12]}`; "
+            f"sss-locus {m['package_version']}; environment.lock `{m['lock_sha256'][:12]}`; "
+            f"run {m['run_time_utc']}.",
+            "",
+            "Cite this figure:",
+            "",
+            "```bibtex",
+            (paths.figures_dir() / f"{label}.bib").read_text(encoding="utf-8").rstrip(),
+            "```",
+            "",
+        ]
+    return "\n".join(out)
+
+
+def stage() -> Path:
+    """Copy the book source into the build area and generate the figures page; return the root."""
+    root = paths.build_dir()
+    root.mkdir(parents=True, exist_ok=True)
+    for name in (paths.CONFIG_FILE, paths.TOC_FILE):
+        shutil.copy2(name, root / name.name)
+    staged_book = root / paths.BOOK_DIR.name
+    shutil.rmtree(staged_book, ignore_errors=True)
+    shutil.copytree(paths.BOOK_DIR, staged_book)
+    paths.figures_dir().mkdir(parents=True, exist_ok=True)
+    copy_mathjax()
+    page = staged_book / FIGURES_PAGE
+    text = page.read_text(encoding="utf-8")
+    if FIGURES_MARKER not in text:
+        raise ValueError(f"{paths.BOOK_DIR / FIGURES_PAGE} must contain the line {FIGURES_MARKER}")
+    page.write_text(text.replace(FIGURES_MARKER, figures_index(figures.load_manifests())), encoding="utf-8")
+    return root
+
+
+def missing_toc_files(root: Path) -> list[str]:
+    """Files listed in the staged ``_toc.yml`` that do not exist (e.g. a notebook never run)."""
+    import yaml
+
+    toc = yaml.safe_load((root / paths.TOC_FILE.name).read_text(encoding="utf-8"))
+    wanted: list[str] = []
+
+    def walk(node: Any) -> None:
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if key in ("root", "file") and isinstance(value, str):
+                    wanted.append(value)
+                else:
+                    walk(value)
+        elif isinstance(node, list):
+            for item in node:
+                walk(item)
+
+    walk(toc)
+    return [f for f in wanted if not any((root / (f + ext)).is_file() for ext in ("", ".md", ".ipynb"))]
+
+
+def build(log=print) -> Path:
+    """Stage and build the site with ``jupyter-book build -W -n --keep-going``; return index.html."""
+    root = stage()
+    missing = missing_toc_files(root)
+    if missing:
+        raise FileNotFoundError(
+            "_toc.yml lists files that are not in the build area (run their notebooks first, "
+            f"e.g. `sss-locus book`): {', '.join(missing)}"
+        )
+    jupyter_book = Path(sys.executable).with_name("jupyter-book")
+    env = {**os.environ, **hermetic_env()}
+    cmd = [str(jupyter_book), "build", str(root), *JB_FLAGS]
+    log("$ " + " ".join(cmd))
+    result = subprocess.run(cmd, env=env, cwd=root)
+    if result.returncode != 0:
+        raise RuntimeError(f"jupyter-book build failed (exit {result.returncode}); see the messages above")
+    index = paths.index_html()
+    if not index.is_file():
+        raise RuntimeError(f"jupyter-book build finished but {index} is missing")
+    return index

@@ -1,0 +1,139 @@
+"""Execute registered notebooks with papermill, hermetically, into their executed copies.
+
+* The kernel is this environment's Python, registered as kernel ``sss-locus`` in a
+  kernelspec folder inside the build area (a kernelspec in the home folder cannot shadow it).
+* ``IPYTHONDIR``, ``JUPYTER_DATA_DIR``, ``JUPYTER_RUNTIME_DIR`` and ``MPLCONFIGDIR`` point into
+  the build area, so runs neither read nor write the user's Jupyter/Matplotlib state.
+* The kernel's working directory is the executed copy's folder (papermill ``--cwd``).
+* The cell papermill injects with the run's parameters is tagged ``hide-input`` and labelled,
+  so the book shows it as a small collapsed block.
+* Figures a notebook exported earlier are removed first; the run re-exports them.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+from sss_locus import figures, paths, provenance
+from sss_locus.registry import NotebookEntry
+
+KERNEL_NAME = "sss-locus"
+
+
+def hermetic_env() -> dict[str, str]:
+    """Environment variables that keep kernels' state inside the build area."""
+    root = paths.jupyter_dir()
+    env = {
+        "IPYTHONDIR": str(root / "ipython"),
+        "JUPYTER_DATA_DIR": str(root / "data"),
+        "JUPYTER_RUNTIME_DIR": str(root / "runtime"),
+        "JUPYTER_CONFIG_DIR": str(root / "config"),
+        "MPLCONFIGDIR": str(root / "matplotlib"),
+        "MPLBACKEND": "Agg",
+        "JUPYTER_PLATFORM_DIRS": "1",
+        "PYDEVD_DISABLE_FILE_VALIDATION": "1",
+        # Children (kernels, jupyter-book) must see the same build area and cache.
+        paths.BUILD_DIR_ENV: str(paths.build_dir()),
+        paths.CACHE_DIR_ENV: str(paths.cache_dir()),
+    }
+    for key in ("IPYTHONDIR", "JUPYTER_DATA_DIR", "JUPYTER_RUNTIME_DIR", "JUPYTER_CONFIG_DIR", "MPLCONFIGDIR"):
+        Path(env[key]).mkdir(parents=True, exist_ok=True)
+    return env
+
+
+def install_kernelspec() -> Path:
+    """Write the kernelspec of this Python as ``sss-locus`` under ``$JUPYTER_DATA_DIR/kernels``."""
+    folder = paths.jupyter_dir() / "data" / "kernels" / KERNEL_NAME
+    folder.mkdir(parents=True, exist_ok=True)
+    spec = {
+        "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
+        "display_name": "Python 3 (sss-locus)",
+        "language": "python",
+        "metadata": {"debugger": False},
+    }
+    (folder / "kernel.json").write_text(json.dumps(spec, indent=1) + "\n", encoding="utf-8")
+    return folder
+
+
+@contextmanager
+def patched_environ(values: dict[str, str]) -> Iterator[None]:
+    """Temporarily set environment variables (kernels inherit them)."""
+    saved = {key: os.environ.get(key) for key in values}
+    os.environ.update(values)
+    try:
+        yield
+    finally:
+        for key, old in saved.items():
+            if old is None:
+                os.environ.pop(key, None)
+            else:
+                os.environ[key] = old
+
+
+def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any]) -> None:
+    """Tag papermill's injected-parameters cell so the book shows it as a collapsed block."""
+    nb = json.loads(executed.read_text(encoding="utf-8"))
+    for cell in nb["cells"]:
+        tags = cell.get("metadata", {}).get("tags", [])
+        if "injected-parameters" in tags:
+            cell["metadata"]["tags"] = sorted(set(tags) | {"hide-input"})
+            cell["metadata"]["mystnb"] = {
+                "code_prompt_show": f"Show this run's parameters (profile '{profile}')",
+                "code_prompt_hide": "Hide this run's parameters",
+            }
+            source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
+            header = f"# Parameters of this run (profile '{profile}'), injected by papermill\n"
+            if not source.startswith(header):
+                cell["source"] = header + source
+    nb.setdefault("metadata", {})["sss_locus"] = {
+        "profile": profile,
+        "parameters": parameters,
+        "git_commit": provenance.git_commit(),
+        "package_version": provenance.package_version(),
+        "lock_sha256": provenance.lock_sha256(),
+    }
+    executed.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+
+
+def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[str, Any] | None = None,
+                 *, from_text: bool = False, output: Path | None = None, log=print) -> Path:
+    """Execute one registered notebook into its executed copy; return that path.
+
+    Parameters are the notebook defaults, then the profile's values, then ``overrides`` (command
+    line text when ``from_text``); all are validated before anything runs. Raises
+    :class:`sss_locus.registry.ParameterError` for bad parameters and
+    ``papermill.PapermillExecutionError`` when a cell fails (the executed copy then holds the
+    traceback).
+    """
+    import papermill
+
+    parameters = entry.resolve(profile, overrides, from_text=from_text)
+    executed = entry.executed_path() if output is None else Path(output)
+    executed.parent.mkdir(parents=True, exist_ok=True)
+    env = hermetic_env()
+    env[provenance.NOTEBOOK_ENV] = entry.source_relative
+    env[provenance.PROFILE_ENV] = profile
+    with patched_environ(env):
+        install_kernelspec()
+        removed = figures.remove_figures_of(entry.source_relative)
+        start = time.perf_counter()
+        papermill.execute_notebook(
+            str(entry.source), str(executed), parameters=parameters, kernel_name=KERNEL_NAME,
+            cwd=str(executed.parent), progress_bar=False, log_output=False,
+        )
+    _label_injected_cell(executed, profile, parameters)
+    exported = [m["label"] for m in figures.load_manifests() if m["notebook"] == entry.source_relative]
+    log(f"ran {entry.name} [{profile}] in {time.perf_counter() - start:.1f} s -> {executed}")
+    gone = sorted(set(removed) - set(exported))
+    if exported:
+        log(f"  figures: {', '.join(exported)}")
+    if gone:
+        log(f"  no longer exported: {', '.join(gone)}")
+    return executed
