@@ -372,3 +372,10 @@ def test_scaling_keeps_kernel_boundary_angles(f):
     m = ~np.isnan(a.arc_start)
     assert _circ_dist_pair(b.arc_start[m], a.arc_start[m]).max() < 1e-9
     assert _circ_dist_pair(b.arc_end[m], a.arc_end[m]).max() < 1e-9
+
+
+def test_kernel_discrepancy_summary_used_by_the_book():
+    out = S.kernel_discrepancy(seed=3, n=300, elevation_deg=8.0)
+    assert out["n_ends"] > 100
+    assert out["exists_mismatch"] == 0
+    assert out["radius_rel"] < 1e-10 and out["center"] < 1e-9 and out["boundary_rad"] < 1e-9

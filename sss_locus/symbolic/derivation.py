@@ -1,56 +1,8 @@
-"""Symbolic (SymPy) derivation of the two-view sidescan locus.
-
-This module re-derives, as exact symbolic identities, every formula the
-numeric kernel (:mod:`sss_locus.locus`, :mod:`sss_locus.arcs`) evaluates:
-
-* :func:`derive_plane` -- the plane ``2 (R^T t)^T p1 = r2^2 - r1^2 - |t|^2``
-  from the two range spheres (paper, Sec. III, eq. (plane));
-* :func:`derive_circle` -- centre ``C u / (2 |u|^2)``, radius
-  ``sqrt(r1^2 - C^2 / (4 |u|^2))``, the existence condition
-  ``C^2 <= 4 |u|^2 r1^2`` and ``|u| = |t|``;
-* :func:`derive_one_angle` -- the paper's one-angle form (eq. (onelocus)) and
-  its closed-form solutions for ``phi1`` given ``theta1`` and vice versa;
-* :func:`derive_scaling` -- the scaling law ``(r1, r2, t) -> k (r1, r2, t)``;
-* :func:`derive_crop` -- an affine half-space ``a . p + b >= 0`` restricted to
-  the circle becomes ``A cos(alpha) + B sin(alpha) + D >= 0``, with boundary
-  angles ``alpha0 +- arccos(-D / hypot(A, B))``, ``alpha0 = atan2(B, A)``;
-  :func:`elevation_halfspaces`, :func:`azimuth_halfspaces` and
-  :func:`halfspace_in_frame1` give the aperture bounds in that form.
-
-Each ``derive_*`` function returns ``(result, steps)``: ``result`` is a dict
-of the final SymPy expressions, ``steps`` an ordered dict of intermediate
-expressions (for display in ``notebooks/derivation.ipynb``), including
-``residual`` entries that :func:`sympy.simplify` reduces to exactly 0 when
-the derivation holds.  Rotations are treated generally in two ways: as a
-3x3 matrix of free symbols with the orthonormality ``R^T R = I`` applied as
-an explicit substitution (the paper's route), and as the rotation of a
-non-zero quaternion ``q``, ``R(q) = M(q) / |q|^2``, which is a proper
-rotation for every ``q != 0`` and reaches every rotation, so identities in
-``q`` hold over all of SO(3) with no side condition.
-
-Frames and units follow the package: sensor frame x boresight, y left,
-z up; ``p2 = R p1 + t``; lengths in metres, angles in radians.
-
-SymPy is imported here only; ``sss_locus/__init__.py`` does not import this
-module (SymPy is an optional ``book`` dependency).
-"""
+"""Symbolic derivation steps (SymPy); see :mod:`sss_locus.symbolic`."""
 from __future__ import annotations
 
 import sympy as sp
 
-__all__ = [
-    "symbols",
-    "quaternion_rotation",
-    "derive_plane",
-    "derive_circle",
-    "derive_one_angle",
-    "derive_scaling",
-    "derive_crop",
-    "elevation_halfspaces",
-    "azimuth_halfspaces",
-    "halfspace_in_frame1",
-    "numeric_functions",
-]
 
 
 def _vec(name: str, **assumptions) -> sp.Matrix:
@@ -424,61 +376,3 @@ def halfspace_in_frame1(a2, b2, R, t):
     Returns ``(a1, b1)``.
     """
     return R.T * a2, (a2.T * t)[0] + b2
-
-
-def numeric_functions() -> dict:
-    """NumPy functions lambdified from the derived expressions (for tests and the book).
-
-    Returns
-    -------
-    dict of callables (arguments are NumPy arrays, broadcast elementwise)
-        ``u(R, t)`` -> (..., 3); ``C(t, r1, r2)``; ``center(u, C)`` -> (..., 3);
-        ``radius(u, C, r1)`` (NaN where the spheres do not meet);
-        ``exists(u, C, r1)``; ``crop(c, rho, e1, e2, a, b)`` -> ``(A, B, D)``;
-        ``phi1(u, C, r1, theta1)`` and ``theta1(u, C, r1, phi1)`` -> the
-        ``(+, -)`` solution pairs.
-    """
-    import numpy as np
-
-    s = symbols()
-    plane, _ = derive_plane()
-    circ, _ = derive_circle()
-    one, _ = derive_one_angle()
-    crop, _ = derive_crop()
-    R, t, u, C, r1, r2 = s["R"], s["t"], s["u"], s["C"], s["r1"], s["r2"]
-    c, e1, e2, a = _vec("c"), _vec("e1"), _vec("e2"), _vec("a")
-    rho, b = sp.Symbol("rho", positive=True), sp.Symbol("b", real=True)
-    f_u = sp.lambdify([list(R), list(t)], list(plane["u"]), "numpy")
-    f_C = sp.lambdify([list(t), r1, r2], plane["C"], "numpy")
-    f_c = sp.lambdify([list(u), C], list(circ["center"]), "numpy")
-    f_rho2 = sp.lambdify([list(u), C, r1], circ["radius_sq"], "numpy")
-    f_ex = sp.lambdify([list(u), C, r1], circ["exists"], "numpy")
-    f_crop = sp.lambdify([list(c), rho, list(e1), list(e2), list(a), b],
-                         [crop["A"], crop["B"], crop["D"]], "numpy")
-    f_phi = sp.lambdify([list(u), C, r1, s["theta1"]], [one["phi1_plus"], one["phi1_minus"]], "numpy")
-    f_th = sp.lambdify([list(u), C, r1, s["phi1"]], [one["theta1_plus"], one["theta1_minus"]], "numpy")
-
-    def cols(v):
-        v = np.asarray(v, dtype=float)
-        return [v[..., i] for i in range(3)]
-
-    def stack(parts):
-        return np.stack(np.broadcast_arrays(*parts), axis=-1)
-
-    def radius(u_, C_, r1_):
-        rho2 = np.asarray(f_rho2(cols(u_), C_, r1_), dtype=float)
-        return np.where(rho2 >= 0, np.sqrt(np.abs(rho2)), np.nan)
-
-    return {
-        "u": lambda R_, t_: stack(f_u([np.asarray(R_, float)[..., i, j] for i in range(3) for j in range(3)],
-                                      cols(t_))),
-        "C": lambda t_, r1_, r2_: np.asarray(f_C(cols(t_), r1_, r2_), dtype=float),
-        "center": lambda u_, C_: stack(f_c(cols(u_), C_)),
-        "radius": radius,
-        "exists": lambda u_, C_, r1_: np.asarray(f_ex(cols(u_), C_, r1_), dtype=bool),
-        "crop": lambda c_, rho_, e1_, e2_, a_, b_: tuple(
-            np.asarray(x, dtype=float) for x in np.broadcast_arrays(
-                *f_crop(cols(c_), rho_, cols(e1_), cols(e2_), cols(a_), b_))),
-        "phi1": lambda u_, C_, r1_, th_: tuple(np.asarray(f_phi(cols(u_), C_, r1_, th_), dtype=float)),
-        "theta1": lambda u_, C_, r1_, ph_: tuple(np.asarray(f_th(cols(u_), C_, r1_, ph_), dtype=float)),
-    }
