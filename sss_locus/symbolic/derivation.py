@@ -4,7 +4,6 @@ from __future__ import annotations
 import sympy as sp
 
 
-
 def _vec(name: str, **assumptions) -> sp.Matrix:
     """A 3x1 column of real symbols ``name_x, name_y, name_z``."""
     return sp.Matrix(sp.symbols(f"{name}_x {name}_y {name}_z", real=True, **assumptions))
@@ -256,8 +255,8 @@ def derive_scaling():
         for the upper elevation bound).
     """
     s = symbols()
-    t, r1, r2, k, R = s["t"], s["r1"], s["r2"], s["k"], quaternion_rotation()
-    plane, _ = derive_plane(R)
+    t, r1, r2, k, R = s["t"], s["r1"], s["r2"], s["k"], s["R"]
+    plane = {"u": R.T * t, "C": r2**2 - r1**2 - (t.T * t)[0]}  # as derived by derive_plane
     circ, _ = derive_circle()
     u_sym, C_sym = s["u"], s["C"]
 

@@ -1,6 +1,8 @@
 """Lambdified (NumPy) forms of the derived expressions and a cross-check against the kernel."""
 from __future__ import annotations
 
+import functools
+
 import sympy as sp
 
 from .derivation import (
@@ -14,8 +16,11 @@ from .derivation import (
 )
 
 
+@functools.lru_cache(maxsize=1)
 def numeric_functions() -> dict:
     """NumPy functions lambdified from the derived expressions (for tests and the book).
+
+    The result is cached (the derivations take a few seconds); do not mutate it.
 
     Returns
     -------
