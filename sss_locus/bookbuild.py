@@ -13,9 +13,11 @@ import os
 import shutil
 import subprocess
 import sys
+from html.parser import HTMLParser
 from importlib import metadata
 from pathlib import Path
 from typing import Any
+from urllib.parse import unquote, urlsplit
 
 from sss_locus import figures, paths
 from sss_locus.runner import hermetic_env
@@ -127,6 +129,66 @@ def missing_toc_files(root: Path) -> list[str]:
     return [f for f in wanted if not any((root / (f + ext)).is_file() for ext in ("", ".md", ".ipynb"))]
 
 
+class _PageScan(HTMLParser):
+    """Collect local resource references and visible text (outside code, scripts and styles)."""
+
+    SKIP = {"pre", "code", "script", "style", "textarea"}
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.refs: list[tuple[str, str]] = []  # (tag.attr, url)
+        self.text: list[str] = []
+        self._skip = 0
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        values = dict(attrs)
+        if tag in ("img", "script", "source") and values.get("src"):
+            self.refs.append((f"{tag}.src", values["src"]))
+        if tag == "link" and values.get("href") and values.get("rel") in ("stylesheet", "icon"):
+            self.refs.append(("link.href", values["href"]))
+        if tag == "a" and values.get("href") and "/figures/" in "/" + values["href"]:
+            self.refs.append(("a.href", values["href"]))
+        if tag in self.SKIP:
+            self._skip += 1
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag in self.SKIP and self._skip:
+            self._skip -= 1
+
+    def handle_data(self, data: str) -> None:
+        if not self._skip:
+            self.text.append(data)
+
+
+def site_problems(html_dir: Path) -> list[str]:
+    """Problems in a built site that ``-W`` does not catch.
+
+    Reports every local ``<img>``/``<script>``/``<source>`` ``src``, stylesheet and link into
+    ``figures/`` that points to a missing file (for instance a glued image whose notebook never
+    displayed it), and every unresolved glue reference left as text (``{glue...}``).
+    """
+    problems = []
+    for page in sorted(Path(html_dir).rglob("*.html")):
+        if page.relative_to(html_dir).parts[0] in ("_static", "_sources", "mathjax", "figures"):
+            continue  # theme templates and copied assets, not pages
+        scan = _PageScan()
+        scan.feed(page.read_text(encoding="utf-8", errors="replace"))
+        rel = page.relative_to(html_dir)
+        for what, url in scan.refs:
+            parts = urlsplit(url)
+            if parts.scheme or parts.netloc or url.startswith("#"):
+                continue
+            target = (page.parent / unquote(parts.path)).resolve()
+            if not target.is_file():
+                problems.append(f"{rel}: {what} {url!r} does not exist")
+        text = " ".join(scan.text)
+        for marker in ("{glue", "glue:text", "glue:figure", "glue:any", "glue:math"):
+            if marker in text:
+                problems.append(f"{rel}: unresolved glue reference ({marker!r} in the page text)")
+                break
+    return problems
+
+
 def build(log=print) -> Path:
     """Stage and build the site with ``jupyter-book build -W -n --keep-going``; return index.html."""
     root = stage()
@@ -146,4 +208,7 @@ def build(log=print) -> Path:
     index = paths.index_html()
     if not index.is_file():
         raise RuntimeError(f"jupyter-book build finished but {index} is missing")
+    problems = site_problems(paths.html_dir())
+    if problems:
+        raise RuntimeError("the built site has broken references:\n  " + "\n  ".join(problems))
     return index

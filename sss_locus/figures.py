@@ -210,12 +210,16 @@ def export_figure(
     manifest_path = out / f"{label}.json"
     manifest_path.unlink(missing_ok=True)  # incomplete until the new manifest is written
 
+    import matplotlib  # only here: the package itself does not depend on matplotlib
+
     written: list[Path] = []
-    for fmt in IMAGE_FORMATS:
-        target = out / f"{label}.{fmt}"
-        fig.savefig(target, format=fmt, dpi=int(dpi), bbox_inches="tight",
-                    metadata=_SAVE_METADATA.get(fmt))
-        written.append(target)
+    # A fixed salt makes SVG element ids (random by default) reproducible.
+    with matplotlib.rc_context({"svg.hashsalt": label}):
+        for fmt in IMAGE_FORMATS:
+            target = out / f"{label}.{fmt}"
+            fig.savefig(target, format=fmt, dpi=int(dpi), bbox_inches="tight",
+                        metadata=_SAVE_METADATA.get(fmt))
+            written.append(target)
     for name, frame in frames.items():
         index = not isinstance(frame.index, pd.RangeIndex)
         frame.to_csv(out / name, index=index)

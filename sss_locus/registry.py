@@ -110,6 +110,14 @@ def parse_parameters_source(source: str, where: str = "parameters cell") -> dict
                     f"{', '.join(_TYPES)}, got {annotation!r}"
                 )
             type_name = annotation
+            if type_name == "float" and isinstance(default, int) and not isinstance(default, bool):
+                default = float(default)
+            expected = _TYPES[type_name]
+            if default is not None and (not isinstance(default, expected)
+                                        or (expected is not bool and isinstance(default, bool))):
+                raise ParameterError(
+                    f"{where}, line {node.lineno}: default of {name!r} is not a {type_name}: {default!r}"
+                )
         else:
             type_name = "any" if default is None else type(default).__name__
             if type_name not in _TYPES and type_name != "any":

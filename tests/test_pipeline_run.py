@@ -1,0 +1,132 @@
+"""Running one notebook through papermill (sss_locus.runner and the `sss-locus` command).
+
+Uses a tiny throwaway notebook written to a temporary folder, executed into a temporary build
+area (``SSS_LOCUS_BUILD_DIR``), so nothing of the real build is touched.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("papermill")
+nbformat = pytest.importorskip("nbformat")
+
+from sss_locus import cli  # noqa: E402
+from sss_locus.registry import NotebookEntry, ParameterError  # noqa: E402
+from sss_locus.runner import KERNEL_NAME, run_notebook  # noqa: E402
+
+PARAMETERS = "n: int = 3          # number of points\nscale = 1.5         # metres\nfail = False\n"
+BODY = """\
+import os, json, sys
+import matplotlib.pyplot as plt
+import pandas as pd
+from sss_locus.figures import export_figure
+if fail:
+    raise RuntimeError("asked to fail")
+frame = pd.DataFrame({"i": range(n), "y_m": [scale * i for i in range(n)]})
+fig, ax = plt.subplots()
+ax.plot(frame["i"], frame["y_m"])
+export_figure(fig, "fig-tiny-line", frame, caption="A line.", parameters={"n": n, "scale": scale})
+print(json.dumps({"n": n, "scale": scale, "cwd": os.getcwd(), "python": sys.executable,
+                  "ipythondir": os.environ.get("IPYTHONDIR"), "mpl": os.environ.get("MPLCONFIGDIR")}))
+"""
+
+
+def tiny_notebook(folder: Path) -> Path:
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [
+        nbformat.v4.new_markdown_cell("# Tiny\n\nMath: $x^2$."),
+        nbformat.v4.new_code_cell(PARAMETERS, metadata={"tags": ["parameters"]}),
+        nbformat.v4.new_code_cell(BODY),
+    ]
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    path = folder / "tiny.ipynb"
+    nbformat.write(nb, path)
+    return path
+
+
+@pytest.fixture
+def build_area(tmp_path, monkeypatch):
+    area = tmp_path / "build"
+    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(area))
+    monkeypatch.setenv("SSS_LOCUS_CACHE_DIR", str(tmp_path / "cache"))
+    return area
+
+
+@pytest.fixture
+def entry(tmp_path):
+    source = tiny_notebook(tmp_path)
+    return NotebookEntry("tiny", source, "executed/tiny.ipynb", {"book": {}, "quick": {"n": 2}})
+
+
+def _printed(executed: Path) -> dict:
+    nb = json.loads(executed.read_text())
+    for cell in nb["cells"]:
+        for output in cell.get("outputs", []):
+            if output.get("name") == "stdout":
+                return json.loads("".join(output["text"]))
+    raise AssertionError("no stdout in the executed notebook")
+
+
+def test_run_with_profile_and_override(build_area, entry):
+    executed = run_notebook(entry, "quick", {"scale": "2"}, from_text=True, log=lambda *_: None)
+    assert executed == build_area / "executed" / "tiny.ipynb"
+    printed = _printed(executed)
+    assert printed["n"] == 2 and printed["scale"] == 2.0
+    # hermetic kernel: working directory and state folders inside the build area
+    assert Path(printed["cwd"]) == executed.parent
+    assert printed["ipythondir"].startswith(str(build_area)) and printed["mpl"].startswith(str(build_area))
+    nb = json.loads(executed.read_text())
+    assert nb["metadata"]["papermill"]["parameters"] == {"n": 2, "scale": 2.0, "fail": False}
+    assert nb["metadata"]["sss_locus"]["profile"] == "quick"
+    assert printed["python"] == sys.executable  # the project's kernel, not one from the home folder
+    assert (build_area / "jupyter" / "data" / "kernels" / KERNEL_NAME / "kernel.json").is_file()
+    injected = [c for c in nb["cells"] if "injected-parameters" in c["metadata"].get("tags", [])]
+    assert len(injected) == 1
+    assert "hide-input" in injected[0]["metadata"]["tags"]
+    assert "profile 'quick'" in injected[0]["metadata"]["mystnb"]["code_prompt_show"]
+    assert "n = 2" in "".join(injected[0]["source"])
+    manifest = json.loads((build_area / "_extra" / "figures" / "fig-tiny-line.json").read_text())
+    assert manifest["parameters"] == {"n": 2, "scale": 2.0}
+    assert manifest["profile"] == "quick" and manifest["notebook"] == entry.source_relative
+
+
+def test_bad_parameter_stops_before_running(build_area, entry):
+    with pytest.raises(ParameterError, match="(?s)no parameter 'm'.*n: int = 3  # number of points"):
+        run_notebook(entry, "book", {"m": "1"}, from_text=True)
+    with pytest.raises(ParameterError, match="expected a int for 'n'"):
+        run_notebook(entry, "book", {"n": "1.5"}, from_text=True)
+    assert not (build_area / "executed").exists()
+
+
+def test_failing_cell_raises_and_keeps_the_traceback(build_area, entry):
+    import papermill
+
+    with pytest.raises(papermill.PapermillExecutionError, match="asked to fail"):
+        run_notebook(entry, "book", {"fail": True}, log=lambda *_: None)
+    assert "asked to fail" in (build_area / "executed" / "tiny.ipynb").read_text()
+
+
+def test_rerun_replaces_the_figures_of_the_notebook(build_area, entry):
+    run_notebook(entry, "book", log=lambda *_: None)
+    stale = build_area / "_extra" / "figures" / "fig-tiny-line.csv"
+    assert len(stale.read_text().splitlines()) == 1 + 3
+    run_notebook(entry, "quick", log=lambda *_: None)
+    assert len(stale.read_text().splitlines()) == 1 + 2
+
+
+def test_cli_reports_errors_without_traceback(build_area, capsys):
+    assert cli.main(["run", "no-such-notebook"]) == 2
+    err = capsys.readouterr().err
+    assert "unknown notebook 'no-such-notebook'" in err and "Traceback" not in err
+
+
+def test_console_script_is_installed():
+    script = Path(sys.executable).with_name("sss-locus")
+    result = subprocess.run([str(script), "--help"], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0 and "run" in result.stdout and "book" in result.stdout
