@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import unquote, urlsplit
 
-from sss_locus import figures, paths
+from sss_locus import figures, paths, provenance
 from sss_locus.runner import hermetic_env
 
 FIGURES_PAGE = "figures.md"
@@ -69,12 +69,14 @@ def figures_index(manifests: list[dict[str, Any]]) -> str:
             "",
             f"{{numref}}`Figure %s <{label}>` in the notebook `{m['notebook']}` (profile `{m['profile']}`).",
             "",
+            m["caption"],
+            "",
             f'<a href="../{paths.FIGURES_SUBDIR}/{label}.png"><img src="../{paths.FIGURES_SUBDIR}/{label}.png" '
             f'alt="{label}" style="max-width: 28em; width: 100%;"></a>',
             "",
             f"<p>{_file_links(m)}</p>",
             "",
-            f"Parameters: {params}; seed `{m['seed']}`; commit `{m['git_commit'][:12]}`; "
+            f"Parameters: {params}; seed `{m['seed']}`; commit `{provenance.short_commit(m['git_commit'])}`; "
             f"sss-locus {m['package_version']}; environment.lock `{m['lock_sha256'][:12]}`; "
             f"run {m['run_time_utc']}.",
             "",

@@ -34,6 +34,8 @@ def _parser() -> argparse.ArgumentParser:
     book = sub.add_parser("book", help="run every notebook, then build the book")
     book.add_argument("--profile", default="book", help="parameter profile for every notebook (default: book)")
     book.add_argument("--no-run", action="store_true", help="build from the existing executed copies")
+    book.add_argument("--force", action="store_true",
+                      help="rerun every notebook, even those whose executed copy is up to date")
 
     params = sub.add_parser("params", help="list a notebook's parameters and profiles")
     params.add_argument("notebook")
@@ -58,7 +60,7 @@ def _run(args: argparse.Namespace) -> int:
 
 def _book(args: argparse.Namespace) -> int:
     from sss_locus import bookbuild
-    from sss_locus.runner import run_notebook
+    from sss_locus.runner import is_up_to_date, run_notebook
 
     start = time.perf_counter()
     entries = load_registry()
@@ -66,6 +68,10 @@ def _book(args: argparse.Namespace) -> int:
         for entry in entries.values():
             entry.resolve(args.profile)  # validate every profile before running anything
         for entry in entries.values():
+            if not args.force and is_up_to_date(entry, args.profile):
+                print(f"up to date: {entry.name} [{args.profile}] (same notebook, parameters, code, "
+                      f"data and environment as its executed copy; --force reruns it)")
+                continue
             run_notebook(entry, args.profile)
     index = bookbuild.build()
     print(f"Built in {time.perf_counter() - start:.0f} s. Open the book:")

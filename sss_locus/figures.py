@@ -127,7 +127,6 @@ def bibtex_entry(manifest: Mapping[str, Any]) -> str:
     meta = _citation_meta()
     label = manifest["label"]
     first_sentence = re.split(r"(?<=[.!?])\s", manifest["caption"].strip(), maxsplit=1)[0].rstrip(".")
-    commit = manifest["git_commit"]
     fields = {
         "title": "{" + _bibtex_escape(first_sentence) + "}",
         "author": " and ".join(meta["authors"]),
@@ -138,7 +137,7 @@ def bibtex_entry(manifest: Mapping[str, Any]) -> str:
         ),
         "note": (
             f"Notebook \\texttt{{{manifest['notebook']}}}, profile {manifest['profile']}, "
-            f"commit \\texttt{{{commit[:12]}{'+dirty' if commit.endswith('+dirty') else ''}}}, "
+            f"commit \\texttt{{{provenance.short_commit(manifest['git_commit'])}}}, "
             f"sss-locus {manifest['package_version']}"
         ),
     }

@@ -68,6 +68,12 @@ def git_commit(repo: Path | None = None) -> str:
         return "unknown"
 
 
+def short_commit(commit: str) -> str:
+    """First 12 hex digits of a commit as returned by :func:`git_commit`, keeping ``+dirty``."""
+    dirty = commit.endswith("+dirty")
+    return commit.removesuffix("+dirty")[:12] + ("+dirty" if dirty else "")
+
+
 def file_sha256(path: Path) -> str:
     """SHA-256 hex digest of a file's bytes (``"missing"`` if it does not exist)."""
     try:

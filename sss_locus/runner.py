@@ -8,10 +8,14 @@
 * The cell papermill injects with the run's parameters is tagged ``hide-input`` and labelled,
   so the book shows it as a small collapsed block.
 * Figures a notebook exported earlier are removed first; the run re-exports them.
+* The executed copy records a *run key* (hash of the notebook source, its parameters and
+  profile, the package code and ``data/``, and ``environment.lock``): :func:`is_up_to_date` tells
+  ``sss-locus book`` that rerunning would reproduce the same result, so it can be skipped.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import sys
@@ -77,7 +81,34 @@ def patched_environ(values: dict[str, str]) -> Iterator[None]:
                 os.environ[key] = old
 
 
-def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any]) -> None:
+def run_key(entry: NotebookEntry, profile: str, parameters: dict[str, Any]) -> str:
+    """Hash of everything an executed copy depends on (see the module docstring)."""
+    payload = json.dumps(
+        {"source": provenance.file_sha256(entry.source), "profile": profile, "parameters": parameters,
+         "code": provenance.code_sha256(), "lock": provenance.lock_sha256()},
+        sort_keys=True, default=provenance.json_default,
+    )
+    return hashlib.sha256(payload.encode()).hexdigest()
+
+
+def is_up_to_date(entry: NotebookEntry, profile: str) -> bool:
+    """True when the executed copy came from an identical run and its figures are intact."""
+    executed = entry.executed_path()
+    try:
+        meta = json.loads(executed.read_text(encoding="utf-8"))["metadata"]
+    except (OSError, ValueError, KeyError):
+        return False
+    ours = meta.get("sss_locus", {})
+    if meta.get("papermill", {}).get("exception") or ours.get("run_key") != run_key(
+        entry, profile, entry.resolve(profile)
+    ):
+        return False
+    intact = {m["label"] for m in figures.load_manifests() if m["notebook"] == entry.source_relative}
+    return set(ours.get("figures", [])) <= intact
+
+
+def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any],
+                         extra: dict[str, Any]) -> None:
     """Tag papermill's injected-parameters cell so the book shows it as a collapsed block."""
     nb = json.loads(executed.read_text(encoding="utf-8"))
     for cell in nb["cells"]:
@@ -98,6 +129,7 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
         "git_commit": provenance.git_commit(),
         "package_version": provenance.package_version(),
         "lock_sha256": provenance.lock_sha256(),
+        **extra,
     }
     executed.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
 
@@ -128,8 +160,9 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
             str(entry.source), str(executed), parameters=parameters, kernel_name=KERNEL_NAME,
             cwd=str(executed.parent), progress_bar=False, log_output=False,
         )
-    _label_injected_cell(executed, profile, parameters)
     exported = [m["label"] for m in figures.load_manifests() if m["notebook"] == entry.source_relative]
+    _label_injected_cell(executed, profile, parameters,
+                         {"run_key": run_key(entry, profile, parameters), "figures": exported})
     log(f"ran {entry.name} [{profile}] in {time.perf_counter() - start:.1f} s -> {executed}")
     gone = sorted(set(removed) - set(exported))
     if exported:

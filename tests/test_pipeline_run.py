@@ -18,7 +18,7 @@ nbformat = pytest.importorskip("nbformat")
 
 from sss_locus import cli  # noqa: E402
 from sss_locus.registry import NotebookEntry, ParameterError  # noqa: E402
-from sss_locus.runner import KERNEL_NAME, run_notebook  # noqa: E402
+from sss_locus.runner import KERNEL_NAME, is_up_to_date, run_notebook  # noqa: E402
 
 PARAMETERS = "n: int = 3          # number of points\nscale = 1.5         # metres\nfail = False\n"
 BODY = """\
@@ -118,6 +118,19 @@ def test_rerun_replaces_the_figures_of_the_notebook(build_area, entry):
     assert len(stale.read_text().splitlines()) == 1 + 3
     run_notebook(entry, "quick", log=lambda *_: None)
     assert len(stale.read_text().splitlines()) == 1 + 2
+
+
+def test_up_to_date_only_for_an_identical_run_with_intact_figures(build_area, entry):
+    assert not is_up_to_date(entry, "quick")
+    run_notebook(entry, "quick", log=lambda *_: None)
+    assert is_up_to_date(entry, "quick")
+    assert not is_up_to_date(entry, "book")  # other parameters
+    (build_area / "_extra" / "figures" / "fig-tiny-line.png").write_bytes(b"tampered")
+    assert not is_up_to_date(entry, "quick")
+    run_notebook(entry, "quick", log=lambda *_: None)
+    assert is_up_to_date(entry, "quick")
+    entry.source.write_text(entry.source.read_text().replace("A line.", "A straight line."))
+    assert not is_up_to_date(entry, "quick")  # the notebook changed
 
 
 def test_cli_reports_errors_without_traceback(build_area, capsys):
