@@ -138,29 +138,28 @@ def test_excluded_fraction_is_small(comparison):
     )
 
 
-def test_length_matches_reference(comparison):
-    c = comparison
+def _assert_agrees(c, field, reference, differs, what):
+    """Compare kernel ``field`` with the reference on the non-excluded configurations."""
     keep = ~c["excluded"]
-    got = np.asarray(c["kernel"].length)[keep]
-    want = c["ref_length"][keep]
-    bad = ~np.isclose(got, want, rtol=RTOL, atol=0.0)
+    bad = differs(np.asarray(getattr(c["kernel"], field))[keep], c[reference][keep])
     idx = np.nonzero(keep)[0][bad]
     assert not bad.any(), (
-        f"{c['family']}: {bad.sum()} of {keep.sum()} lengths differ from the reference by more "
-        f"than rtol={RTOL}:\n{_describe(c, idx)}"
+        f"{c['family']}: {bad.sum()} of {keep.sum()} {what}:\n{_describe(c, idx)}"
+    )
+
+
+def test_length_matches_reference(comparison):
+    _assert_agrees(
+        comparison, "length", "ref_length",
+        lambda got, want: ~np.isclose(got, want, rtol=RTOL, atol=0.0),
+        f"lengths differ from the reference by more than rtol={RTOL}",
     )
 
 
 def test_arc_count_matches_reference(comparison):
-    c = comparison
-    keep = ~c["excluded"]
-    got = np.asarray(c["kernel"].n_arcs)[keep]
-    want = c["ref_arcs"][keep]
-    bad = got != want
-    idx = np.nonzero(keep)[0][bad]
-    assert not bad.any(), (
-        f"{c['family']}: {bad.sum()} of {keep.sum()} arc counts differ from the reference:\n"
-        f"{_describe(c, idx)}"
+    _assert_agrees(
+        comparison, "n_arcs", "ref_arcs", lambda got, want: got != want,
+        "arc counts differ from the reference",
     )
 
 
