@@ -322,3 +322,15 @@ def sample_pose_space(spec: PoseSpaceSpec, n_samples: int, seed: int, *,
             pending = [rest] if len(rest["r1"]) and done < n else []
     out = pd.concat(frames, ignore_index=True)
     return out[list(COLUMNS)]
+
+
+def cached_pose_space(spec: PoseSpaceSpec, n_samples: int, seed: int, *,
+                      notebook: str = "notebooks/pose_space.ipynb") -> pd.DataFrame:
+    """:func:`sample_pose_space` through the result cache (:mod:`sss_locus.cache`), keyed on
+    the notebook, the spec, ``n_samples`` and ``seed`` (plus package version and code)."""
+    from .cache import cached_frame
+
+    n, seed = _check_n_seed(n_samples, seed)
+    key = {"notebook": notebook, "step": "pose-space-table",
+           "parameters": {**spec.key(), "n_samples": n}, "seed": seed}
+    return cached_frame(key, lambda: sample_pose_space(spec, n, seed))
