@@ -151,13 +151,13 @@ def _coerce(param: Parameter, value: Any, from_text: bool) -> Any:
                 return True
             if lowered in ("false", "0", "no"):
                 return False
-            raise ParameterError(f"expected a bool (true/false) for {param.name!r}, got {text!r}")
+            raise ParameterError(f"expected a value of type bool (true/false) for {param.name!r}, got {text!r}")
         try:
             value = ast.literal_eval(text)
         except (ValueError, SyntaxError):
             if param.type == "any":
                 return text
-            raise ParameterError(f"expected a {param.type} for {param.name!r}, got {text!r}") from None
+            raise ParameterError(f"expected a value of type {param.type} for {param.name!r}, got {text!r}") from None
     if param.type == "any":
         return value
     expected = _TYPES[param.type]
@@ -167,7 +167,7 @@ def _coerce(param: Parameter, value: Any, from_text: bool) -> Any:
         return tuple(value)
     if expected is not bool and isinstance(value, bool) or not isinstance(value, expected):
         raise ParameterError(
-            f"expected a {param.type} for {param.name!r}, got {value!r} ({type(value).__name__})"
+            f"expected a value of type {param.type} for {param.name!r}, got {value!r} ({type(value).__name__})"
         )
     return value
 
