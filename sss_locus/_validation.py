@@ -47,14 +47,14 @@ def as_rotation_matrices(value, name: str = "R") -> np.ndarray:
     if hasattr(value, "as_matrix") and callable(value.as_matrix):
         value = value.as_matrix()
     R = as_float_array(value, name, tail=(3, 3))
-    RtR = np.einsum("...ki,...kj->...ij", R, R)
+    RtR = np.matmul(np.swapaxes(R, -1, -2), R)
     orth_err = np.max(np.abs(RtR - np.eye(3)), axis=(-2, -1))
     if np.any(orth_err > ROTATION_ATOL):
         raise ValueError(
             f"{name} must be a rotation matrix (orthonormal): max |{name}^T {name} - I| is "
             f"{orth_err.max():.3g}, allowed {ROTATION_ATOL:g}"
         )
-    det = np.linalg.det(R)
+    det = np.sum(R[..., 0, :] * np.cross(R[..., 1, :], R[..., 2, :]), axis=-1)
     if np.any(np.abs(det - 1.0) > ROTATION_ATOL):
         raise ValueError(
             f"{name} must be a proper rotation (determinant +1); found determinant "

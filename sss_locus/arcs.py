@@ -26,8 +26,13 @@ zero-width sliver is never reported as an arc."""
 
 
 def _wrap(angle: np.ndarray) -> np.ndarray:
-    """Map angles to [-pi, pi)."""
-    return np.mod(angle + np.pi, TWO_PI) - np.pi
+    """Map angles in [-3 pi, 3 pi) to [-pi, pi) (cheaper than a general modulo)."""
+    return angle + np.where(angle < -np.pi, TWO_PI, 0.0) - np.where(angle >= np.pi, TWO_PI, 0.0)
+
+
+def _gather(values: np.ndarray, flat_index: np.ndarray) -> np.ndarray:
+    """``take_along_axis(values, index, axis=1)`` with a precomputed flat index."""
+    return values.reshape(-1)[flat_index]
 
 
 def halfspace_arcs(A: np.ndarray, B: np.ndarray, D: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -85,53 +90,64 @@ def crop_circle(
     """
     N, K = A.shape
     lo, width = halfspace_arcs(A, B, D)
-    b = np.sort(np.concatenate([_wrap(lo), _wrap(lo + np.clip(width, 0.0, TWO_PI))], axis=1), axis=1)
+    proper = (width >= 0.0) & (width <= TWO_PI)  # a real interval, with an enter and a leave
+    bounds = np.concatenate([_wrap(lo), _wrap(lo + np.clip(width, 0.0, TWO_PI))], axis=1)
     G = 2 * K
+    rows = np.arange(N)
+    order = np.argsort(bounds, axis=1) + (rows * G)[:, None]  # flat index of the sorted order
+    b = _gather(bounds, order)
     right = np.concatenate([b[:, 1:], b[:, :1] + TWO_PI], axis=1)
     gap = right - b
-    mid = b + 0.5 * gap
 
+    # Membership is decided once, on the widest gap (never a rounding sliver), and carried
+    # around the circle by counting: passing a boundary enters or leaves one condition's arc.
+    ref = np.argmax(gap, axis=1)
+    ref_mid = b[rows, ref] + 0.5 * gap[rows, ref]
+    ref_member = np.mod(ref_mid[:, None] - lo, TWO_PI) <= width  # (N, K)
+    step = np.concatenate([proper, -proper.astype(np.int8)], axis=1).astype(np.int8)
     inside = np.ones((N, G), dtype=bool)
     for indices, mode in groups:
         if mode not in ("all", "any"):
             raise ValueError(f"groups mode must be 'all' or 'any'; got {mode!r}")
-        acc = np.full((N, G), mode == "all")
-        for k in indices:
-            member = np.mod(mid - lo[:, k : k + 1], TWO_PI) <= width[:, k : k + 1]
-            acc = (acc & member) if mode == "all" else (acc | member)
-        inside &= acc
+        in_group = np.zeros(G, dtype=np.int8)
+        in_group[indices] = 1
+        in_group[[K + i for i in indices]] = 1
+        passed = np.cumsum(_gather(step * in_group, order), axis=1, dtype=np.int16)
+        count = (ref_member[:, indices].sum(axis=1) - passed[rows, ref])[:, None] + passed
+        inside &= (count == len(indices)) if mode == "all" else (count >= 1)
 
     # Rounding slivers inherit the membership of the previous real gap (cyclically).
-    idx = np.where(gap >= GAP_EPS_RAD, np.arange(G), -1)
-    idx = np.maximum.accumulate(idx, axis=1)
-    idx = np.where(idx < 0, idx[:, -1:], idx)
-    inside = np.take_along_axis(inside, idx, axis=1)
+    sliver = gap < GAP_EPS_RAD
+    fix = np.nonzero(sliver.any(axis=1))[0]
+    if fix.size:
+        idx = np.where(sliver[fix], -1, np.arange(G))
+        idx = np.maximum.accumulate(idx, axis=1)
+        idx = np.where(idx < 0, idx[:, -1:], idx)
+        inside[fix] = np.take_along_axis(inside[fix], idx, axis=1)
 
     total_angle = np.sum(np.where(inside, gap, 0.0), axis=1)
     starts = inside & ~np.roll(inside, 1, axis=1)
     ends = inside & ~np.roll(inside, -1, axis=1)
     n_arcs = starts.sum(axis=1)
 
-    cols = np.arange(G)
+    # Compact starts and ends into arc slots by rank. An arc that runs through the seam (its
+    # end lies before the first start) pairs the last start with the first end, one turn on.
     W = max(max_arcs, 1)
-    start_pos = np.sort(np.where(starts, cols, G), axis=1)[:, :W]
-    end_pos = np.sort(np.where(ends, cols, G), axis=1)[:, :W]
-    # An arc that runs through the seam (end position before its start position) pairs the
-    # last start with the first end, one turn later.
-    wrapped = (n_arcs > 0) & (end_pos[:, 0] < start_pos[:, 0])
-    k = np.arange(W)
-    n_safe = np.maximum(n_arcs, 1)[:, None]
-    rot = np.where(wrapped[:, None], (k + 1) % n_safe, k)
-    rot = np.where(k < n_safe, rot, k)
-    end_pos = np.take_along_axis(end_pos, rot, axis=1)
-
-    valid = k[None, :] < n_arcs[:, None]
-    sp = np.where(valid, start_pos, 0)
-    ep = np.where(valid, end_pos, 0)
-    start = np.where(valid, np.take_along_axis(b, sp, axis=1), np.nan)
-    end = np.take_along_axis(right, ep, axis=1)
-    end = np.where(wrapped[:, None] & (k == n_safe - 1), end + TWO_PI, end)
-    end = np.where(valid, end, np.nan)
+    start = np.full((N, W), np.nan)
+    end = np.full((N, W), np.nan)
+    srow, scol = np.nonzero(starts)
+    erow, ecol = np.nonzero(ends)
+    first_start = np.full(N, G)
+    first_start[srow[::-1]] = scol[::-1]
+    first_end = np.full(N, G)
+    first_end[erow[::-1]] = ecol[::-1]
+    wrapped = first_end < first_start
+    srank = np.cumsum(starts, axis=1)[srow, scol] - 1
+    erank = np.cumsum(ends, axis=1)[erow, ecol] - 1 - wrapped[erow]
+    seam = erank < 0
+    erank = np.where(seam, n_arcs[erow] - 1, erank)
+    start[srow, srank] = b[srow, scol]
+    end[erow, erank] = right[erow, ecol] + np.where(seam, TWO_PI, 0.0)
 
     full = inside.all(axis=1)
     n_arcs = np.where(full, 1, n_arcs)

@@ -146,23 +146,38 @@ class LocusResult:
         return np.arctan2(np.sum(d * self.basis2, axis=-1), np.sum(d * self.basis1, axis=-1))
 
 
-def _constraints(ap: Aperture, r: np.ndarray, R: np.ndarray | None, t: np.ndarray | None):
-    """Half-space normals (N, 4, 3) in frame 1 and offsets (N, 4) for one aperture."""
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise dot product of (n, 3) arrays (faster than einsum for this shape)."""
+    return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1] + a[:, 2] * b[:, 2]
+
+
+def _matvec(R: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Row-wise ``R @ v`` for (n, 3, 3) and (n, 3)."""
+    return R[:, :, 0] * v[:, 0:1] + R[:, :, 1] * v[:, 1:2] + R[:, :, 2] * v[:, 2:3]
+
+
+def _crop_coefficients(ap: Aperture, r: np.ndarray, center, e1, e2, radius):
+    """Coefficients (A, B, D), each (n, 4), of an aperture's four bounds on the circle.
+
+    ``center``, ``e1``, ``e2`` are already expressed in the aperture's own frame. The bounds are
+    two elevation half-spaces ``a . p + s r >= 0`` (affine because ``|p| = r`` on the circle) and
+    two azimuth half-planes ``a . p >= 0``; see :meth:`Aperture.halfspace_normals`.
+    """
     el, az, union = ap.halfspace_normals()
-    normals = np.concatenate([el[:, :3], az], axis=0)  # (4, 3) in the aperture's own frame
-    offsets = np.concatenate([el[:, 3][None, :] * r[:, None], np.zeros((r.shape[0], 2))], axis=1)
-    if R is None:
-        return np.broadcast_to(normals, (r.shape[0], 4, 3)), offsets, union
-    # a2 . (R p1 + t) = (R^T a2) . p1 + a2 . t
-    return np.einsum("kj,nji->nki", normals, R), offsets + t @ normals.T, union
+    normals = np.concatenate([el[:, :3], az], axis=0).T  # (3, 4)
+    A = radius[:, None] * (e1 @ normals)
+    B = radius[:, None] * (e2 @ normals)
+    D = center @ normals
+    D[:, :2] += el[:, 3][None, :] * r[:, None]
+    return A, B, D, union
 
 
 def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture):
     n = r1.shape[0]
-    u = np.einsum("nji,nj->ni", R, t)
-    tt = np.einsum("ni,ni->n", t, t)
+    u = R[:, 0, :] * t[:, 0:1] + R[:, 1, :] * t[:, 1:2] + R[:, 2, :] * t[:, 2:3]  # R^T t
+    tt = _dot(t, t)
     C = r2 * r2 - r1 * r1 - tt
-    unorm = np.sqrt(np.einsum("ni,ni->n", u, u))
+    unorm = np.sqrt(_dot(u, u))
     coincident = np.sqrt(tt) <= COINCIDENT_RTOL * (r1 + r2)
     safe = np.where(coincident, 1.0, unorm)
     normal = np.where(coincident[:, None], 0.0, u / safe[:, None])
@@ -178,22 +193,26 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture):
     # aligned with (well conditioned), e2 = normal x e1.
     axis = np.eye(3)[np.argmin(np.abs(normal), axis=1)]
     e1 = np.cross(axis, normal)
-    e1_norm = np.linalg.norm(e1, axis=1)
+    e1_norm = np.sqrt(_dot(e1, e1))
     e1 = np.where(coincident[:, None], 0.0, e1 / np.where(e1_norm > 0, e1_norm, 1.0)[:, None])
     e2 = np.cross(normal, e1)
 
-    n1, o1, union1 = _constraints(ap1, r1, None, None)
-    n2, o2, union2 = _constraints(ap2, r2, R, t)
-    normals = np.concatenate([n1, n2], axis=1)  # (n, 8, 3) in frame 1
-    offsets = np.concatenate([o1, o2], axis=1)
-    A = radius[:, None] * np.einsum("nkj,nj->nk", normals, e1)
-    B = radius[:, None] * np.einsum("nkj,nj->nk", normals, e2)
-    D = np.einsum("nkj,nj->nk", normals, center) + offsets
-    groups = [
-        ([0, 1, 4, 5], "all"),
-        ([2, 3], "any" if union1 else "all"),
-        ([6, 7], "any" if union2 else "all"),
-    ]
+    # Sensor 1 sees the circle directly; sensor 2 sees it through p2 = R p1 + t.
+    A1, B1, D1, union1 = _crop_coefficients(ap1, r1, center, e1, e2, radius)
+    A2, B2, D2, union2 = _crop_coefficients(
+        ap2, r2, _matvec(R, center) + t, _matvec(R, e1), _matvec(R, e2), radius
+    )
+    A = np.concatenate([A1, A2], axis=1)
+    B = np.concatenate([B1, B2], axis=1)
+    D = np.concatenate([D1, D2], axis=1)
+    if union1 or union2:  # a wedge wider than 180 deg is a union of its two half-planes
+        groups = [
+            ([0, 1, 4, 5], "all"),
+            ([2, 3], "any" if union1 else "all"),
+            ([6, 7], "any" if union2 else "all"),
+        ]
+    else:
+        groups = [(list(range(8)), "all")]
     angle, n_arcs, start, end = crop_circle(A, B, D, groups, MAX_ARCS)
 
     in_range = ap1.range_ok(r1) & ap2.range_ok(r2)
