@@ -279,6 +279,8 @@ def _circ_dist(a, b):
         (Aperture(360.0, 12.0, 1e6), Aperture(360.0, 180.0, 1e6)),  # sensor 1's elevation band only
         (Aperture(130.0, 20.0, 1e6), Aperture(50.0, 30.0, 1e6)),
         (Aperture(270.0, 25.0, 1e6), Aperture(200.0, 40.0, 1e6)),  # non-convex azimuth wedges
+        (Aperture(360.0, 180.0, 1e6), Aperture(360.0, 180.0, 1e6)),  # every bound full: whole circle
+        (Aperture(130.0, 0.27, 1e6), Aperture(50.0, 0.5, 1e6)),  # the paper's real beams
     ],
 )
 def test_crop_matches_kernel_arcs(f, ap1, ap2):
@@ -306,7 +308,11 @@ def test_crop_matches_kernel_arcs(f, ap1, ap2):
         if len(pr):
             assert _circ_dist(pr, pk).min(axis=1).max() < 1e-9
         compared += int(res.n_arcs[i] > 0)
-    assert compared >= 75  # at least the constructed half configurations have a non-empty locus to compare
+    assert compared >= 75  # at least the constructed half
+    if ap1.azimuth_deg == ap2.azimuth_deg == 360.0 and ap1.elevation_deg == ap2.elevation_deg == 180.0:
+        circle = res.status == LocusStatus.CIRCLE
+        assert np.all(res.n_arcs[circle] == 1)
+        np.testing.assert_allclose(res.length[circle], TWO_PI * radii[circle], rtol=1e-12)
 
 
 def test_elevation_band_only_boundary_angles(f):
