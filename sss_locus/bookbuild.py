@@ -90,6 +90,14 @@ def figures_index(manifests: list[dict[str, Any]]) -> str:
     return "\n".join(out)
 
 
+def _in_book_order(manifests: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Sort figure manifests by their notebook's position in the registry, then by label."""
+    from sss_locus.registry import load_registry
+
+    order = {entry.source_relative: i for i, entry in enumerate(load_registry().values())}
+    return sorted(manifests, key=lambda m: (order.get(m["notebook"], len(order)), m["label"]))
+
+
 def stage() -> Path:
     """Copy the book source into the build area and generate the figures page; return the root."""
     root = paths.build_dir()
@@ -105,7 +113,8 @@ def stage() -> Path:
     text = page.read_text(encoding="utf-8")
     if FIGURES_MARKER not in text:
         raise ValueError(f"{paths.BOOK_DIR / FIGURES_PAGE} must contain the line {FIGURES_MARKER}")
-    page.write_text(text.replace(FIGURES_MARKER, figures_index(figures.load_manifests())), encoding="utf-8")
+    page.write_text(text.replace(FIGURES_MARKER, figures_index(_in_book_order(figures.load_manifests()))),
+                    encoding="utf-8")
     return root
 
 
