@@ -32,6 +32,7 @@ import pytest
 from reference_locus import (
     APERTURE_FAMILIES,
     ApertureSpec,
+    circle_from_spheres,
     feature_seeded_configs,
     random_pose_configs,
     reference_locus,
@@ -161,6 +162,22 @@ def test_arc_count_matches_reference(comparison):
         comparison, "n_arcs", "ref_arcs", lambda got, want: got != want,
         "arc counts differ from the reference",
     )
+
+
+def test_circle_matches_two_sphere_construction(comparison):
+    """Status, centre, normal and radius against the reference's two-sphere circle."""
+    c = comparison
+    k = c["kernel"]
+    for i in range(len(c["r1"])):
+        kind, center, radius, _, _ = circle_from_spheres(c["R"][i], c["t"][i], c["r1"][i], c["r2"][i])
+        r_max = max(c["r1"][i], c["r2"][i])
+        if kind != "circle" or radius < 1e-2 * r_max:
+            continue  # degenerate / ill-conditioned circles: test_locus_degenerate.py
+        assert k.exists[i] and k.status[i] in (LocusStatus.CIRCLE, LocusStatus.OUT_OF_RANGE)
+        assert k.radius[i] == pytest.approx(radius, rel=1e-10)
+        np.testing.assert_allclose(k.center[i], center, rtol=0, atol=1e-10 * r_max)
+        s = -c["R"][i].T @ c["t"][i]
+        assert abs(abs(k.normal[i] @ s) / np.linalg.norm(s) - 1.0) < 1e-12
 
 
 def test_comparison_exercises_what_it_claims(comparison):
