@@ -140,3 +140,20 @@ def test_console_script_is_installed():
     script = Path(sys.executable).with_name("sss-locus")
     result = subprocess.run([str(script), "--help"], capture_output=True, text=True, timeout=60)
     assert result.returncode == 0 and "run" in result.stdout and "book" in result.stdout
+
+
+def test_plain_papermill_runs_a_notebook(build_area, entry, tmp_path):
+    """`papermill SOURCE OUT -p NAME VALUE` works without the sss-locus runner."""
+    out = tmp_path / "plain.ipynb"
+    env = {"PATH": str(Path(sys.executable).parent), "HOME": str(tmp_path),
+           "JUPYTER_DATA_DIR": str(tmp_path / "jupyter"), "MPLBACKEND": "Agg",
+           "SSS_LOCUS_BUILD_DIR": str(build_area)}
+    result = subprocess.run(
+        [str(Path(sys.executable).with_name("papermill")), str(entry.source), str(out),
+         "-p", "n", "5", "--cwd", str(tmp_path), "--no-progress-bar"],
+        env=env, capture_output=True, text=True, timeout=300, stdin=subprocess.DEVNULL,
+    )
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert _printed(out)["n"] == 5
+    manifest = json.loads((build_area / "_extra" / "figures" / "fig-tiny-line.json").read_text())
+    assert manifest["notebook"] == "interactive" and manifest["parameters"]["n"] == 5
