@@ -113,7 +113,8 @@ class Aperture:
         -------
         elevation : ndarray, shape (2, 4)
             Rows ``(a_x, a_y, a_z, s)`` meaning ``a . p + s * r >= 0`` with ``r = |p|``:
-            ``-z + r sin(phi_max) >= 0`` and ``z + r sin(phi_max) >= 0``.
+            ``-z + r sin(phi_max) >= 0`` and ``z + r sin(phi_max) >= 0`` (for a full 180 deg
+            elevation, where the bound is vacuous, ``a = 0``).
         azimuth : ndarray, shape (2, 3)
             Rows ``a`` meaning ``a . p >= 0``: ``x sin(theta_max) - y cos(theta_max) >= 0`` and
             ``x sin(theta_max) + y cos(theta_max) >= 0``.
@@ -123,6 +124,11 @@ class Aperture:
         """
         s_el = math.sin(self.half_elevation_rad)
         elevation = np.array([[0.0, 0.0, -1.0, s_el], [0.0, 0.0, 1.0, s_el]])
+        if self.elevation_deg == 180.0:
+            # |phi| <= 90 deg holds everywhere. Written as -z + r >= 0 it would touch every circle
+            # through the poles, where rounding opens a spurious sqrt(eps)-wide gap; 0 + r >= 0
+            # states the same condition without that tangency.
+            elevation[:, :3] = 0.0
         st, ct = math.sin(self.half_azimuth_rad), math.cos(self.half_azimuth_rad)
         if self.azimuth_deg == 360.0:  # exact: the union of y >= 0 and y <= 0 is everything
             st, ct = 0.0, -1.0

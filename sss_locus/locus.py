@@ -2,7 +2,7 @@
 
 Two range measurements ``r1``, ``r2`` of one feature, with the relative pose ``p2 = R p1 + t``
 known, put the feature (in sensor 1's frame) on the sphere ``|p1| = r1`` and on the plane
-``2 u . p1 = C`` with ``u = R^T t`` and ``C = r2^2 - r1^2 - |t|^2`` (Norman & Mangelson, eq. 5).
+``2 u . p1 = C`` with ``u = R^T t`` and ``C = r2^2 - r1^2 - |t|^2`` (Norman & Mangelson, Sec. III).
 Sphere and plane meet in a circle; the part of it inside both sensors' apertures is the
 ambiguity locus. Its length is computed here exactly (see :mod:`sss_locus.arcs`).
 """
@@ -26,8 +26,9 @@ COINCIDENT_RTOL = 1e-12
 """Sensor origins closer than ``COINCIDENT_RTOL * (r1 + r2)`` count as coincident."""
 
 TANGENT_RTOL = 1e-13
-"""A circle with ``radius**2 <= TANGENT_RTOL * r1**2`` (radius below about 3.2e-7 r1) is a
-tangent point; a negative ``radius**2`` beyond that means the spheres do not meet."""
+"""A circle with ``|radius**2| <= TANGENT_RTOL * min(r1, r2)**2`` (radius below about 3.2e-7 of
+the shorter range) is a tangent point; a negative ``radius**2`` beyond that means the spheres do
+not meet. The test is symmetric in the two views."""
 
 _CHUNK = 32768
 
@@ -182,8 +183,12 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture):
     safe = np.where(coincident, 1.0, unorm)
     normal = np.where(coincident[:, None], 0.0, u / safe[:, None])
     d = np.where(coincident, 0.0, C / (2.0 * safe))
-    rho2 = (r1 - d) * (r1 + d)
-    tangent = ~coincident & (np.abs(rho2) <= TANGENT_RTOL * r1 * r1)
+    # radius^2 from the four-factor (Heron-type) form: symmetric in the two views and accurate
+    # near tangency, unlike r1^2 - d^2.
+    b = np.where(coincident, 1.0, np.sqrt(tt))
+    rho2 = (r1 + r2 - b) * (r1 + r2 + b) * (b - r1 + r2) * (b + r1 - r2) / (4.0 * b * b)
+    rmin = np.minimum(r1, r2)
+    tangent = ~coincident & (np.abs(rho2) <= TANGENT_RTOL * rmin * rmin)
     circle = ~coincident & ~tangent & (rho2 > 0.0)
     exists = circle | tangent
     radius = np.where(circle, np.sqrt(np.maximum(rho2, 0.0)), 0.0)
