@@ -152,6 +152,13 @@ class Platform:
                 changes[name] = _check_range(float(value), name, 0.0, 90.0)
         return dataclasses.replace(self, **changes)
 
+    def with_tilt(self, tilt_deg: float) -> "Platform":
+        """A copy with both transducers tilted down by ``tilt_deg`` degrees, in [-90, 90] (to
+        probe an assumed tilt, such as the boat's Omniscan tilt)."""
+        tilt = _check_range(float(tilt_deg), "tilt_deg", -90.0, 90.0)
+        return dataclasses.replace(self, transducers={
+            side: dataclasses.replace(t, tilt_deg=tilt) for side, t in self.transducers.items()})
+
 
 # --------------------------------------------------------------------------------------------
 # Reading and validation

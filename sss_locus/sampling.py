@@ -80,6 +80,8 @@ class PoseSpaceSpec:
     depth_envelope : bool
         Apply the platform's depth range to the two vehicles' depth difference (not for
         fixed-depth platforms, which are held at their depth exactly).
+    tilt_deg : float or None
+        Override the downward tilt of both transducers (degrees); ``None`` keeps the platform's.
     """
 
     platform: Platform
@@ -90,6 +92,7 @@ class PoseSpaceSpec:
     pitch_max_deg: float | None = None
     roll_max_deg: float | None = None
     depth_envelope: bool = True
+    tilt_deg: float | None = None
 
     def __post_init__(self) -> None:
         for name, choices in (("profile", PROFILES), ("feature_distribution", FEATURE_DISTRIBUTIONS),
@@ -100,6 +103,8 @@ class PoseSpaceSpec:
             raise ValueError(f"platform must be a sss_locus.platforms.Platform; got {type(self.platform).__name__}")
         limited = self.platform.with_attitude_limits(pitch_max_deg=self.pitch_max_deg,
                                                      roll_max_deg=self.roll_max_deg)
+        if self.tilt_deg is not None:
+            limited = limited.with_tilt(self.tilt_deg)
         object.__setattr__(self, "platform", limited)
         object.__setattr__(self, "pitch_max_deg", limited.pitch_max_deg)
         object.__setattr__(self, "roll_max_deg", limited.roll_max_deg)

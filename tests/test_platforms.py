@@ -178,3 +178,14 @@ def test_frustum_points_lie_in_the_aperture():
     assert depth.max() == pytest.approx(expect, rel=1e-3)
     with pytest.raises(ValueError, match="plot_range_m"):
         frustum_points(pf.sonar, tr, -1.0)
+
+
+def test_tilt_override():
+    boat = load_platform("boat")
+    steep = boat.with_tilt(40.0)
+    assert all(t.tilt_deg == 40.0 for t in steep.transducers.values())
+    assert boat.transducers["port"].tilt_deg == 25.0
+    d = steep.transducers["port"].rotation.apply([1.0, 0.0, 0.0])
+    assert math.degrees(math.asin(-d[2])) == pytest.approx(40.0)
+    with pytest.raises(ValueError, match="tilt_deg"):
+        boat.with_tilt(120.0)

@@ -182,3 +182,16 @@ def test_pitch_override_and_bad_input():
         sample_pose_space(PoseSpaceSpec(pf), 10, seed=-1)
     with pytest.raises(ValueError, match="chunk_size"):
         sample_pose_space(PoseSpaceSpec(pf), 10, seed=1, chunk_size=0)
+
+
+def test_tilt_override_moves_the_fan():
+    """With the boat's transducers tilted to 45 deg, features up to 70 deg below the horizontal
+    are seen; with 25 deg (half the fan), none above it."""
+    pf = load_platform("boat")
+    for tilt in (25.0, 45.0):
+        spec = PoseSpaceSpec(pf, tilt_deg=tilt)
+        assert spec.platform.transducers["port"].tilt_deg == tilt
+        df = sample_pose_space(spec, 3000, seed=2)
+        depression = tilt + df["azimuth1_deg"]  # level vehicle, elevation ~ 0
+        assert depression.min() >= -1e-9 and depression.max() <= tilt + 25.0 + 1e-9
+        assert depression.max() > tilt + 24.0
