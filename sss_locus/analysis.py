@@ -318,3 +318,11 @@ def stable_to(a, b, digits: int = 2) -> np.ndarray:
     with np.errstate(divide="ignore"):
         unit = 10.0 ** (np.floor(np.log10(np.where(big > 0, big, 1.0))) - (digits - 1))
     return np.abs(a - b) <= 0.5 * unit
+
+
+def plain_label(quantity: str) -> str:
+    """:data:`LABELS` entry as plain text (no LaTeX), e.g. ``"|ψ₂|"``; unknown names pass through."""
+    text = LABELS.get(quantity, quantity).replace("$", "")
+    for tex, uni in (("\\psi", "ψ"), ("\\phi", "φ"), ("\\theta", "θ"), ("_1", "₁"), ("_2", "₂")):
+        text = text.replace(tex, uni)
+    return text

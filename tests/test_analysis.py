@@ -152,3 +152,10 @@ def test_stable_to():
 
     assert stable_to(0.4449, 0.4401) and stable_to(0.441, 0.445) and not stable_to(0.44, 0.4456)
     assert stable_to(1234.0, 1280.0) and not stable_to(1200.0, 1300.0)
+
+
+def test_plain_label():
+    from sss_locus.analysis import plain_label
+
+    assert plain_label("abs_psi2_deg") == "|ψ₂|" and plain_label("azimuth1_deg") == "azimuth θ₁"
+    assert plain_label("unknown_q") == "unknown_q"
