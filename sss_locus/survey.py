@@ -36,9 +36,10 @@ For each crossing angle, configurations are drawn until ``n_per_angle`` are acce
 
 1. **Altitudes** uniform in the envelope (:class:`SurveyEnvelope`, ``data/survey.toml``); the
    boat's two passes share one (the water depth at the feature).
-2. **Pitch** of each pass uniform in ``[pitch_min_deg, pitch_max_deg]``.
+2. **Pitch** of each pass uniform in ``[pitch_min_deg, pitch_max_deg]`` (pass 1 at zero if
+   ``level_pass1``).
 3. **Sides and offsets** (:class:`OffsetModel`): the side of pass 1 is port or starboard with
-   probability 1/2; pass 2's side follows ``side_rule``. The ground offset toward the observing
+   probability 1/2 (or fixed by ``side1``); pass 2's side follows ``side_rule``. The ground offset toward the observing
    side is drawn uniformly over that pass's **swath** (:func:`swath_m`: the offsets a level
    vehicle at that altitude images at zero elevation) for ``"independent"``; for ``"matched"``
    pass 2's offset is pass 1's plus a uniform jitter in ``[-jitter_m, jitter_m]``.
@@ -48,6 +49,19 @@ For each crossing angle, configurations are drawn until ``n_per_angle`` are acce
    range at that ping. A draw failing any check is rejected and counted under one of
    :data:`REJECTION_REASONS` (first failing check, pass 1 before pass 2); the counts per angle
    are returned with the samples (never dropped silently).
+
+Symmetries (exact for mirror-image transducers; tested in ``tests/test_survey.py``)
+-------------------------------------------------------------------------------
+- *Port/starboard mirror*: reflecting the world in pass 1's vertical plane swaps the sides,
+  turns ``gamma`` into ``-gamma`` and flips each in-beam elevation; lengths are unchanged.
+- *View swap*: exchanging the two passes leaves length and misalignment unchanged; so does
+  turning both headings by one angle.
+- *Pitch reversal*: a vehicle at heading ``h`` and pitch ``q`` turned by 180 deg about its own
+  vertical axis is the vehicle at heading ``h + 180`` and pitch ``-q``, and its port transducer
+  takes the pose of the starboard one. So the starboard ping of a nose-up pass is the port ping
+  of a nose-down pass run the other way along the same line. With random sides (or both passes
+  reversed together) nose-up and nose-down pass pairs of equal magnitude therefore have the
+  same distribution of locus length at every crossing angle.
 
 Reproducibility: each angle's draws come in blocks of :data:`BLOCK_SIZE` accepted rows; block
 ``k`` at angle ``gamma`` uses ``SeedSequence(seed, spawn_key=(platform id, gamma in
@@ -73,10 +87,11 @@ from .platforms import SIDES, Platform, _sourced, _table
 from .sampling import _per_side, vehicle_attitude
 
 SURVEY_FILE: Path = DATA_DIR / "survey.toml"
-BLOCK_SIZE = 1024
+BLOCK_SIZE = 256
 """Accepted rows per independently seeded block (fixed: changing it changes every table)."""
 OFFSET_KINDS = ("independent", "matched")
 SIDE_RULES = ("random", "same", "opposite")
+SIDE1_CHOICES = ("random", "port", "starboard")
 REJECTION_REASONS = ("outside_swath", "no_solution", "outside_azimuth", "out_of_range")
 """Why a draw is rejected: pass 2's matched offset falls outside its swath; no unique ping
 (``A <= 0``); the feature is outside the observing transducer's azimuth aperture, or outside
@@ -104,6 +119,9 @@ class SurveyEnvelope:
         Pitch per pass, degrees, positive nose-up, in [-90, 90] (uniform per pass).
     same_altitude : bool
         Both passes at one altitude (a surface vessel over a fixed feature).
+    level_pass1 : bool
+        Pass 1 flown at zero pitch (a level reference pass, like vehicle 1 of the pose-space
+        study); only pass 2 draws its pitch.
     """
 
     altitude_min_m: float
@@ -111,6 +129,7 @@ class SurveyEnvelope:
     pitch_min_deg: float = 0.0
     pitch_max_deg: float = 0.0
     same_altitude: bool = False
+    level_pass1: bool = False
 
     def __post_init__(self) -> None:
         for name in ("altitude_min_m", "altitude_max_m", "pitch_min_deg", "pitch_max_deg"):
@@ -126,6 +145,7 @@ class SurveyEnvelope:
             raise ValueError("SurveyEnvelope needs -90 <= pitch_min_deg <= pitch_max_deg <= 90; got "
                              f"{self.pitch_min_deg}, {self.pitch_max_deg}")
         object.__setattr__(self, "same_altitude", bool(self.same_altitude))
+        object.__setattr__(self, "level_pass1", bool(self.level_pass1))
 
     def with_pitch(self, lo: float, hi: float) -> "SurveyEnvelope":
         """A copy with pitch drawn in ``[lo, hi]`` degrees (``lo == hi`` fixes it)."""
@@ -154,15 +174,20 @@ class OffsetModel:
     side_rule : {"random", "same", "opposite"}
         Which transducer of pass 2 sees the feature: port/starboard at random, the same side as
         pass 1, or the other side.
+    side1 : {"random", "port", "starboard"}
+        Which transducer of pass 1 sees the feature (default: either, with probability 1/2).
     """
 
     kind: str = "independent"
     jitter_m: float = 0.0
     side_rule: str = "random"
+    side1: str = "random"
 
     def __post_init__(self) -> None:
         if self.kind not in OFFSET_KINDS:
             raise ValueError(f"OffsetModel.kind must be one of {list(OFFSET_KINDS)}; got {self.kind!r}")
+        if self.side1 not in SIDE1_CHOICES:
+            raise ValueError(f"OffsetModel.side1 must be one of {list(SIDE1_CHOICES)}; got {self.side1!r}")
         if self.side_rule not in SIDE_RULES:
             raise ValueError(f"OffsetModel.side_rule must be one of {list(SIDE_RULES)}; got {self.side_rule!r}")
         j = self.jitter_m
@@ -177,7 +202,8 @@ class OffsetModel:
     def label(self) -> str:
         """Short human-readable name."""
         core = "independent" if self.kind == "independent" else f"matched ±{self.jitter_m:g} m"
-        return core if self.side_rule == "random" else f"{core}, {self.side_rule} side"
+        core = core if self.side_rule == "random" else f"{core}, {self.side_rule} side"
+        return core if self.side1 == "random" else f"{core}, pass 1 {self.side1}"
 
     def key(self) -> dict:
         return {k: getattr(self, k) for k in self.__dataclass_fields__}
@@ -379,7 +405,7 @@ def _seed_sequence(platform: Platform, seed: int, gamma_deg: float, block: int):
 def _candidates(platform, env, model, gamma_deg, rng, m):
     """``m`` candidate pass pairs: observations of both passes and the draw's rejection code."""
     u = rng.random((10, m))
-    port1 = u[0] < 0.5
+    port1 = u[0] < 0.5 if model.side1 == "random" else np.full(m, model.side1 == "port")
     port2 = {"random": u[1] < 0.5, "same": port1, "opposite": ~port1}[model.side_rule]
     span = env.altitude_max_m - env.altitude_min_m
     alt1 = env.altitude_min_m + span * u[4]
@@ -393,6 +419,8 @@ def _candidates(platform, env, model, gamma_deg, rng, m):
         g2 = g1 + model.jitter_m * (2.0 * u[3] - 1.0)
     pspan = env.pitch_max_deg - env.pitch_min_deg
     pitch1, pitch2 = env.pitch_min_deg + pspan * u[6], env.pitch_min_deg + pspan * u[7]
+    if env.level_pass1:
+        pitch1 = np.zeros(m)
     half_el = math.radians(platform.sonar.elevation_deg / 2)
     phi1, phi2 = (2.0 * u[8] - 1.0) * half_el, (2.0 * u[9] - 1.0) * half_el
     ob1 = observe_pass(platform, port1, 0.0, g1, alt1, pitch1, phi1)
