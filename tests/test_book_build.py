@@ -11,6 +11,7 @@ import json
 import os
 import subprocess
 import sys
+from html import unescape
 from pathlib import Path
 
 import pytest
@@ -63,8 +64,8 @@ def test_notebook_ran_under_quick_profile(quick_book, name):
         assert len(injected) == 1 and "hide-input" in injected[0]["metadata"]["tags"]
     page = quick_book["html"] / Path(entry.executed).with_suffix(".html")
     assert page.is_file()
-    if entry.parameters():
-        assert "Show this run&#39;s parameters" in page.read_text() or "Show this run's parameters" in page.read_text()
+    if entry.parameters():  # the collapsed block with this run's parameters
+        assert "Show this run's parameters (profile 'quick')" in unescape(page.read_text())
 
 
 def test_site_has_no_broken_images_or_unresolved_glue(quick_book):
