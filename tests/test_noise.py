@@ -18,7 +18,8 @@ from scipy.spatial.transform import Rotation
 
 from sss_locus import Aperture, two_view_locus
 from sss_locus.noise import (NoiseModel, first_order, gaussian_norm_quantile, load_noise_model,
-                             monte_carlo, noise_sigmas, perturb, two_view_offsets)
+                             monte_carlo, noise_sigmas, perturb, survey_noise_table,
+                             two_view_offsets)
 from sss_locus.platforms import load_platform
 from sss_locus.survey import OffsetModel, load_envelope, simulate_passes
 from sss_locus.views import PATTERNS, draw_pattern, views_from_survey
@@ -166,3 +167,17 @@ def test_bad_input(pattern):
         monte_carlo(pattern, noise, FULL, kind="three", quantile=1.5)
     with pytest.raises(ValueError, match="groups"):
         noise.only("sound")
+
+
+def test_survey_noise_table_columns_and_definitions(auv):
+    samples, _ = simulate_passes(auv, load_envelope("auv"), OffsetModel("independent"), [0.0, 90.0], 10, 3)
+    base = load_noise_model("auv")
+    tab = survey_noise_table(auv, samples, {"x1": base, "range": base.only("range")}, n_draws=8, seed=2)
+    assert list(tab["noise"].unique()) == ["x1", "range"] and len(tab) == 2 * len(samples)
+    one = tab[tab.noise == "x1"]
+    np.testing.assert_allclose(one.locus_length_m, samples.locus_length_m, rtol=1e-12)
+    np.testing.assert_allclose(one.extent_m, np.hypot(one.locus_length_m, one.band_width_m))
+    mc = monte_carlo(views_from_survey(auv, samples), base, auv.sonar.aperture(), n_draws=8, seed=2)
+    np.testing.assert_allclose(one.band_width_m, 2 * mc.circle_miss_q)
+    # range errors alone empty the locus less often than all errors together
+    assert tab[tab.noise == "range"].empty_fraction.mean() <= one.empty_fraction.mean()
