@@ -29,10 +29,10 @@ venv: $(STAMP)
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c "import sys; sys.exit(0 if sys.version_info >= (3, 11) else 'Python >= 3.11 is required (found ' + sys.version.split()[0] + '); set PYTHON=/path/to/python3.11')"
 	@echo "== building $(VENV) from environment.lock ($(ENV_KEY))"
-	rm -rf $(VENV)
+	@rm -rf $(VENV)
 	$(PYTHON) -m venv $(VENV)
-	$(PYTHON) -c "import re, sys; t = open('environment.lock').read(); m = re.search(r'^uv==.*?(?=^\S)', t, re.M | re.S); sys.exit('no uv pin in environment.lock') if not m else open('$(VENV)/uv-requirement.txt', 'w').write(m.group(0))"
-	if $(VPY) -m pip install --quiet --require-hashes --no-deps -r $(VENV)/uv-requirement.txt \
+	@$(PYTHON) -c "import re, sys; t = open('environment.lock').read(); m = re.search(r'^uv==.*?(?=^\S)', t, re.M | re.S); sys.exit('no uv pin in environment.lock') if not m else open('$(VENV)/uv-requirement.txt', 'w').write(m.group(0))"
+	@if $(VPY) -m pip install --quiet --require-hashes --no-deps -r $(VENV)/uv-requirement.txt \
 	   && $(VENV)/bin/uv pip sync --quiet --python $(VPY) --require-hashes environment.lock; then \
 	  $(VENV)/bin/uv pip install --quiet --python $(VPY) --no-deps --no-build-isolation -e . ; \
 	else \
@@ -40,7 +40,7 @@ $(STAMP): environment.lock pyproject.toml
 	  $(VPY) -m pip install --quiet --require-hashes --no-deps -r environment.lock; \
 	  $(VPY) -m pip install --quiet --no-deps --no-build-isolation -e . ; \
 	fi
-	touch $(STAMP)
+	@touch $(STAMP)
 	@echo "== $(VENV) ready"
 
 # Regenerate environment.lock from pyproject.toml (needs internet). Keeps existing pins where
