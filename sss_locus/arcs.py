@@ -26,8 +26,15 @@ zero-width sliver is never reported as an arc."""
 
 
 def _wrap(angle: np.ndarray) -> np.ndarray:
-    """Map angles in [-3 pi, 3 pi) to [-pi, pi) (cheaper than a general modulo)."""
-    return angle + np.where(angle < -np.pi, TWO_PI, 0.0) - np.where(angle >= np.pi, TWO_PI, 0.0)
+    """Map angles in [-3 pi, 3 pi) to [-pi, pi), in place (cheaper than a general modulo)."""
+    np.add(angle, TWO_PI, out=angle, where=angle < -np.pi)
+    np.subtract(angle, TWO_PI, out=angle, where=angle >= np.pi)
+    return angle
+
+
+def _mod_two_pi(x: np.ndarray) -> np.ndarray:
+    """``x mod 2 pi`` in [0, 2 pi) (a floor, cheaper than numpy's floating-point modulo)."""
+    return x - TWO_PI * np.floor(x * (1.0 / TWO_PI))
 
 
 def _gather(values: np.ndarray, flat_index: np.ndarray) -> np.ndarray:
@@ -49,12 +56,17 @@ def halfspace_arcs(A: np.ndarray, B: np.ndarray, D: np.ndarray) -> tuple[np.ndar
         ``4 pi`` where it holds on the whole circle and ``-1`` where it holds nowhere, so the same
         membership test works in every case without branches.
     """
-    M = np.hypot(A, B)
+    M = np.sqrt(A * A + B * B)
     with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(M > 0.0, -D / M, np.where(D >= 0.0, -np.inf, np.inf))
+        ratio = -D / M
+    flat = M == 0.0
+    if flat.any():  # constant on the circle: the sign of D decides
+        ratio[flat] = np.where(D[flat] >= 0.0, -np.inf, np.inf)
     delta = np.arccos(np.clip(ratio, -1.0, 1.0))
     lo = np.arctan2(B, A) - delta
-    width = np.where(ratio <= -1.0, 2.0 * TWO_PI, np.where(ratio > 1.0, -1.0, 2.0 * delta))
+    width = 2.0 * delta
+    width[ratio <= -1.0] = 2.0 * TWO_PI
+    width[ratio > 1.0] = -1.0
     return lo, width
 
 
@@ -91,20 +103,27 @@ def crop_circle(
     N, K = A.shape
     lo, width = halfspace_arcs(A, B, D)
     proper = (width >= 0.0) & (width <= TWO_PI)  # a real interval, with an enter and a leave
-    bounds = np.concatenate([_wrap(lo), _wrap(lo + np.clip(width, 0.0, TWO_PI))], axis=1)
     G = 2 * K
+    bounds = np.empty((N, G))
+    bounds[:, :K] = lo
+    np.add(lo, np.clip(width, 0.0, TWO_PI), out=bounds[:, K:])
+    bounds = _wrap(bounds)
     rows = np.arange(N)
     order = np.argsort(bounds, axis=1) + (rows * G)[:, None]  # flat index of the sorted order
     b = _gather(bounds, order)
-    right = np.concatenate([b[:, 1:], b[:, :1] + TWO_PI], axis=1)
+    right = np.empty_like(b)
+    right[:, :-1] = b[:, 1:]
+    right[:, -1] = b[:, 0] + TWO_PI
     gap = right - b
 
     # Membership is decided once, on the widest gap (never a rounding sliver), and carried
     # around the circle by counting: passing a boundary enters or leaves one condition's arc.
     ref = np.argmax(gap, axis=1)
     ref_mid = b[rows, ref] + 0.5 * gap[rows, ref]
-    ref_member = np.mod(ref_mid[:, None] - lo, TWO_PI) <= width  # (N, K)
-    step = np.concatenate([proper, -proper.astype(np.int8)], axis=1).astype(np.int8)
+    ref_member = _mod_two_pi(ref_mid[:, None] - lo) <= width  # (N, K)
+    step = np.empty((N, G), dtype=np.int8)
+    step[:, :K] = proper
+    step[:, K:] = -step[:, :K]
     inside = np.ones((N, G), dtype=bool)
     for indices, mode in groups:
         if mode not in ("all", "any"):
@@ -116,8 +135,10 @@ def crop_circle(
         count = (ref_member[:, indices].sum(axis=1) - passed[rows, ref])[:, None] + passed
         inside &= (count == len(indices)) if mode == "all" else (count >= 1)
 
-    # Rounding slivers inherit the membership of the previous real gap (cyclically).
-    sliver = gap < GAP_EPS_RAD
+    # Rounding slivers that follow a real boundary (where membership may flip spuriously, e.g.
+    # between two abutting arcs) inherit the membership of the previous real gap, cyclically.
+    # Slivers after the dummy boundaries of whole-circle or empty conditions change nothing.
+    sliver = (gap < GAP_EPS_RAD) & (_gather(step, order) != 0)
     fix = np.nonzero(sliver.any(axis=1))[0]
     if fix.size:
         idx = np.where(sliver[fix], -1, np.arange(G))
@@ -125,7 +146,7 @@ def crop_circle(
         idx = np.where(idx < 0, idx[:, -1:], idx)
         inside[fix] = np.take_along_axis(inside[fix], idx, axis=1)
 
-    total_angle = np.sum(np.where(inside, gap, 0.0), axis=1)
+    total_angle = np.einsum("ij,ij->i", gap, inside)
     starts = inside & ~np.roll(inside, 1, axis=1)
     ends = inside & ~np.roll(inside, -1, axis=1)
     n_arcs = starts.sum(axis=1)
@@ -142,8 +163,11 @@ def crop_circle(
     first_end = np.full(N, G)
     first_end[erow[::-1]] = ecol[::-1]
     wrapped = first_end < first_start
-    srank = np.cumsum(starts, axis=1)[srow, scol] - 1
-    erank = np.cumsum(ends, axis=1)[erow, ecol] - 1 - wrapped[erow]
+    # nonzero() lists hits row by row, so a hit's rank in its row is its index minus the
+    # number of hits in earlier rows.
+    offset = np.concatenate([[0], np.cumsum(n_arcs)[:-1]])
+    srank = np.arange(srow.size) - offset[srow]
+    erank = np.arange(erow.size) - offset[erow] - wrapped[erow]
     seam = erank < 0
     erank = np.where(seam, n_arcs[erow] - 1, erank)
     start[srow, srank] = b[srow, scol]

@@ -157,20 +157,25 @@ def _matvec(R: np.ndarray, v: np.ndarray) -> np.ndarray:
     return R[:, :, 0] * v[:, 0:1] + R[:, :, 1] * v[:, 1:2] + R[:, :, 2] * v[:, 2:3]
 
 
-def _crop_coefficients(ap: Aperture, r: np.ndarray, center, e1, e2, radius):
-    """Coefficients (A, B, D), each (n, 4), of an aperture's four bounds on the circle.
+def _crop_coefficients(ap: Aperture, r: np.ndarray, center, e1, e2, radius, out):
+    """Write the coefficients of an aperture's four bounds on the circle into ``out``.
 
-    ``center``, ``e1``, ``e2`` are already expressed in the aperture's own frame. The bounds are
-    two elevation half-spaces ``a . p + s r >= 0`` (affine because ``|p| = r`` on the circle) and
-    two azimuth half-planes ``a . p >= 0``; see :meth:`Aperture.halfspace_normals`.
+    ``center``, ``e1``, ``e2`` are already expressed in the aperture's own frame; ``out`` is a
+    tuple of three (n, 4) views receiving ``A``, ``B``, ``D``. The bounds are two elevation
+    half-spaces ``a . p + s r >= 0`` (affine because ``|p| = r`` on the circle) and two azimuth
+    half-planes ``a . p >= 0``; see :meth:`Aperture.halfspace_normals`. Returns whether the
+    azimuth wedge is the union (not the intersection) of its half-planes.
     """
     el, az, union = ap.halfspace_normals()
     normals = np.concatenate([el[:, :3], az], axis=0).T  # (3, 4)
-    A = radius[:, None] * (e1 @ normals)
-    B = radius[:, None] * (e2 @ normals)
-    D = center @ normals
+    A, B, D = out
+    np.matmul(e1, normals, out=A)
+    A *= radius[:, None]
+    np.matmul(e2, normals, out=B)
+    B *= radius[:, None]
+    np.matmul(center, normals, out=D)
     D[:, :2] += el[:, 3][None, :] * r[:, None]
-    return A, B, D, union
+    return union
 
 
 def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture):
@@ -203,13 +208,10 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture):
     e2 = np.cross(normal, e1)
 
     # Sensor 1 sees the circle directly; sensor 2 sees it through p2 = R p1 + t.
-    A1, B1, D1, union1 = _crop_coefficients(ap1, r1, center, e1, e2, radius)
-    A2, B2, D2, union2 = _crop_coefficients(
-        ap2, r2, _matvec(R, center) + t, _matvec(R, e1), _matvec(R, e2), radius
-    )
-    A = np.concatenate([A1, A2], axis=1)
-    B = np.concatenate([B1, B2], axis=1)
-    D = np.concatenate([D1, D2], axis=1)
+    A, B, D = np.empty((n, 8)), np.empty((n, 8)), np.empty((n, 8))
+    union1 = _crop_coefficients(ap1, r1, center, e1, e2, radius, (A[:, :4], B[:, :4], D[:, :4]))
+    union2 = _crop_coefficients(ap2, r2, _matvec(R, center) + t, _matvec(R, e1), _matvec(R, e2),
+                                radius, (A[:, 4:], B[:, 4:], D[:, 4:]))
     if union1 or union2:  # a wedge wider than 180 deg is a union of its two half-planes
         groups = [
             ([0, 1, 4, 5], "all"),
