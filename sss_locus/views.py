@@ -171,7 +171,10 @@ def three_view_table(views: Views, aperture, noise=None) -> pd.DataFrame:
     Returns one row per configuration: ``status`` (:class:`~sss_locus.three_view.ThreeViewStatus`),
     ``n_valid`` (1 resolved, 2 two-fold ambiguity), ``plane_angle_deg``, ``tangency_margin``
     (``half_separation / r1``), ``candidate_separation_m`` (``2 h``), ``feature_error_m``
-    (distance from the true feature to the nearest candidate: rounding only), ``r1_m``. With a
+    (distance from the true feature to the nearest candidate: rounding only), ``r1_m``, and
+    ``n_valid_no_elevation`` / ``n_valid_no_azimuth``: the same count with the elevation bound
+    (azimuth and range bounds) of every aperture lifted, to show which bound rejects the second
+    candidate. With a
     :class:`~sss_locus.noise.NoiseModel` ``noise``, also ``point_error_q95_m``: the first-order
     95 % error of the point (:func:`sss_locus.noise.first_order`).
     """
@@ -185,8 +188,15 @@ def three_view_table(views: Views, aperture, noise=None) -> pd.DataFrame:
     res = three_view_points(R12, t12, R13, t13, r[:, 0], r[:, 1], r[:, 2], aperture, aperture, aperture)
     f1 = np.einsum("nji,nj->ni", views.W[:, 0], views.feature - views.origin[:, 0])
     err = np.linalg.norm(res.candidates - f1[:, None, :], axis=-1).min(axis=1)
+    from .aperture import Aperture
+
+    lifted = {}
+    for name, ap in (("no_elevation", Aperture(aperture.azimuth_deg, 180.0, aperture.max_range, aperture.min_range)),
+                     ("no_azimuth", Aperture(360.0, aperture.elevation_deg, 1e12, 0.0))):
+        lifted[f"n_valid_{name}"] = three_view_points(R12, t12, R13, t13, r[:, 0], r[:, 1], r[:, 2],
+                                                      ap, ap, ap).n_valid.astype(np.int8)
     out = pd.DataFrame({
-        "status": res.status.astype(np.int8), "n_valid": res.n_valid.astype(np.int8),
+        **lifted, "status": res.status.astype(np.int8), "n_valid": res.n_valid.astype(np.int8),
         "plane_angle_deg": res.plane_angle_deg, "tangency_margin": res.half_separation / r[:, 0],
         "candidate_separation_m": 2 * res.half_separation, "feature_error_m": err, "r1_m": r[:, 0]})
     if noise is not None:

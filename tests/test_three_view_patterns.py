@@ -23,6 +23,8 @@ def test_pattern_feature_is_recovered(key, pattern):
     assert np.all(tab.n_valid >= 1)
     assert np.all(tab.feature_error_m <= 1e-6 * tab.r1_m)
     assert np.all(np.isin(tab.status, [ThreeViewStatus.TWO_POINTS, ThreeViewStatus.ONE_POINT]))
+    # lifting a bound can only keep more candidates
+    assert np.all(tab.n_valid_no_elevation >= tab.n_valid) and np.all(tab.n_valid_no_azimuth >= tab.n_valid)
 
 
 def test_conditioning_column_scales_with_the_range_error():
