@@ -9,7 +9,9 @@ Gaussian errors per view (:data:`ERROR_NAMES`): the range (standard deviation
 ``hypot(range_sigma_per_resolution * range_resolution_m, sound_speed_relative_sigma * r)``),
 the three coordinates of the origin (horizontal, horizontal, vertical sigmas) and a small
 attitude rotation about the vehicle's forward, port and up axes (roll, pitch, heading sigmas):
-``W_k_hat = Exp(V_k (d_roll, d_pitch, d_heading)) W_k``. Errors are independent between views.
+``W_k_hat = Exp(V_k (d_roll, d_pitch, d_heading)) W_k`` (about the sensor origin: the
+attitude error does not move the origin through the lever arm, decimetres against metres of
+position error). Errors are independent between views.
 
 Spread of the locus (:func:`monte_carlo`)
 -----------------------------------------
