@@ -25,7 +25,9 @@ from sss_locus.runner import hermetic_env
 FIGURES_PAGE = "figures.md"
 FIGURES_MARKER = "<!-- FIGURES-INDEX -->"
 MATHJAX_DIST = "sphinx-mathjax-offline"
-JB_FLAGS = ("-W", "-n", "--keep-going")
+# --all: an incremental Sphinx build only re-reads changed pages, so a warning in an unchanged
+# page would pass -W on the second try; the book is small, rebuild every page every time.
+JB_FLAGS = ("-W", "-n", "--keep-going", "--all")
 
 
 def copy_mathjax() -> Path:
@@ -201,7 +203,7 @@ def site_problems(html_dir: Path) -> list[str]:
 
 
 def build(log=print) -> Path:
-    """Stage and build the site with ``jupyter-book build -W -n --keep-going``; return index.html."""
+    """Stage and build the site with ``jupyter-book build -W -n --keep-going --all``; return index.html."""
     root = stage()
     missing = missing_toc_files(root)
     if missing:
