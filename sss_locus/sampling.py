@@ -26,6 +26,10 @@ Method (Norman & Mangelson, Sec. IV-A, with every choice the paper leaves open n
      not independently uniform — it is conditioned on the equal draft;
    - for other platforms, if ``depth_envelope`` is true, the two vehicles' reference depths may
      differ by at most ``depth_max_m - depth_min_m`` (both fit in the operating depth range).
+   Because draws are redrawn *jointly*, the accepted samples follow the product distribution
+   above conditioned on the constraints: marginals can differ from uniform (for the boat, for
+   example, features deep below sensor 1 need a long ``r2`` and are accepted less often, so
+   ``theta1`` is not exactly uniform).
    ``profile="unconstrained"`` is the idealised sweep the paper tried first: sensor 2's
    orientation is uniform over all rotations, and none of the constraints above apply.
 
