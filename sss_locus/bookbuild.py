@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -22,6 +23,7 @@ from urllib.parse import unquote, urlsplit
 from sss_locus import figures, paths, provenance
 from sss_locus.runner import hermetic_env
 
+_ANSI = re.compile(r"\x1b\[[0-9;]*m")
 FIGURES_PAGE = "figures.md"
 FIGURES_MARKER = "<!-- FIGURES-INDEX -->"
 MATHJAX_DIST = "sphinx-mathjax-offline"
@@ -215,9 +217,17 @@ def build(log=print) -> Path:
     env = {**os.environ, **hermetic_env()}
     cmd = [str(jupyter_book), "build", str(root), *JB_FLAGS]
     log("$ " + " ".join(cmd))
-    result = subprocess.run(cmd, env=env, cwd=root)
-    if result.returncode != 0:
-        raise RuntimeError(f"jupyter-book build failed (exit {result.returncode}); see the messages above")
+    problems: list[str] = []
+    with subprocess.Popen(cmd, env=env, cwd=root, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          text=True, errors="replace") as proc:
+        assert proc.stdout is not None
+        for line in proc.stdout:
+            sys.stdout.write(line)
+            if "WARNING" in line or "ERROR" in line:
+                problems.append(_ANSI.sub("", line).strip())
+    if proc.returncode != 0:
+        listing = "\n  ".join(problems) or "(no WARNING/ERROR lines; see the output above)"
+        raise RuntimeError(f"jupyter-book build failed (exit {proc.returncode}):\n  {listing}")
     index = paths.index_html()
     if not index.is_file():
         raise RuntimeError(f"jupyter-book build finished but {index} is missing")
