@@ -30,8 +30,8 @@ once each: the root kept is the one whose ``p_z`` has the sign of ``phi``
 (:func:`solve_in_beam`). ``A <= 0`` (pitch within the beam half-width of 90 deg) has no unique
 ping and is reported as the rejection ``"no_solution"``.
 
-Sampling (every choice the paper leaves open is a named parameter)
-------------------------------------------------------------------
+Sampling (inputs and their defaults: :mod:`sss_locus.survey_envelope`)
+-----------------------------------------------------------------------
 For each crossing angle, configurations are drawn until ``n_per_angle`` are accepted:
 
 1. **Altitudes** uniform in the envelope (:class:`SurveyEnvelope`, ``data/survey.toml``); the
@@ -72,26 +72,21 @@ grid, and the first ``m`` rows of a larger run equal a run of ``m`` rows.
 from __future__ import annotations
 
 import math
-import tomllib
 import zlib
-from dataclasses import dataclass, replace
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from .locus import two_view_locus
 from .misalignment import elevation_misalignment
-from .paths import DATA_DIR
-from .platforms import SIDES, Platform, _sourced, _table
+from .platforms import SIDES, Platform
 from .sampling import _per_side, vehicle_attitude
+from .survey_envelope import (OFFSET_KINDS, SIDE1_CHOICES, SIDE_RULES, SURVEY_FILE,  # noqa: F401
+                              _read_survey,
+                              OffsetModel, SurveyEnvelope, default_offset_model, load_envelope)
 
-SURVEY_FILE: Path = DATA_DIR / "survey.toml"
 BLOCK_SIZE = 256
 """Accepted rows per independently seeded block (fixed: changing it changes every table)."""
-OFFSET_KINDS = ("independent", "matched")
-SIDE_RULES = ("random", "same", "opposite")
-SIDE1_CHOICES = ("random", "port", "starboard")
 REJECTION_REASONS = ("outside_swath", "no_solution", "outside_azimuth", "out_of_range")
 """Why a draw is rejected: pass 2's matched offset falls outside its swath; no unique ping
 (``A <= 0``); the feature is outside the observing transducer's azimuth aperture, or outside
@@ -105,140 +100,6 @@ COLUMNS = (
     "ground_offset1_m", "ground_offset2_m", "side1", "side2", "altitude1_m", "altitude2_m",
     "pitch1_deg", "pitch2_deg", "along_track1_m", "along_track2_m", "n_arcs", "status",
 )
-
-
-@dataclass(frozen=True)
-class SurveyEnvelope:
-    """Operating envelope of a platform on survey passes.
-
-    Parameters
-    ----------
-    altitude_min_m, altitude_max_m : float
-        Height of the vehicle reference point above the feature, metres (uniform per pass).
-    pitch_min_deg, pitch_max_deg : float
-        Pitch per pass, degrees, positive nose-up, in [-90, 90] (uniform per pass).
-    same_altitude : bool
-        Both passes at one altitude (a surface vessel over a fixed feature).
-    level_pass1 : bool
-        Pass 1 flown at zero pitch (a level reference pass, like vehicle 1 of the pose-space
-        study); only pass 2 draws its pitch.
-    """
-
-    altitude_min_m: float
-    altitude_max_m: float
-    pitch_min_deg: float = 0.0
-    pitch_max_deg: float = 0.0
-    same_altitude: bool = False
-    level_pass1: bool = False
-
-    def __post_init__(self) -> None:
-        for name in ("altitude_min_m", "altitude_max_m", "pitch_min_deg", "pitch_max_deg"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) \
-                    or not math.isfinite(v):
-                raise ValueError(f"SurveyEnvelope.{name} must be a finite number; got {v!r}")
-            object.__setattr__(self, name, float(v))
-        if not 0.0 < self.altitude_min_m <= self.altitude_max_m:
-            raise ValueError("SurveyEnvelope needs 0 < altitude_min_m <= altitude_max_m; got "
-                             f"{self.altitude_min_m}, {self.altitude_max_m}")
-        if not -90.0 <= self.pitch_min_deg <= self.pitch_max_deg <= 90.0:
-            raise ValueError("SurveyEnvelope needs -90 <= pitch_min_deg <= pitch_max_deg <= 90; got "
-                             f"{self.pitch_min_deg}, {self.pitch_max_deg}")
-        object.__setattr__(self, "same_altitude", bool(self.same_altitude))
-        object.__setattr__(self, "level_pass1", bool(self.level_pass1))
-
-    def with_pitch(self, lo: float, hi: float) -> "SurveyEnvelope":
-        """A copy with pitch drawn in ``[lo, hi]`` degrees (``lo == hi`` fixes it)."""
-        return replace(self, pitch_min_deg=lo, pitch_max_deg=hi)
-
-    def with_altitude(self, lo: float, hi: float) -> "SurveyEnvelope":
-        """A copy with altitude drawn in ``[lo, hi]`` metres (``lo == hi`` fixes it)."""
-        return replace(self, altitude_min_m=lo, altitude_max_m=hi)
-
-    def key(self) -> dict:
-        return {k: getattr(self, k) for k in self.__dataclass_fields__}
-
-
-@dataclass(frozen=True)
-class OffsetModel:
-    """Across-track offsets of the two passes from the feature (the paper does not state them).
-
-    Parameters
-    ----------
-    kind : {"independent", "matched"}
-        ``"independent"``: each pass's ground offset uniform over its own swath.
-        ``"matched"``: pass 2's offset is pass 1's plus a uniform jitter in
-        ``[-jitter_m, jitter_m]`` (rejected, and counted, if outside pass 2's swath).
-    jitter_m : float
-        Half-width of the matched jitter, metres (>= 0); must be 0 for ``"independent"``.
-    side_rule : {"random", "same", "opposite"}
-        Which transducer of pass 2 sees the feature: port/starboard at random, the same side as
-        pass 1, or the other side.
-    side1 : {"random", "port", "starboard"}
-        Which transducer of pass 1 sees the feature (default: either, with probability 1/2).
-    """
-
-    kind: str = "independent"
-    jitter_m: float = 0.0
-    side_rule: str = "random"
-    side1: str = "random"
-
-    def __post_init__(self) -> None:
-        if self.kind not in OFFSET_KINDS:
-            raise ValueError(f"OffsetModel.kind must be one of {list(OFFSET_KINDS)}; got {self.kind!r}")
-        if self.side1 not in SIDE1_CHOICES:
-            raise ValueError(f"OffsetModel.side1 must be one of {list(SIDE1_CHOICES)}; got {self.side1!r}")
-        if self.side_rule not in SIDE_RULES:
-            raise ValueError(f"OffsetModel.side_rule must be one of {list(SIDE_RULES)}; got {self.side_rule!r}")
-        j = self.jitter_m
-        if isinstance(j, bool) or not isinstance(j, (int, float, np.integer, np.floating)) \
-                or not math.isfinite(j) or j < 0:
-            raise ValueError(f"OffsetModel.jitter_m must be a finite number >= 0 (metres); got {j!r}")
-        if self.kind == "independent" and j != 0:
-            raise ValueError("OffsetModel.jitter_m applies only to kind='matched'; use 0 for 'independent'")
-        object.__setattr__(self, "jitter_m", float(j))
-
-    @property
-    def label(self) -> str:
-        """Short human-readable name."""
-        core = "independent" if self.kind == "independent" else f"matched ±{self.jitter_m:g} m"
-        core = core if self.side_rule == "random" else f"{core}, {self.side_rule} side"
-        return core if self.side1 == "random" else f"{core}, pass 1 {self.side1}"
-
-    def key(self) -> dict:
-        return {k: getattr(self, k) for k in self.__dataclass_fields__}
-
-
-def _read_survey(path: str | Path | None):
-    path = Path(path) if path is not None else SURVEY_FILE
-    with open(path, "rb") as fh:
-        try:
-            return tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{path} is not valid TOML: {exc}") from exc
-
-
-def load_envelope(platform_key: str, path: str | Path | None = None) -> SurveyEnvelope:
-    """The survey envelope of ``platform_key`` from ``data/survey.toml`` (or ``path``)."""
-    doc = _read_survey(path)
-    envs = _table(doc, "envelopes", "")
-    if platform_key not in envs:
-        raise ValueError(f"platform_key must be one of {sorted(envs)}; got {platform_key!r}")
-    t, p, prov = _table(envs, platform_key, "envelopes"), f"envelopes.{platform_key}", {}
-    same = _sourced(t, "same_altitude", p, prov, choices=(True, False))
-    if not isinstance(same, bool):
-        raise ValueError(f"{p}.same_altitude.value must be true or false; got {same!r}")
-    return SurveyEnvelope(*(_sourced(t, k, p, prov) for k in (
-        "altitude_min_m", "altitude_max_m", "pitch_min_deg", "pitch_max_deg")), same_altitude=same)
-
-
-def default_offset_model(kind: str = "independent", side_rule: str = "random",
-                         path: str | Path | None = None) -> OffsetModel:
-    """An :class:`OffsetModel` with the defaults of ``data/survey.toml`` (matched jitter)."""
-    if kind != "matched":
-        return OffsetModel(kind, 0.0, side_rule)
-    t = _table(_table(_read_survey(path), "offset_models", ""), "matched", "offset_models")
-    return OffsetModel(kind, _sourced(t, "jitter_m", "offset_models.matched", {}, lo=0.0), side_rule)
 
 
 def check_envelope(platform: Platform, envelope: SurveyEnvelope) -> None:
