@@ -12,6 +12,7 @@ Examples::
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 
@@ -34,6 +35,8 @@ def _parser() -> argparse.ArgumentParser:
     book = sub.add_parser("book", help="run every notebook, then build the book")
     book.add_argument("--profile", default="book", help="parameter profile for every notebook (default: book)")
     book.add_argument("--no-run", action="store_true", help="build from the existing executed copies")
+    book.add_argument("--jobs", type=int, default=min(os.cpu_count() or 1, 4),
+                      help="notebooks run at the same time (default: number of CPUs, at most 4)")
     book.add_argument("--force", action="store_true",
                       help="rerun every notebook, even those whose executed copy is up to date")
 
@@ -60,19 +63,21 @@ def _run(args: argparse.Namespace) -> int:
 
 def _book(args: argparse.Namespace) -> int:
     from sss_locus import bookbuild
-    from sss_locus.runner import is_up_to_date, run_notebook
+    from sss_locus.runner import is_up_to_date, run_many
 
     start = time.perf_counter()
     entries = load_registry()
     if not args.no_run:
         for entry in entries.values():
             entry.resolve(args.profile)  # validate every profile before running anything
+        stale = []
         for entry in entries.values():
             if not args.force and is_up_to_date(entry, args.profile):
                 print(f"up to date: {entry.name} [{args.profile}] (same notebook, parameters, code, "
                       f"data and environment as its executed copy; --force reruns it)")
-                continue
-            run_notebook(entry, args.profile)
+            else:
+                stale.append(entry)
+        run_many(stale, args.profile, jobs=args.jobs)
     index = bookbuild.build()
     print(f"Built in {time.perf_counter() - start:.0f} s. Open the book:")
     print(index)

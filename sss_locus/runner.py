@@ -18,9 +18,11 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import subprocess
 import sys
 import time
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
+from concurrent.futures import ThreadPoolExecutor, as_completed
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -62,7 +64,9 @@ def install_kernelspec() -> Path:
         "language": "python",
         "metadata": {"debugger": False},
     }
-    (folder / "kernel.json").write_text(json.dumps(spec, indent=1) + "\n", encoding="utf-8")
+    tmp = folder / f".kernel.json.{os.getpid()}"
+    tmp.write_text(json.dumps(spec, indent=1) + "\n", encoding="utf-8")
+    os.replace(tmp, folder / "kernel.json")  # atomic: parallel runs may install at once
     return folder
 
 
@@ -170,3 +174,34 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     if gone:
         log(f"  no longer exported: {', '.join(gone)}")
     return executed
+
+
+def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=print) -> None:
+    """Run several registered notebooks with one profile, up to ``jobs`` at a time.
+
+    With ``jobs > 1`` each notebook runs in its own ``sss-locus run`` process (the environment
+    variables a run sets are per process). Every notebook is attempted; failures are reported
+    together at the end as a ``RuntimeError``.
+    """
+    if jobs <= 1 or len(entries) <= 1:
+        for entry in entries:
+            run_notebook(entry, profile, log=log)
+        return
+    install_kernelspec()
+
+    def one(entry: NotebookEntry) -> subprocess.CompletedProcess:
+        cmd = [sys.executable, "-m", "sss_locus.cli", "run", entry.name, "--profile", profile]
+        return subprocess.run(cmd, capture_output=True, text=True, stdin=subprocess.DEVNULL)
+
+    failures = []
+    with ThreadPoolExecutor(max_workers=jobs) as pool:
+        futures = {pool.submit(one, entry): entry for entry in entries}
+        for future in as_completed(futures):
+            entry, result = futures[future], future.result()
+            for line in result.stdout.splitlines():
+                if not line.startswith("Rebuild the site"):
+                    log(line)
+            if result.returncode != 0:
+                failures.append(f"{entry.name}: {result.stderr.strip()[-4000:]}")
+    if failures:
+        raise RuntimeError(f"{len(failures)} notebook(s) failed:\n" + "\n".join(failures))
