@@ -1,0 +1,59 @@
+"""Paths (sss_locus.paths): one place, overridable build and cache areas, all git-ignored."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+
+import pytest
+
+from sss_locus import bookbuild, paths
+
+
+def test_repository_layout():
+    for path in (paths.DATA_DIR, paths.NOTEBOOKS_DIR, paths.BOOK_DIR):
+        assert path.is_dir(), path
+    for path in (paths.REGISTRY_FILE, paths.CONFIG_FILE, paths.TOC_FILE, paths.LOCK_FILE,
+                 paths.CITATION_FILE, paths.BOOK_DIR / "references.bib"):
+        assert path.is_file(), path
+
+
+def test_default_build_and_cache_areas(monkeypatch):
+    monkeypatch.delenv(paths.BUILD_DIR_ENV, raising=False)
+    monkeypatch.delenv(paths.CACHE_DIR_ENV, raising=False)
+    assert paths.build_dir() == paths.REPO_ROOT / "_build"
+    assert paths.cache_dir() == paths.REPO_ROOT / ".cache"
+    assert paths.figures_dir() == paths.REPO_ROOT / "_build" / "_extra" / "figures"
+    assert paths.index_html() == paths.REPO_ROOT / "_build" / "_build" / "html" / "index.html"
+    assert paths.site_url(paths.figures_dir() / "fig-x.png") == "figures/fig-x.png"
+
+
+def test_environment_overrides(tmp_path, monkeypatch):
+    monkeypatch.setenv(paths.BUILD_DIR_ENV, str(tmp_path / "b"))
+    monkeypatch.setenv(paths.CACHE_DIR_ENV, str(tmp_path / "c"))
+    for path in (paths.executed_dir(), paths.figures_dir(), paths.mathjax_dir(), paths.jupyter_dir(),
+                 paths.html_dir()):
+        assert path.is_relative_to(tmp_path / "b")
+    assert paths.cache_dir() == tmp_path / "c"
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+@pytest.mark.parametrize("generated", ["_build/_build/html/index.html", "_build/executed/x.ipynb",
+                                       ".cache/frames/ab/abc/data.parquet", ".venv/bin/python"])
+def test_generated_files_are_git_ignored(generated):
+    result = subprocess.run(["git", "check-ignore", "-q", generated], cwd=paths.REPO_ROOT)
+    if result.returncode == 128:
+        pytest.skip("not a git checkout")
+    assert result.returncode == 0, f"{generated} is not git-ignored"
+
+
+def test_missing_toc_files_are_reported(tmp_path):
+    pytest.importorskip("yaml")
+    (tmp_path / "_toc.yml").write_text(
+        "format: jb-book\nroot: book/intro\nparts:\n  - caption: C\n    chapters:\n"
+        "      - file: book/here\n      - file: executed/absent\n"
+    )
+    (tmp_path / "book").mkdir()
+    (tmp_path / "book" / "intro.md").write_text("# I\n")
+    (tmp_path / "book" / "here.md").write_text("# H\n")
+    assert bookbuild.missing_toc_files(tmp_path) == ["executed/absent"]
