@@ -22,6 +22,8 @@ from sss_locus import bookbuild, paths  # noqa: E402
 from sss_locus.figures import load_manifests  # noqa: E402
 from sss_locus.registry import load_registry  # noqa: E402
 
+pytestmark = pytest.mark.book  # deselect with `pytest -m "not book"` for a fast run
+
 REGISTRY = load_registry()
 TIMEOUT_S = 480
 
