@@ -95,11 +95,16 @@ def figures_index(manifests: list[dict[str, Any]]) -> str:
 
 
 def _in_book_order(manifests: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Sort figure manifests by their notebook's position in the registry, then by label."""
+    """Figures of registered notebooks, sorted by the notebook's place in the registry, then label.
+
+    Figures exported by other runs (a plain papermill run, a notebook since removed from the
+    registry) stay in the folder but are not indexed: their labels need not exist in the book.
+    """
     from sss_locus.registry import load_registry
 
     order = {entry.source_relative: i for i, entry in enumerate(load_registry().values())}
-    return sorted(manifests, key=lambda m: (order.get(m["notebook"], len(order)), m["label"]))
+    listed = [m for m in manifests if m["notebook"] in order]
+    return sorted(listed, key=lambda m: (order[m["notebook"]], m["label"]))
 
 
 def stage() -> Path:

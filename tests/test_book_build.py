@@ -114,3 +114,17 @@ def test_site_checker_reports_missing_images_and_unresolved_glue(tmp_path):
         "page.html: img.src 'gone.png' does not exist",
         "page.html: a.href 'figures/fig-x.pdf' does not exist",
     ]
+
+
+def test_figures_index_lists_only_registered_notebooks_in_book_order():
+    registered = [entry.source_relative for entry in REGISTRY.values()]
+    if not registered:
+        pytest.skip("no registered notebooks")
+    manifests = [
+        {"label": "fig-b", "notebook": registered[-1]},
+        {"label": "fig-z", "notebook": "interactive"},
+        {"label": "fig-a", "notebook": registered[0]},
+        {"label": "fig-c", "notebook": "notebooks/removed.ipynb"},
+    ]
+    listed = [m["label"] for m in bookbuild._in_book_order(manifests)]
+    assert listed == ["fig-a", "fig-b"]
