@@ -37,11 +37,6 @@ def _mod_two_pi(x: np.ndarray) -> np.ndarray:
     return x - TWO_PI * np.floor(x * (1.0 / TWO_PI))
 
 
-def _gather(values: np.ndarray, flat_index: np.ndarray) -> np.ndarray:
-    """``take_along_axis(values, index, axis=1)`` with a precomputed flat index."""
-    return values.reshape(-1)[flat_index]
-
-
 def halfspace_arcs(A: np.ndarray, B: np.ndarray, D: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Arc of the circle angle where ``A cos(alpha) + B sin(alpha) + D >= 0``.
 
@@ -104,13 +99,18 @@ def crop_circle(
     lo, width = halfspace_arcs(A, B, D)
     proper = (width >= 0.0) & (width <= TWO_PI)  # a real interval, with an enter and a leave
     G = 2 * K
-    bounds = np.empty((N, G))
-    bounds[:, :K] = lo
-    np.add(lo, np.clip(width, 0.0, TWO_PI), out=bounds[:, K:])
-    bounds = _wrap(bounds)
-    rows = np.arange(N)
-    order = np.argsort(bounds, axis=1) + (rows * G)[:, None]  # flat index of the sorted order
-    b = _gather(bounds, order)
+    # Boundary k (and K + k) opens (closes) condition k's arc; the dummy boundaries of
+    # whole-circle or empty conditions open and close nothing.
+    code = np.empty((N, G))
+    code[:, :K] = np.where(proper, np.arange(1.0, K + 1.0), 0.0)
+    code[:, K:] = -code[:, :K]
+    angle = np.empty((N, G))
+    angle[:, :K] = lo
+    np.add(lo, np.clip(width, 0.0, TWO_PI), out=angle[:, K:])
+    angle = _wrap(angle).reshape(-1)
+    order = (np.argsort(angle.reshape(N, G), axis=1) + (np.arange(N) * G)[:, None]).reshape(-1)
+    b = angle[order].reshape(N, G)
+    event = code.reshape(-1)[order].reshape(N, G)
     right = np.empty_like(b)
     right[:, :-1] = b[:, 1:]
     right[:, -1] = b[:, 0] + TWO_PI
@@ -118,27 +118,29 @@ def crop_circle(
 
     # Membership is decided once, on the widest gap (never a rounding sliver), and carried
     # around the circle by counting: passing a boundary enters or leaves one condition's arc.
+    rows = np.arange(N)
     ref = np.argmax(gap, axis=1)
     ref_mid = b[rows, ref] + 0.5 * gap[rows, ref]
     ref_member = _mod_two_pi(ref_mid[:, None] - lo) <= width  # (N, K)
-    step = np.empty((N, G), dtype=np.int8)
-    step[:, :K] = proper
-    step[:, K:] = -step[:, :K]
+    step = np.sign(event)
     inside = np.ones((N, G), dtype=bool)
     for indices, mode in groups:
         if mode not in ("all", "any"):
             raise ValueError(f"groups mode must be 'all' or 'any'; got {mode!r}")
-        in_group = np.zeros(G, dtype=np.int8)
-        in_group[indices] = 1
-        in_group[[K + i for i in indices]] = 1
-        passed = np.cumsum(_gather(step * in_group, order), axis=1, dtype=np.int16)
+        if len(groups) == 1:
+            group_step = step
+        else:
+            member = np.zeros(K + 1, dtype=bool)
+            member[np.asarray(indices) + 1] = True
+            group_step = np.where(member[np.abs(event).astype(np.intp)], step, 0.0)
+        passed = np.cumsum(group_step, axis=1)
         count = (ref_member[:, indices].sum(axis=1) - passed[rows, ref])[:, None] + passed
-        inside &= (count == len(indices)) if mode == "all" else (count >= 1)
+        inside &= (count == len(indices)) if mode == "all" else (count >= 0.5)
 
     # Rounding slivers that follow a real boundary (where membership may flip spuriously, e.g.
     # between two abutting arcs) inherit the membership of the previous real gap, cyclically.
     # Slivers after the dummy boundaries of whole-circle or empty conditions change nothing.
-    sliver = (gap < GAP_EPS_RAD) & (_gather(step, order) != 0)
+    sliver = (gap < GAP_EPS_RAD) & (event != 0.0)
     fix = np.nonzero(sliver.any(axis=1))[0]
     if fix.size:
         idx = np.where(sliver[fix], -1, np.arange(G))
@@ -151,9 +153,36 @@ def crop_circle(
     ends = inside & ~np.roll(inside, -1, axis=1)
     n_arcs = starts.sum(axis=1)
 
-    # Compact starts and ends into arc slots by rank. An arc that runs through the seam (its
-    # end lies before the first start) pairs the last start with the first end, one turn on.
     W = max(max_arcs, 1)
+    start = np.full((N, W), np.nan)
+    end = np.full((N, W), np.nan)
+    # One arc (the common case): its start and end are the only hits in their rows. An arc that
+    # runs through the seam (its end lies before its start) ends one turn on.
+    one = np.nonzero(n_arcs == 1)[0]
+    s_col = np.argmax(starts[one], axis=1)
+    e_col = np.argmax(ends[one], axis=1)
+    start[one, 0] = b[one, s_col]
+    end[one, 0] = right[one, e_col] + np.where(e_col < s_col, TWO_PI, 0.0)
+    many = np.nonzero(n_arcs > 1)[0]
+    if many.size:
+        start[many], end[many] = _arcs_by_rank(starts[many], ends[many], b[many], right[many],
+                                               n_arcs[many], W)
+
+    full = inside.all(axis=1)
+    n_arcs = np.where(full, 1, n_arcs)
+    start[full, 0] = b[full, 0]
+    end[full, 0] = b[full, 0] + TWO_PI
+    total_angle = np.where(full, TWO_PI, total_angle)
+    return total_angle, n_arcs, start, end
+
+
+def _arcs_by_rank(starts, ends, b, right, n_arcs, W):
+    """Arc end points for rows with several arcs, compacted into ``W`` slots by rank.
+
+    An arc that runs through the seam (an end before the row's first start) pairs the last
+    start with the first end, one turn on.
+    """
+    N, G = starts.shape
     start = np.full((N, W), np.nan)
     end = np.full((N, W), np.nan)
     srow, scol = np.nonzero(starts)
@@ -172,10 +201,4 @@ def crop_circle(
     erank = np.where(seam, n_arcs[erow] - 1, erank)
     start[srow, srank] = b[srow, scol]
     end[erow, erank] = right[erow, ecol] + np.where(seam, TWO_PI, 0.0)
-
-    full = inside.all(axis=1)
-    n_arcs = np.where(full, 1, n_arcs)
-    start[full, 0] = b[full, 0]
-    end[full, 0] = b[full, 0] + TWO_PI
-    total_angle = np.where(full, TWO_PI, total_angle)
-    return total_angle, n_arcs, start, end
+    return start, end
