@@ -25,19 +25,7 @@ take the membership of the gap before them, so abutting arcs are joined rather t
 zero-width sliver is never reported as an arc."""
 
 
-def _wrap(angle: np.ndarray) -> np.ndarray:
-    """Map angles in [-3 pi, 3 pi) to [-pi, pi), in place (cheaper than a general modulo)."""
-    np.add(angle, TWO_PI, out=angle, where=angle < -np.pi)
-    np.subtract(angle, TWO_PI, out=angle, where=angle >= np.pi)
-    return angle
-
-
-def _mod_two_pi(x: np.ndarray) -> np.ndarray:
-    """``x mod 2 pi`` in [0, 2 pi) (a floor, cheaper than numpy's floating-point modulo)."""
-    return x - TWO_PI * np.floor(x * (1.0 / TWO_PI))
-
-
-def halfspace_arcs(A: np.ndarray, B: np.ndarray, D: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def halfspace_arcs(A: np.ndarray, B: np.ndarray, D: np.ndarray):
     """Arc of the circle angle where ``A cos(alpha) + B sin(alpha) + D >= 0``.
 
     Parameters
@@ -46,10 +34,13 @@ def halfspace_arcs(A: np.ndarray, B: np.ndarray, D: np.ndarray) -> tuple[np.ndar
 
     Returns
     -------
-    lo, width : ndarray
+    lo, hi : ndarray
+        Arc end points, ``lo`` in [-pi, pi) and ``hi`` in [-pi, pi) (both wrapped): the arc runs
+        counter-clockwise from ``lo`` to ``hi``.
+    width : ndarray
         The condition holds for ``alpha`` with ``mod(alpha - lo, 2 pi) <= width``. ``width`` is
         ``4 pi`` where it holds on the whole circle and ``-1`` where it holds nowhere, so the same
-        membership test works in every case without branches.
+        membership test works in every case without branches (``lo``, ``hi`` are then dummies).
     """
     M = np.sqrt(A * A + B * B)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -58,11 +49,16 @@ def halfspace_arcs(A: np.ndarray, B: np.ndarray, D: np.ndarray) -> tuple[np.ndar
     if flat.any():  # constant on the circle: the sign of D decides
         ratio[flat] = np.where(D[flat] >= 0.0, -np.inf, np.inf)
     delta = np.arccos(np.clip(ratio, -1.0, 1.0))
-    lo = np.arctan2(B, A) - delta
+    alpha0 = np.arctan2(B, A)  # in [-pi, pi]
+    lo = alpha0 - delta  # in [-2 pi, pi]
+    np.add(lo, TWO_PI, out=lo, where=lo < -np.pi)
+    np.subtract(lo, TWO_PI, out=lo, where=lo >= np.pi)
+    hi = alpha0 + delta  # in [-pi, 2 pi]
+    np.subtract(hi, TWO_PI, out=hi, where=hi >= np.pi)
     width = 2.0 * delta
     width[ratio <= -1.0] = 2.0 * TWO_PI
     width[ratio > 1.0] = -1.0
-    return lo, width
+    return lo, hi, width
 
 
 def crop_circle(
@@ -96,7 +92,7 @@ def crop_circle(
         increasing order of ``start``; NaN beyond ``n_arcs``.
     """
     N, K = A.shape
-    lo, width = halfspace_arcs(A, B, D)
+    lo, hi, width = halfspace_arcs(A, B, D)
     proper = (width >= 0.0) & (width <= TWO_PI)  # a real interval, with an enter and a leave
     G = 2 * K
     # Boundary k (and K + k) opens (closes) condition k's arc; the dummy boundaries of
@@ -106,8 +102,8 @@ def crop_circle(
     code[:, K:] = -code[:, :K]
     angle = np.empty((N, G))
     angle[:, :K] = lo
-    np.add(lo, np.clip(width, 0.0, TWO_PI), out=angle[:, K:])
-    angle = _wrap(angle).reshape(-1)
+    angle[:, K:] = hi
+    angle = angle.reshape(-1)
     order = (np.argsort(angle.reshape(N, G), axis=1) + (np.arange(N) * G)[:, None]).reshape(-1)
     b = angle[order].reshape(N, G)
     event = code.reshape(-1)[order].reshape(N, G)
@@ -121,7 +117,10 @@ def crop_circle(
     rows = np.arange(N)
     ref = np.argmax(gap, axis=1)
     ref_mid = b[rows, ref] + 0.5 * gap[rows, ref]
-    ref_member = _mod_two_pi(ref_mid[:, None] - lo) <= width  # (N, K)
+    offset = ref_mid[:, None] - lo  # in (-2 pi, 4 pi): bring into [0, 2 pi)
+    np.subtract(offset, TWO_PI, out=offset, where=offset >= TWO_PI)
+    np.add(offset, TWO_PI, out=offset, where=offset < 0.0)
+    ref_member = offset <= width  # (N, K)
     step = np.sign(event)
     inside = np.ones((N, G), dtype=bool)
     for indices, mode in groups:

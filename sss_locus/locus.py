@@ -30,7 +30,7 @@ TANGENT_RTOL = 1e-13
 the shorter range) is a tangent point; a negative ``radius**2`` beyond that means the spheres do
 not meet. The test is symmetric in the two views."""
 
-_CHUNK = 32768
+_CHUNK = 4096
 
 
 class LocusStatus(enum.IntEnum):
