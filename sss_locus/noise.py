@@ -120,7 +120,7 @@ class NoiseModel:
 def load_noise_model(platform_key: str, path: str | Path | None = None) -> NoiseModel:
     """The noise model of ``platform_key`` from ``data/noise.toml`` (or ``path``)."""
     from .platforms import _sourced, _table
-    from .survey import _read_survey  # reads and validates any TOML file
+    from .survey_envelope import _read_survey  # reads any TOML file, ValueError if invalid
 
     doc = _read_survey(Path(path) if path is not None else NOISE_FILE)
     tables = _table(doc, "noise", "")
