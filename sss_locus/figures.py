@@ -257,11 +257,23 @@ def load_manifests(out_dir: Path | None = None) -> list[dict[str, Any]]:
     out = paths.figures_dir() if out_dir is None else Path(out_dir)
     manifests = []
     for path in sorted(out.glob("fig-*.json")):
-        manifest = json.loads(path.read_text(encoding="utf-8"))
-        files = manifest.get("files", {})
+        manifest = _read_manifest(path)
+        files = manifest.get("files", {}) if manifest else {}
         if files and all(provenance.file_sha256(out / name) == entry["sha256"] for name, entry in files.items()):
             manifests.append(manifest)
     return sorted(manifests, key=lambda m: (m["notebook"], m["label"]))
+
+
+def _read_manifest(path: Path) -> dict[str, Any] | None:
+    """A manifest's contents, or None if it vanished after it was listed.
+
+    Notebooks run in parallel (``sss-locus book --jobs N``) delete and rewrite their own
+    figures, so a manifest seen by ``glob`` may be gone by the time it is read.
+    """
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        return None
 
 
 def remove_figures_of(notebook: str, out_dir: Path | None = None) -> list[str]:
@@ -273,11 +285,11 @@ def remove_figures_of(notebook: str, out_dir: Path | None = None) -> list[str]:
     out = paths.figures_dir() if out_dir is None else Path(out_dir)
     removed = []
     for path in sorted(out.glob("fig-*.json")):
-        manifest = json.loads(path.read_text(encoding="utf-8"))
-        if manifest.get("notebook") != notebook:
+        manifest = _read_manifest(path)
+        if manifest is None or manifest.get("notebook") != notebook:
             continue
         for name in manifest.get("files", {}):
             (out / name).unlink(missing_ok=True)
-        path.unlink()
+        path.unlink(missing_ok=True)
         removed.append(manifest["label"])
     return removed

@@ -128,3 +128,15 @@ def test_default_folder_is_in_the_build_area(tmp_path, fig, monkeypatch):
     monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path))
     export_figure(fig, "fig-demo", DATA, caption="C.", parameters={})
     assert (tmp_path / "_extra" / "figures" / "fig-demo.png").is_file()
+
+
+def test_manifest_vanishing_mid_scan_is_skipped(tmp_path, fig, monkeypatch):
+    """Notebooks built in parallel delete and rewrite their own figures: a manifest listed by
+    glob may be gone when it is read. Neither scan may crash on that (seen with --jobs 2)."""
+    export_figure(fig, "fig-demo-kept", DATA, caption="Kept.", parameters={}, out_dir=tmp_path)
+    ghost = tmp_path / "fig-demo-ghost.json"  # listed, but never on disk
+    real_glob = type(tmp_path).glob
+    monkeypatch.setattr(type(tmp_path), "glob",
+                        lambda self, pattern: [*real_glob(self, pattern), ghost])
+    assert [m["label"] for m in load_manifests(tmp_path)] == ["fig-demo-kept"]
+    assert remove_figures_of("no-such-notebook", tmp_path) == []
