@@ -11,11 +11,20 @@ the whole circle when ``-D/M <= -1``, nothing when ``-D/M > 1``, and otherwise t
 conditions (intersections and unions) is an arrangement problem on the circle: sort all boundary
 angles, decide membership once per gap between consecutive boundaries (membership is constant on
 each gap, so this is exact, not sampling), and join consecutive inside gaps into arcs.
+
+Speed notes (the kernel's hot path; see benchmarks/bench_locus.py). Per-condition arrays are
+condition-major, shape (K, N), so every operation runs over long contiguous rows. Updates under
+a data-dependent mask that is true about half the time are written as arithmetic
+(``x + 2 pi * mask``): a masked ``np.add(..., where=)`` or ``np.where`` branches per element and
+mispredicts. Scans and reductions along the short rows of boundaries use the byte tricks of
+:mod:`sss_locus._fastpath`.
 """
 
 from __future__ import annotations
 
 import numpy as np
+
+from ._fastpath import prefix_sums, row_sums, rows_all
 
 TWO_PI = 2.0 * np.pi
 
@@ -44,20 +53,25 @@ def halfspace_arcs(A: np.ndarray, B: np.ndarray, D: np.ndarray):
     """
     M = np.sqrt(A * A + B * B)
     with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = -D / M
+        ratio = np.divide(D, M)
+    np.negative(ratio, out=ratio)  # -(D / M) is bit-identical to (-D) / M
     flat = M == 0.0
     if flat.any():  # constant on the circle: the sign of D decides
         ratio[flat] = np.where(D[flat] >= 0.0, -np.inf, np.inf)
-    delta = np.arccos(np.clip(ratio, -1.0, 1.0))
+    whole = ratio <= -1.0
+    empty = ratio > 1.0
+    delta = np.arccos(np.minimum(np.maximum(ratio, -1.0), 1.0))
     alpha0 = np.arctan2(B, A)  # in [-pi, pi]
     lo = alpha0 - delta  # in [-2 pi, pi]
-    np.add(lo, TWO_PI, out=lo, where=lo < -np.pi)
-    np.subtract(lo, TWO_PI, out=lo, where=lo >= np.pi)
+    lo += TWO_PI * (lo < -np.pi)  # arithmetic, not a masked add: the mask is random (see above)
+    np.subtract(lo, TWO_PI, out=lo, where=lo >= np.pi)  # rare (alpha0 = pi, delta = 0)
     hi = alpha0 + delta  # in [-pi, 2 pi]
-    np.subtract(hi, TWO_PI, out=hi, where=hi >= np.pi)
+    hi -= TWO_PI * (hi >= np.pi)
+    # Whole circle: the ratio was clipped to -1 and arccos(-1) is pi, so 2 delta + 2 pi = 4 pi
+    # exactly. Empty: arccos(1) = 0, so 2 delta - 1 = -1 exactly. Elsewhere both terms are 0.
     width = 2.0 * delta
-    width[ratio <= -1.0] = 2.0 * TWO_PI
-    width[ratio > 1.0] = -1.0
+    width += TWO_PI * whole
+    width -= empty
     return lo, hi, width
 
 
@@ -67,19 +81,23 @@ def crop_circle(
     D: np.ndarray,
     groups: list[tuple[list[int], str]],
     max_arcs: int,
+    out: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Arcs of a circle where a combination of half-space conditions holds.
 
     Parameters
     ----------
-    A, B, D : ndarray, shape (N, K)
-        Coefficients of ``K`` conditions ``A cos(alpha) + B sin(alpha) + D >= 0`` per circle.
+    A, B, D : ndarray, shape (K, N)
+        Coefficients of ``K`` conditions ``A cos(alpha) + B sin(alpha) + D >= 0`` on each of
+        ``N`` circles (condition-major: row ``k`` holds condition ``k`` for every circle).
     groups : list of (indices, mode)
         The region is the intersection over groups; within a group the conditions are combined
         with ``mode`` ``"all"`` (intersection) or ``"any"`` (union). Every condition index must
         appear in exactly one group.
     max_arcs : int
         Width of the returned arc arrays (at least ``K``, the most arcs ``K`` conditions allow).
+    out : tuple of two ndarrays, shape (N, max_arcs), optional
+        Arrays to receive ``start`` and ``end`` (C-contiguous float64); fresh ones by default.
 
     Returns
     -------
@@ -91,22 +109,28 @@ def crop_circle(
         Arc end points (radians), ``start`` in [-pi, pi), ``start < end <= start + 2 pi``, in
         increasing order of ``start``; NaN beyond ``n_arcs``.
     """
-    N, K = A.shape
+    K, N = A.shape
+    for indices, mode in groups:
+        if mode not in ("all", "any"):
+            raise ValueError(f"groups mode must be 'all' or 'any'; got {mode!r}")
     lo, hi, width = halfspace_arcs(A, B, D)
     proper = (width >= 0.0) & (width <= TWO_PI)  # a real interval, with an enter and a leave
     G = 2 * K
-    # Boundary k (and K + k) opens (closes) condition k's arc; the dummy boundaries of
-    # whole-circle or empty conditions open and close nothing.
-    code = np.empty((N, G))
-    code[:, :K] = np.where(proper, np.arange(1.0, K + 1.0), 0.0)
-    code[:, K:] = -code[:, :K]
+    # Boundary k (and K + k) opens (closes) condition k's arc. Its step code is 1 + (change in
+    # the number of arcs the circle is inside): 2 to enter, 0 to leave, 1 for the dummy
+    # boundaries of whole-circle or empty conditions, which open and close nothing.
     angle = np.empty((N, G))
-    angle[:, :K] = lo
-    angle[:, K:] = hi
-    angle = angle.reshape(-1)
-    order = (np.argsort(angle.reshape(N, G), axis=1) + (np.arange(N) * G)[:, None]).reshape(-1)
-    b = angle[order].reshape(N, G)
-    event = code.reshape(-1)[order].reshape(N, G)
+    angle[:, :K] = lo.T
+    angle[:, K:] = hi.T
+    code = np.empty((N, G), dtype=np.uint8)
+    entering = proper.T.view(np.uint8)
+    np.add(entering, 1, out=code[:, :K])
+    np.subtract(1, entering, out=code[:, K:])
+    row_start = np.arange(N) * G
+    order = np.argsort(angle, axis=1)
+    order += row_start[:, None]
+    flat_order = order.reshape(-1)  # flat gathers are much cheaper than take_along_axis
+    b = angle.reshape(-1)[flat_order].reshape(N, G)
     right = np.empty_like(b)
     right[:, :-1] = b[:, 1:]
     right[:, -1] = b[:, 0] + TWO_PI
@@ -114,64 +138,82 @@ def crop_circle(
 
     # Membership is decided once, on the widest gap (never a rounding sliver), and carried
     # around the circle by counting: passing a boundary enters or leaves one condition's arc.
-    rows = np.arange(N)
     ref = np.argmax(gap, axis=1)
-    ref_mid = b[rows, ref] + 0.5 * gap[rows, ref]
-    offset = ref_mid[:, None] - lo  # in (-2 pi, 4 pi): bring into [0, 2 pi)
-    np.subtract(offset, TWO_PI, out=offset, where=offset >= TWO_PI)
-    np.add(offset, TWO_PI, out=offset, where=offset < 0.0)
-    ref_member = offset <= width  # (N, K)
-    step = np.sign(event)
-    inside = np.ones((N, G), dtype=bool)
+    ref_flat = row_start + ref
+    ref_mid = b.reshape(-1)[ref_flat] + 0.5 * gap.reshape(-1)[ref_flat]
+    offset = ref_mid - lo  # (K, N), in (-2 pi, 4 pi): bring into [0, 2 pi)
+    np.subtract(offset, TWO_PI, out=offset, where=offset >= TWO_PI)  # rare
+    offset += TWO_PI * (offset < 0.0)  # about half the entries: arithmetic, not a masked add
+    ref_member = offset <= width  # (K, N)
+
+    # With P = running sum of the step codes along the sorted row, the number of a group's
+    # conditions holding on gap j is count_j = n_ref + passed_j - passed_ref, where
+    # passed_j = P_j - (j + 1) and n_ref counts the conditions holding on the reference gap.
+    # A group needing all its Kg conditions is inside where P_j == Kg - n_ref + P_ref - ref + j.
+    columns = np.arange(G)
+    inside = None
     for indices, mode in groups:
-        if mode not in ("all", "any"):
-            raise ValueError(f"groups mode must be 'all' or 'any'; got {mode!r}")
         if len(groups) == 1:
-            group_step = step
-        else:
-            member = np.zeros(K + 1, dtype=bool)
-            member[np.asarray(indices) + 1] = True
-            group_step = np.where(member[np.abs(event).astype(np.intp)], step, 0.0)
-        passed = np.cumsum(group_step, axis=1)
-        count = (ref_member[:, indices].sum(axis=1) - passed[rows, ref])[:, None] + passed
-        inside &= (count == len(indices)) if mode == "all" else (count >= 0.5)
+            group_code = code
+            n_ref = np.count_nonzero(ref_member, axis=0)
+        else:  # other groups' boundaries count as dummies here
+            others = np.setdiff1d(np.arange(K), indices)
+            group_code = code.copy()
+            group_code[:, others] = 1
+            group_code[:, others + K] = 1
+            n_ref = np.count_nonzero(ref_member[indices], axis=0)
+        P = prefix_sums(group_code.reshape(-1)[flat_order].reshape(N, G))
+        shift = P.reshape(-1)[ref_flat].astype(np.int64) - ref - n_ref  # P_ref - ref - n_ref
+        if mode == "all":
+            # Both sides are small integers (|P_j - target_j| < 256), so comparing them modulo
+            # 256 in uint8 is exact.
+            target = (shift + len(indices)).astype(np.uint8)[:, None] + columns.astype(np.uint8)
+            group_inside = P == target
+        else:  # at least one condition: count_j = P_j - j - shift >= 1
+            group_inside = (P.astype(np.int64) - columns) >= (shift + 1)[:, None]
+        inside = group_inside if inside is None else inside & group_inside
 
     # Rounding slivers that follow a real boundary (where membership may flip spuriously, e.g.
     # between two abutting arcs) inherit the membership of the previous real gap, cyclically.
     # Slivers after the dummy boundaries of whole-circle or empty conditions change nothing.
-    sliver = (gap < GAP_EPS_RAD) & (event != 0.0)
-    fix = np.nonzero(sliver.any(axis=1))[0]
-    if fix.size:
-        idx = np.where(sliver[fix], -1, np.arange(G))
-        idx = np.maximum.accumulate(idx, axis=1)
-        idx = np.where(idx < 0, idx[:, -1:], idx)
-        inside[fix] = np.take_along_axis(inside[fix], idx, axis=1)
+    small = gap < GAP_EPS_RAD
+    if small.any():
+        sliver = small & (code.reshape(-1)[flat_order].reshape(N, G) != 1)
+        fix = np.nonzero(sliver.any(axis=1))[0]
+        if fix.size:
+            idx = np.where(sliver[fix], -1, columns)
+            idx = np.maximum.accumulate(idx, axis=1)
+            idx = np.where(idx < 0, idx[:, -1:], idx)
+            inside[fix] = np.take_along_axis(inside[fix], idx, axis=1)
 
     total_angle = np.einsum("ij,ij->i", gap, inside)
     starts = inside & ~np.roll(inside, 1, axis=1)
     ends = inside & ~np.roll(inside, -1, axis=1)
-    n_arcs = starts.sum(axis=1)
+    n_arcs = row_sums(starts)
 
     W = max(max_arcs, 1)
-    start = np.full((N, W), np.nan)
-    end = np.full((N, W), np.nan)
+    start, end = (np.empty((N, W)), np.empty((N, W))) if out is None else out
+    start.fill(np.nan)
+    end.fill(np.nan)
     # One arc (the common case): its start and end are the only hits in their rows. An arc that
     # runs through the seam (its end lies before its start) ends one turn on.
-    one = np.nonzero(n_arcs == 1)[0]
-    s_col = np.argmax(starts[one], axis=1)
-    e_col = np.argmax(ends[one], axis=1)
-    start[one, 0] = b[one, s_col]
-    end[one, 0] = right[one, e_col] + np.where(e_col < s_col, TWO_PI, 0.0)
+    one = n_arcs == 1
+    rows = slice(None) if one.all() else np.nonzero(one)[0]
+    s_col = np.argmax(starts[rows], axis=1)
+    e_col = np.argmax(ends[rows], axis=1)
+    start[rows, 0] = b.reshape(-1)[row_start[rows] + s_col]
+    end[rows, 0] = right.reshape(-1)[row_start[rows] + e_col] + TWO_PI * (e_col < s_col)
     many = np.nonzero(n_arcs > 1)[0]
     if many.size:
         start[many], end[many] = _arcs_by_rank(starts[many], ends[many], b[many], right[many],
                                                n_arcs[many], W)
 
-    full = inside.all(axis=1)
-    n_arcs = np.where(full, 1, n_arcs)
-    start[full, 0] = b[full, 0]
-    end[full, 0] = b[full, 0] + TWO_PI
-    total_angle = np.where(full, TWO_PI, total_angle)
+    full = rows_all(inside)
+    if full.any():
+        n_arcs[full] = 1
+        start[full, 0] = b[full, 0]
+        end[full, 0] = b[full, 0] + TWO_PI
+        total_angle[full] = TWO_PI
     return total_angle, n_arcs, start, end
 
 

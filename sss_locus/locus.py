@@ -10,6 +10,7 @@ ambiguity locus. Its length is computed here exactly (see :mod:`sss_locus.arcs`)
 from __future__ import annotations
 
 import enum
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -147,71 +148,102 @@ class LocusResult:
         return np.arctan2(np.sum(d * self.basis2, axis=-1), np.sum(d * self.basis1, axis=-1))
 
 
-def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Row-wise dot product of (n, 3) arrays (faster than einsum for this shape)."""
-    return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1] + a[:, 2] * b[:, 2]
+@functools.lru_cache(maxsize=64)
+def _bounds(ap: Aperture) -> tuple[np.ndarray, np.ndarray, bool]:
+    """An aperture's four bounds as ``a . p + s r >= 0`` (see :meth:`Aperture.halfspace_normals`).
 
-
-def _matvec(R: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Row-wise ``R @ v`` for (n, 3, 3) and (n, 3)."""
-    return R[:, :, 0] * v[:, 0:1] + R[:, :, 1] * v[:, 1:2] + R[:, :, 2] * v[:, 2:3]
-
-
-def _crop_coefficients(ap: Aperture, r: np.ndarray, center, e1, e2, radius, out):
-    """Write the coefficients of an aperture's four bounds on the circle into ``out``.
-
-    ``center``, ``e1``, ``e2`` are already expressed in the aperture's own frame; ``out`` is a
-    tuple of three (n, 4) views receiving ``A``, ``B``, ``D``. The bounds are two elevation
-    half-spaces ``a . p + s r >= 0`` (affine because ``|p| = r`` on the circle) and two azimuth
-    half-planes ``a . p >= 0``; see :meth:`Aperture.halfspace_normals`. Returns whether the
-    azimuth wedge is the union (not the intersection) of its half-planes.
+    Returns the normals ``a`` as rows of a C-contiguous (4, 3) array (two elevation bounds, then
+    two azimuth bounds), the elevation offsets ``s`` as a (2, 1) column, and whether the azimuth
+    wedge is the union (not the intersection) of its half-planes. Cached: apertures are frozen.
     """
     el, az, union = ap.halfspace_normals()
-    normals = np.concatenate([el[:, :3], az], axis=0).T  # (3, 4)
-    A, B, D = out
-    np.matmul(e1, normals, out=A)
-    A *= radius[:, None]
-    np.matmul(e2, normals, out=B)
-    B *= radius[:, None]
-    np.matmul(center, normals, out=D)
-    D[:, :2] += el[:, 3][None, :] * r[:, None]
-    return union
+    normals = np.ascontiguousarray(np.concatenate([el[:, :3], az], axis=0))
+    normals.flags.writeable = False
+    s_el = el[:, 3:].copy()
+    s_el.flags.writeable = False
+    return normals, s_el, union
 
 
-def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture):
+def _rotate(Rc: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``R @ v`` for stacks of component-major vectors.
+
+    ``Rc`` (3, 3, n) holds ``R[:, i, j]`` at ``[i, j]``; ``v`` (..., 3, n) holds vector
+    components along its second-last axis. Summed in the order ``R_i0 v_0 + R_i1 v_1 + R_i2 v_2``.
+    """
+    return Rc[:, 0] * v[..., 0:1, :] + Rc[:, 1] * v[..., 1:2, :] + Rc[:, 2] * v[..., 2:3, :]
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product of component-major vectors (3, n), in the operation order of ``np.cross``."""
+    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
+    """Compute one chunk of rows into ``out`` (this chunk's slices of the result arrays).
+
+    Vectors are handled component-major, shape (3, n) (row ``i`` is component ``i`` of every
+    configuration), so each operation runs over contiguous rows instead of broadcasting over
+    a short last axis; results are copied into the (n, 3) outputs at the end.
+    """
     n = r1.shape[0]
-    u = R[:, 0, :] * t[:, 0:1] + R[:, 1, :] * t[:, 1:2] + R[:, 2, :] * t[:, 2:3]  # R^T t
-    tt = _dot(t, t)
+    Rc = np.ascontiguousarray(np.moveaxis(R, 0, -1))  # (3, 3, n): Rc[i, j] = R[:, i, j]
+    tc = np.ascontiguousarray(t.T)  # (3, n)
+    u = Rc[0] * tc[0] + Rc[1] * tc[1] + Rc[2] * tc[2]  # R^T t: u_j = sum_i R_ij t_i
+    tt = tc[0] * tc[0] + tc[1] * tc[1] + tc[2] * tc[2]
     C = r2 * r2 - r1 * r1 - tt
-    unorm = np.sqrt(_dot(u, u))
-    coincident = np.sqrt(tt) <= COINCIDENT_RTOL * (r1 + r2)
-    safe = np.where(coincident, 1.0, unorm)
-    normal = np.where(coincident[:, None], 0.0, u / safe[:, None])
-    d = np.where(coincident, 0.0, C / (2.0 * safe))
+    unorm = np.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
+    b = np.sqrt(tt)
+    coincident = b <= COINCIDENT_RTOL * (r1 + r2)
+    some_coincident = bool(coincident.any())
+    safe = np.where(coincident, 1.0, unorm) if some_coincident else unorm
+    normal = u / safe
+    d = C / (2.0 * safe)
+    if some_coincident:
+        normal[:, coincident] = 0.0
+        d[coincident] = 0.0
+        b = np.where(coincident, 1.0, b)
     # radius^2 from the four-factor (Heron-type) form: symmetric in the two views and accurate
     # near tangency, unlike r1^2 - d^2.
-    b = np.where(coincident, 1.0, np.sqrt(tt))
     rho2 = (r1 + r2 - b) * (r1 + r2 + b) * (b - r1 + r2) * (b + r1 - r2) / (4.0 * b * b)
     rmin = np.minimum(r1, r2)
     tangent = ~coincident & (np.abs(rho2) <= TANGENT_RTOL * rmin * rmin)
     circle = ~coincident & ~tangent & (rho2 > 0.0)
     exists = circle | tangent
     radius = np.where(circle, np.sqrt(np.maximum(rho2, 0.0)), 0.0)
-    center = normal * d[:, None]
+    center = normal * d
 
     # In-plane basis: e1 perpendicular to the normal and to the coordinate axis it is least
-    # aligned with (well conditioned), e2 = normal x e1.
-    axis = np.eye(3)[np.argmin(np.abs(normal), axis=1)]
-    e1 = np.cross(axis, normal)
-    e1_norm = np.sqrt(_dot(e1, e1))
-    e1 = np.where(coincident[:, None], 0.0, e1 / np.where(e1_norm > 0, e1_norm, 1.0)[:, None])
-    e2 = np.cross(normal, e1)
+    # aligned with (well conditioned; first such axis on ties, as np.argmin), e2 = normal x e1.
+    # The axis is a one-hot float vector, so axis x normal is np.cross's arithmetic exactly.
+    mag = np.abs(normal)
+    axis = np.empty((3, n))
+    np.logical_and(mag[0] <= mag[1], mag[0] <= mag[2], out=axis[0], casting="unsafe")
+    np.logical_and(axis[0] == 0.0, mag[1] <= mag[2], out=axis[1], casting="unsafe")
+    np.subtract(1.0, axis[0] + axis[1], out=axis[2])
+    e1 = _cross(axis, normal)
+    e1_norm = np.sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2])
+    zero = e1_norm == 0.0  # only where the normal is zero (coincident origins)
+    if zero.any():
+        e1_norm[zero] = 1.0
+    e1 /= e1_norm
+    if some_coincident:
+        e1[:, coincident] = 0.0
+    e2 = _cross(normal, e1)
 
-    # Sensor 1 sees the circle directly; sensor 2 sees it through p2 = R p1 + t.
-    A, B, D = np.empty((n, 8)), np.empty((n, 8)), np.empty((n, 8))
-    union1 = _crop_coefficients(ap1, r1, center, e1, e2, radius, (A[:, :4], B[:, :4], D[:, :4]))
-    union2 = _crop_coefficients(ap2, r2, _matvec(R, center) + t, _matvec(R, e1), _matvec(R, e2),
-                                radius, (A[:, 4:], B[:, 4:], D[:, 4:]))
+    # Coefficients A, B, D (as coef[0], coef[1], coef[2], each (8, n): four bounds per sensor)
+    # of the bounds on the circle. Sensor 1 sees the circle directly; sensor 2 through
+    # p2 = R p1 + t. One matrix product per sensor gives a . e1, a . e2 and a . c.
+    normals1, s1, union1 = _bounds(ap1)
+    normals2, s2, union2 = _bounds(ap2)
+    coef = np.empty((3, 8, n))
+    frame1 = np.stack([e1, e2, center])  # (3 vectors, 3 components, n)
+    frame2 = _rotate(Rc, frame1)
+    frame2[2] += tc
+    np.matmul(normals1, frame1, out=coef[:, :4])
+    np.matmul(normals2, frame2, out=coef[:, 4:])
+    coef[:2] *= radius  # A = rho a . e1, B = rho a . e2
+    coef[2, 0:2] += s1 * r1  # elevation bounds: a . p + s r with |p| = r on the circle
+    coef[2, 4:6] += s2 * r2
     if union1 or union2:  # a wedge wider than 180 deg is a union of its two half-planes
         groups = [
             ([0, 1, 4, 5], "all"),
@@ -220,28 +252,45 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture):
         ]
     else:
         groups = [(list(range(8)), "all")]
-    angle, n_arcs, start, end = crop_circle(A, B, D, groups, MAX_ARCS)
+    start, end = out["arc_start"], out["arc_end"]
+    angle, n_arcs, _, _ = crop_circle(coef[0], coef[1], coef[2], groups, MAX_ARCS, out=(start, end))
 
     in_range = ap1.range_ok(r1) & ap2.range_ok(r2)
     observable = exists & in_range
-    length = np.where(circle & in_range, angle * radius, 0.0)
-    n_arcs = np.where(observable, n_arcs, 0)
-    start = np.where(observable[:, None], start, np.nan)
-    end = np.where(observable[:, None], end, np.nan)
+    measurable = circle & in_range
+    length = out["length"]
+    np.multiply(angle, radius, out=length)
+    out["n_arcs"][...] = n_arcs
+    if not measurable.all():
+        length[~measurable] = 0.0
+    if not observable.all():
+        out["n_arcs"][~observable] = 0
+        start[~observable] = np.nan
+        end[~observable] = np.nan
     point = tangent & observable & (n_arcs > 0)
-    start[point, 0] = 0.0
-    end[point, 0] = 0.0
+    if point.any():
+        start[point, 0] = 0.0
+        end[point, 0] = 0.0
 
-    status = np.full(n, LocusStatus.CIRCLE, dtype=np.int8)
+    status = out["status"]
+    status[...] = LocusStatus.CIRCLE
     status[tangent] = LocusStatus.TANGENT
     status[exists & ~in_range] = LocusStatus.OUT_OF_RANGE
     status[~exists] = LocusStatus.NO_INTERSECTION
     status[coincident] = LocusStatus.COINCIDENT_ORIGINS
-    return dict(
-        u=u, C=C, center=center, normal=normal, basis1=e1, basis2=e2, radius=radius,
-        exists=exists, status=status, in_range=in_range, length=length,
-        n_arcs=n_arcs.astype(np.int64), arc_start=start, arc_end=end,
-    )
+    for name, value in (("u", u), ("center", center), ("normal", normal), ("basis1", e1), ("basis2", e2)):
+        out[name][...] = value.T
+    for name, value in (("C", C), ("radius", radius), ("exists", exists), ("in_range", in_range)):
+        out[name][...] = value
+
+
+_FIELDS = {  # result arrays: trailing shape and dtype
+    "u": ((3,), np.float64), "C": ((), np.float64), "center": ((3,), np.float64),
+    "normal": ((3,), np.float64), "basis1": ((3,), np.float64), "basis2": ((3,), np.float64),
+    "radius": ((), np.float64), "exists": ((), np.bool_), "status": ((), np.int8),
+    "in_range": ((), np.bool_), "length": ((), np.float64), "n_arcs": ((), np.int64),
+    "arc_start": ((MAX_ARCS,), np.float64), "arc_end": ((MAX_ARCS,), np.float64),
+}
 
 
 def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> LocusResult:
@@ -302,12 +351,12 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> Lo
     r1f = np.broadcast_to(r1, shape).reshape(n)
     r2f = np.broadcast_to(r2, shape).reshape(n)
 
-    parts = [
-        _locus_chunk(Rf[i : i + _CHUNK], tf[i : i + _CHUNK], r1f[i : i + _CHUNK], r2f[i : i + _CHUNK],
-                     aperture1, aperture2)
-        for i in range(0, max(n, 1), _CHUNK)
-    ] if n else [_locus_chunk(Rf, tf, r1f, r2f, aperture1, aperture2)]
-    out = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
-    tails = {k: v.shape[1:] for k, v in out.items()}
-    fields = {k: v.reshape(shape + tails[k]) for k, v in out.items()}
+    # Chunks of _CHUNK rows keep every temporary in cache; each chunk writes its rows of the
+    # result arrays directly (no concatenation afterwards).
+    results = {k: np.empty((n,) + tail, dtype=dtype) for k, (tail, dtype) in _FIELDS.items()}
+    for i in range(0, n, _CHUNK):
+        rows = slice(i, min(i + _CHUNK, n))
+        _locus_chunk(Rf[rows], tf[rows], r1f[rows], r2f[rows], aperture1, aperture2,
+                     {k: v[rows] for k, v in results.items()})
+    fields = {k: v.reshape(shape + v.shape[1:]) for k, v in results.items()}
     return LocusResult(R=Rf.reshape(shape + (3, 3)), t=tf.reshape(shape + (3,)), **fields)
