@@ -22,9 +22,11 @@ mispredicts. Scans and reductions along the short rows of boundaries use the byt
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
-from ._fastpath import prefix_sums, row_sums, rows_all
+from ._fastpath import cyclic_edges, diagonal_matches, first_true, prefix_sums, row_sums, rows_all, rows_any
 
 TWO_PI = 2.0 * np.pi
 
@@ -128,7 +130,7 @@ def crop_circle(
     np.subtract(1, entering, out=code[:, K:])
     row_start = np.arange(N) * G
     order = np.argsort(angle, axis=1)
-    order += row_start[:, None]
+    order += _row_offsets(N, G)  # a flat index: adding a full array avoids a short broadcast
     flat_order = order.reshape(-1)  # flat gathers are much cheaper than take_along_axis
     b = angle.reshape(-1)[flat_order].reshape(N, G)
     right = np.empty_like(b)
@@ -151,24 +153,23 @@ def crop_circle(
     # passed_j = P_j - (j + 1) and n_ref counts the conditions holding on the reference gap.
     # A group needing all its Kg conditions is inside where P_j == Kg - n_ref + P_ref - ref + j.
     columns = np.arange(G)
+    sorted_code = code.reshape(-1)[flat_order].reshape(N, G)
     inside = None
     for indices, mode in groups:
         if len(groups) == 1:
-            group_code = code
+            group_code = sorted_code
             n_ref = np.count_nonzero(ref_member, axis=0)
         else:  # other groups' boundaries count as dummies here
             others = np.setdiff1d(np.arange(K), indices)
             group_code = code.copy()
             group_code[:, others] = 1
             group_code[:, others + K] = 1
+            group_code = group_code.reshape(-1)[flat_order].reshape(N, G)
             n_ref = np.count_nonzero(ref_member[indices], axis=0)
-        P = prefix_sums(group_code.reshape(-1)[flat_order].reshape(N, G))
+        P = prefix_sums(group_code)
         shift = P.reshape(-1)[ref_flat].astype(np.int64) - ref - n_ref  # P_ref - ref - n_ref
         if mode == "all":
-            # Both sides are small integers (|P_j - target_j| < 256), so comparing them modulo
-            # 256 in uint8 is exact.
-            target = (shift + len(indices)).astype(np.uint8)[:, None] + columns.astype(np.uint8)
-            group_inside = P == target
+            group_inside = diagonal_matches(P, shift + len(indices))
         else:  # at least one condition: count_j = P_j - j - shift >= 1
             group_inside = (P.astype(np.int64) - columns) >= (shift + 1)[:, None]
         inside = group_inside if inside is None else inside & group_inside
@@ -176,10 +177,12 @@ def crop_circle(
     # Rounding slivers that follow a real boundary (where membership may flip spuriously, e.g.
     # between two abutting arcs) inherit the membership of the previous real gap, cyclically.
     # Slivers after the dummy boundaries of whole-circle or empty conditions change nothing.
+    # (Whole-circle conditions put their two dummy boundaries at the same angle, so small gaps
+    # are common; real slivers are rare.)
     small = gap < GAP_EPS_RAD
     if small.any():
-        sliver = small & (code.reshape(-1)[flat_order].reshape(N, G) != 1)
-        fix = np.nonzero(sliver.any(axis=1))[0]
+        sliver = small & (sorted_code != 1)
+        fix = np.nonzero(rows_any(sliver))[0]
         if fix.size:
             idx = np.where(sliver[fix], -1, columns)
             idx = np.maximum.accumulate(idx, axis=1)
@@ -187,8 +190,7 @@ def crop_circle(
             inside[fix] = np.take_along_axis(inside[fix], idx, axis=1)
 
     total_angle = np.einsum("ij,ij->i", gap, inside)
-    starts = inside & ~np.roll(inside, 1, axis=1)
-    ends = inside & ~np.roll(inside, -1, axis=1)
+    starts, ends = cyclic_edges(inside)
     n_arcs = row_sums(starts)
 
     W = max(max_arcs, 1)
@@ -199,8 +201,8 @@ def crop_circle(
     # runs through the seam (its end lies before its start) ends one turn on.
     one = n_arcs == 1
     rows = slice(None) if one.all() else np.nonzero(one)[0]
-    s_col = np.argmax(starts[rows], axis=1)
-    e_col = np.argmax(ends[rows], axis=1)
+    s_col = first_true(starts[rows])
+    e_col = first_true(ends[rows])
     start[rows, 0] = b.reshape(-1)[row_start[rows] + s_col]
     end[rows, 0] = right.reshape(-1)[row_start[rows] + e_col] + TWO_PI * (e_col < s_col)
     many = np.nonzero(n_arcs > 1)[0]
@@ -215,6 +217,14 @@ def crop_circle(
         end[full, 0] = b[full, 0] + TWO_PI
         total_angle[full] = TWO_PI
     return total_angle, n_arcs, start, end
+
+
+@functools.lru_cache(maxsize=8)
+def _row_offsets(N: int, G: int) -> np.ndarray:
+    """(N, G) array whose row ``i`` is ``i * G``: turns per-row column indices into flat ones."""
+    offsets = np.repeat(np.arange(N) * G, G).reshape(N, G)
+    offsets.flags.writeable = False
+    return offsets
 
 
 def _arcs_by_rank(starts, ends, b, right, n_arcs, W):
