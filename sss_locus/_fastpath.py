@@ -170,3 +170,19 @@ def diagonal_matches(sums: np.ndarray, target: np.ndarray) -> np.ndarray:
         nonzero = (differ + np.uint64(0x7F7F7F7F7F7F7F7F)) & np.uint64(0x8080808080808080)
         out[:, k] = (nonzero >> np.uint64(7)) ^ _ONES
     return out.view(bool)
+
+
+def transpose_into(dst: np.ndarray, src: np.ndarray) -> np.ndarray:
+    """``dst[...] = src.T`` for 2-D arrays with a short axis, one row/column at a time.
+
+    NumPy's general transposing copy walks the short axis innermost; copying whole columns
+    (strided) from whole rows (contiguous), or back, is several times faster when one of the two
+    axes has only a few entries. Returns ``dst``.
+    """
+    if dst.shape[1] <= dst.shape[0]:  # few columns in dst: fill column by column
+        for j in range(dst.shape[1]):
+            dst[:, j] = src[j]
+    else:
+        for i in range(dst.shape[0]):
+            dst[i] = src[:, i]
+    return dst

@@ -26,7 +26,9 @@ import functools
 
 import numpy as np
 
-from ._fastpath import cyclic_edges, diagonal_matches, first_true, prefix_sums, row_sums, rows_all, rows_any
+from ._fastpath import (
+    cyclic_edges, diagonal_matches, first_true, prefix_sums, row_sums, rows_all, rows_any, transpose_into,
+)
 
 TWO_PI = 2.0 * np.pi
 
@@ -121,13 +123,9 @@ def crop_circle(
     # Boundary k (and K + k) opens (closes) condition k's arc. Its step code is 1 + (change in
     # the number of arcs the circle is inside): 2 to enter, 0 to leave, 1 for the dummy
     # boundaries of whole-circle or empty conditions, which open and close nothing.
-    angle = np.empty((N, G))
-    angle[:, :K] = lo.T
-    angle[:, K:] = hi.T
-    code = np.empty((N, G), dtype=np.uint8)
-    entering = proper.T.view(np.uint8)
-    np.add(entering, 1, out=code[:, :K])
-    np.subtract(1, entering, out=code[:, K:])
+    angle = transpose_into(np.empty((N, G)), np.concatenate([lo, hi]))
+    entering = proper.view(np.uint8)
+    code = transpose_into(np.empty((N, G), dtype=np.uint8), np.concatenate([entering + 1, 1 - entering]))
     row_start = np.arange(N) * G
     order = np.argsort(angle, axis=1)
     order += _row_offsets(N, G)  # a flat index: adding a full array avoids a short broadcast

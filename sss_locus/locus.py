@@ -17,6 +17,7 @@ import numpy as np
 
 from ._validation import as_float_array, as_positive_array, as_rotation_matrices, broadcast_leading
 from .aperture import Aperture
+from ._fastpath import transpose_into
 from .arcs import crop_circle
 
 MAX_ARCS = 8
@@ -186,8 +187,8 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
     a short last axis; results are copied into the (n, 3) outputs at the end.
     """
     n = r1.shape[0]
-    Rc = np.ascontiguousarray(np.moveaxis(R, 0, -1))  # (3, 3, n): Rc[i, j] = R[:, i, j]
-    tc = np.ascontiguousarray(t.T)  # (3, n)
+    Rc = transpose_into(np.empty((9, n)), R.reshape(n, 9)).reshape(3, 3, n)  # Rc[i, j] = R[:, i, j]
+    tc = transpose_into(np.empty((3, n)), t)
     u = Rc[0] * tc[0] + Rc[1] * tc[1] + Rc[2] * tc[2]  # R^T t: u_j = sum_i R_ij t_i
     tt = tc[0] * tc[0] + tc[1] * tc[1] + tc[2] * tc[2]
     C = r2 * r2 - r1 * r1 - tt
@@ -279,7 +280,7 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
     status[~exists] = LocusStatus.NO_INTERSECTION
     status[coincident] = LocusStatus.COINCIDENT_ORIGINS
     for name, value in (("u", u), ("center", center), ("normal", normal), ("basis1", e1), ("basis2", e2)):
-        out[name][...] = value.T
+        transpose_into(out[name], value)
     for name, value in (("C", C), ("radius", radius), ("exists", exists), ("in_range", in_range)):
         out[name][...] = value
 
