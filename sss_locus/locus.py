@@ -179,6 +179,45 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
 
+def _apply_normals(normals: np.ndarray, vectors: np.ndarray, out: np.ndarray) -> None:
+    """``out[:, j] = normals[j] . vectors`` for component-major ``vectors`` (m, 3, n).
+
+    Written out elementwise on purpose: a BLAS matrix product rounds differently depending on
+    the batch size and a row's position in it (FMA kernels for full blocks, other loops at the
+    edges, a matrix-vector routine for a single row), which would make one configuration's
+    result depend on its neighbours. Each sum is ``a_x v_x + a_y v_y + a_z v_z`` in that order,
+    rounded the same way for every row; zero components are skipped, and a product
+    ``v_c |a_c|`` is formed once and then added or subtracted (sign changes are exact), so the
+    two azimuth bounds share their products.
+    """
+    products = {}
+
+    def product(c, a_c):  # v_c |a_c|, formed once
+        key = (c, abs(a_c))
+        if key not in products:
+            products[key] = vectors[:, c] if key[1] == 1.0 else vectors[:, c] * key[1]
+        return products[key]
+
+    for j, a in enumerate(normals):
+        acc = out[:, j]
+        terms = [(product(c, a[c]), a[c] < 0.0) for c in np.flatnonzero(a)]
+        if not terms:
+            acc[...] = 0.0
+        elif len(terms) == 1:
+            p0, neg0 = terms[0]
+            if neg0:
+                np.negative(p0, out=acc)
+            else:
+                np.copyto(acc, p0)
+        else:  # -p0 + p1 == -(p0 - p1) and -p0 - p1 == -(p0 + p1) exactly
+            (p0, neg0), (p1, neg1) = terms[:2]
+            (np.add if neg0 == neg1 else np.subtract)(p0, p1, out=acc)
+            if neg0:
+                np.negative(acc, out=acc)
+            for p, neg in terms[2:]:
+                (np.subtract if neg else np.add)(acc, p, out=acc)
+
+
 def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
     """Compute one chunk of rows into ``out`` (this chunk's slices of the result arrays).
 
@@ -203,9 +242,13 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
         normal[:, coincident] = 0.0
         d[coincident] = 0.0
         b = np.where(coincident, 1.0, b)
-    # radius^2 from the four-factor (Heron-type) form: symmetric in the two views and accurate
-    # near tangency, unlike r1^2 - d^2.
-    rho2 = (r1 + r2 - b) * (r1 + r2 + b) * (b - r1 + r2) * (b + r1 - r2) / (4.0 * b * b)
+    # radius^2 from the four-factor (Heron-type) form: accurate near tangency, unlike
+    # r1^2 - d^2. The range difference is formed first (exact when r1 and r2 are within a factor
+    # of 2), so a baseline b much shorter than the ranges keeps its digits: (b - r1) + r2 would
+    # round b against r1. Swapping the views negates dr and swaps the last two factors, whose
+    # product is formed first: the result is exactly symmetric.
+    rsum, dr = r1 + r2, r1 - r2
+    rho2 = (rsum - b) * (rsum + b) * ((b - dr) * (b + dr)) / (4.0 * b * b)
     rmin = np.minimum(r1, r2)
     tangent = ~coincident & (np.abs(rho2) <= TANGENT_RTOL * rmin * rmin)
     circle = ~coincident & ~tangent & (rho2 > 0.0)
@@ -233,15 +276,15 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
 
     # Coefficients A, B, D (as coef[0], coef[1], coef[2], each (8, n): four bounds per sensor)
     # of the bounds on the circle. Sensor 1 sees the circle directly; sensor 2 through
-    # p2 = R p1 + t. One matrix product per sensor gives a . e1, a . e2 and a . c.
+    # p2 = R p1 + t. Each bound's normal a gives a . e1, a . e2 and a . c at once.
     normals1, s1, union1 = _bounds(ap1)
     normals2, s2, union2 = _bounds(ap2)
     coef = np.empty((3, 8, n))
     frame1 = np.stack([e1, e2, center])  # (3 vectors, 3 components, n)
     frame2 = _rotate(Rc, frame1)
     frame2[2] += tc
-    np.matmul(normals1, frame1, out=coef[:, :4])
-    np.matmul(normals2, frame2, out=coef[:, 4:])
+    _apply_normals(normals1, frame1, coef[:, :4])
+    _apply_normals(normals2, frame2, coef[:, 4:])
     coef[:2] *= radius  # A = rho a . e1, B = rho a . e2
     coef[2, 0:2] += s1 * r1  # elevation bounds: a . p + s r with |p| = r on the circle
     coef[2, 4:6] += s2 * r2
