@@ -174,15 +174,17 @@ def crop_circle(
             group_inside = (P.astype(np.int64) - columns) >= (shift + 1)[:, None]
         inside = group_inside if inside is None else inside & group_inside
 
-    # Rounding slivers that follow a real boundary (where membership may flip spuriously, e.g.
-    # between two abutting arcs) inherit the membership of the previous real gap, cyclically.
-    # Slivers after the dummy boundaries of whole-circle or empty conditions change nothing.
-    # (Whole-circle conditions put their two dummy boundaries at the same angle, so small gaps
-    # are common; real slivers are rare.)
+    # Rounding slivers (where membership may flip spuriously, e.g. between two abutting arcs)
+    # inherit the membership of the previous gap that is not a sliver, cyclically. This
+    # includes slivers after the dummy boundaries of whole-circle or empty conditions: a dummy
+    # changes no count, but the gap after it carries the unrepaired count of a real boundary
+    # just before it (a zero-width arc at a tangency would otherwise survive there).
+    # Whole-circle conditions put their two dummy boundaries at the same angle, so the repair
+    # only runs for rows where a sliver follows a real boundary (code != 1).
     small = gap < GAP_EPS_RAD
     if small.any():
-        sliver = small & (sorted_code != 1)
-        fix = np.nonzero(rows_any(sliver))[0]
+        sliver = small
+        fix = np.nonzero(rows_any(small & (sorted_code != 1)))[0]
         if fix.size:
             idx = np.where(sliver[fix], -1, columns)
             idx = np.maximum.accumulate(idx, axis=1)
