@@ -47,22 +47,25 @@ def as_rotation_matrices(value, name: str = "R") -> np.ndarray:
     if hasattr(value, "as_matrix") and callable(value.as_matrix):
         value = value.as_matrix()
     R = as_float_array(value, name, tail=(3, 3))
-    col = [R[..., :, i] for i in range(3)]
-    orth_err = np.zeros(R.shape[:-2])
-    for i in range(3):  # entries of R^T R, explicitly (much faster than matmul on 3x3 stacks)
+    # Entries as nine contiguous rows, m[3 * row + column], so every product below runs over
+    # one long row (much faster than matmul or einsum on stacks of 3x3 matrices).
+    m = np.ascontiguousarray(R.reshape(-1, 9).T)
+    orth_err = np.zeros(m.shape[1])
+    for i in range(3):  # entries (i, j) of R^T R: dot products of columns i and j
         for j in range(i, 3):
-            dot = col[i][..., 0] * col[j][..., 0] + col[i][..., 1] * col[j][..., 1] + col[i][..., 2] * col[j][..., 2]
-            orth_err = np.maximum(orth_err, np.abs(dot - (1.0 if i == j else 0.0)))
+            dot = m[i] * m[j] + m[3 + i] * m[3 + j] + m[6 + i] * m[6 + j]
+            np.maximum(orth_err, np.abs(dot - (1.0 if i == j else 0.0)), out=orth_err)
     if np.any(orth_err > ROTATION_ATOL):
         raise ValueError(
             f"{name} must be a rotation matrix (orthonormal): max |{name}^T {name} - I| is "
             f"{orth_err.max():.3g}, allowed {ROTATION_ATOL:g}"
         )
-    det = np.sum(R[..., 0, :] * np.cross(R[..., 1, :], R[..., 2, :]), axis=-1)
+    det = (m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
+           + m[2] * (m[3] * m[7] - m[4] * m[6]))
     if np.any(np.abs(det - 1.0) > ROTATION_ATOL):
         raise ValueError(
             f"{name} must be a proper rotation (determinant +1); found determinant "
-            f"{det.flat[np.argmax(np.abs(det - 1.0))]:.6g} (a reflection?)"
+            f"{det[np.argmax(np.abs(det - 1.0))]:.6g} (a reflection?)"
         )
     return R
 

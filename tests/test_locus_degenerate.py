@@ -6,6 +6,8 @@ from the kernel's output.
 
 from __future__ import annotations
 
+import zlib
+
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
@@ -260,7 +262,7 @@ def test_out_of_range_feature_that_would_be_visible():
 @pytest.mark.parametrize("family", sorted(APERTURE_FAMILIES))
 def test_near_degenerate_batch(family):
     a1, a2 = APERTURE_FAMILIES[family]
-    rng = np.random.default_rng(abs(hash(family)) % 2**32)
+    rng = np.random.default_rng(zlib.crc32(family.encode()))  # stable: hash() varies per run
     cfg = near_degenerate_configs(rng, 140, a1, a2)
     ap1, ap2 = Aperture(*a1), Aperture(*a2)
     res = two_view_locus(cfg["R"], cfg["t"], cfg["r1"], cfg["r2"], ap1, ap2)
