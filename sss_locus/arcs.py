@@ -181,10 +181,9 @@ def crop_circle(
     # just before it (a zero-width arc at a tangency would otherwise survive there).
     # Whole-circle conditions put their two dummy boundaries at the same angle, so the repair
     # only runs for rows where a sliver follows a real boundary (code != 1).
-    small = gap < GAP_EPS_RAD
-    if small.any():
-        sliver = small
-        fix = np.nonzero(rows_any(small & (sorted_code != 1)))[0]
+    sliver = gap < GAP_EPS_RAD
+    if sliver.any():
+        fix = np.nonzero(rows_any(sliver & (sorted_code != 1)))[0]
         if fix.size:
             idx = np.where(sliver[fix], -1, columns)
             idx = np.maximum.accumulate(idx, axis=1)
