@@ -7,6 +7,7 @@ Constraint to Aid Sidescan Sonar Reconstruction*. The entry point is :func:`two_
 from .aperture import Aperture
 from .locus import MAX_ARCS, LocusResult, LocusStatus, two_view_locus
 from .misalignment import ElevationMisalignment, elevation_misalignment
+from .poses import relative_pose
 
 __version__ = "0.1.0"
 
@@ -18,5 +19,6 @@ __all__ = [
     "MAX_ARCS",
     "__version__",
     "elevation_misalignment",
+    "relative_pose",
     "two_view_locus",
 ]

@@ -53,7 +53,8 @@ from ._validation import as_float_array
 from .aperture import Aperture
 from .locus import two_view_locus
 from .paths import DATA_DIR
-from .three_view import relative_pose, three_view_points
+from .poses import relative_pose
+from .three_view import three_view_points
 from .views import Views
 
 NOISE_FILE: Path = DATA_DIR / "noise.toml"

@@ -51,6 +51,7 @@ from scipy.spatial.transform import Rotation
 from .locus import two_view_locus
 from .misalignment import elevation_misalignment
 from .platforms import SIDES, Platform
+from .poses import relative_pose
 
 BLOCK_SIZE = 4096
 """Rows per independently seeded block (fixed: changing it changes every table)."""
@@ -229,8 +230,7 @@ def _draw_candidates(spec: PoseSpaceSpec, rng, m: int) -> dict[str, np.ndarray]:
         accept &= (f[:, 2] < o1[:, 2]) & (f[:, 2] < o2[:, 2])
         if not pf.fixed_depth and spec.depth_envelope:
             accept &= np.abs(v2_z) <= pf.depth_max_m - pf.depth_min_m
-    R = np.einsum("nji,njk->nik", R2, R1)  # R2^T R1
-    t = np.einsum("nji,nj->ni", R2, o1 - o2)
+    R, t = relative_pose(R1, o1, R2, o2)
     return dict(accept=accept, R=R, t=t, r1=r1, r2=r2, th1=th1, th2=th2, ph1=ph1, ph2=ph2,
                 yaw=yaw, pitch=pitch, roll=roll, port1=port1, port2=port2, v2_z=v2_z,
                 f=f, o1=o1, o2=o2)

@@ -80,6 +80,7 @@ import pandas as pd
 from .locus import two_view_locus
 from .misalignment import elevation_misalignment
 from .platforms import SIDES, Platform
+from .poses import relative_pose
 from .sampling import _per_side, vehicle_attitude
 from .survey_envelope import (OFFSET_KINDS, SIDE1_CHOICES, SIDE_RULES, SURVEY_FILE,  # noqa: F401
                               _read_survey,
@@ -328,8 +329,7 @@ def _check_inputs(angles, n, seed):
 
 def _evaluate(platform, gamma_deg, d) -> pd.DataFrame:
     ap = platform.sonar.aperture()
-    R = np.einsum("nji,njk->nik", d["W2"], d["W1"])
-    t = np.einsum("nji,nj->ni", d["W2"], d["origin1"] - d["origin2"])
+    R, t = relative_pose(d["W1"], d["origin1"], d["W2"], d["origin2"])
     r1, r2 = d["range_m1"], d["range_m2"]
     res = two_view_locus(R, t, r1, r2, ap, ap)
     mis = elevation_misalignment(R, t)

@@ -244,29 +244,3 @@ def three_view_points(R12, t12, R13, t13, r1, r2, r3, aperture1: Aperture, apert
     args = [np.broadcast_to(a, shape + a.shape[a.ndim - k:] if k else shape)
             for a, k in ((R12, 2), (t12, 1), (R13, 2), (t13, 1), (r1, 0), (r2, 0), (r3, 0))]
     return ThreeViewResult(**_solve(*args, aperture1, aperture2, aperture3))
-
-
-def relative_pose(rotation_a, origin_a, rotation_b, origin_b) -> tuple[np.ndarray, np.ndarray]:
-    """Relative pose ``(R, t)`` with ``p_b = R p_a + t`` from two sensors' world poses.
-
-    Parameters
-    ----------
-    rotation_a, rotation_b : array_like, shape (..., 3, 3)
-        Sensor-to-world rotations (columns are the sensor axes in the world frame).
-    origin_a, origin_b : array_like, shape (..., 3)
-        Sensor origins in the world frame (m).
-
-    Returns
-    -------
-    R : ndarray, shape (..., 3, 3)
-        ``Rb^T Ra``.
-    t : ndarray, shape (..., 3)
-        ``Rb^T (oa - ob)``.
-    """
-    Ra = as_rotation_matrices(rotation_a, "rotation_a")
-    Rb = as_rotation_matrices(rotation_b, "rotation_b")
-    oa = as_float_array(origin_a, "origin_a", tail=(3,))
-    ob = as_float_array(origin_b, "origin_b", tail=(3,))
-    R = np.einsum("...ji,...jk->...ik", Rb, Ra)
-    t = np.einsum("...ji,...j->...i", Rb, oa - ob)
-    return R, t

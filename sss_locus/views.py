@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from .three_view import relative_pose
+from .poses import relative_pose
 
 PATTERNS = {
     "repeat + reciprocal": (0.0, 0.0, 180.0),

@@ -117,7 +117,7 @@ def test_near_and_far_match_a_dense_walk_along_the_arcs(pattern):
     W, o, r = perturb(views, noise_sigmas(views, load_noise_model("auv").scaled(0.3)), e)
     f = views.feature[:, None, :]
     out = two_view_offsets(W, o, r, f, ap)
-    from sss_locus.three_view import relative_pose
+    from sss_locus import relative_pose
     R, t = relative_pose(W[..., 0, :, :], o[..., 0, :], W[..., 1, :, :], o[..., 1, :])
     loc = two_view_locus(R, t, r[..., 0], r[..., 1], ap, ap)
     pts = loc.points(n_per_arc=4000)  # (n, 6, MAX_ARCS, 4000, 3), frame 1

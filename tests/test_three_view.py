@@ -20,7 +20,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from sss_locus import Aperture, two_view_locus
-from sss_locus.three_view import ThreeViewStatus, relative_pose, three_view_points
+from sss_locus import relative_pose
+from sss_locus.three_view import ThreeViewStatus, three_view_points
 
 AUV = Aperture(130.0, 0.27, 150.0)
 BOAT = Aperture(50.0, 0.5, 150.0)
