@@ -16,17 +16,21 @@ Layout
 ``build_dir()``
     The build area (git-ignored), ``_build/`` by default. Set the environment variable
     ``SSS_LOCUS_BUILD_DIR`` to put it elsewhere; the tests do this so that a test build never
-    overwrites the ``book``-profile outputs. The build area is also the *staged* book source:
-    ``sss-locus book`` copies ``_config.yml``, ``_toc.yml`` and ``book/`` into it next to the
-    executed notebooks, and Jupyter Book writes the site to ``<build>/_build/html``.
+    overwrites the ``book``-profile outputs. Inside it:
 
-    - ``executed/<name>.ipynb``: executed notebook copies (what the book renders),
-    - ``_extra/``: copied verbatim to the site root by Sphinx (``html_extra_path``); holds
-      ``_extra/figures/<label>.{png,svg,pdf,csv,json,bib}`` (exported, citable figures, served by
-      the site at ``figures/<label>.png`` etc.) and ``_extra/mathjax/`` (MathJax 3, served
-      locally so math renders without internet),
-    - ``jupyter/``: IPython, Jupyter and Matplotlib state of the kernels (hermetic runs),
-    - ``_build/html/index.html``: the built book.
+    - ``html/index.html``: the built book (where Jupyter Book users look for it),
+    - ``source/``: the *staged* book source. ``sss-locus book`` copies ``_config.yml``,
+      ``_toc.yml`` and ``book/`` into it next to
+
+      - ``source/executed/<name>.ipynb``: executed notebook copies (what the book renders),
+      - ``source/_extra/``: copied verbatim to the site root by Sphinx (``html_extra_path``);
+        holds ``_extra/figures/<label>.{png,svg,pdf,csv,json,bib}`` (exported, citable figures,
+        served by the site at ``figures/<label>.png`` etc.) and ``_extra/mathjax/`` (MathJax 3,
+        served locally so math renders without internet),
+
+    - ``jupyter-book/``: Jupyter Book's own output folder (doctrees and the site being built;
+      the finished site is moved to ``html/`` only when the build succeeds),
+    - ``jupyter/``: IPython, Jupyter and Matplotlib state of the kernels (hermetic runs).
 ``cache_dir()``
     On-disk cache of expensive results (``.cache/`` by default, git-ignored; override with
     ``SSS_LOCUS_CACHE_DIR``). Entries are keyed on notebook, parameters, seed and package version,
@@ -52,6 +56,7 @@ BUILD_DIR_ENV = "SSS_LOCUS_BUILD_DIR"
 CACHE_DIR_ENV = "SSS_LOCUS_CACHE_DIR"
 
 #: Folder names inside the build area (also used in ``_toc.yml`` and ``_config.yml``).
+SOURCE_SUBDIR = "source"
 EXECUTED_SUBDIR = "executed"
 FIGURES_SUBDIR = "figures"
 #: Folder whose contents Sphinx copies verbatim to the site root (``html_extra_path``).
@@ -65,23 +70,28 @@ def build_dir() -> Path:
     return Path(override).resolve() if override else REPO_ROOT / "_build"
 
 
+def source_dir() -> Path:
+    """Staged book source (``<build>/source``): configuration, pages, executed notebooks."""
+    return build_dir() / SOURCE_SUBDIR
+
+
 def executed_dir() -> Path:
-    """Folder of executed notebook copies (``<build>/executed``)."""
-    return build_dir() / EXECUTED_SUBDIR
+    """Folder of executed notebook copies (``<build>/source/executed``)."""
+    return source_dir() / EXECUTED_SUBDIR
 
 
 def extra_dir() -> Path:
-    """Staged ``html_extra_path`` folder (``<build>/_extra``): copied to the site root."""
-    return build_dir() / EXTRA_SUBDIR
+    """Staged ``html_extra_path`` folder (``<build>/source/_extra``): copied to the site root."""
+    return source_dir() / EXTRA_SUBDIR
 
 
 def figures_dir() -> Path:
-    """Folder of exported figures (``<build>/_extra/figures``), served at ``<site>/figures/``."""
+    """Exported figures (``<build>/source/_extra/figures``), served at ``<site>/figures/``."""
     return extra_dir() / FIGURES_SUBDIR
 
 
 def mathjax_dir() -> Path:
-    """Local MathJax 3 copy (``<build>/_extra/mathjax``), served at ``<site>/mathjax/``."""
+    """Local MathJax 3 copy (``<build>/source/_extra/mathjax``), served at ``<site>/mathjax/``."""
     return extra_dir() / MATHJAX_SUBDIR
 
 
@@ -90,9 +100,14 @@ def jupyter_dir() -> Path:
     return build_dir() / "jupyter"
 
 
+def jupyter_book_dir() -> Path:
+    """Jupyter Book's output folder (``<build>/jupyter-book``; it writes ``_build/html`` there)."""
+    return build_dir() / "jupyter-book"
+
+
 def html_dir() -> Path:
-    """Built site (``<build>/_build/html``)."""
-    return build_dir() / "_build" / "html"
+    """Built site (``<build>/html``)."""
+    return build_dir() / "html"
 
 
 def index_html() -> Path:

@@ -9,16 +9,16 @@ import pandas as pd
 import pytest
 from scipy import stats
 
-from sss_locus.analysis import (
+from sss_locus.experiments.pose_stats import (
     agree_sig,
     binned_median,
     binned_profile,
-    fmt_sig,
     median_grid,
     round_sig,
     spearman_table,
     with_derived,
 )
+from sss_locus.report.text import fmt_sig
 
 
 def _frame(n, r, seed=0, ties=False):
@@ -115,8 +115,8 @@ def test_with_derived_adds_magnitudes():
 def test_claim_metrics_on_synthetic_structure():
     """A table built with known structure: length grows with both ranges, peaks at yaw = +-60
     and at (theta1, theta2) = (10, -20), is larger at zero elevation; the metrics find it."""
-    from sss_locus.analysis import HEATMAP_PANELS, claim_metrics, heatmaps
-    from sss_locus.platforms import load_platform
+    from sss_locus.experiments.pose_stats import HEATMAP_PANELS, claim_metrics, heatmaps
+    from sss_locus.experiments.platforms import load_platform
 
     pf = load_platform("auv")
     rng = np.random.default_rng(0)
@@ -148,14 +148,14 @@ def test_claim_metrics_on_synthetic_structure():
 
 
 def test_stable_to():
-    from sss_locus.analysis import stable_to
+    from sss_locus.experiments.pose_stats import stable_to
 
     assert stable_to(0.4449, 0.4401) and stable_to(0.441, 0.445) and not stable_to(0.44, 0.4456)
     assert stable_to(1234.0, 1280.0) and not stable_to(1200.0, 1300.0)
 
 
 def test_plain_label():
-    from sss_locus.analysis import plain_label
+    from sss_locus.report.text import plain_label
 
     assert plain_label("abs_psi2_deg") == "|ψ₂|" and plain_label("azimuth1_deg") == "azimuth θ₁"
     assert plain_label("unknown_q") == "unknown_q"

@@ -18,9 +18,10 @@ import pytest
 
 pytest.importorskip("jupyter_book")
 
-from sss_locus import bookbuild, paths  # noqa: E402
-from sss_locus.figures import load_manifests  # noqa: E402
-from sss_locus.registry import load_registry  # noqa: E402
+from sss_locus import paths  # noqa: E402
+from sss_locus.pipeline import bookbuild
+from sss_locus.pipeline.export import load_manifests  # noqa: E402
+from sss_locus.pipeline.registry import load_registry  # noqa: E402
 
 pytestmark = pytest.mark.book  # deselect with `pytest -m "not book"` for a fast run
 
@@ -31,18 +32,18 @@ TIMEOUT_S = 480
 @pytest.fixture(scope="module")
 def quick_book(tmp_path_factory):
     area = tmp_path_factory.mktemp("quick-book")
-    default_index = paths.REPO_ROOT / "_build" / "_build" / "html" / "index.html"
+    default_index = paths.REPO_ROOT / "_build" / "html" / "index.html"
     before = default_index.stat().st_mtime_ns if default_index.exists() else None
     env = {**os.environ, paths.BUILD_DIR_ENV: str(area)}
     result = subprocess.run(
-        [sys.executable, "-m", "sss_locus.cli", "book", "--profile", "quick"],
+        [sys.executable, "-m", "sss_locus.pipeline.cli", "book", "--profile", "quick"],
         env=env, capture_output=True, text=True, timeout=TIMEOUT_S, stdin=subprocess.DEVNULL,
     )
     if result.returncode != 0:
         pytest.fail(f"sss-locus book --profile quick failed:\n{result.stdout[-6000:]}\n{result.stderr[-6000:]}")
     after = default_index.stat().st_mtime_ns if default_index.exists() else None
     assert before == after, "the test build touched the default build area"
-    html = area / "_build" / "html"
+    html = area / "html"
     return {"area": area, "html": html, "stdout": result.stdout}
 
 
@@ -55,7 +56,7 @@ def test_build_prints_the_index_path(quick_book):
 @pytest.mark.parametrize("name", list(REGISTRY))
 def test_notebook_ran_under_quick_profile(quick_book, name):
     entry = REGISTRY[name]
-    executed = quick_book["area"] / entry.executed
+    executed = quick_book["area"] / "source" / entry.executed
     nb = json.loads(executed.read_text())
     assert nb["metadata"]["sss_locus"]["profile"] == "quick"
     assert nb["metadata"]["papermill"]["exception"] in (None, False)
@@ -75,7 +76,7 @@ def test_site_has_no_broken_images_or_unresolved_glue(quick_book):
 
 
 def test_every_exported_figure_is_served_and_indexed(quick_book):
-    manifests = load_manifests(quick_book["area"] / "_extra" / "figures")
+    manifests = load_manifests(quick_book["area"] / "source" / "_extra" / "figures")
     figures_page = (quick_book["html"] / "book" / "figures.html").read_text()
     for manifest in manifests:
         for entry in manifest["files"].values():

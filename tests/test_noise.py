@@ -1,4 +1,4 @@
-"""Noise model and propagation (sss_locus.noise) and the pass geometry it uses (sss_locus.views).
+"""Noise model and propagation (sss_locus.experiments.noise) and the pass geometry it uses (sss_locus.experiments.view_sets).
 
 * the Monte Carlo percentile and the first-order (Jacobian) estimate agree for small noise, for
   the band of the two-view locus and for the three-view point;
@@ -17,12 +17,14 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from sss_locus import Aperture, two_view_locus
-from sss_locus.noise import (NoiseModel, first_order, gaussian_norm_quantile, load_noise_model,
+from sss_locus.experiments.noise import (NoiseModel, first_order, gaussian_norm_quantile, load_noise_model,
                              monte_carlo, noise_sigmas, perturb, survey_noise_table,
                              two_view_offsets)
-from sss_locus.platforms import load_platform
-from sss_locus.survey import OffsetModel, load_envelope, simulate_passes
-from sss_locus.views import PATTERNS, draw_pattern, views_from_survey
+from sss_locus.experiments.platforms import load_platform
+from sss_locus.experiments.envelopes import OffsetModel, load_envelope
+from sss_locus.experiments.survey_passes import simulate_passes
+from sss_locus.experiments.three_view_patterns import PATTERNS
+from sss_locus.experiments.view_sets import draw_pattern, views_from_survey
 
 FULL = Aperture(360.0, 180.0, 1e4)
 

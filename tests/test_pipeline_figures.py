@@ -1,4 +1,4 @@
-"""Citable figure export (sss_locus.figures)."""
+"""Citable figure export (sss_locus.pipeline.export)."""
 
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from PIL import Image  # noqa: E402  (matplotlib dependency)
 
-from sss_locus import provenance  # noqa: E402
-from sss_locus.figures import export_figure, load_manifests, remove_figures_of  # noqa: E402
+from sss_locus.pipeline import provenance  # noqa: E402
+from sss_locus.pipeline.export import export_figure, load_manifests, remove_figures_of  # noqa: E402
 
 DATA = pd.DataFrame({"alpha_rad": np.linspace(0, 1, 5), "z_m": np.linspace(-2, 2, 5)})
 
@@ -127,7 +127,7 @@ def test_remove_figures_of_one_notebook_only(tmp_path, fig):
 def test_default_folder_is_in_the_build_area(tmp_path, fig, monkeypatch):
     monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path))
     export_figure(fig, "fig-demo", DATA, caption="C.", parameters={})
-    assert (tmp_path / "_extra" / "figures" / "fig-demo.png").is_file()
+    assert (tmp_path / "source" / "_extra" / "figures" / "fig-demo.png").is_file()
 
 
 def test_manifest_vanishing_mid_scan_is_skipped(tmp_path, fig, monkeypatch):

@@ -7,7 +7,8 @@ import subprocess
 
 import pytest
 
-from sss_locus import bookbuild, paths
+from sss_locus import paths
+from sss_locus.pipeline import bookbuild
 
 
 def test_repository_layout():
@@ -23,8 +24,10 @@ def test_default_build_and_cache_areas(monkeypatch):
     monkeypatch.delenv(paths.CACHE_DIR_ENV, raising=False)
     assert paths.build_dir() == paths.REPO_ROOT / "_build"
     assert paths.cache_dir() == paths.REPO_ROOT / ".cache"
-    assert paths.figures_dir() == paths.REPO_ROOT / "_build" / "_extra" / "figures"
-    assert paths.index_html() == paths.REPO_ROOT / "_build" / "_build" / "html" / "index.html"
+    assert paths.figures_dir() == paths.REPO_ROOT / "_build" / "source" / "_extra" / "figures"
+    assert paths.executed_dir() == paths.REPO_ROOT / "_build" / "source" / "executed"
+    # the site lands where Jupyter Book users look for it
+    assert paths.index_html() == paths.REPO_ROOT / "_build" / "html" / "index.html"
     assert paths.site_url(paths.figures_dir() / "fig-x.png") == "figures/fig-x.png"
 
 
@@ -32,13 +35,13 @@ def test_environment_overrides(tmp_path, monkeypatch):
     monkeypatch.setenv(paths.BUILD_DIR_ENV, str(tmp_path / "b"))
     monkeypatch.setenv(paths.CACHE_DIR_ENV, str(tmp_path / "c"))
     for path in (paths.executed_dir(), paths.figures_dir(), paths.mathjax_dir(), paths.jupyter_dir(),
-                 paths.html_dir()):
+                 paths.html_dir(), paths.source_dir(), paths.jupyter_book_dir()):
         assert path.is_relative_to(tmp_path / "b")
     assert paths.cache_dir() == tmp_path / "c"
 
 
 @pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
-@pytest.mark.parametrize("generated", ["_build/_build/html/index.html", "_build/executed/x.ipynb",
+@pytest.mark.parametrize("generated", ["_build/html/index.html", "_build/source/executed/x.ipynb",
                                        ".cache/frames/ab/abc/data.parquet", ".venv/bin/python"])
 def test_generated_files_are_git_ignored(generated):
     result = subprocess.run(["git", "check-ignore", "-q", generated], cwd=paths.REPO_ROOT)

@@ -1,4 +1,4 @@
-"""Notebook registry and parameter validation (sss_locus.registry)."""
+"""Notebook registry and parameter validation (sss_locus.pipeline.registry)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from sss_locus import paths
-from sss_locus.registry import (
+from sss_locus.pipeline.registry import (
     ParameterError,
     get_entry,
     load_registry,

@@ -1,4 +1,4 @@
-"""Running one notebook through papermill (sss_locus.runner and the `sss-locus` command).
+"""Running one notebook through papermill (sss_locus.pipeline.runner and the `sss-locus` command).
 
 Uses a tiny throwaway notebook written to a temporary folder, executed into a temporary build
 area (``SSS_LOCUS_BUILD_DIR``), so nothing of the real build is touched.
@@ -16,22 +16,26 @@ import pytest
 pytest.importorskip("papermill")
 nbformat = pytest.importorskip("nbformat")
 
-from sss_locus import cli  # noqa: E402
-from sss_locus.registry import NotebookEntry, ParameterError  # noqa: E402
-from sss_locus.runner import KERNEL_NAME, is_up_to_date, run_notebook  # noqa: E402
+from sss_locus.pipeline import cli  # noqa: E402
+from sss_locus.pipeline.registry import NotebookEntry, ParameterError  # noqa: E402
+from sss_locus.pipeline.runner import KERNEL_NAME, is_up_to_date, run_notebook  # noqa: E402
 
 PARAMETERS = "n: int = 3          # number of points\nscale = 1.5         # metres\nfail = False\n"
 BODY = """\
 import os, json, sys
 import matplotlib.pyplot as plt
 import pandas as pd
-from sss_locus.figures import export_figure
+from sss_locus.pipeline.export import export_figure
 if fail:
     raise RuntimeError("asked to fail")
 frame = pd.DataFrame({"i": range(n), "y_m": [scale * i for i in range(n)]})
 fig, ax = plt.subplots()
 ax.plot(frame["i"], frame["y_m"])
 export_figure(fig, "fig-tiny-line", frame, caption="A line.", parameters={"n": n, "scale": scale})
+from sss_locus.pipeline.publish import publish
+fig2, ax2 = plt.subplots()
+ax2.plot(frame["i"], -frame["y_m"])
+publish(fig2, "fig-tiny-published", frame, caption=f"The same line mirrored, {n} points.")
 print(json.dumps({"n": n, "scale": scale, "cwd": os.getcwd(), "python": sys.executable,
                   "ipythondir": os.environ.get("IPYTHONDIR"), "mpl": os.environ.get("MPLCONFIGDIR")}))
 """
@@ -75,7 +79,7 @@ def _printed(executed: Path) -> dict:
 
 def test_run_with_profile_and_override(build_area, entry):
     executed = run_notebook(entry, "quick", {"scale": "2"}, from_text=True, log=lambda *_: None)
-    assert executed == build_area / "executed" / "tiny.ipynb"
+    assert executed == build_area / "source" / "executed" / "tiny.ipynb"
     printed = _printed(executed)
     assert printed["n"] == 2 and printed["scale"] == 2.0
     # hermetic kernel: working directory and state folders inside the build area
@@ -91,9 +95,16 @@ def test_run_with_profile_and_override(build_area, entry):
     assert "hide-input" in injected[0]["metadata"]["tags"]
     assert "profile 'quick'" in injected[0]["metadata"]["mystnb"]["code_prompt_show"]
     assert "n = 2" in "".join(injected[0]["source"])
-    manifest = json.loads((build_area / "_extra" / "figures" / "fig-tiny-line.json").read_text())
+    manifest = json.loads((build_area / "source" / "_extra" / "figures" / "fig-tiny-line.json").read_text())
     assert manifest["parameters"] == {"n": 2, "scale": 2.0}
     assert manifest["profile"] == "quick" and manifest["notebook"] == entry.source_relative
+    # publish() takes the run's resolved parameters from the runner (nothing retyped in the cell)
+    published = json.loads((build_area / "source" / "_extra" / "figures" / "fig-tiny-published.json").read_text())
+    assert published["parameters"] == {"n": 2, "scale": 2.0, "fail": False}
+    assert published["caption"] == "The same line mirrored, 2 points."
+    glued = {o["metadata"]["scrapbook"]["name"] for c in nb["cells"] if c["cell_type"] == "code"
+             for o in c.get("outputs", []) if "scrapbook" in o.get("metadata", {})}
+    assert {"fig-tiny-published", "fig-tiny-published-caption"} <= glued
 
 
 def test_bad_parameter_stops_before_running(build_area, entry):
@@ -101,7 +112,7 @@ def test_bad_parameter_stops_before_running(build_area, entry):
         run_notebook(entry, "book", {"m": "1"}, from_text=True)
     with pytest.raises(ParameterError, match="expected a value of type int for 'n'"):
         run_notebook(entry, "book", {"n": "1.5"}, from_text=True)
-    assert not (build_area / "executed").exists()
+    assert not (build_area / "source" / "executed").exists()
 
 
 def test_failing_cell_raises_and_keeps_the_traceback(build_area, entry):
@@ -109,20 +120,20 @@ def test_failing_cell_raises_and_keeps_the_traceback(build_area, entry):
 
     with pytest.raises(papermill.PapermillExecutionError, match="asked to fail"):
         run_notebook(entry, "book", {"fail": True}, log=lambda *_: None)
-    assert "asked to fail" in (build_area / "executed" / "tiny.ipynb").read_text()
+    assert "asked to fail" in (build_area / "source" / "executed" / "tiny.ipynb").read_text()
 
 
 def test_rerun_replaces_figures_and_up_to_date_needs_an_identical_run(build_area, entry):
     assert not is_up_to_date(entry, "quick")
     run_notebook(entry, "book", log=lambda *_: None)
-    data = build_area / "_extra" / "figures" / "fig-tiny-line.csv"
+    data = build_area / "source" / "_extra" / "figures" / "fig-tiny-line.csv"
     assert len(data.read_text().splitlines()) == 1 + 3
     assert is_up_to_date(entry, "book") and not is_up_to_date(entry, "quick")
     run_notebook(entry, "quick", log=lambda *_: None)
     assert len(data.read_text().splitlines()) == 1 + 2  # re-exported with the new parameters
     assert is_up_to_date(entry, "quick")
     assert not is_up_to_date(entry, "book")  # other parameters
-    (build_area / "_extra" / "figures" / "fig-tiny-line.png").write_bytes(b"tampered")
+    (build_area / "source" / "_extra" / "figures" / "fig-tiny-line.png").write_bytes(b"tampered")
     assert not is_up_to_date(entry, "quick")
     run_notebook(entry, "quick", log=lambda *_: None)
     assert is_up_to_date(entry, "quick")
@@ -155,5 +166,9 @@ def test_plain_papermill_runs_a_notebook(build_area, entry, tmp_path):
     )
     assert result.returncode == 0, result.stderr[-3000:]
     assert _printed(out)["n"] == 5
-    manifest = json.loads((build_area / "_extra" / "figures" / "fig-tiny-line.json").read_text())
+    manifest = json.loads((build_area / "source" / "_extra" / "figures" / "fig-tiny-line.json").read_text())
     assert manifest["notebook"] == "interactive" and manifest["parameters"]["n"] == 5
+    # outside the runner, publish() says it does not know the run's parameters
+    published = json.loads((build_area / "source" / "_extra" / "figures" / "fig-tiny-published.json").read_text())
+    assert published["notebook"] == "interactive" and published["profile"] == "none"
+    assert published["parameters"] == {}

@@ -1,4 +1,4 @@
-"""Survey planning (sss_locus.planning): grid, bootstrap, bands from a curve, the curve itself."""
+"""Survey planning (sss_locus.experiments.planning): grid, bootstrap, bands from a curve, the curve itself."""
 
 from __future__ import annotations
 
@@ -6,10 +6,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from sss_locus.planning import (bootstrap_median, crossing_angle_curve, crossing_angle_grid,
+from sss_locus.experiments.planning import (bootstrap_median, crossing_angle_curve, crossing_angle_grid,
                                 median_ratio, peak_angle, planning_bands, worst_band)
-from sss_locus.platforms import load_platform
-from sss_locus.survey import OffsetModel, load_envelope
+from sss_locus.experiments.platforms import load_platform
+from sss_locus.experiments.envelopes import OffsetModel, load_envelope
 
 
 def test_grid_steps():
@@ -73,7 +73,7 @@ def test_peak_angle_interval():
 def test_crossing_angle_curve_small():
     pf = load_platform("boat")
     cur = crossing_angle_curve(pf, load_envelope("boat"), OffsetModel(), crossing_angles_deg=[0, 30, 90, 180],
-                               n_per_angle=300, seed=3, n_resamples=50, cache=False)
+                               n_per_angle=300, seed=3, n_resamples=50)
     c = cur.curve
     assert list(c["crossing_angle_deg"]) == [0, 30, 90, 180] and (c["n"] == 300).all()
     for v in ("locus_length_m", "elevation_misalignment_deg"):

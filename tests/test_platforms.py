@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from sss_locus.platforms import (
+from sss_locus.experiments.platforms import (
     PLATFORMS_FILE,
     load_platform,
     load_platforms,
@@ -160,7 +160,7 @@ def test_up_convention_flips_azimuth():
 
 
 def test_frustum_points_lie_in_the_aperture():
-    from sss_locus.platforms import frustum_points
+    from sss_locus.experiments.platforms import frustum_points
 
     pf = load_platform("auv")
     tr = pf.transducers["starboard"]

@@ -12,8 +12,8 @@ import pytest
 from scipy import stats
 
 from sss_locus import two_view_locus
-from sss_locus.platforms import load_platform
-from sss_locus.sampling import (
+from sss_locus.experiments.platforms import load_platform
+from sss_locus.experiments.pose_space import (
     BLOCK_SIZE,
     COLUMNS,
     PoseSpaceSpec,

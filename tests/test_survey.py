@@ -1,4 +1,4 @@
-"""Two-pass survey simulation (sss_locus.survey): exact in-beam solve, visibility, rejection
+"""Two-pass survey simulation (sss_locus.experiments.survey_passes): exact in-beam solve, visibility, rejection
 accounting, determinism and the symmetries the geometry must have.
 
 References are independent of the module's algebra: a bracketing root find of the elevation
@@ -17,10 +17,11 @@ import pytest
 from scipy.optimize import brentq
 
 from sss_locus import two_view_locus
-from sss_locus.platforms import load_platform
-from sss_locus.sampling import vehicle_attitude
-from sss_locus.survey import (REJECTION_REASONS, OffsetModel, SurveyEnvelope, load_envelope,
-                              observe_pass, simulate_passes, solve_in_beam, swath_m)
+from sss_locus.experiments.platforms import load_platform
+from sss_locus.experiments.envelopes import OffsetModel, SurveyEnvelope, load_envelope
+from sss_locus.experiments.straight_pass import (REJECTION_REASONS, observe_pass, solve_in_beam, swath_m,
+                                                 vehicle_attitude)
+from sss_locus.experiments.survey_passes import simulate_passes
 
 PLATFORMS = ("boat", "auv")
 
@@ -275,3 +276,30 @@ def test_bad_inputs():
         simulate_passes(pf, env.with_altitude(200.0, 200.0), OffsetModel(), [0.0], 10, 0)
     with pytest.raises(ValueError, match="platform_key"):
         load_envelope("submarine")
+
+
+@pytest.mark.parametrize("spec, expected", [
+    ("independent", OffsetModel("independent")),
+    ("matched:10:same", OffsetModel("matched", 10.0, "same")),
+    ("matched:2.5:opposite", OffsetModel("matched", 2.5, "opposite")),
+    ("matched:0:random", OffsetModel("matched", 0.0, "random")),
+])
+def test_offset_model_parse(spec, expected):
+    assert OffsetModel.parse(spec) == expected
+
+
+@pytest.mark.parametrize("spec, message", [
+    ("matched", "malformed"),
+    ("matched:10", "malformed"),
+    ("independent:0:same", "malformed"),
+    ("fixed:1:same", "malformed"),
+    ("matched:ten:same", "'ten' is not a number"),
+    ("matched:10:left", "'left' is not one of"),
+    ("matched:-1:same", "jitter_m must be a finite number >= 0"),
+    ("matched:nan:same", "jitter_m must be a finite number >= 0"),
+    (3, "must be a string"),
+])
+def test_offset_model_parse_names_the_spec_and_the_valid_forms(spec, message):
+    with pytest.raises(ValueError, match=message) as err:
+        OffsetModel.parse(spec)
+    assert "valid forms" in str(err.value)

@@ -1,4 +1,4 @@
-"""The book's algebra (sss_locus.symbolic) against itself and against the numeric kernel.
+"""The book's algebra (sss_locus.geometry.symbolic) against itself and against the numeric kernel.
 
 Two kinds of check:
 
@@ -8,7 +8,7 @@ Two kinds of check:
 * numeric: the derived expressions, lambdified, reproduce the kernel's u, C, centre, radius,
   existence and arcs on random configurations. The arcs are rebuilt here from the derived
   crop coefficients A, B, D and boundary angles alpha0 +- arccos(-D / hypot(A, B)) with an
-  interval arithmetic written for this test (no code shared with sss_locus.arcs).
+  interval arithmetic written for this test (no code shared with sss_locus.geometry.arcs).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import sympy as sp
 from scipy.spatial.transform import Rotation
 
 from sss_locus import Aperture, LocusStatus, two_view_locus
-from sss_locus import symbolic as S
+from sss_locus.geometry import symbolic as S
 
 TWO_PI = 2.0 * math.pi
 

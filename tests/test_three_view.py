@@ -1,4 +1,4 @@
-"""The three-view kernel (sss_locus.three_view) against independent references.
+"""The three-view kernel (sss_locus.geometry.three_view_points) against independent references.
 
 * recovery: a feature built inside all three apertures is among the valid candidates, to 1e-9
   of the range;
@@ -21,7 +21,7 @@ from scipy.spatial.transform import Rotation
 
 from sss_locus import Aperture, two_view_locus
 from sss_locus import relative_pose
-from sss_locus.three_view import ThreeViewStatus, three_view_points
+from sss_locus.geometry.three_view_points import ThreeViewStatus, three_view_points
 
 AUV = Aperture(130.0, 0.27, 150.0)
 BOAT = Aperture(50.0, 0.5, 150.0)

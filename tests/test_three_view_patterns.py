@@ -1,4 +1,4 @@
-"""Three passes over one feature (sss_locus.views.three_view_table / heading_sweep): the kernel
+"""Three passes over one feature (sss_locus.experiments.view_sets.three_view_table / heading_sweep): the kernel
 recovers the true feature on survey-pattern geometry, and the sweep covers its grid."""
 
 from __future__ import annotations
@@ -6,11 +6,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from sss_locus.noise import NoiseModel
-from sss_locus.platforms import load_platform
-from sss_locus.survey import load_envelope
-from sss_locus.three_view import ThreeViewStatus
-from sss_locus.views import PATTERNS, draw_pattern, heading_sweep, three_view_table
+from sss_locus.experiments.noise import NoiseModel
+from sss_locus.experiments.platforms import load_platform
+from sss_locus.experiments.envelopes import load_envelope
+from sss_locus.geometry.three_view_points import ThreeViewStatus
+from sss_locus.experiments.three_view_patterns import PATTERNS, heading_sweep, three_view_table
+from sss_locus.experiments.view_sets import draw_pattern
 
 
 @pytest.mark.parametrize("key", ["auv", "boat"])

@@ -1,5 +1,5 @@
-"""The three-view line–sphere derivation (sss_locus.symbolic.three_view) against itself and the
-kernel (sss_locus.three_view), as tests/test_symbolic.py does for the two-view locus."""
+"""The three-view line–sphere derivation (sss_locus.geometry.symbolic.three_view_points) against itself and the
+kernel (sss_locus.geometry.three_view_points), as tests/test_symbolic.py does for the two-view locus."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import sympy as sp
 from scipy.spatial.transform import Rotation
 
 from sss_locus import Aperture
-from sss_locus import symbolic as S
-from sss_locus.symbolic import three_view as T3
-from sss_locus.three_view import ThreeViewStatus, three_view_points
+from sss_locus.geometry import symbolic as S
+from sss_locus.geometry.symbolic import three_view_points as T3
+from sss_locus.geometry.three_view_points import ThreeViewStatus, three_view_points
 
 
 @pytest.fixture(scope="module")

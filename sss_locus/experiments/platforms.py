@@ -1,0 +1,295 @@
+"""Sonars, vehicles and transducer mountings, read from ``data/platforms.toml``.
+
+Frames
+------
+Vehicle frame
+    ``x`` forward (bow / nose), ``y`` to port (left), ``z`` up; origin at the platform's reference
+    point (``reference_point`` in the TOML: the waterline on the centreline for the boat, the hull
+    axis at mid-length for the AUV).
+World frame
+    ``x`` along vehicle 1's heading, ``y`` to its port, ``z`` up (vehicle 1 at zero yaw, pitch and
+    roll). Vehicle attitude: ``R_world_vehicle = Rz(yaw) Ry(-pitch) Rx(roll)`` with yaw positive
+    toward port (counter-clockwise seen from above) and **pitch positive nose-up** (a positive
+    rotation about the port-pointing ``y`` axis would be nose-down, hence the minus sign).
+Sensor (transducer) frame, the paper's (Sec. III-A)
+    ``x`` along the boresight, which points outward (to port for the port transducer) and is
+    tilted down from the horizontal by ``tilt_deg``; ``y`` lies in the vertical across-track plane
+    (so the wide azimuth fan is across-track and vertical); ``z = x × y`` is along-track, so a
+    sensor's *elevation* is its along-track angle. With ``azimuth_positive = "down"`` (the default
+    of both shipped platforms, an assumption), ``+y`` points down and inboard, so a **positive
+    azimuth is further below the boresight** (steeper, toward nadir) on both sides; then ``+z``
+    points aft for the port transducer and forward for the starboard one (the two frames are
+    mirror images). With ``"up"`` the signs of ``y`` and ``z`` flip.
+
+The depression angle below the horizontal of a point at azimuth ``theta`` and elevation ``phi`` of
+a level vehicle's transducer is ``tilt + theta`` (for ``"down"``) when ``phi = 0``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..paths import DATA_DIR
+from .inputs import check_range, read_toml, sourced, string, table
+
+PLATFORMS_FILE: Path = DATA_DIR / "platforms.toml"
+SIDES: tuple[str, str] = ("port", "starboard")
+AZIMUTH_POSITIVE: tuple[str, str] = ("down", "up")
+
+
+@dataclass(frozen=True)
+class Sonar:
+    """One sidescan transducer model (the paper's Table I). Angles are FULL apertures, degrees."""
+
+    key: str
+    name: str
+    azimuth_deg: float
+    elevation_deg: float
+    max_range_m: float
+    min_range_m: float = 0.0
+
+    def aperture(self):
+        """The kernel's :class:`sss_locus.geometry.aperture.Aperture` for this sonar."""
+        from ..geometry import Aperture
+
+        return Aperture(self.azimuth_deg, self.elevation_deg, self.max_range_m, self.min_range_m)
+
+
+@dataclass(frozen=True)
+class Transducer:
+    """Mounting of one transducer on its vehicle.
+
+    Parameters
+    ----------
+    side : {"port", "starboard"}
+    forward_offset_m : float
+        Position along the vehicle ``x`` axis from the reference point, metres.
+    lateral_offset_m : float
+        Distance outboard of the centreline, metres (>= 0; to port for the port transducer).
+    depth_m : float
+        Distance below the reference point (waterline or hull axis), metres.
+    tilt_deg : float
+        Downward tilt of the boresight from the horizontal, degrees, in [-90, 90].
+    azimuth_positive : {"down", "up"}
+        Which way positive azimuth points within the vertical fan (see the module docstring).
+    """
+
+    side: str
+    forward_offset_m: float
+    lateral_offset_m: float
+    depth_m: float
+    tilt_deg: float
+    azimuth_positive: str = "down"
+
+    @property
+    def position_m(self) -> np.ndarray:
+        """Transducer origin in the vehicle frame, metres, shape (3,)."""
+        s = 1.0 if self.side == "port" else -1.0
+        return np.array([self.forward_offset_m, s * self.lateral_offset_m, -self.depth_m])
+
+    @property
+    def rotation(self) -> Rotation:
+        """Sensor-to-vehicle rotation: ``p_vehicle = rotation.apply(p_sensor) + position_m``.
+
+        The matrix columns are the sensor axes expressed in the vehicle frame: boresight
+        ``x = (0, s cos(tilt), -sin(tilt))`` with ``s = +1`` (port) or ``-1`` (starboard);
+        ``y = ±(0, -s sin(tilt), -cos(tilt))`` (``+`` for ``azimuth_positive == "down"``);
+        ``z = x × y`` (along-track).
+        """
+        s = 1.0 if self.side == "port" else -1.0
+        tau = math.radians(self.tilt_deg)
+        x = np.array([0.0, s * math.cos(tau), -math.sin(tau)])
+        y = np.array([0.0, -s * math.sin(tau), -math.cos(tau)])
+        if self.azimuth_positive == "up":
+            y = -y
+        z = np.cross(x, y)
+        return Rotation.from_matrix(np.column_stack([x, y, z]))
+
+
+@dataclass(frozen=True)
+class Platform:
+    """A vehicle with two side-looking transducers, its attitude limits and depth envelope.
+
+    ``depth_min_m``/``depth_max_m`` bound the depth of the vehicle reference point below the sea
+    surface; a platform with ``depth_min_m == depth_max_m`` (a surface vessel) keeps it fixed, so
+    two poses of it share the same draft exactly. ``provenance`` maps each key path of the TOML
+    (e.g. ``"platforms.auv.transducers.port.tilt_deg"``) to ``"source: ..."`` or
+    ``"assumption: ..."``.
+    """
+
+    key: str
+    name: str
+    sonar: Sonar
+    transducers: Mapping[str, Transducer]
+    roll_max_deg: float
+    pitch_max_deg: float
+    depth_min_m: float
+    depth_max_m: float
+    length_m: float | None = None
+    reference_point: str = ""
+    altitude_fraction_of_range: float | None = None
+    provenance: Mapping[str, str] = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def fixed_depth(self) -> bool:
+        """True for a platform whose reference point stays at one depth (a surface vessel)."""
+        return self.depth_min_m == self.depth_max_m
+
+    def with_attitude_limits(self, *, pitch_max_deg: float | None = None,
+                             roll_max_deg: float | None = None) -> "Platform":
+        """A copy with other attitude limits (e.g. the +-15 deg survey envelope of Sec. IV-D)."""
+        changes = {}
+        for name, value in (("pitch_max_deg", pitch_max_deg), ("roll_max_deg", roll_max_deg)):
+            if value is not None:
+                changes[name] = check_range(float(value), name, 0.0, 90.0)
+        return dataclasses.replace(self, **changes)
+
+    def with_tilt(self, tilt_deg: float) -> "Platform":
+        """A copy with both transducers tilted down by ``tilt_deg`` degrees, in [-90, 90] (to
+        probe an assumed tilt, such as the boat's Omniscan tilt)."""
+        tilt = check_range(float(tilt_deg), "tilt_deg", -90.0, 90.0)
+        return dataclasses.replace(self, transducers={
+            side: dataclasses.replace(t, tilt_deg=tilt) for side, t in self.transducers.items()})
+
+
+# --------------------------------------------------------------------------------------------
+# Reading and validation
+# --------------------------------------------------------------------------------------------
+def _sonar(key: str, doc: Mapping[str, Any], provenance: dict[str, str]) -> Sonar:
+    path = f"sonars.{key}"
+    sonar = Sonar(
+        key=key,
+        name=string(doc, "name", path),
+        azimuth_deg=sourced(doc, "azimuth_deg", path, provenance, lo=1e-9, hi=360.0),
+        elevation_deg=sourced(doc, "elevation_deg", path, provenance, lo=1e-9, hi=180.0),
+        max_range_m=sourced(doc, "max_range_m", path, provenance, lo=1e-9),
+        min_range_m=sourced(doc, "min_range_m", path, provenance, lo=0.0),
+    )
+    if not sonar.max_range_m > sonar.min_range_m:
+        raise ValueError(f"{path}.max_range_m must exceed {path}.min_range_m")
+    return sonar
+
+
+def _platform(key: str, doc: Mapping[str, Any], sonars: Mapping[str, Sonar],
+              provenance: dict[str, str]) -> Platform:
+    path = f"platforms.{key}"
+    sonar_key = string(doc, "sonar", path)
+    if sonar_key not in sonars:
+        raise ValueError(f"{path}.sonar names unknown sonar {sonar_key!r}; known: {sorted(sonars)}")
+    positive = sourced(doc, "azimuth_positive", path, provenance, choices=AZIMUTH_POSITIVE)
+    att = table(doc, "attitude", path)
+    depth = table(doc, "depth_m", path)
+    tables = table(doc, "transducers", path)
+    transducers = {}
+    for side in SIDES:
+        tpath = f"{path}.transducers"
+        t = table(tables, side, tpath)
+        tpath = f"{tpath}.{side}"
+        transducers[side] = Transducer(
+            side=side,
+            forward_offset_m=sourced(t, "forward_offset_m", tpath, provenance),
+            lateral_offset_m=sourced(t, "lateral_offset_m", tpath, provenance, lo=0.0),
+            depth_m=sourced(t, "depth_m", tpath, provenance),
+            tilt_deg=sourced(t, "tilt_deg", tpath, provenance, lo=-90.0, hi=90.0),
+            azimuth_positive=positive,
+        )
+    extra = set(tables) - set(SIDES)
+    if extra:
+        raise ValueError(f"{path}.transducers has unknown tables {sorted(extra)}; allowed: {list(SIDES)}")
+    depth_min = sourced(depth, "min", f"{path}.depth_m", provenance, lo=0.0)
+    depth_max = sourced(depth, "max", f"{path}.depth_m", provenance, lo=0.0)
+    if depth_max < depth_min:
+        raise ValueError(f"{path}.depth_m.max must be >= {path}.depth_m.min")
+    survey = doc.get("survey", {})
+    return Platform(
+        key=key,
+        name=string(doc, "name", path),
+        sonar=sonars[sonar_key],
+        transducers=transducers,
+        roll_max_deg=sourced(att, "roll_max_deg", f"{path}.attitude", provenance, lo=0.0, hi=90.0),
+        pitch_max_deg=sourced(att, "pitch_max_deg", f"{path}.attitude", provenance, lo=0.0, hi=90.0),
+        depth_min_m=depth_min,
+        depth_max_m=depth_max,
+        length_m=(sourced(doc, "length_m", path, provenance, lo=0.0) if "length_m" in doc else None),
+        reference_point=doc.get("reference_point", ""),
+        altitude_fraction_of_range=(
+            sourced(survey, "altitude_fraction_of_range", f"{path}.survey", provenance, lo=0.0)
+            if "altitude_fraction_of_range" in survey else None),
+        provenance={k: v for k, v in provenance.items() if k.startswith(path + ".")
+                    or k.startswith(f"sonars.{sonar_key}.")},
+    )
+
+
+def parse_platforms(doc: Mapping[str, Any]) -> dict[str, Platform]:
+    """Validate a parsed TOML document and return its platforms by key.
+
+    Raises
+    ------
+    ValueError
+        Naming the full key path of the first missing or malformed entry.
+    """
+    provenance: dict[str, str] = {}
+    sonar_docs = table(doc, "sonars", "")
+    sonars = {k: _sonar(k, table(sonar_docs, k, "sonars"), provenance) for k in sonar_docs}
+    platform_docs = table(doc, "platforms", "")
+    if not platform_docs:
+        raise ValueError("platforms must contain at least one [platforms.<key>] table")
+    return {k: _platform(k, table(platform_docs, k, "platforms"), sonars, provenance)
+            for k in platform_docs}
+
+
+def load_platforms(path: str | Path | None = None) -> dict[str, Platform]:
+    """Read and validate ``data/platforms.toml`` (or ``path``); platforms by key."""
+    return parse_platforms(read_toml(PLATFORMS_FILE if path is None else path))
+
+
+def load_platform(key: str, path: str | Path | None = None) -> Platform:
+    """One platform by key (e.g. ``"boat"`` or ``"auv"``)."""
+    platforms = load_platforms(path)
+    if key not in platforms:
+        raise ValueError(f"platform must be one of {sorted(platforms)}; got {key!r}")
+    return platforms[key]
+
+
+def provenance_table(platform: Platform):
+    """The platform's numbers with their sources / assumptions, as a pandas DataFrame."""
+    import pandas as pd
+
+    rows = []
+    for key, note in platform.provenance.items():
+        kind, _, text = note.partition(": ")
+        rows.append({"key": key, "kind": kind, "note": text})
+    return pd.DataFrame(rows)
+
+
+def frustum_points(sonar: Sonar, transducer: Transducer, plot_range_m: float,
+                   n: int = 25) -> np.ndarray:
+    """Points outlining a transducer's aperture frustum, in the vehicle frame (for drawing).
+
+    The frustum is the set of points within ``plot_range_m`` of the transducer inside its
+    azimuth and elevation apertures; returned are its apex (the transducer origin) followed by
+    an ``n`` x ``n`` grid over the far cap (azimuth x elevation at ``plot_range_m``). For
+    apertures up to 180 deg in azimuth the frustum is the convex hull of these points.
+
+    Returns
+    -------
+    numpy.ndarray, shape (1 + n * n, 3), metres.
+    """
+    if not (math.isfinite(plot_range_m) and plot_range_m > 0):
+        raise ValueError(f"plot_range_m must be a positive number of metres; got {plot_range_m!r}")
+    if int(n) < 2:
+        raise ValueError(f"n must be >= 2; got {n}")
+    th = np.radians(np.linspace(-sonar.azimuth_deg / 2, sonar.azimuth_deg / 2, int(n)))
+    ph = np.radians(np.linspace(-sonar.elevation_deg / 2, sonar.elevation_deg / 2, int(n)))
+    T, P = np.meshgrid(th, ph, indexing="ij")
+    cap = plot_range_m * np.stack([np.cos(T) * np.cos(P), np.sin(T) * np.cos(P), np.sin(P)], -1)
+    local = np.concatenate([np.zeros((1, 3)), cap.reshape(-1, 3)])
+    return transducer.rotation.apply(local) + transducer.position_m

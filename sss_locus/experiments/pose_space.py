@@ -1,0 +1,310 @@
+"""Seeded, vectorised Monte Carlo sampler of two-view relative poses (the paper's Sec. IV-A).
+
+Method (Norman & Mangelson, Sec. IV-A, with every choice the paper leaves open named here)
+----------------------------------------------------------------------------------------------
+1. **Sensor 1 is fixed**: vehicle 1 sits at the world origin with zero yaw, pitch and roll; sensor 1
+   is its ``side1`` transducer (``"port"`` by default, so the feature is on vehicle 1's port side).
+2. **The feature** is drawn inside sensor 1's aperture and range (frame 1: range ``r1``, azimuth
+   ``theta1``, elevation ``phi1``). ``feature_distribution`` says what "uniform" means:
+   ``"angles"`` (default) draws ``r``, ``theta`` and ``phi`` independently and uniformly over
+   their intervals; ``"volume"`` draws uniformly in the volume of the aperture
+   (``r**3`` and ``sin(phi)`` uniform, ``theta`` uniform).
+3. **Sensor 2** is drawn independently: its side (``side2``: ``"either"`` by default, each with
+   probability 1/2), vehicle 2's attitude (yaw uniform in [-180, 180) deg; pitch uniform in
+   [-pitch_max, pitch_max]; roll uniform in [-roll_max, roll_max], from the platform's limits),
+   and the feature's range, azimuth and elevation in sensor 2's frame (same distribution as for
+   sensor 1). Sensor 2's position follows: ``o2 = f - R2 p2``. ``R = R2^T R1``, ``t = R2^T (o1 - o2)``
+   (``p2 = R p1 + t``, the kernel's convention).
+4. **Physical plausibility** (``profile="platform"``):
+   - the feature lies strictly below both sensors (a draw with the feature at or above either
+     sensor is redrawn);
+   - a platform whose depth is fixed (a surface vessel, ``depth_min_m == depth_max_m``) keeps
+     both vehicles' reference points at that depth **exactly**: sensor 2's range and elevation
+     are drawn as above and its azimuth is then *solved* so that sensor 2 sits at the right
+     depth (of the two solutions, those inside the azimuth aperture; one at random if both are);
+     draws where neither solution is in the aperture are redrawn. So for the boat ``theta2`` is
+     not independently uniform — it is conditioned on the equal draft;
+   - for other platforms, if ``depth_envelope`` is true, the two vehicles' reference depths may
+     differ by at most ``depth_max_m - depth_min_m`` (both fit in the operating depth range).
+   Because draws are redrawn *jointly*, the accepted samples follow the product distribution
+   above conditioned on the constraints: marginals can differ from uniform (for the boat, for
+   example, features deep below sensor 1 need a long ``r2`` and are accepted less often, so
+   ``theta1`` is not exactly uniform).
+   ``profile="unconstrained"`` is the idealised sweep the paper tried first: sensor 2's
+   orientation is uniform over all rotations, and none of the constraints above apply.
+
+Reproducibility: samples are produced in blocks of :data:`BLOCK_SIZE` rows; block ``k`` uses its
+own generator seeded by ``SeedSequence(seed, spawn_key=(k,))``. The table for ``(seed, n)`` is
+therefore the same whatever ``chunk_size`` (rows per kernel call, a memory knob) is, and the
+first ``m`` rows of a larger run equal a run of ``m`` rows.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from scipy.spatial.transform import Rotation
+
+from ..geometry import elevation_misalignment, relative_pose, two_view_locus
+from .platforms import SIDES, Platform
+from .straight_pass import attitude_angles, transducer_stack, vehicle_attitude
+
+BLOCK_SIZE = 4096
+"""Rows per independently seeded block (fixed: changing it changes every table)."""
+PROFILES = ("platform", "unconstrained")
+FEATURE_DISTRIBUTIONS = ("angles", "volume")
+SIDE_CHOICES = ("port", "starboard", "either")
+MIN_ACCEPTANCE = 1e-3
+"""Below this fraction of accepted draws the constraints are declared unsatisfiable."""
+
+COLUMNS = (
+    "r1_m", "r2_m", "mean_range_m", "baseline_m", "azimuth1_deg", "azimuth2_deg",
+    "elevation1_deg", "elevation2_deg", "psi1_deg", "psi2_deg", "elevation_misalignment_deg",
+    "yaw2_deg", "pitch2_deg", "roll2_deg", "depth2_minus_depth1_m", "side1", "side2",
+    "locus_length_m", "locus_length_normalized", "n_arcs", "status",
+)
+
+
+@dataclass(frozen=True)
+class PoseSpaceSpec:
+    """Everything that determines a pose-space table besides ``n`` and ``seed``.
+
+    Parameters
+    ----------
+    platform : Platform
+        Both vehicles are of this platform (see :mod:`sss_locus.experiments.platforms`).
+    profile : {"platform", "unconstrained"}
+    feature_distribution : {"angles", "volume"}
+    side1, side2 : {"port", "starboard", "either"}
+    pitch_max_deg, roll_max_deg : float or None
+        Override the platform's attitude limits (degrees, in [0, 90]); ``None`` keeps them.
+    depth_envelope : bool
+        Apply the platform's depth range to the two vehicles' depth difference (not for
+        fixed-depth platforms, which are held at their depth exactly).
+    tilt_deg : float or None
+        Override the downward tilt of both transducers (degrees); ``None`` keeps the platform's.
+    """
+
+    platform: Platform
+    profile: str = "platform"
+    feature_distribution: str = "angles"
+    side1: str = "port"
+    side2: str = "either"
+    pitch_max_deg: float | None = None
+    roll_max_deg: float | None = None
+    depth_envelope: bool = True
+    tilt_deg: float | None = None
+
+    def __post_init__(self) -> None:
+        for name, choices in (("profile", PROFILES), ("feature_distribution", FEATURE_DISTRIBUTIONS),
+                              ("side1", SIDE_CHOICES), ("side2", SIDE_CHOICES)):
+            if getattr(self, name) not in choices:
+                raise ValueError(f"{name} must be one of {list(choices)}; got {getattr(self, name)!r}")
+        if not isinstance(self.platform, Platform):
+            raise ValueError(f"platform must be a sss_locus.experiments.platforms.Platform; got {type(self.platform).__name__}")
+        limited = self.platform.with_attitude_limits(pitch_max_deg=self.pitch_max_deg,
+                                                     roll_max_deg=self.roll_max_deg)
+        if self.tilt_deg is not None:
+            limited = limited.with_tilt(self.tilt_deg)
+        object.__setattr__(self, "platform", limited)
+        object.__setattr__(self, "pitch_max_deg", limited.pitch_max_deg)
+        object.__setattr__(self, "roll_max_deg", limited.roll_max_deg)
+
+    def key(self) -> dict:
+        """Plain-data description (for cache keys and figure manifests)."""
+        d = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "platform"}
+        d["platform"] = self.platform.key
+        return d
+
+
+# --------------------------------------------------------------------------------------------
+# Geometry helpers (batched)
+# --------------------------------------------------------------------------------------------
+def spherical_to_cartesian(r, theta, phi) -> np.ndarray:
+    """The paper's eq. (1): ``(r cos t cos p, r sin t cos p, r sin p)``; shape ``(..., 3)``."""
+    cp = np.cos(phi)
+    return np.stack([r * np.cos(theta) * cp, r * np.sin(theta) * cp, r * np.sin(phi)], axis=-1)
+
+
+def _draw_range_angles(rng, n, ap, distribution):
+    lo, hi = ap.min_range, ap.max_range
+    u = 1.0 - rng.random((3, n))  # in (0, 1]: r never hits min_range = 0 exactly
+    if distribution == "angles":
+        r = lo + (hi - lo) * u[0]
+        phi = (2.0 * u[2] - 1.0) * ap.half_elevation_rad
+    else:
+        r = np.cbrt(lo ** 3 + (hi ** 3 - lo ** 3) * u[0])
+        phi = np.arcsin((2.0 * u[2] - 1.0) * math.sin(ap.half_elevation_rad))
+    theta = (2.0 * u[1] - 1.0) * ap.half_azimuth_rad
+    return r, theta, phi
+
+
+def _draw_sides(rng, n, choice):
+    if choice == "either":
+        return rng.random(n) < 0.5  # True = port
+    return np.full(n, choice == "port")
+
+
+def _solve_azimuth(rng, a_row, r2, phi2, depth_target, half_az):
+    """Azimuth ``theta`` with ``a . p2(r2, theta, phi2) = depth_target``; NaN where none fits.
+
+    ``a . p2 = A cos(theta) + B sin(theta) + r2 a_z sin(phi2)``, with ``A = r2 cos(phi2) a_x``,
+    ``B = r2 cos(phi2) a_y``; the two roots are ``atan2(B, A) ± arccos(D / hypot(A, B))``.
+    """
+    A = r2 * np.cos(phi2) * a_row[:, 0]
+    B = r2 * np.cos(phi2) * a_row[:, 1]
+    D = depth_target - r2 * np.sin(phi2) * a_row[:, 2]
+    rho = np.hypot(A, B)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        c = D / rho
+    ok = (rho > 0) & (np.abs(c) <= 1.0)
+    base = np.arctan2(B, A)
+    delta = np.arccos(np.clip(c, -1.0, 1.0))
+    roots = np.stack([base + delta, base - delta])
+    roots = (roots + np.pi) % (2.0 * np.pi) - np.pi
+    inside = ok & (np.abs(roots) <= half_az)
+    pick_second = rng.random(r2.shape) < 0.5
+    first = np.where(inside[0] & inside[1], np.where(pick_second, roots[1], roots[0]),
+                     np.where(inside[0], roots[0], roots[1]))
+    return np.where(inside[0] | inside[1], first, np.nan)
+
+
+def _draw_candidates(spec: PoseSpaceSpec, rng, m: int) -> dict[str, np.ndarray]:
+    """``m`` candidate configurations and a boolean ``accept`` mask (the constraints)."""
+    pf = spec.platform
+    ap = pf.sonar.aperture()
+    port1 = _draw_sides(rng, m, spec.side1)
+    R1, o1 = transducer_stack(pf, port1)  # vehicle 1 = world
+    r1, th1, ph1 = _draw_range_angles(rng, m, ap, spec.feature_distribution)
+    f = np.einsum("nij,nj->ni", R1, spherical_to_cartesian(r1, th1, ph1)) + o1
+    port2 = _draw_sides(rng, m, spec.side2)
+    M2, m2 = transducer_stack(pf, port2)
+    r2, th2, ph2 = _draw_range_angles(rng, m, ap, spec.feature_distribution)
+    if spec.profile == "unconstrained":
+        R2 = Rotation.random(m, rng=rng).as_matrix()
+        Rv2 = np.einsum("nij,nkj->nik", R2, M2)  # R2 M2^T
+        yaw, pitch, roll = attitude_angles(Rotation.from_matrix(Rv2))
+    else:
+        yaw = rng.uniform(-180.0, 180.0, m)
+        pitch = rng.uniform(-1.0, 1.0, m) * pf.pitch_max_deg
+        roll = rng.uniform(-1.0, 1.0, m) * pf.roll_max_deg
+        Rv2 = vehicle_attitude(yaw, pitch, roll).as_matrix()
+        R2 = Rv2 @ M2
+    mount2 = np.einsum("nij,nj->ni", Rv2, m2)
+    accept = np.ones(m, bool)
+    if spec.profile == "platform" and pf.fixed_depth:
+        # vehicle 2 reference at z = 0 (same depth as vehicle 1): o2_z = mount2_z, so the world
+        # z of R2 p2 must equal f_z - mount2_z
+        th2 = _solve_azimuth(rng, R2[:, 2, :], r2, ph2, f[:, 2] - mount2[:, 2], ap.half_azimuth_rad)
+        accept &= np.isfinite(th2)
+        th2 = np.where(accept, th2, 0.0)
+    o2 = f - np.einsum("nij,nj->ni", R2, spherical_to_cartesian(r2, th2, ph2))
+    v2_z = o2[:, 2] - mount2[:, 2]
+    if spec.profile == "platform":
+        accept &= (f[:, 2] < o1[:, 2]) & (f[:, 2] < o2[:, 2])
+        if not pf.fixed_depth and spec.depth_envelope:
+            accept &= np.abs(v2_z) <= pf.depth_max_m - pf.depth_min_m
+    R, t = relative_pose(R1, o1, R2, o2)
+    return dict(accept=accept, R=R, t=t, r1=r1, r2=r2, th1=th1, th2=th2, ph1=ph1, ph2=ph2,
+                yaw=yaw, pitch=pitch, roll=roll, port1=port1, port2=port2, v2_z=v2_z,
+                f=f, o1=o1, o2=o2)
+
+
+def draw_block(spec: PoseSpaceSpec, seed: int, block: int) -> dict[str, np.ndarray]:
+    """Block ``block`` (:data:`BLOCK_SIZE` accepted configurations) of the stream for ``seed``."""
+    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(block,)))
+    parts, have, tried = [], 0, 0
+    while have < BLOCK_SIZE:
+        m = max(BLOCK_SIZE, 2 * (BLOCK_SIZE - have))
+        cand = _draw_candidates(spec, rng, m)
+        keep = cand.pop("accept")
+        tried += m
+        parts.append({k: v[keep] for k, v in cand.items()})
+        have += int(keep.sum())
+        if tried >= 20 * BLOCK_SIZE and have < MIN_ACCEPTANCE * tried:
+            raise ValueError(
+                f"the constraints of platform {spec.platform.key!r} accept only {have} of {tried} "
+                "draws: check its mounting, attitude limits and depth envelope")
+    return {k: np.concatenate([p[k] for p in parts])[:BLOCK_SIZE] for k in parts[0]}
+
+
+def _evaluate(spec: PoseSpaceSpec, g: dict[str, np.ndarray]) -> pd.DataFrame:
+    ap = spec.platform.sonar.aperture()
+    res = two_view_locus(g["R"], g["t"], g["r1"], g["r2"], ap, ap)
+    mis = elevation_misalignment(g["R"], g["t"])
+    mean_range = 0.5 * (g["r1"] + g["r2"])
+    side = lambda port: pd.Categorical(np.where(port, "port", "starboard"), categories=list(SIDES))
+    return pd.DataFrame({
+        "r1_m": g["r1"], "r2_m": g["r2"], "mean_range_m": mean_range,
+        "baseline_m": np.linalg.norm(g["t"], axis=-1),
+        "azimuth1_deg": np.degrees(g["th1"]), "azimuth2_deg": np.degrees(g["th2"]),
+        "elevation1_deg": np.degrees(g["ph1"]), "elevation2_deg": np.degrees(g["ph2"]),
+        "psi1_deg": mis.psi1_deg, "psi2_deg": mis.psi2_deg,
+        "elevation_misalignment_deg": mis.misalignment_deg,
+        "yaw2_deg": g["yaw"], "pitch2_deg": g["pitch"], "roll2_deg": g["roll"],
+        "depth2_minus_depth1_m": -g["v2_z"],
+        "side1": side(g["port1"]), "side2": side(g["port2"]),
+        "locus_length_m": res.length, "locus_length_normalized": res.length / mean_range,
+        "n_arcs": res.n_arcs.astype(np.int8), "status": res.status.astype(np.int8),
+    })
+
+
+def sample_geometry(spec: PoseSpaceSpec, n: int, seed: int) -> dict[str, np.ndarray]:
+    """The first ``n`` raw configurations (``R``, ``t``, ranges, angles, world positions ``f``,
+    ``o1``, ``o2`` ...) for ``seed``; the rows of :func:`sample_pose_space` in the same order."""
+    n, seed = _check_n_seed(n, seed)
+    blocks = [draw_block(spec, seed, k) for k in range(-(-n // BLOCK_SIZE))]
+    return {k: np.concatenate([b[k] for b in blocks])[:n] for k in blocks[0]} if blocks else {}
+
+
+def _check_n_seed(n, seed):
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise ValueError(f"n_samples must be a positive integer; got {n!r}")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ValueError(f"seed must be a non-negative integer; got {seed!r}")
+    return int(n), int(seed)
+
+
+def sample_pose_space(spec: PoseSpaceSpec, n_samples: int, seed: int, *,
+                      chunk_size: int = 65536) -> pd.DataFrame:
+    """Monte Carlo table of ``n_samples`` two-view configurations (one row each).
+
+    Parameters
+    ----------
+    spec : PoseSpaceSpec
+    n_samples : int
+    seed : int
+        Non-negative; the table depends only on ``(spec, n_samples, seed)``.
+    chunk_size : int
+        Rows per kernel evaluation (memory); does not change the result.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns :data:`COLUMNS`. Lengths in metres, angles in degrees (sensor frames as in
+        :mod:`sss_locus.experiments.platforms`). ``yaw2_deg``/``pitch2_deg``/``roll2_deg`` are vehicle 2's
+        attitude relative to vehicle 1 (yaw toward port positive, pitch nose-up positive);
+        ``depth2_minus_depth1_m`` how much deeper vehicle 2's reference point is;
+        ``locus_length_normalized`` = ``locus_length_m / mean_range_m``; ``status`` is the
+        kernel's :class:`~sss_locus.geometry.locus.LocusStatus`.
+    """
+    n, seed = _check_n_seed(n_samples, seed)
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
+        raise ValueError(f"chunk_size must be a positive integer; got {chunk_size!r}")
+    frames, pending, done = [], [], 0
+    n_blocks = -(-n // BLOCK_SIZE)
+    for k in range(n_blocks):
+        pending.append(draw_block(spec, seed, k))
+        last = k == n_blocks - 1
+        while pending and (sum(len(p["r1"]) for p in pending) >= chunk_size or last):
+            g = {key: np.concatenate([p[key] for p in pending]) for key in pending[0]}
+            take = min(chunk_size, n - done, len(g["r1"]))
+            frames.append(_evaluate(spec, {key: v[:take] for key, v in g.items()}))
+            done += take
+            rest = {key: v[take:] for key, v in g.items()}
+            pending = [rest] if len(rest["r1"]) and done < n else []
+    out = pd.concat(frames, ignore_index=True)
+    return out[list(COLUMNS)]

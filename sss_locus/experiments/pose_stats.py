@@ -1,0 +1,301 @@
+"""Statistics of a pose-space table: rank correlations with bootstrap intervals, binned medians.
+
+Works on the tables of :func:`sss_locus.experiments.pose_space.sample_pose_space` (any DataFrame with the named
+columns). Angles in degrees, lengths in metres.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import pandas as pd
+from scipy import stats
+
+TARGETS = ("locus_length_m", "locus_length_normalized")
+"""Raw and range-normalised locus length (``locus_length_m / mean_range_m``)."""
+
+CANDIDATES = (
+    "r1_m", "r2_m", "mean_range_m", "baseline_m",
+    "elevation_misalignment_deg", "abs_psi1_deg", "abs_psi2_deg",
+    "azimuth1_deg", "azimuth2_deg", "abs_elevation1_deg", "abs_elevation2_deg",
+    "abs_yaw2_deg", "pitch2_deg", "abs_pitch2_deg",
+)
+"""Candidate drivers ranked by Spearman rho. ``abs_*`` are magnitudes added by
+:func:`with_derived` (signed yaw, elevation and psi are symmetric about 0, so their rank
+correlation with length is ~0 by construction and says nothing)."""
+
+def with_derived(df: pd.DataFrame) -> pd.DataFrame:
+    """A copy of ``df`` with the magnitude columns used in :data:`CANDIDATES`."""
+    out = df.copy()
+    for src in ("psi1_deg", "psi2_deg", "elevation1_deg", "elevation2_deg", "yaw2_deg", "pitch2_deg"):
+        if src in out:
+            out["abs_" + src] = out[src].abs()
+    return out
+
+
+def _require(df: pd.DataFrame, columns: Sequence[str], name: str = "df") -> None:
+    missing = [c for c in columns if c not in df.columns]
+    if missing:
+        raise ValueError(f"{name} lacks columns {missing}; it has {list(df.columns)}")
+
+
+def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
+                   targets: Sequence[str] = TARGETS, *, n_resamples: int = 400,
+                   confidence_level: float = 0.95, seed: int = 0,
+                   drop_constant: bool = True) -> pd.DataFrame:
+    """Spearman rho of each candidate with each target, with percentile bootstrap intervals.
+
+    The point estimate is exactly :func:`scipy.stats.spearmanr` (Pearson correlation of
+    average ranks). The interval resamples rows with replacement ``n_resamples`` times and
+    recomputes the correlation of the full-sample ranks on each resample (weights = how often a
+    row is drawn); ranks are not recomputed per resample, which differs from re-ranking by
+    O(1/n) and lets one pass cost O(n * candidates). Percentile interval at
+    ``confidence_level``. A constant column (e.g. the boat's pitch, always 0) has no rank
+    correlation: with ``drop_constant`` it is left out (listed in ``out.attrs["dropped"]``),
+    otherwise it raises ``ValueError``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (target, quantity): ``target, quantity, rho, ci_low, ci_high, n``, sorted by
+        target then decreasing ``|rho|``.
+    """
+    _require(df, list(candidates) + list(targets))
+    if not 0.0 < confidence_level < 1.0:
+        raise ValueError(f"confidence_level must be in (0, 1); got {confidence_level}")
+    if int(n_resamples) < 10:
+        raise ValueError(f"n_resamples must be >= 10; got {n_resamples}")
+    n = len(df)
+    if n < 3:
+        raise ValueError(f"need at least 3 rows for a rank correlation; got {n}")
+
+    def centred_ranks(cols):
+        r = np.column_stack([stats.rankdata(df[c].to_numpy()) for c in cols])
+        return (r - (n + 1) / 2.0) / n  # centred and scaled: well-conditioned sums
+
+    constant = [c for c in list(candidates) + list(targets) if df[c].nunique() < 2]
+    if constant and (not drop_constant or set(constant) & set(targets)):
+        raise ValueError(f"columns {constant} are constant: their rank correlation is undefined")
+    candidates = [c for c in candidates if c not in constant]
+    X, Y = centred_ranks(candidates), centred_ranks(targets)
+
+    def weighted_corr(w):
+        sw = w.sum()
+        mx, my = w @ X / sw, w @ Y / sw
+        vx = w @ (X * X) / sw - mx ** 2
+        vy = w @ (Y * Y) / sw - my ** 2
+        cxy = X.T @ (w[:, None] * Y) / sw - np.outer(mx, my)
+        return cxy / np.sqrt(np.outer(vx, vy))
+
+    rho = weighted_corr(np.ones(n))
+    rng = np.random.default_rng(seed)
+    boots = np.empty((int(n_resamples),) + rho.shape)
+    for b in range(int(n_resamples)):
+        boots[b] = weighted_corr(np.bincount(rng.integers(0, n, n), minlength=n).astype(float))
+    alpha = (1.0 - confidence_level) / 2.0
+    lo, hi = np.quantile(boots, [alpha, 1.0 - alpha], axis=0)
+    rows = [dict(target=tg, quantity=c, rho=rho[i, j], ci_low=lo[i, j], ci_high=hi[i, j], n=n)
+            for j, tg in enumerate(targets) for i, c in enumerate(candidates)]
+    out = pd.DataFrame(rows)
+    out["abs_rho"] = out["rho"].abs()
+    out = out.sort_values(["target", "abs_rho"], ascending=[True, False]).drop(columns="abs_rho")
+    out = out.reset_index(drop=True)
+    out.attrs["dropped"] = constant
+    return out
+
+
+def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m", *,
+                  x_edges, y_edges, min_count: int = 30) -> pd.DataFrame:
+    """Median of ``value`` per 2-D bin of ``(x, y)``, with counts and a sparse-bin mask.
+
+    Bins are half-open ``[lo, hi)`` except the last, which includes its upper edge; rows outside
+    the edges are ignored. Every bin appears (empty ones with ``count`` 0 and NaN median).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``x_lo, x_hi, y_lo, y_hi, x_mid, y_mid, count, median, masked``; ``masked`` is true where
+        ``count < min_count`` (such medians are not shown).
+    """
+    _require(df, [x, y, value])
+    xe, ye = np.asarray(x_edges, float), np.asarray(y_edges, float)
+    for name, e in (("x_edges", xe), ("y_edges", ye)):
+        if e.ndim != 1 or len(e) < 2 or not np.all(np.diff(e) > 0):
+            raise ValueError(f"{name} must be a strictly increasing 1-D array of >= 2 edges")
+    if int(min_count) < 1:
+        raise ValueError(f"min_count must be >= 1; got {min_count}")
+    ix = _bin_index(df[x].to_numpy(float), xe)
+    iy = _bin_index(df[y].to_numpy(float), ye)
+    ok = (ix >= 0) & (iy >= 0)
+    nx, ny = len(xe) - 1, len(ye) - 1
+    flat = pd.Series(df[value].to_numpy(float)[ok]).groupby(ix[ok] * ny + iy[ok])
+    med = flat.median().reindex(range(nx * ny))
+    cnt = flat.size().reindex(range(nx * ny), fill_value=0)
+    gx, gy = np.divmod(np.arange(nx * ny), ny)
+    out = pd.DataFrame({
+        "x_lo": xe[gx], "x_hi": xe[gx + 1], "y_lo": ye[gy], "y_hi": ye[gy + 1],
+        "x_mid": 0.5 * (xe[gx] + xe[gx + 1]), "y_mid": 0.5 * (ye[gy] + ye[gy + 1]),
+        "count": cnt.to_numpy(), "median": med.to_numpy(),
+    })
+    out["masked"] = out["count"] < int(min_count)
+    out.attrs.update(x=x, y=y, value=value, min_count=int(min_count))
+    return out
+
+
+def _bin_index(v: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    i = np.searchsorted(edges, v, side="right") - 1
+    i = np.where(v == edges[-1], len(edges) - 2, i)
+    return np.where((v < edges[0]) | (v > edges[-1]), -1, i)
+
+
+def median_grid(binned: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(x_edges, y_edges, Z)`` for ``pcolormesh`` from :func:`binned_median`; masked bins NaN.
+    ``Z`` has shape ``(n_y, n_x)``."""
+    xe = np.unique(np.concatenate([binned["x_lo"], binned["x_hi"]]))
+    ye = np.unique(np.concatenate([binned["y_lo"], binned["y_hi"]]))
+    z = np.where(binned["masked"], np.nan, binned["median"]).reshape(len(xe) - 1, len(ye) - 1)
+    return xe, ye, z.T
+
+
+def binned_profile(df: pd.DataFrame, x: str, value: str = "locus_length_m", *, edges,
+                   min_count: int = 30) -> pd.DataFrame:
+    """1-D version of :func:`binned_median`: ``lo, hi, mid, count, median, masked``."""
+    _require(df, [x, value])
+    e = np.asarray(edges, float)
+    if e.ndim != 1 or len(e) < 2 or not np.all(np.diff(e) > 0):
+        raise ValueError("edges must be a strictly increasing 1-D array of >= 2 edges")
+    i = _bin_index(df[x].to_numpy(float), e)
+    ok = i >= 0
+    g = pd.Series(df[value].to_numpy(float)[ok]).groupby(i[ok])
+    out = pd.DataFrame({"lo": e[:-1], "hi": e[1:], "mid": 0.5 * (e[:-1] + e[1:]),
+                        "count": g.size().reindex(range(len(e) - 1), fill_value=0).to_numpy(),
+                        "median": g.median().reindex(range(len(e) - 1)).to_numpy()})
+    out["masked"] = out["count"] < int(min_count)
+    return out
+
+
+def round_sig(x, digits: int = 2):
+    """Round to ``digits`` significant figures (array-friendly; 0 and NaN pass through)."""
+    x = np.asarray(x, float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mag = np.where((x == 0) | ~np.isfinite(x), 0, np.floor(np.log10(np.abs(x))))
+    scale = 10.0 ** (digits - 1 - mag)
+    return np.where(np.isfinite(x), np.round(x * scale) / scale, x)
+
+
+def agree_sig(a, b, digits: int = 2) -> np.ndarray:
+    """Whether ``a`` and ``b`` are equal after rounding each to ``digits`` significant figures."""
+    return np.asarray(round_sig(a, digits) == round_sig(b, digits))
+
+
+# --------------------------------------------------------------------------------------------
+# The paper's Fig. 4 panels and the numbers its claims are checked against
+# --------------------------------------------------------------------------------------------
+HEATMAP_PANELS = (
+    ("a", "r1_m", "r2_m"),
+    ("b", "azimuth1_deg", "azimuth2_deg"),
+    ("c", "elevation1_deg", "elevation2_deg"),
+    ("d", "yaw2_deg", "pitch2_deg"),
+    ("e", "yaw2_deg", "azimuth2_deg"),
+)
+"""Fig. 4 panels: (panel, x column, y column)."""
+
+
+def panel_edges(column: str, platform, n_bins: int) -> np.ndarray:
+    """Bin edges spanning the sampled range of ``column`` for ``platform`` (its aperture and
+    attitude limits). A column held at 0 (the boat's pitch) gets a single bin [-0.5, 0.5]."""
+    sonar = platform.sonar
+    limits = {
+        "r1_m": (sonar.min_range_m, sonar.max_range_m), "r2_m": (sonar.min_range_m, sonar.max_range_m),
+        "azimuth1_deg": (-sonar.azimuth_deg / 2, sonar.azimuth_deg / 2),
+        "azimuth2_deg": (-sonar.azimuth_deg / 2, sonar.azimuth_deg / 2),
+        "elevation1_deg": (-sonar.elevation_deg / 2, sonar.elevation_deg / 2),
+        "elevation2_deg": (-sonar.elevation_deg / 2, sonar.elevation_deg / 2),
+        "yaw2_deg": (-180.0, 180.0), "pitch2_deg": (-platform.pitch_max_deg, platform.pitch_max_deg),
+    }
+    if column not in limits:
+        raise ValueError(f"column must be one of {sorted(limits)}; got {column!r}")
+    lo, hi = limits[column]
+    if hi <= lo:
+        return np.array([lo - 0.5, hi + 0.5])
+    return np.linspace(lo, hi, int(n_bins) + 1)
+
+
+def heatmaps(df: pd.DataFrame, platform, *, n_bins: int = 24, min_count: int = 30,
+             value: str = "locus_length_m") -> dict[str, pd.DataFrame]:
+    """:func:`binned_median` for every panel of :data:`HEATMAP_PANELS`, keyed by panel letter."""
+    return {p: binned_median(df, x, y, value, x_edges=panel_edges(x, platform, n_bins),
+                             y_edges=panel_edges(y, platform, n_bins), min_count=min_count)
+            for p, x, y in HEATMAP_PANELS}
+
+
+def _peak(binned: pd.DataFrame) -> pd.Series:
+    shown = binned[~binned["masked"]]
+    return shown.loc[shown["median"].idxmax()]
+
+
+def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFrame], *,
+                  yaw_bin_deg: float = 10.0, min_count: int = 30) -> dict[str, float | str]:
+    """The measured numbers behind each claim of the paper's Sec. IV-B and IV-C.
+
+    ``df`` is the table the heatmaps were made from (feature on the port side), ``rho`` the
+    :func:`spearman_table` of the whole table, ``maps`` the :func:`heatmaps` of ``df``.
+    Keys ending in ``_rho`` are Spearman correlations; ``*_ratio`` are ratios of medians.
+    """
+    m: dict[str, float | str] = {}
+    for target, tag in (("locus_length_m", "raw"), ("locus_length_normalized", "norm")):
+        tab = rho[rho["target"] == target].reset_index(drop=True)
+        m[f"top_{tag}"] = tab.loc[0, "quantity"]
+        for _, row in tab.iterrows():
+            m[f"{tag}_{row.quantity}_rho"] = row.rho
+            m[f"{tag}_{row.quantity}_rank"] = float(_ + 1)
+    m["multi_arc_fraction"] = float((df["n_arcs"] > 1).mean())
+    # (a) range x range: median length with both ranges above half the maximum over the median
+    # with both below it (from the samples, not from bin medians)
+    half_r = maps["a"]["x_hi"].max() / 2
+    far = df[(df.r1_m > half_r) & (df.r2_m > half_r)]["locus_length_m"].median()
+    near = df[(df.r1_m <= half_r) & (df.r2_m <= half_r)]["locus_length_m"].median()
+    m["range_far_over_near_ratio"] = float(far / near)
+    m["range_r1_rho"] = float(stats.spearmanr(df["r1_m"], df["locus_length_m"]).statistic)
+    m["range_r2_rho"] = float(stats.spearmanr(df["r2_m"], df["locus_length_m"]).statistic)
+    # (b) azimuth x azimuth: where the largest bin median is
+    pk = _peak(maps["b"])
+    m["azimuth_peak_theta1_deg"], m["azimuth_peak_theta2_deg"] = float(pk.x_mid), float(pk.y_mid)
+    # (c) elevation x elevation: median with both |phi| in the inner third of the half-aperture
+    # over the median with both in the outer third (from the samples)
+    third = maps["c"]["x_hi"].max() / 3
+    e1, e2 = df["elevation1_deg"].abs(), df["elevation2_deg"].abs()
+    inner = df[(e1 < third) & (e2 < third)]["locus_length_m"].median()
+    outer = df[(e1 > 2 * third) & (e2 > 2 * third)]["locus_length_m"].median()
+    m["elevation_centre_over_corner_ratio"] = float(inner / outer)
+    # (d, e) yaw: profile of the median over yaw
+    prof = binned_profile(df, "yaw2_deg", edges=np.arange(-180.0, 180.0 + yaw_bin_deg, yaw_bin_deg),
+                          min_count=min_count)
+    shown = prof[~prof.masked]
+    neg, pos = shown[shown.mid < 0], shown[shown.mid > 0]
+    m["yaw_peak_neg_deg"] = float(neg.loc[neg["median"].idxmax(), "mid"])
+    m["yaw_peak_pos_deg"] = float(pos.loc[pos["median"].idxmax(), "mid"])
+    peak = float(shown["median"].max())
+    m["yaw_peak_median_m"] = peak
+    m["yaw_near0_over_peak_ratio"] = float(shown[shown.mid.abs() < yaw_bin_deg]["median"].mean() / peak)
+    m["yaw_near180_over_peak_ratio"] = float(
+        shown[shown.mid.abs() > 180 - yaw_bin_deg]["median"].mean() / peak)
+    m["yaw_peak_asymmetry_ratio"] = float(neg["median"].max() / pos["median"].max())
+    e = maps["e"]
+    for half, sel in (("neg", e.x_mid < 0), ("pos", e.x_mid > 0)):
+        pk = _peak(e[sel])
+        m[f"azimuth2_yaw_peak_{half}_yaw_deg"] = float(pk.x_mid)
+        m[f"azimuth2_yaw_peak_{half}_theta2_deg"] = float(pk.y_mid)
+    m["n_heatmap_samples"] = float(len(df))
+    return m
+
+
+def stable_to(a, b, digits: int = 2) -> np.ndarray:
+    """Whether two estimates agree to ``digits`` significant figures in the sense that they
+    differ by at most half a unit of the ``digits``-th significant figure of the larger one."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    big = np.maximum(np.abs(a), np.abs(b))
+    with np.errstate(divide="ignore"):
+        unit = 10.0 ** (np.floor(np.log10(np.where(big > 0, big, 1.0))) - (digits - 1))
+    return np.abs(a - b) <= 0.5 * unit

@@ -1,0 +1,37 @@
+"""The exact two-view (and three-view) geometry: numpy-only batched kernels.
+
+Everything here takes batched arrays and returns batched arrays; nothing imports pandas,
+matplotlib, SymPy or ``scipy.stats`` (SymPy lives in :mod:`sss_locus.geometry.symbolic`, imported
+only on request). Frames, units and shapes are stated in each function's docstring.
+
+Entry points
+------------
+:func:`two_view_locus`
+    Circle, visible arcs and locus length for two range measurements with known relative pose.
+:func:`relative_pose`
+    Sensor 1 in sensor 2's frame from two sensor poses in one world frame.
+:func:`elevation_misalignment`
+    How far each sensor's zero-elevation plane is from the other sensor.
+:func:`three_view_points`
+    The (at most two) points three range measurements allow, inside all three apertures.
+"""
+
+from .aperture import Aperture
+from .locus import MAX_ARCS, LocusResult, LocusStatus, two_view_locus
+from .misalignment import ElevationMisalignment, elevation_misalignment
+from .poses import relative_pose
+from .three_view_points import ThreeViewResult, ThreeViewStatus, three_view_points
+
+__all__ = [
+    "Aperture",
+    "ElevationMisalignment",
+    "LocusResult",
+    "LocusStatus",
+    "MAX_ARCS",
+    "ThreeViewResult",
+    "ThreeViewStatus",
+    "elevation_misalignment",
+    "relative_pose",
+    "three_view_points",
+    "two_view_locus",
+]

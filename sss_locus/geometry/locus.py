@@ -1,0 +1,400 @@
+"""The two-view ambiguity locus: closed-form circle, exactly cropped to both apertures.
+
+Two range measurements ``r1``, ``r2`` of one feature, with the relative pose ``p2 = R p1 + t``
+known, put the feature (in sensor 1's frame) on the sphere ``|p1| = r1`` and on the plane
+``2 u . p1 = C`` with ``u = R^T t`` and ``C = r2^2 - r1^2 - |t|^2`` (Norman & Mangelson, Sec. III).
+Sphere and plane meet in a circle; the part of it inside both sensors' apertures is the
+ambiguity locus. Its length is computed here exactly (see :mod:`sss_locus.geometry.arcs`).
+"""
+
+from __future__ import annotations
+
+import enum
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+
+from .validation import as_float_array, as_positive_array, as_rotation_matrices, broadcast_leading
+from .aperture import Aperture
+from .fastpath import transpose_into
+from .arcs import crop_circle
+from .tolerances import COINCIDENT_ORIGINS_RTOL, TANGENT_RTOL
+
+MAX_ARCS = 8
+"""Width of the arc arrays: eight half-space conditions (four per aperture) bound at most eight
+disjoint arcs."""
+
+
+_CHUNK = 4096
+
+
+class LocusStatus(enum.IntEnum):
+    """What the two range spheres and the apertures give for one configuration."""
+
+    CIRCLE = 0
+    """The spheres meet in a circle; ``length`` is the part of it inside both apertures."""
+    TANGENT = 1
+    """The spheres touch in one point (``center``); ``length`` is 0, ``n_arcs`` is 1 if the
+    point is inside both apertures (its arc has ``arc_start == arc_end == 0``), else 0."""
+    NO_INTERSECTION = 2
+    """The spheres do not meet (the ranges are inconsistent with the pose); empty locus."""
+    COINCIDENT_ORIGINS = 3
+    """The sensor origins coincide: the plane is undefined (equal ranges give the whole sphere,
+    unequal ranges nothing). Reported as an empty locus with zero centre, normal and radius."""
+    OUT_OF_RANGE = 4
+    """The circle exists but a measured range lies outside its aperture's
+    ``[min_range, max_range]``: nothing was observable, empty locus."""
+
+
+@dataclass(frozen=True)
+class LocusResult:
+    """The ambiguity locus for a batch of two-view configurations (leading shape ``S``).
+
+    All vectors are in sensor 1's frame (x boresight, y left, z up), lengths in metres, angles in
+    radians. The circle is ``p1(alpha) = center + radius (cos(alpha) basis1 + sin(alpha) basis2)``.
+
+    Attributes
+    ----------
+    u : ndarray, shape S + (3,)
+        ``R^T t``; the plane is ``2 u . p1 = C``.
+    C : ndarray, shape S
+        ``r2**2 - r1**2 - |t|**2`` (m^2).
+    center, normal, basis1, basis2 : ndarray, shape S + (3,)
+        Circle centre (m) and unit normal, and the in-plane unit vectors of its parametrisation.
+        Zero where the origins coincide.
+    radius : ndarray, shape S
+        Circle radius (m); 0 unless the status is ``CIRCLE`` (or ``OUT_OF_RANGE`` with a circle).
+    exists : ndarray of bool, shape S
+        The spheres meet (in a circle or a tangent point).
+    status : ndarray of int8, shape S
+        :class:`LocusStatus` codes.
+    in_range : ndarray of bool, shape S
+        Both measured ranges lie within their apertures' range limits.
+    length : ndarray, shape S
+        Locus length (m): arc length of the circle inside both apertures. Never NaN.
+    n_arcs : ndarray of int, shape S
+        Number of disjoint arcs; ``> 1`` means the locus is fragmented. A circle wholly inside
+        both apertures is one arc.
+    arc_start, arc_end : ndarray, shape S + (MAX_ARCS,)
+        Arc end points in ``alpha``: ``arc_start`` in [-pi, pi), ``arc_start < arc_end <=
+        arc_start + 2 pi``; NaN-padded beyond ``n_arcs``.
+    """
+
+    u: np.ndarray
+    C: np.ndarray
+    center: np.ndarray
+    normal: np.ndarray
+    basis1: np.ndarray
+    basis2: np.ndarray
+    radius: np.ndarray
+    exists: np.ndarray
+    status: np.ndarray
+    in_range: np.ndarray
+    length: np.ndarray
+    n_arcs: np.ndarray
+    arc_start: np.ndarray
+    arc_end: np.ndarray
+    R: np.ndarray
+    t: np.ndarray
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Batch shape ``S``."""
+        return self.length.shape
+
+    def point_at(self, alpha, frame: int = 1) -> np.ndarray:
+        """Points of the circle at angles ``alpha`` (shape ``S`` or ``S + (n,)``), in frame 1 or 2."""
+        alpha = np.asarray(alpha, dtype=np.float64)
+        extra = alpha.ndim - len(self.shape)
+        if extra < 0 or alpha.shape[: len(self.shape)] != self.shape:
+            raise ValueError(f"alpha must have shape {self.shape} + (...); got {alpha.shape}")
+        expand = (Ellipsis,) + (None,) * extra + (slice(None),)
+        r = self.radius[(Ellipsis,) + (None,) * extra][..., None]
+        p = self.center[expand] + r * (
+            np.cos(alpha)[..., None] * self.basis1[expand] + np.sin(alpha)[..., None] * self.basis2[expand]
+        )
+        if frame == 1:
+            return p
+        if frame == 2:
+            R = self.R[(Ellipsis,) + (None,) * extra + (slice(None), slice(None))]
+            return np.einsum("...ij,...j->...i", R, p) + self.t[expand]
+        raise ValueError(f"frame must be 1 or 2; got {frame!r}")
+
+    def points(self, n_per_arc: int = 64, frame: int = 1) -> np.ndarray:
+        """Points along every arc of the locus, for figures.
+
+        Returns
+        -------
+        ndarray, shape S + (MAX_ARCS, n_per_arc, 3)
+            Evenly spaced in ``alpha`` from each arc's start to its end, in sensor ``frame``'s
+            coordinates (m); NaN for arcs beyond ``n_arcs``.
+        """
+        if not (isinstance(n_per_arc, (int, np.integer)) and n_per_arc >= 2):
+            raise ValueError(f"n_per_arc must be an integer >= 2; got {n_per_arc!r}")
+        s = np.linspace(0.0, 1.0, int(n_per_arc))
+        alpha = self.arc_start[..., None] + (self.arc_end - self.arc_start)[..., None] * s
+        flat = alpha.reshape(self.shape + (-1,))
+        return self.point_at(flat, frame).reshape(self.shape + (MAX_ARCS, int(n_per_arc), 3))
+
+    def angle_of(self, p1) -> np.ndarray:
+        """Circle angle ``alpha`` of points ``p1`` (frame 1, shape ``S + (3,)``), by projection."""
+        d = as_float_array(p1, "p1", tail=(3,)) - self.center
+        return np.arctan2(np.sum(d * self.basis2, axis=-1), np.sum(d * self.basis1, axis=-1))
+
+
+@functools.lru_cache(maxsize=64)
+def _bounds(ap: Aperture) -> tuple[np.ndarray, np.ndarray, bool]:
+    """An aperture's four bounds as ``a . p + s r >= 0`` (see :meth:`Aperture.halfspace_normals`).
+
+    Returns the normals ``a`` as rows of a C-contiguous (4, 3) array (two elevation bounds, then
+    two azimuth bounds), the elevation offsets ``s`` as a (2, 1) column, and whether the azimuth
+    wedge is the union (not the intersection) of its half-planes. Cached: apertures are frozen.
+    """
+    el, az, union = ap.halfspace_normals()
+    normals = np.ascontiguousarray(np.concatenate([el[:, :3], az], axis=0))
+    normals.flags.writeable = False
+    s_el = el[:, 3:].copy()
+    s_el.flags.writeable = False
+    return normals, s_el, union
+
+
+def _rotate(Rc: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``R @ v`` for stacks of component-major vectors.
+
+    ``Rc`` (3, 3, n) holds ``R[:, i, j]`` at ``[i, j]``; ``v`` (..., 3, n) holds vector
+    components along its second-last axis. Summed in the order ``R_i0 v_0 + R_i1 v_1 + R_i2 v_2``.
+    """
+    return Rc[:, 0] * v[..., 0:1, :] + Rc[:, 1] * v[..., 1:2, :] + Rc[:, 2] * v[..., 2:3, :]
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product of component-major vectors (3, n), in the operation order of ``np.cross``."""
+    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def _apply_normals(normals: np.ndarray, vectors: np.ndarray, out: np.ndarray) -> None:
+    """``out[:, j] = normals[j] . vectors`` for component-major ``vectors`` (m, 3, n).
+
+    Written out elementwise on purpose: a BLAS matrix product rounds differently depending on
+    the batch size and a row's position in it (FMA kernels for full blocks, other loops at the
+    edges, a matrix-vector routine for a single row), which would make one configuration's
+    result depend on its neighbours. Each sum is ``a_x v_x + a_y v_y + a_z v_z`` in that order,
+    rounded the same way for every row; zero components are skipped, and a product
+    ``v_c |a_c|`` is formed once and then added or subtracted (sign changes are exact), so the
+    two azimuth bounds share their products.
+    """
+    products = {}
+
+    def product(c, a_c):  # v_c |a_c|, formed once
+        key = (c, abs(a_c))
+        if key not in products:
+            products[key] = vectors[:, c] if key[1] == 1.0 else vectors[:, c] * key[1]
+        return products[key]
+
+    for j, a in enumerate(normals):
+        acc = out[:, j]
+        terms = [(product(c, a[c]), a[c] < 0.0) for c in np.flatnonzero(a)]
+        if not terms:
+            acc[...] = 0.0
+        elif len(terms) == 1:
+            p0, neg0 = terms[0]
+            if neg0:
+                np.negative(p0, out=acc)
+            else:
+                np.copyto(acc, p0)
+        else:  # -p0 + p1 == -(p0 - p1) and -p0 - p1 == -(p0 + p1) exactly
+            (p0, neg0), (p1, neg1) = terms[:2]
+            (np.add if neg0 == neg1 else np.subtract)(p0, p1, out=acc)
+            if neg0:
+                np.negative(acc, out=acc)
+            for p, neg in terms[2:]:
+                (np.subtract if neg else np.add)(acc, p, out=acc)
+
+
+def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
+    """Compute one chunk of rows into ``out`` (this chunk's slices of the result arrays).
+
+    Vectors are handled component-major, shape (3, n) (row ``i`` is component ``i`` of every
+    configuration), so each operation runs over contiguous rows instead of broadcasting over
+    a short last axis; results are copied into the (n, 3) outputs at the end.
+    """
+    n = r1.shape[0]
+    Rc = transpose_into(np.empty((9, n)), R.reshape(n, 9)).reshape(3, 3, n)  # Rc[i, j] = R[:, i, j]
+    tc = transpose_into(np.empty((3, n)), t)
+    u = Rc[0] * tc[0] + Rc[1] * tc[1] + Rc[2] * tc[2]  # R^T t: u_j = sum_i R_ij t_i
+    tt = tc[0] * tc[0] + tc[1] * tc[1] + tc[2] * tc[2]
+    C = r2 * r2 - r1 * r1 - tt
+    unorm = np.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
+    b = np.sqrt(tt)
+    coincident = b <= COINCIDENT_ORIGINS_RTOL * (r1 + r2)
+    some_coincident = bool(coincident.any())
+    safe = np.where(coincident, 1.0, unorm) if some_coincident else unorm
+    normal = u / safe
+    d = C / (2.0 * safe)
+    if some_coincident:
+        normal[:, coincident] = 0.0
+        d[coincident] = 0.0
+        b = np.where(coincident, 1.0, b)
+    # radius^2 from the four-factor (Heron-type) form: accurate near tangency, unlike
+    # r1^2 - d^2. The range difference is formed first (exact when r1 and r2 are within a factor
+    # of 2), so a baseline b much shorter than the ranges keeps its digits: (b - r1) + r2 would
+    # round b against r1. Swapping the views negates dr and swaps the last two factors, whose
+    # product is formed first: the result is exactly symmetric.
+    rsum, dr = r1 + r2, r1 - r2
+    rho2 = (rsum - b) * (rsum + b) * ((b - dr) * (b + dr)) / (4.0 * b * b)
+    rmin = np.minimum(r1, r2)
+    tangent = ~coincident & (np.abs(rho2) <= TANGENT_RTOL * rmin * rmin)
+    circle = ~coincident & ~tangent & (rho2 > 0.0)
+    exists = circle | tangent
+    radius = np.where(circle, np.sqrt(np.maximum(rho2, 0.0)), 0.0)
+    center = normal * d
+
+    # In-plane basis: e1 perpendicular to the normal and to the coordinate axis it is least
+    # aligned with (well conditioned; first such axis on ties, as np.argmin), e2 = normal x e1.
+    # The axis is a one-hot float vector, so axis x normal is np.cross's arithmetic exactly.
+    mag = np.abs(normal)
+    axis = np.empty((3, n))
+    np.logical_and(mag[0] <= mag[1], mag[0] <= mag[2], out=axis[0], casting="unsafe")
+    np.logical_and(axis[0] == 0.0, mag[1] <= mag[2], out=axis[1], casting="unsafe")
+    np.subtract(1.0, axis[0] + axis[1], out=axis[2])
+    e1 = _cross(axis, normal)
+    e1_norm = np.sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2])
+    zero = e1_norm == 0.0  # only where the normal is zero (coincident origins)
+    if zero.any():
+        e1_norm[zero] = 1.0
+    e1 /= e1_norm
+    if some_coincident:
+        e1[:, coincident] = 0.0
+    e2 = _cross(normal, e1)
+
+    # Coefficients A, B, D (as coef[0], coef[1], coef[2], each (8, n): four bounds per sensor)
+    # of the bounds on the circle. Sensor 1 sees the circle directly; sensor 2 through
+    # p2 = R p1 + t. Each bound's normal a gives a . e1, a . e2 and a . c at once.
+    normals1, s1, union1 = _bounds(ap1)
+    normals2, s2, union2 = _bounds(ap2)
+    coef = np.empty((3, 8, n))
+    frame1 = np.stack([e1, e2, center])  # (3 vectors, 3 components, n)
+    frame2 = _rotate(Rc, frame1)
+    frame2[2] += tc
+    _apply_normals(normals1, frame1, coef[:, :4])
+    _apply_normals(normals2, frame2, coef[:, 4:])
+    coef[:2] *= radius  # A = rho a . e1, B = rho a . e2
+    coef[2, 0:2] += s1 * r1  # elevation bounds: a . p + s r with |p| = r on the circle
+    coef[2, 4:6] += s2 * r2
+    if union1 or union2:  # a wedge wider than 180 deg is a union of its two half-planes
+        groups = [
+            ([0, 1, 4, 5], "all"),
+            ([2, 3], "any" if union1 else "all"),
+            ([6, 7], "any" if union2 else "all"),
+        ]
+    else:
+        groups = [(list(range(8)), "all")]
+    start, end = out["arc_start"], out["arc_end"]
+    angle, n_arcs, _, _ = crop_circle(coef[0], coef[1], coef[2], groups, MAX_ARCS, out=(start, end))
+
+    in_range = ap1.range_ok(r1) & ap2.range_ok(r2)
+    observable = exists & in_range
+    measurable = circle & in_range
+    length = out["length"]
+    np.multiply(angle, radius, out=length)
+    out["n_arcs"][...] = n_arcs
+    if not measurable.all():
+        length[~measurable] = 0.0
+    if not observable.all():
+        out["n_arcs"][~observable] = 0
+        start[~observable] = np.nan
+        end[~observable] = np.nan
+    point = tangent & observable & (n_arcs > 0)
+    if point.any():
+        start[point, 0] = 0.0
+        end[point, 0] = 0.0
+
+    status = out["status"]
+    status[...] = LocusStatus.CIRCLE
+    status[tangent] = LocusStatus.TANGENT
+    status[exists & ~in_range] = LocusStatus.OUT_OF_RANGE
+    status[~exists] = LocusStatus.NO_INTERSECTION
+    status[coincident] = LocusStatus.COINCIDENT_ORIGINS
+    for name, value in (("u", u), ("center", center), ("normal", normal), ("basis1", e1), ("basis2", e2)):
+        transpose_into(out[name], value)
+    for name, value in (("C", C), ("radius", radius), ("exists", exists), ("in_range", in_range)):
+        out[name][...] = value
+
+
+_FIELDS = {  # result arrays: trailing shape and dtype
+    "u": ((3,), np.float64), "C": ((), np.float64), "center": ((3,), np.float64),
+    "normal": ((3,), np.float64), "basis1": ((3,), np.float64), "basis2": ((3,), np.float64),
+    "radius": ((), np.float64), "exists": ((), np.bool_), "status": ((), np.int8),
+    "in_range": ((), np.bool_), "length": ((), np.float64), "n_arcs": ((), np.int64),
+    "arc_start": ((MAX_ARCS,), np.float64), "arc_end": ((MAX_ARCS,), np.float64),
+}
+
+
+def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> LocusResult:
+    """Ambiguity locus of a feature seen by two sidescan sensors with known relative pose.
+
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3), or scipy.spatial.transform.Rotation
+        Rotation taking sensor-1 coordinates to sensor-2 coordinates: ``p2 = R p1 + t``.
+    t : array_like, shape (..., 3)
+        Translation (m) of the same transform: sensor 1's origin expressed in frame 2.
+    r1, r2 : array_like, shape (...)
+        Measured ranges (m) to the feature from sensor 1 and sensor 2; must be > 0.
+    aperture1, aperture2 : Aperture
+        Fields of view of the two sensors, each in its own frame.
+
+    The batch shapes of ``R``, ``t``, ``r1`` and ``r2`` broadcast together to ``S``.
+
+    Returns
+    -------
+    LocusResult
+        Circle geometry, status flags, locus length, arc count and arcs, batch shape ``S``.
+
+    Raises
+    ------
+    ValueError
+        If ``R`` is not a proper rotation (orthonormal with determinant +1, to 1e-9), any input is
+        NaN or infinite, a range is not positive, an aperture is not an :class:`Aperture`, or
+        the batch shapes do not broadcast.
+
+    Notes
+    -----
+    Exact: each aperture bound is an affine half-space on the circle (the elevation bound is
+    affine because ``|p1| = r1`` on the circle), giving closed-form boundary angles; the locus is
+    the arrangement of these arcs. Nothing samples the circle. Degenerate cases are reported
+    through :class:`LocusStatus`, never as NaN lengths.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sss_locus import Aperture, two_view_locus
+    >>> ap = Aperture(130.0, 0.27, 150.0)
+    >>> res = two_view_locus(np.eye(3), [0.0, 0.0, -1.0], 50.0, 50.0, ap, ap)
+    >>> float(res.radius) > 0
+    True
+    """
+    for name, ap in (("aperture1", aperture1), ("aperture2", aperture2)):
+        if not isinstance(ap, Aperture):
+            raise ValueError(f"{name} must be an sss_locus.Aperture; got {type(ap).__name__}")
+    R = as_rotation_matrices(R, "R")
+    t = as_float_array(t, "t", tail=(3,))
+    r1 = as_positive_array(r1, "r1")
+    r2 = as_positive_array(r2, "r2")
+    shape = broadcast_leading({"R": R.shape[:-2], "t": t.shape[:-1], "r1": r1.shape, "r2": r2.shape})
+    n = int(np.prod(shape, dtype=np.int64))
+    Rf = np.broadcast_to(R, shape + (3, 3)).reshape(n, 3, 3)
+    tf = np.broadcast_to(t, shape + (3,)).reshape(n, 3)
+    r1f = np.broadcast_to(r1, shape).reshape(n)
+    r2f = np.broadcast_to(r2, shape).reshape(n)
+
+    # Chunks of _CHUNK rows keep every temporary in cache; each chunk writes its rows of the
+    # result arrays directly (no concatenation afterwards).
+    results = {k: np.empty((n,) + tail, dtype=dtype) for k, (tail, dtype) in _FIELDS.items()}
+    for i in range(0, n, _CHUNK):
+        rows = slice(i, min(i + _CHUNK, n))
+        _locus_chunk(Rf[rows], tf[rows], r1f[rows], r2f[rows], aperture1, aperture2,
+                     {k: v[rows] for k, v in results.items()})
+    fields = {k: v.reshape(shape + v.shape[1:]) for k, v in results.items()}
+    return LocusResult(R=Rf.reshape(shape + (3, 3)), t=tf.reshape(shape + (3,)), **fields)

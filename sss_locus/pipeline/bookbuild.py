@@ -1,0 +1,261 @@
+"""Stage the book source in the build area and build it with Jupyter Book.
+
+The staged source (:func:`sss_locus.paths.source_dir`, ``<build>/source``) is the book's source
+root: it receives copies of ``_config.yml``, ``_toc.yml`` and ``book/`` next to the executed
+notebooks (``executed/``), the exported figures and a local MathJax (``_extra/``, copied verbatim
+to the site root by ``html_extra_path``). The figures page is generated from the figure
+manifests. Jupyter Book writes into ``<build>/jupyter-book``; the finished site replaces
+``<build>/html`` only when the build and the site checks pass.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from html.parser import HTMLParser
+from importlib import metadata
+from pathlib import Path
+from typing import Any
+from urllib.parse import unquote, urlsplit
+
+from sss_locus import paths
+from sss_locus.pipeline import export, provenance
+from sss_locus.pipeline.runner import hermetic_env
+
+_ANSI = re.compile(r"\x1b\[[0-9;]*m")
+FIGURES_PAGE = "figures.md"
+FIGURES_MARKER = "<!-- FIGURES-INDEX -->"
+MATHJAX_DIST = "sphinx-mathjax-offline"
+# --all: an incremental Sphinx build only re-reads changed pages, so a warning in an unchanged
+# page would pass -W on the second try; the book is small, rebuild every page every time.
+JB_FLAGS = ("-W", "-n", "--keep-going", "--all")
+
+
+def copy_mathjax() -> Path:
+    """Copy the MathJax 3 files shipped by ``sphinx-mathjax-offline`` to ``_extra/mathjax``."""
+    dist = metadata.distribution(MATHJAX_DIST)
+    source = Path(dist.locate_file("sphinx-mathjax-offline/static/mathjax"))
+    if not (source / "tex-chtml.js").is_file():
+        raise FileNotFoundError(f"MathJax files not found in {source} (package {MATHJAX_DIST} {dist.version})")
+    target = paths.mathjax_dir()
+    stamp = target / ".version"
+    if stamp.is_file() and stamp.read_text() == dist.version:
+        return target
+    shutil.rmtree(target, ignore_errors=True)
+    shutil.copytree(source, target)
+    stamp.write_text(dist.version)
+    return target
+
+
+def _file_links(manifest: dict[str, Any]) -> str:
+    names = sorted(manifest["files"])
+    kinds = {".png": "PNG", ".svg": "SVG", ".pdf": "PDF", ".bib": "BibTeX"}
+    links = []
+    for name in names:
+        suffix = Path(name).suffix
+        text = kinds.get(suffix) or ("data " + name.removeprefix(manifest["label"]).strip("-.") if suffix == ".csv" else name)
+        links.append(f'<a href="../{manifest["files"][name]["url"]}">{text}</a>')
+    links.append(f'<a href="../{paths.FIGURES_SUBDIR}/{manifest["label"]}.json">manifest (JSON)</a>')
+    return " · ".join(links)
+
+
+def figures_index(manifests: list[dict[str, Any]]) -> str:
+    """Markdown (MyST) listing every exported figure with its files, provenance and BibTeX."""
+    if not manifests:
+        return "No figures have been exported yet.\n"
+    out = []
+    for m in manifests:
+        label = m["label"]
+        params = ", ".join(f"`{k} = {json.dumps(v)}`" for k, v in sorted(m["parameters"].items())) or "none"
+        out += [
+            f"## `{label}`",
+            "",
+            f"{{numref}}`Figure %s <{label}>` in the notebook `{m['notebook']}` (profile `{m['profile']}`).",
+            "",
+            m["caption"],
+            "",
+            f'<a href="../{paths.FIGURES_SUBDIR}/{label}.png"><img src="../{paths.FIGURES_SUBDIR}/{label}.png" '
+            f'alt="{label}" style="max-width: 28em; width: 100%;"></a>',
+            "",
+            f"<p>{_file_links(m)}</p>",
+            "",
+            f"Parameters: {params}; seed `{m['seed']}`; commit `{provenance.short_commit(m['git_commit'])}`; "
+            f"sss-locus {m['package_version']}; environment.lock `{m['lock_sha256'][:12]}`; "
+            f"run {m['run_time_utc']}.",
+            "",
+            "Cite this figure:",
+            "",
+            "```bibtex",
+            (paths.figures_dir() / f"{label}.bib").read_text(encoding="utf-8").rstrip(),
+            "```",
+            "",
+        ]
+    return "\n".join(out)
+
+
+def _in_book_order(manifests: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Figures of registered notebooks, sorted by the notebook's place in the registry, then label.
+
+    Figures exported by other runs (a plain papermill run, a notebook since removed from the
+    registry) stay in the folder but are not indexed: their labels need not exist in the book.
+    """
+    from sss_locus.pipeline.registry import load_registry
+
+    order = {entry.source_relative: i for i, entry in enumerate(load_registry().values())}
+    listed = [m for m in manifests if m["notebook"] in order]
+    return sorted(listed, key=lambda m: (order[m["notebook"]], m["label"]))
+
+
+def stage() -> Path:
+    """Copy the book source into the build area and generate the figures page; return the root."""
+    root = paths.source_dir()
+    root.mkdir(parents=True, exist_ok=True)
+    for name in (paths.CONFIG_FILE, paths.TOC_FILE):
+        shutil.copy2(name, root / name.name)
+    staged_book = root / paths.BOOK_DIR.name
+    shutil.rmtree(staged_book, ignore_errors=True)
+    shutil.copytree(paths.BOOK_DIR, staged_book)
+    paths.figures_dir().mkdir(parents=True, exist_ok=True)
+    copy_mathjax()
+    page = staged_book / FIGURES_PAGE
+    text = page.read_text(encoding="utf-8")
+    if FIGURES_MARKER not in text:
+        raise ValueError(f"{paths.BOOK_DIR / FIGURES_PAGE} must contain the line {FIGURES_MARKER}")
+    page.write_text(text.replace(FIGURES_MARKER, figures_index(_in_book_order(export.load_manifests()))),
+                    encoding="utf-8")
+    return root
+
+
+def missing_toc_files(root: Path) -> list[str]:
+    """Files listed in the staged ``_toc.yml`` that do not exist (e.g. a notebook never run)."""
+    import yaml
+
+    toc = yaml.safe_load((root / paths.TOC_FILE.name).read_text(encoding="utf-8"))
+    wanted: list[str] = []
+
+    def walk(node: Any) -> None:
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if key in ("root", "file") and isinstance(value, str):
+                    wanted.append(value)
+                else:
+                    walk(value)
+        elif isinstance(node, list):
+            for item in node:
+                walk(item)
+
+    walk(toc)
+    return [f for f in wanted if not any((root / (f + ext)).is_file() for ext in ("", ".md", ".ipynb"))]
+
+
+class _PageScan(HTMLParser):
+    """Collect local resource references and visible text (outside code, scripts and styles)."""
+
+    SKIP = {"pre", "code", "script", "style", "textarea"}
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.refs: list[tuple[str, str]] = []  # (tag.attr, url)
+        self.text: list[str] = []
+        self._skip = 0
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        values = dict(attrs)
+        if tag in ("img", "script", "source") and values.get("src"):
+            self.refs.append((f"{tag}.src", values["src"]))
+        if tag == "link" and values.get("href") and values.get("rel") in ("stylesheet", "icon"):
+            self.refs.append(("link.href", values["href"]))
+        if tag == "a" and values.get("href") and "/figures/" in "/" + values["href"]:
+            self.refs.append(("a.href", values["href"]))
+        if tag in self.SKIP:
+            self._skip += 1
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag in self.SKIP and self._skip:
+            self._skip -= 1
+
+    def handle_data(self, data: str) -> None:
+        if not self._skip:
+            self.text.append(data)
+
+
+def site_problems(html_dir: Path) -> list[str]:
+    """Problems in a built site that ``-W`` does not catch.
+
+    Reports every local ``<img>``/``<script>``/``<source>`` ``src``, stylesheet and link into
+    ``figures/`` that points to a missing file (for instance a glued image whose notebook never
+    displayed it), and every unresolved glue reference left as text (``{glue...}``).
+    """
+    problems = []
+    for page in sorted(Path(html_dir).rglob("*.html")):
+        if page.relative_to(html_dir).parts[0] in ("_static", "_sources", "mathjax", "figures"):
+            continue  # theme templates and copied assets, not pages
+        scan = _PageScan()
+        scan.feed(page.read_text(encoding="utf-8", errors="replace"))
+        rel = page.relative_to(html_dir)
+        for what, url in scan.refs:
+            parts = urlsplit(url)
+            if parts.scheme or parts.netloc or url.startswith("#"):
+                continue
+            target = (page.parent / unquote(parts.path)).resolve()
+            if not target.is_file():
+                problems.append(f"{rel}: {what} {url!r} does not exist")
+        text = " ".join(scan.text)
+        for marker in ("{glue", "glue:text", "glue:figure", "glue:any", "glue:math"):
+            if marker in text:
+                problems.append(f"{rel}: unresolved glue reference ({marker!r} in the page text)")
+                break
+    return problems
+
+
+def build(log=print) -> Path:
+    """Stage and build the site with ``jupyter-book build -W -n --keep-going --all``; return index.html."""
+    root = stage()
+    missing = missing_toc_files(root)
+    if missing:
+        raise FileNotFoundError(
+            "_toc.yml lists files that are not in the build area (run their notebooks first, "
+            f"e.g. `sss-locus book`): {', '.join(missing)}"
+        )
+    jupyter_book = Path(sys.executable).with_name("jupyter-book")
+    env = {**os.environ, **hermetic_env()}
+    output = paths.jupyter_book_dir()
+    cmd = [str(jupyter_book), "build", str(root), "--path-output", str(output), *JB_FLAGS]
+    log("$ " + " ".join(cmd))
+    problems: list[str] = []
+    with subprocess.Popen(cmd, env=env, cwd=root, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          text=True, errors="replace") as proc:
+        assert proc.stdout is not None
+        for line in proc.stdout:
+            sys.stdout.write(line)
+            if "WARNING" in line or "ERROR" in line:
+                problems.append(_ANSI.sub("", line).strip())
+    if proc.returncode != 0:
+        listing = "\n  ".join(problems) or "(no WARNING/ERROR lines; see the output above)"
+        raise RuntimeError(f"jupyter-book build failed (exit {proc.returncode}):\n  {listing}")
+    built = output / "_build" / "html"
+    if not (built / "index.html").is_file():
+        raise RuntimeError(f"jupyter-book build finished but {built / 'index.html'} is missing")
+    problems = site_problems(built)
+    if problems:
+        raise RuntimeError("the built site has broken references:\n  " + "\n  ".join(problems))
+    publish_site(built, paths.html_dir())
+    return paths.index_html()
+
+
+def publish_site(built: Path, target: Path) -> None:
+    """Move a checked site from ``built`` to ``target``, replacing the previous site only now.
+
+    The old site is renamed aside first and removed after the new one is in place, so a reader
+    of ``target`` sees the old site or the new one, never a half-copied mix.
+    """
+    target.parent.mkdir(parents=True, exist_ok=True)
+    old = target.with_name(f".{target.name}.old-{os.getpid()}")
+    if target.exists():
+        os.replace(target, old)
+    os.replace(built, target)
+    shutil.rmtree(old, ignore_errors=True)

@@ -1,0 +1,209 @@
+"""An on-disk cache of expensive tabular results (Parquet), safe against partial writes.
+
+Wrap the expensive function where it is called (the experiments layer never imports the cache)::
+
+    from sss_locus.experiments.survey_passes import simulate_passes
+    from sss_locus.pipeline.cache import cached
+
+    samples, acceptance = cached(simulate_passes)(platform, envelope, model, angles, n, seed)
+
+Key
+---
+The entry key is the SHA-256 of the function's qualified name, its bound arguments (defaults
+applied; dataclasses by their compared fields, numpy values as numbers, so equal inputs give one
+key however they were spelled), the package version and a fingerprint of what a result can
+depend on: ``sss_locus/geometry/``, ``sss_locus/experiments/`` and ``data/``
+(:func:`sss_locus.pipeline.provenance.science_sha256`). Editing a plot, the book builder or a
+notebook never invalidates a simulation; editing a kernel, a sampler or an input file always does.
+The seed is an argument like any other.
+
+Storage
+-------
+``<cache>/frames/<key[:2]>/<key>/data-<i>.parquet`` (one file per returned frame) plus
+``manifest.json`` (key parts, SHA-256 and shape of each Parquet file, creation time). Each file is
+written to a temporary name and renamed; the manifest is written last. An entry whose manifest is
+missing, unreadable or does not match the Parquet bytes (partial write, corruption) is deleted and
+recomputed, never used.
+
+The returned frames are always the ones read back from Parquet, so a cache hit and a fresh
+computation give identical dtypes.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import hashlib
+import inspect
+import json
+import os
+import shutil
+import uuid
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from sss_locus import paths
+from sss_locus.pipeline import provenance
+
+CACHE_FORMAT = 2
+DATA_NAME = "data-{index}.parquet"
+MANIFEST_NAME = "manifest.json"
+
+
+def cache_key(key_parts: Mapping[str, Any]) -> str:
+    """SHA-256 hex key of ``key_parts`` plus package version and science fingerprint."""
+    if not isinstance(key_parts, Mapping) or not key_parts:
+        raise ValueError("key_parts must be a non-empty mapping (function, arguments, ...)")
+    payload = {
+        "cache_format": CACHE_FORMAT,
+        "key_parts": dict(key_parts),
+        "package_version": provenance.package_version(),
+        "science_sha256": provenance.science_sha256(),
+    }
+    text = json.dumps(payload, sort_keys=True, separators=(",", ":"), default=provenance.json_default)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def entry_dir(key: str, cache_dir: Path | None = None) -> Path:
+    """Folder of one cache entry."""
+    root = paths.cache_dir() if cache_dir is None else Path(cache_dir)
+    return root / "frames" / key[:2] / key
+
+
+def _read_valid(folder: Path, key: str) -> tuple[bool, list[pd.DataFrame] | None]:
+    """``(is_tuple, frames)`` of a valid entry; ``frames`` is None when it is absent, partial or
+    corrupted."""
+    try:
+        manifest = json.loads((folder / MANIFEST_NAME).read_text(encoding="utf-8"))
+        files = manifest["files"]
+        frames = []
+        for index, entry in enumerate(files):
+            path = folder / DATA_NAME.format(index=index)
+            if hashlib.sha256(path.read_bytes()).hexdigest() != entry["sha256"]:
+                return False, None
+            frame = pd.read_parquet(path)
+            if list(frame.shape) != entry["shape"]:
+                return False, None
+            frames.append(frame)
+        if manifest.get("key") != key or not frames:
+            return False, None
+        return bool(manifest.get("is_tuple")), frames
+    except Exception:  # unreadable, not JSON, wrong shape, bad Parquet: the entry is unusable
+        return False, None
+
+
+def _write_atomic_bytes(path: Path, blob: bytes) -> None:
+    tmp = path.with_name(f".{path.name}.{uuid.uuid4().hex}.tmp")
+    tmp.write_bytes(blob)
+    os.replace(tmp, path)
+
+
+def cached_result(
+    key_parts: Mapping[str, Any],
+    compute: Callable[[], pd.DataFrame | tuple[pd.DataFrame, ...]],
+    *,
+    cache_dir: Path | None = None,
+) -> pd.DataFrame | tuple[pd.DataFrame, ...]:
+    """Return ``compute()``, from the cache when a valid entry for ``key_parts`` exists.
+
+    Parameters
+    ----------
+    key_parts : mapping
+        Everything the result depends on (JSON-like values).
+    compute : callable
+        Zero-argument function returning a :class:`pandas.DataFrame` or a tuple of them
+        (column names strings).
+    cache_dir : pathlib.Path, optional
+        Cache root; defaults to :func:`sss_locus.paths.cache_dir`.
+
+    Returns
+    -------
+    pandas.DataFrame or tuple of pandas.DataFrame
+        As ``compute`` returns it, each frame as stored in (and read back from) Parquet.
+    """
+    key = cache_key(key_parts)
+    folder = entry_dir(key, cache_dir)
+    is_tuple, frames = _read_valid(folder, key)
+    if frames is not None:
+        return tuple(frames) if is_tuple else frames[0]
+    if folder.exists():
+        shutil.rmtree(folder, ignore_errors=True)  # partial or corrupted: recompute
+
+    result = compute()
+    is_tuple = isinstance(result, tuple)
+    frames = list(result) if is_tuple else [result]
+    if not frames or not all(isinstance(f, pd.DataFrame) for f in frames):
+        raise ValueError("compute must return a pandas DataFrame or a tuple of DataFrames, got "
+                         f"{type(result).__name__}")
+    folder.mkdir(parents=True, exist_ok=True)
+    stored, files = [], []
+    for index, frame in enumerate(frames):
+        target = folder / DATA_NAME.format(index=index)
+        tmp = folder / f".{target.name}.{uuid.uuid4().hex}.tmp"
+        frame.to_parquet(tmp, index=not isinstance(frame.index, pd.RangeIndex))
+        blob = tmp.read_bytes()
+        os.replace(tmp, target)
+        back = pd.read_parquet(target)
+        stored.append(back)
+        files.append({"sha256": hashlib.sha256(blob).hexdigest(), "shape": list(back.shape)})
+    manifest = {
+        "key": key,
+        "key_parts": json.loads(json.dumps(dict(key_parts), default=provenance.json_default)),
+        "package_version": provenance.package_version(),
+        "is_tuple": is_tuple,
+        "files": files,
+        "created_utc": provenance.utc_now(),
+    }
+    _write_atomic_bytes(folder / MANIFEST_NAME, (json.dumps(manifest, indent=2, sort_keys=True) + "\n").encode())
+    return tuple(stored) if is_tuple else stored[0]
+
+
+def canonical(value: Any, name: str = "argument") -> Any:
+    """A JSON-like form of ``value`` for a cache key: dataclasses by their compared fields (with
+    the type name), mappings with string keys, sequences and numpy arrays as lists, numpy scalars
+    as numbers, DataFrames by a hash of their content (values, index, column names, dtypes).
+    Anything else raises ``TypeError`` naming ``name``."""
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        fields = {f.name: canonical(getattr(value, f.name), f"{name}.{f.name}")
+                  for f in dataclasses.fields(value) if f.compare}
+        return {"__type__": type(value).__qualname__, **fields}
+    if isinstance(value, Mapping):
+        return {str(k): canonical(v, f"{name}[{k!r}]") for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [canonical(v, f"{name}[{i}]") for i, v in enumerate(value)]
+    if isinstance(value, np.ndarray):
+        return canonical(value.tolist(), name)
+    if isinstance(value, pd.DataFrame):  # by content: values, index, column names and dtypes
+        digest = hashlib.sha256(pd.util.hash_pandas_object(value, index=True).to_numpy().tobytes())
+        digest.update(json.dumps([[str(c), str(t)] for c, t in value.dtypes.items()]).encode())
+        return {"__type__": "DataFrame", "shape": list(value.shape), "sha256": digest.hexdigest()}
+    if isinstance(value, np.generic):
+        return value.item()
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return value
+    raise TypeError(f"cached: {name} of type {type(value).__name__} cannot be part of a cache key "
+                    "(use numbers, strings, lists, dicts, numpy arrays, DataFrames or dataclasses of them)")
+
+
+def cached(fn: Callable[..., Any], *, cache_dir: Path | None = None) -> Callable[..., Any]:
+    """``fn`` with its results cached on disk (see the module docstring for the key).
+
+    ``fn`` must return a DataFrame or a tuple of DataFrames. The wrapper has ``fn``'s signature;
+    its call binds the arguments (defaults applied) and looks them up before computing.
+    """
+    signature = inspect.signature(fn)
+    qualname = f"{fn.__module__}.{fn.__qualname__}"
+
+    @functools.wraps(fn)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        bound = signature.bind(*args, **kwargs)
+        bound.apply_defaults()
+        arguments = {k: canonical(v, k) for k, v in bound.arguments.items()}
+        return cached_result({"function": qualname, "arguments": arguments},
+                             lambda: fn(*bound.args, **bound.kwargs), cache_dir=cache_dir)
+
+    return wrapper

@@ -1,0 +1,122 @@
+"""Command line: ``sss-locus run``, ``sss-locus book``, ``sss-locus params``, ``sss-locus list``.
+
+Examples::
+
+    sss-locus run pose_space --profile quick -p n_samples 500 -p seed 3
+    sss-locus params pose_space          # the valid parameters, types and defaults
+    sss-locus book                       # every notebook with its `book` profile, then the site
+    sss-locus book --profile quick       # the same from the fast profile
+    sss-locus book --no-run              # rebuild the site from the executed copies as they are
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+
+from sss_locus import paths
+from sss_locus.pipeline.registry import ParameterError, get_entry, load_registry
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="sss-locus", description=__doc__.split("\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    run = sub.add_parser("run", help="execute one notebook with parameters into its executed copy")
+    run.add_argument("notebook", help="registry name (e.g. pose_space) or notebooks/<name>.ipynb")
+    run.add_argument("--profile", default="book", help="parameter profile from notebooks/registry.toml (default: book)")
+    run.add_argument("-p", "--parameter", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
+                     help="override one parameter (repeatable); VALUE is converted to the declared type")
+    run.add_argument("--output", help="write the executed copy here instead of the build area")
+
+    book = sub.add_parser("book", help="run every notebook, then build the book")
+    book.add_argument("--profile", default="book", help="parameter profile for every notebook (default: book)")
+    book.add_argument("--no-run", action="store_true", help="build from the existing executed copies")
+    book.add_argument("--jobs", type=int, default=min(os.cpu_count() or 1, 4),
+                      help="notebooks run at the same time (default: number of CPUs, at most 4)")
+    book.add_argument("--force", action="store_true",
+                      help="rerun every notebook, even those whose executed copy is up to date")
+
+    params = sub.add_parser("params", help="list a notebook's parameters and profiles")
+    params.add_argument("notebook")
+
+    sub.add_parser("list", help="list the registered notebooks")
+    return parser
+
+
+def _run(args: argparse.Namespace) -> int:
+    from sss_locus.pipeline.runner import run_notebook
+
+    entry = get_entry(args.notebook)
+    overrides: dict[str, str] = {}
+    for name, value in args.parameter:
+        if name in overrides:
+            raise ParameterError(f"parameter {name!r} given twice")
+        overrides[name] = value
+    run_notebook(entry, args.profile, overrides, from_text=True, output=args.output)
+    print("Rebuild the site from the executed copies with: sss-locus book --no-run")
+    return 0
+
+
+def _book(args: argparse.Namespace) -> int:
+    from sss_locus.pipeline import bookbuild
+    from sss_locus.pipeline.runner import is_up_to_date, run_many
+
+    start = time.perf_counter()
+    entries = load_registry()
+    if not args.no_run:
+        for entry in entries.values():
+            entry.resolve(args.profile)  # validate every profile before running anything
+        stale = []
+        for entry in entries.values():
+            if not args.force and is_up_to_date(entry, args.profile):
+                print(f"up to date: {entry.name} [{args.profile}] (same notebook, parameters, code, "
+                      f"data and environment as its executed copy; --force reruns it)")
+            else:
+                stale.append(entry)
+        run_many(stale, args.profile, jobs=args.jobs)
+    index = bookbuild.build()
+    print(f"Built in {time.perf_counter() - start:.0f} s. Open the book:")
+    print(index)
+    return 0
+
+
+def _params(args: argparse.Namespace) -> int:
+    entry = get_entry(args.notebook)
+    print(f"{entry.name}: {entry.source_relative} -> <build>/{entry.executed}")
+    print("parameters:")
+    for parameter in entry.parameters().values():
+        print("  " + parameter.describe())
+    for profile, values in entry.profiles.items():
+        shown = ", ".join(f"{k}={v!r}" for k, v in values.items()) or "(notebook defaults)"
+        print(f"profile {profile}: {shown}")
+    return 0
+
+
+def _list(_: argparse.Namespace) -> int:
+    for entry in load_registry().values():
+        print(f"{entry.name:20s} {entry.source_relative:35s} profiles: {', '.join(entry.profiles)}")
+    print(f"build area: {paths.build_dir()}")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    handler = {"run": _run, "book": _book, "params": _params, "list": _list}[args.command]
+    try:
+        return handler(args)
+    except (ValueError, FileNotFoundError, RuntimeError) as exc:  # ParameterError is a ValueError
+        print(f"sss-locus {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except Exception as exc:
+        if type(exc).__name__ == "PapermillExecutionError":
+            print(f"sss-locus {args.command}: a notebook cell failed:\n{exc}", file=sys.stderr)
+            return 1
+        raise
+
+
+if __name__ == "__main__":
+    sys.exit(main())

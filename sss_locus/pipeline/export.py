@@ -1,0 +1,292 @@
+"""Citable figure export: image files, plotted data, a provenance manifest and a BibTeX entry.
+
+Notebooks publish figures with :func:`sss_locus.pipeline.publish.publish`, which calls
+:func:`export_figure` with the run's parameters, glues the figure and its caption and closes it::
+
+    from sss_locus.pipeline.publish import publish
+
+    publish(fig, "fig-locus-concept", data=points_frame, caption=caption)
+
+and the notebook places the figure with ``{glue:figure} fig-locus-concept`` and
+``:name: fig-locus-concept`` in a markdown cell of the *same* notebook.
+
+It writes, under :func:`sss_locus.paths.figures_dir` (served by the site at ``figures/``):
+
+``<label>.png`` (``dpi`` >= 200), ``<label>.svg``, ``<label>.pdf``
+    The figure (vector formats without timestamps, so reruns are byte-comparable).
+``<label>.csv`` or ``<label>--<name>.csv``
+    The plotted data: one file for a DataFrame, one per entry for a dict of DataFrames.
+``<label>.bib``
+    A "cite this figure" BibTeX entry.
+``<label>.json``
+    The manifest, written last (atomically): label, caption, notebook, profile, parameters, seed,
+    git commit, lock-file hash, package version, run time (UTC) and every file with its SHA-256.
+    A figure without a manifest is incomplete and is ignored by :func:`load_manifests`.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from sss_locus import paths
+from sss_locus.pipeline import provenance
+
+LABEL_PATTERN = re.compile(r"^fig-[a-z0-9]+(?:-[a-z0-9]+)*$")
+DATA_NAME_PATTERN = re.compile(r"^[a-z0-9]+(?:[_-][a-z0-9]+)*$")
+MIN_DPI = 200
+IMAGE_FORMATS = ("png", "svg", "pdf")
+# Fixed metadata so that SVG and PDF bytes do not change with the clock.
+_SAVE_METADATA = {"svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate": None}}
+
+
+def _check_label(label: str) -> None:
+    if not isinstance(label, str) or not LABEL_PATTERN.match(label):
+        raise ValueError(
+            f"label must look like 'fig-some-name' (lower-case letters, digits, single hyphens; "
+            f"pattern {LABEL_PATTERN.pattern}), got {label!r}"
+        )
+
+
+def _normalise_data(label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
+    """Map CSV file names to frames."""
+    if isinstance(data, pd.DataFrame):
+        return {f"{label}.csv": data}
+    if isinstance(data, Mapping) and data:
+        frames = {}
+        for name, frame in data.items():
+            if not isinstance(name, str) or not DATA_NAME_PATTERN.match(name):
+                raise ValueError(
+                    f"data keys must be short names of lower-case letters, digits, '_' or '-', "
+                    f"got {name!r}"
+                )
+            if not isinstance(frame, pd.DataFrame):
+                raise ValueError(f"data[{name!r}] must be a pandas DataFrame, got {type(frame).__name__}")
+            frames[f"{label}--{name}.csv"] = frame
+        return frames
+    raise ValueError(
+        "data must be a pandas DataFrame or a non-empty dict of DataFrames (the plotted values), "
+        f"got {type(data).__name__}"
+    )
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(text, encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def _bibtex_escape(text: str) -> str:
+    """Escape BibTeX/LaTeX specials outside ``$...$`` math; keep math as written."""
+    pieces = text.split("$")
+    for i in range(0, len(pieces), 2):  # even pieces are outside math
+        piece = pieces[i]
+        for char in "\\{}":
+            piece = piece.replace(char, "")
+        for char in "&%#_":
+            piece = piece.replace(char, "\\" + char)
+        pieces[i] = piece
+    return "$".join(pieces)
+
+
+def _citation_meta() -> dict[str, Any]:
+    """Title, authors and URL of the project from CITATION.cff (needs PyYAML; book extra)."""
+    meta: dict[str, Any] = {"title": "sss-locus", "authors": ["{sss-locus contributors}"], "url": None}
+    try:
+        import yaml
+
+        cff = yaml.safe_load(paths.CITATION_FILE.read_text(encoding="utf-8"))
+    except (ImportError, OSError, ValueError):
+        return meta
+    if not isinstance(cff, dict):
+        return meta
+    meta["title"] = str(cff.get("title", meta["title"]))
+    authors = []
+    for author in cff.get("authors") or []:
+        if "family-names" in author:
+            authors.append(f"{author['family-names']}, {author.get('given-names', '')}".strip(", "))
+        elif "name" in author:
+            authors.append("{" + str(author["name"]) + "}")
+    meta["authors"] = authors or meta["authors"]
+    meta["url"] = cff.get("url") or cff.get("repository-code")
+    return meta
+
+
+def bibtex_entry(manifest: Mapping[str, Any]) -> str:
+    """A ``@misc`` BibTeX entry citing one exported figure, from its manifest."""
+    meta = _citation_meta()
+    label = manifest["label"]
+    first_sentence = re.split(r"(?<=[.!?])\s", manifest["caption"].strip(), maxsplit=1)[0].rstrip(".")
+    fields = {
+        "title": "{" + _bibtex_escape(first_sentence) + "}",
+        "author": " and ".join(meta["authors"]),
+        "year": manifest["run_time_utc"][:4],
+        "howpublished": (
+            f"Figure \\texttt{{{label}}} in {_bibtex_escape(meta['title'])}, "
+            f"file \\texttt{{figures/{label}.png}}"
+        ),
+        "note": (
+            f"Notebook \\texttt{{{manifest['notebook']}}}, profile {manifest['profile']}, "
+            f"commit \\texttt{{{provenance.short_commit(manifest['git_commit'])}}}, "
+            f"sss-locus {manifest['package_version']}"
+        ),
+    }
+    if meta["url"]:
+        fields["url"] = str(meta["url"])
+    body = ",\n".join(f"  {key} = {{{value}}}" for key, value in fields.items())
+    return f"@misc{{sss-locus:{label},\n{body}\n}}\n"
+
+
+def export_figure(
+    fig: Any,
+    label: str,
+    data: pd.DataFrame | Mapping[str, pd.DataFrame],
+    *,
+    caption: str,
+    parameters: Mapping[str, Any],
+    seed: int | None = None,
+    notebook: str | None = None,
+    dpi: int = 300,
+    out_dir: Path | None = None,
+) -> dict[str, Any]:
+    """Export one figure with its data, manifest and BibTeX entry; return the manifest.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The finished figure.
+    label : str
+        Stable label, ``fig-`` followed by lower-case words joined by hyphens
+        (e.g. ``"fig-locus-concept"``). Also the ``:name:`` of the figure in the book.
+    data : pandas.DataFrame or dict of str to pandas.DataFrame
+        The values actually plotted, written as CSV next to the images.
+    caption : str
+        The figure's caption (MyST/LaTeX math in ``$...$`` allowed); its first sentence becomes
+        the BibTeX title.
+    parameters : mapping
+        The notebook parameters the figure depends on (JSON-serialisable; numpy scalars are fine).
+    seed : int, optional
+        Random seed of the run; defaults to ``parameters["seed"]`` when present.
+    notebook : str, optional
+        Notebook that drew the figure; defaults to what the runner reports
+        (:func:`sss_locus.pipeline.provenance.current_notebook`).
+    dpi : int
+        Resolution of the PNG, at least 200.
+    out_dir : pathlib.Path, optional
+        Output folder; defaults to :func:`sss_locus.paths.figures_dir`.
+
+    Returns
+    -------
+    dict
+        The manifest as written to ``<label>.json``.
+    """
+    _check_label(label)
+    if not hasattr(fig, "savefig"):
+        raise ValueError(f"fig must be a matplotlib Figure (with .savefig), got {type(fig).__name__}")
+    if not isinstance(caption, str) or not caption.strip():
+        raise ValueError("caption must be a non-empty string")
+    if not isinstance(parameters, Mapping):
+        raise ValueError(f"parameters must be a mapping of name to value, got {type(parameters).__name__}")
+    if not isinstance(dpi, (int, np.integer)) or dpi < MIN_DPI:
+        raise ValueError(f"dpi must be an integer >= {MIN_DPI}, got {dpi!r}")
+    frames = _normalise_data(label, data)
+    params = json.loads(json.dumps(dict(parameters), default=provenance.json_default))
+    if seed is None and "seed" in params:
+        seed = params["seed"]
+
+    out = paths.figures_dir() if out_dir is None else Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    manifest_path = out / f"{label}.json"
+    manifest_path.unlink(missing_ok=True)  # incomplete until the new manifest is written
+
+    import matplotlib  # only here: the package itself does not depend on matplotlib
+
+    written: list[Path] = []
+    # A fixed salt makes SVG element ids (random by default) reproducible.
+    with matplotlib.rc_context({"svg.hashsalt": label}):
+        for fmt in IMAGE_FORMATS:
+            target = out / f"{label}.{fmt}"
+            fig.savefig(target, format=fmt, dpi=int(dpi), bbox_inches="tight",
+                        metadata=_SAVE_METADATA.get(fmt))
+            written.append(target)
+    for name, frame in frames.items():
+        index = not isinstance(frame.index, pd.RangeIndex)
+        frame.to_csv(out / name, index=index)
+        written.append(out / name)
+
+    manifest: dict[str, Any] = {
+        "label": label,
+        "caption": caption.strip(),
+        "notebook": notebook or provenance.current_notebook(),
+        "profile": provenance.current_profile(),
+        "parameters": params,
+        "seed": json.loads(json.dumps(seed, default=provenance.json_default)),
+        "git_commit": provenance.git_commit(),
+        "lock_sha256": provenance.lock_sha256(),
+        "package_version": provenance.package_version(),
+        "run_time_utc": provenance.utc_now(),
+        "dpi": int(dpi),
+    }
+    bib_path = out / f"{label}.bib"
+    _write_atomic(bib_path, bibtex_entry(manifest))
+    written.append(bib_path)
+    manifest["files"] = {
+        p.name: {"url": f"{paths.FIGURES_SUBDIR}/{p.name}", "sha256": provenance.file_sha256(p)}
+        for p in written
+    }
+    _write_atomic(manifest_path, json.dumps(manifest, indent=2, sort_keys=True) + "\n")
+    return manifest
+
+
+def load_manifests(out_dir: Path | None = None) -> list[dict[str, Any]]:
+    """Manifests of all complete exported figures, sorted by notebook then label.
+
+    A figure counts as complete when its manifest exists and every file it lists is present with
+    the recorded SHA-256.
+    """
+    out = paths.figures_dir() if out_dir is None else Path(out_dir)
+    manifests = []
+    for path in sorted(out.glob("fig-*.json")):
+        manifest = _read_manifest(path)
+        files = manifest.get("files", {}) if manifest else {}
+        if files and all(provenance.file_sha256(out / name) == entry["sha256"] for name, entry in files.items()):
+            manifests.append(manifest)
+    return sorted(manifests, key=lambda m: (m["notebook"], m["label"]))
+
+
+def _read_manifest(path: Path) -> dict[str, Any] | None:
+    """A manifest's contents, or None if it vanished after it was listed.
+
+    Notebooks run in parallel (``sss-locus book --jobs N``) delete and rewrite their own
+    figures, so a manifest seen by ``glob`` may be gone by the time it is read.
+    """
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        return None
+
+
+def remove_figures_of(notebook: str, out_dir: Path | None = None) -> list[str]:
+    """Delete every exported figure whose manifest names ``notebook``; return their labels.
+
+    The runner calls this before rerunning a notebook so that a figure the notebook no longer
+    draws does not linger on the site.
+    """
+    out = paths.figures_dir() if out_dir is None else Path(out_dir)
+    removed = []
+    for path in sorted(out.glob("fig-*.json")):
+        manifest = _read_manifest(path)
+        if manifest is None or manifest.get("notebook") != notebook:
+            continue
+        for name in manifest.get("files", {}):
+            (out / name).unlink(missing_ok=True)
+        path.unlink(missing_ok=True)
+        removed.append(manifest["label"])
+    return removed

@@ -1,0 +1,161 @@
+"""Figures of the noise chapter (``notebooks/noise.ipynb``): the crossing-angle curves with
+measurement noise, the band width by error group, and the Monte Carlo against first-order check.
+
+The curves are those of :func:`sss_locus.experiments.planning.curve_summary` on
+:func:`sss_locus.experiments.noise.survey_noise_table`, passed as ``curves[platform_key][label]``
+(``label`` the noise model's label, e.g. ``"×1"``, ``"range only"``). Platforms are
+:class:`~sss_locus.experiments.platforms.Platform` objects: their names and colours come from the
+data (:mod:`sss_locus.report.style`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.ticker import NullFormatter
+
+from .style import platform_colors, platform_title
+
+LEVEL_COLORS = ("tab:red", "tab:orange", "gold", "tab:pink")
+"""Colours of the noise levels (``noise_scales`` in order, repeating)."""
+
+GROUP_STYLE = {"range only": {"color": "tab:green", "ls": ":"},
+               "attitude only": {"color": "tab:purple", "ls": ":"},
+               "position only": {"color": "tab:brown", "ls": ":"}}
+"""Line style of the curves with one error group alone."""
+
+BREAKDOWN_COLORS = {"position only": "tab:brown", "range only": "tab:green"}
+"""Colours of the error groups in :func:`plot_breakdown` (all errors: red)."""
+
+
+def level_label(scale: float) -> str:
+    """Label of a noise level, as in the notebook's noise models: ``level_label(0.1) == "×0.1"``."""
+    return f"×{scale:g}"
+
+
+def file_label(label: str) -> str:
+    """A noise model's label as part of a file name: ``"×0.1"`` -> ``"x0p1"``,
+    ``"range only"`` -> ``"range-only"``."""
+    return label.replace("×", "x").replace(" ", "-").replace(".", "p")
+
+
+def curve_frames(curves: Mapping[str, Mapping[str, pd.DataFrame]],
+                 labels: Iterable[str] | None = None) -> dict[str, pd.DataFrame]:
+    """The plotted curves as one table per platform and noise model, named
+    ``"<platform key>-<file_label(label)>"`` (the figure data of :func:`sss_locus.pipeline.publish`).
+
+    ``labels`` restricts (and orders) the noise models; default: all of each platform.
+    """
+    return {f"{key}-{file_label(lab)}": by_label[lab]
+            for key, by_label in curves.items()
+            for lab in (by_label if labels is None else labels)}
+
+
+def _title(platform, what: str, width: int = 60) -> str:
+    return f"{platform_title(platform, width)}:\n{what}"
+
+
+def _angle_axis(ax) -> None:
+    ax.set_xlim(0, 180)
+    ax.set_xticks(np.arange(0, 181, 20))
+    ax.set_xlabel(r"crossing angle $\gamma$ (deg)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+
+
+def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.DataFrame]],
+                      noise_scales: Sequence[float]):
+    """Crossing-angle curves with noise, one row per platform; returns the figure.
+
+    Left: noise-free locus length (black, median and interquartile range) and the median extent
+    at every level of ``noise_scales`` and with range errors only (log scale). Right: median
+    share of noisy draws with an empty locus at every level and with attitude errors only.
+    ``curves[platform.key]`` must hold the labels :func:`level_label` of every scale,
+    ``"range only"`` and ``"attitude only"``.
+    """
+    head = level_label(noise_scales[0])
+    fig, axs = plt.subplots(len(platforms), 2, figsize=(12, 4.2 * len(platforms)),
+                            constrained_layout=True, squeeze=False)
+    for (ax, ax2), pf in zip(axs, platforms):
+        by_label = curves[pf.key]
+        c0 = by_label[head]
+        g = c0["crossing_angle_deg"]
+        ax.fill_between(g, c0["locus_length_m_q25"], c0["locus_length_m_q75"], color="k", alpha=0.12, lw=0)
+        ax.plot(g, c0["locus_length_m_median"], color="k", lw=2, label="locus length, no noise")
+        for i, s in enumerate(noise_scales):
+            c = by_label[level_label(s)]
+            color = LEVEL_COLORS[i % len(LEVEL_COLORS)]
+            ax.plot(g, c["extent_m_median"], color=color, lw=1.8, label=f"extent, noise ×{s:g}")
+            ax2.plot(g, c["empty_fraction_median"], color=color, lw=1.8, label=f"noise ×{s:g}")
+        ax.plot(g, by_label["range only"]["extent_m_median"], lw=1.5, label="extent, range errors only",
+                **GROUP_STYLE["range only"])
+        ax2.plot(g, by_label["attitude only"]["empty_fraction_median"], lw=1.5,
+                 label="attitude errors only", **GROUP_STYLE["attitude only"])
+        ax.set_yscale("log")
+        ax.set_ylabel("median over pass pairs (m)")
+        ax.set_title(_title(pf, "size of the uncertainty"), fontsize=10)
+        ax2.set_ylim(0, 1)
+        ax2.set_ylabel("median share of noisy draws with an empty locus")
+        ax2.set_title(_title(pf, "crop fails"), fontsize=10)
+        _angle_axis(ax)
+        _angle_axis(ax2)
+    return fig
+
+
+def plot_breakdown(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.DataFrame]],
+                   head: str):
+    """Band width against crossing angle by error group (all errors at level ``head``; sensor
+    position only; range only; median and interquartile range, log scale) with the noise-free
+    locus length, one panel per platform; returns the figure."""
+    fig, axs = plt.subplots(1, len(platforms), figsize=(6 * len(platforms), 4), constrained_layout=True,
+                            squeeze=False)
+    for ax, pf in zip(axs[0], platforms):
+        by_label = curves[pf.key]
+        for lab, col in ((head, "tab:red"), *BREAKDOWN_COLORS.items()):
+            c = by_label[lab]
+            ax.fill_between(c["crossing_angle_deg"], c["band_width_m_q25"], c["band_width_m_q75"], color=col,
+                            alpha=0.15, lw=0)
+            ax.plot(c["crossing_angle_deg"], c["band_width_m_median"], color=col, lw=1.8,
+                    label="all errors" if lab == head else lab)
+        c = by_label[head]
+        ax.plot(c["crossing_angle_deg"], c["locus_length_m_median"], color="k", lw=1.5,
+                label="locus length, no noise")
+        ax.set_yscale("log")
+        ax.set_ylabel("band width (m): median, IQR shaded")
+        ax.set_title(platform_title(pf, 60), fontsize=10)
+        _angle_axis(ax)
+    return fig
+
+
+def plot_check(check: pd.DataFrame, platforms: Sequence, scales: Sequence[float]):
+    """Monte Carlo against first-order 95 % distances, a 2 x len(scales) grid; returns the figure.
+
+    ``check`` has one row per pass pair (or configuration), noise scale and kind: columns
+    ``platform`` (key), ``kind`` (``"two"``: distance to the circle, top row; ``"three"``:
+    three-view point error, bottom row), ``scale``, ``monte_carlo_m`` and ``first_order_m``.
+    """
+    colors = platform_colors(platforms)
+    fig, axs = plt.subplots(2, len(scales), figsize=(5 * len(scales), 8.8), constrained_layout=True,
+                            squeeze=False)
+    for row, kind, what in zip(axs, ("two", "three"), ("distance to the circle", "three-view point error")):
+        for ax, scale in zip(row, scales):
+            d = check[(check.kind == kind) & (check.scale == scale)]
+            for pf in platforms:
+                dk = d[d.platform == pf.key]
+                ax.scatter(dk.monte_carlo_m, dk.first_order_m, s=12, color=colors[pf.key],
+                           label=platform_title(pf, 40))
+            both = d[["monte_carlo_m", "first_order_m"]]
+            lo, hi = both.min().min(), both.max().max()
+            ax.plot([lo, hi], [lo, hi], color="k", lw=0.8, label="equal")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.xaxis.set_minor_formatter(NullFormatter())  # crowded minor labels on a short decade
+            ax.set_xlabel(f"Monte Carlo 95 % {what} (m)")
+            ax.set_ylabel(f"first-order 95 % {what} (m)")
+            ax.set_title(f"{'two views' if kind == 'two' else 'three views'}, noise ×{scale:g}", fontsize=10)
+            ax.grid(alpha=0.3, which="both")
+            ax.legend(fontsize=7)
+    return fig

@@ -1,0 +1,190 @@
+"""Figures, tables and prose numbers of the pose-space chapter (``notebooks/pose_space.ipynb``).
+
+The numbers come from :mod:`sss_locus.experiments.pose_stats`; this module only draws them
+(:func:`plot_sensitivity`, the paper's Fig. 3; :func:`plot_heatmaps`, its Fig. 4), lays them
+out as tables (:func:`seed_stability_table`, :func:`check_row`) and writes them as prose
+(:func:`fmt_metric`, :func:`metric_texts`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from ..experiments.pose_stats import HEATMAP_PANELS, TARGETS, median_grid, stable_to
+from .style import QUANTITY_LABELS
+from .text import fmt_sig, plain_label
+
+PANEL_TITLES = {
+    "a": "(a) range vs range", "b": "(b) azimuth vs azimuth", "c": "(c) elevation vs elevation",
+    "d": "(d) vehicle-2 yaw vs pitch", "e": "(e) vehicle-2 yaw vs its azimuth",
+}
+"""Titles of the heatmap panels of :data:`~sss_locus.experiments.pose_stats.HEATMAP_PANELS`."""
+
+PANEL_AXIS_LABELS = {
+    "r1_m": "$r_1$ (m)", "r2_m": "$r_2$ (m)", "azimuth1_deg": r"$\theta_1$ (deg)",
+    "azimuth2_deg": r"$\theta_2$ (deg)", "elevation1_deg": r"$\phi_1$ (deg)",
+    "elevation2_deg": r"$\phi_2$ (deg)", "yaw2_deg": "yaw of vehicle 2 (deg)",
+    "pitch2_deg": "pitch of vehicle 2 (deg, nose up +)",
+}
+"""Axis labels (with units) of the heatmap panels' columns."""
+
+SCATTER_COLUMNS = ("elevation_misalignment_deg", "locus_length_normalized", "n_arcs")
+"""Columns of the scatter subset drawn in panel (c) of :func:`plot_sensitivity`."""
+
+
+def scatter_subset(df: pd.DataFrame, n_points: int, seed: int) -> pd.DataFrame:
+    """The random subset of at most ``n_points`` rows of ``df`` drawn in the scatter panel
+    (``DataFrame.sample`` with ``random_state=seed``), columns :data:`SCATTER_COLUMNS`."""
+    sub = df.sample(n=min(n_points, len(df)), random_state=seed)
+    return sub[list(SCATTER_COLUMNS)]
+
+
+def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""):
+    """The paper's Fig. 3 for one platform: (a, b) Spearman rho of each quantity with the raw and
+    the range-normalised locus length, with bootstrap intervals; (c) normalised length against
+    elevation misalignment for ``subset`` (:func:`scatter_subset`), fragmented loci in orange.
+
+    ``rho`` is a :func:`~sss_locus.experiments.pose_stats.spearman_table`. Returns the figure.
+    """
+    fig, axs = plt.subplots(1, 3, figsize=(13, 4.6), constrained_layout=True)
+    names = ("(a) raw locus length", "(b) range-normalised length")
+    for ax, target, name in zip(axs[:2], TARGETS, names):
+        tab = rho[rho["target"] == target].iloc[::-1]
+        err = np.vstack([tab["rho"] - tab["ci_low"], tab["ci_high"] - tab["rho"]])
+        ax.barh([QUANTITY_LABELS[q] for q in tab["quantity"]], tab["rho"], xerr=err, capsize=2,
+                color=np.where(tab["rho"] >= 0, "tab:blue", "tab:gray"))
+        ax.axvline(0, color="k", lw=0.8)
+        ax.set_xlim(-1, 1)
+        what = "length" if target == TARGETS[0] else "length / mean range"
+        ax.set_xlabel(r"Spearman $\rho$ with " + what)
+        ax.set_title(name)
+        ax.grid(axis="x", alpha=0.3)
+    multi = subset["n_arcs"] > 1
+    ax = axs[2]
+    for sel, size, alpha, color, label in ((~multi, 3, 0.35, "tab:blue", "one arc"),
+                                           (multi, 9, 0.9, "tab:orange", "several arcs (fragmented)")):
+        ax.scatter(subset.loc[sel, "elevation_misalignment_deg"],
+                   subset.loc[sel, "locus_length_normalized"],
+                   s=size, alpha=alpha, color=color, lw=0, label=label)
+    ax.set_yscale("log")
+    ax.set_xlabel("elevation misalignment (deg)")
+    ax.set_ylabel("locus length / mean range")
+    ax.set_title("(c) normalised length vs misalignment")
+    ax.legend(loc="lower right", fontsize=8, markerscale=2)
+    ax.grid(alpha=0.3)
+    fig.suptitle(title)
+    return fig
+
+
+def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
+    """The paper's Fig. 4 for one platform: median locus length per bin for each panel of
+    :data:`~sss_locus.experiments.pose_stats.HEATMAP_PANELS`; masked (sparse) bins blank.
+
+    ``maps`` is a :func:`~sss_locus.experiments.pose_stats.heatmaps` result. Returns the figure.
+    """
+    fig, axs = plt.subplots(2, 3, figsize=(13, 8), constrained_layout=True)
+    for ax, (panel, x, y) in zip(axs.flat, HEATMAP_PANELS):
+        xe, ye, z = median_grid(maps[panel])
+        mesh = ax.pcolormesh(xe, ye, z, cmap="viridis", shading="flat")
+        fig.colorbar(mesh, ax=ax, label="median locus length (m)")
+        ax.set_xlabel(PANEL_AXIS_LABELS[x])
+        ax.set_ylabel(PANEL_AXIS_LABELS[y])
+        ax.set_title(PANEL_TITLES[panel])
+        ax.set_facecolor("0.85")
+    axs.flat[-1].axis("off")
+    fig.suptitle(title)
+    return fig
+
+
+def fmt_metric(name: str, v) -> str:
+    """One claim metric of :func:`~sss_locus.experiments.pose_stats.claim_metrics` as prose,
+    by the kind its name ends in: quantity names as plain text, ranks as integers, rank
+    correlations and ratios to two significant figures, fractions in percent, angles in whole
+    degrees.
+
+    >>> fmt_metric("top_raw", "mean_range_m"), fmt_metric("raw_baseline_m_rank", 3.0)
+    ('mean range', '3')
+    >>> fmt_metric("norm_azimuth1_deg_rho", 0.1234), fmt_metric("multi_arc_fraction", 0.0123)
+    ('0.12', '1.2 %')
+    >>> fmt_metric("yaw_peak_neg_deg", -95.0), fmt_metric("range_far_over_near_ratio", 2.345)
+    ('-95', '2.3')
+    """
+    if isinstance(v, str):
+        return plain_label(v)
+    if name.endswith("_rank"):
+        return f"{v:.0f}"
+    if name.endswith("_rho"):
+        return fmt_sig(v, 2)
+    if name.endswith("_fraction"):
+        return f"{100 * v:.2g} %"
+    if name.endswith("_deg"):
+        return f"{v:.0f}"
+    return fmt_sig(v, 2)
+
+
+def metric_texts(metrics: Mapping[str, float | str], rho: pd.DataFrame) -> dict[str, str]:
+    """Prose of every claim metric (:func:`fmt_metric`) plus the bootstrap interval of every
+    rank correlation, ``"<raw|norm>_<quantity>_ci"`` -> ``"[lo, hi]"`` (three decimals)."""
+    out = {name: fmt_metric(name, v) for name, v in metrics.items()}
+    for row in rho.itertuples():
+        tag = "raw" if row.target == TARGETS[0] else "norm"
+        out[f"{tag}_{row.quantity}_ci"] = f"[{row.ci_low:.3f}, {row.ci_high:.3f}]"
+    return out
+
+
+def seed_stability_table(runs: Mapping[str, tuple[Mapping, Mapping]], seeds: tuple[int, int],
+                         small_rho: float = 0.05) -> pd.DataFrame:
+    """Every rank correlation, claim metric and heatmap of two seeds side by side, with whether
+    they agree to two significant figures (:func:`~sss_locus.experiments.pose_stats.stable_to`).
+
+    ``runs`` maps a platform key to the two runs (dicts with ``rho``, ``metrics``, ``maps``)
+    of the seeds in ``seeds``. Correlations with ``|rho| < small_rho`` in both seeds count as
+    stable (noted). A heatmap row gives the share of bins shown in both runs that are stable
+    and, in the second seed's column, the median relative difference of their medians
+    (``stable`` None).
+    """
+    sa, sb = (f"seed {s}" for s in seeds)
+    rows = []
+    for key, (a, b) in runs.items():
+        ra = a["rho"].set_index(["target", "quantity"])["rho"]
+        rb = b["rho"].set_index(["target", "quantity"])["rho"].reindex(ra.index)
+        for (target, q), x in ra.items():
+            y = rb[(target, q)]
+            small = max(abs(x), abs(y)) < small_rho
+            kind = "raw" if target == TARGETS[0] else "normalised"
+            rows.append({"platform": key, "quantity": f"rho {q} ~ {kind}", sa: x, sb: y,
+                         "stable": bool(small or stable_to(x, y)),
+                         "note": f"|rho| < {small_rho:g}" if small else ""})
+        for name, x in a["metrics"].items():
+            if (isinstance(x, str) or name.endswith("_rank") or name.startswith(("raw_", "norm_"))
+                    or name == "n_heatmap_samples"):
+                continue
+            y = b["metrics"][name]
+            rows.append({"platform": key, "quantity": name, sa: x, sb: y,
+                         "stable": bool(stable_to(x, y)), "note": ""})
+        for p, ma in a["maps"].items():
+            mb = b["maps"][p]
+            both = ~ma["masked"] & ~mb["masked"]
+            if not both.any():
+                continue
+            x, y = ma["median"][both], mb["median"][both]
+            rows.append({"platform": key, "quantity": f"heatmap ({p}) bins stable to 2 s.f. (fraction)",
+                         sa: stable_to(x, y).mean(), sb: (np.abs(x - y) / x).median(), "stable": None,
+                         "note": "second column: median relative difference between seeds"})
+    return pd.DataFrame(rows)
+
+
+def check_row(run: str, metrics: Mapping[str, float | str]) -> dict:
+    """One row of the modelling-choice table: the headline claim metrics of one run."""
+    return {"run": run, "top raw": plain_label(metrics["top_raw"]),
+            "top normalised": plain_label(metrics["top_norm"]),
+            "rho misalignment (norm.)": metrics["norm_elevation_misalignment_deg_rho"],
+            "rho theta1 (norm.)": metrics["norm_azimuth1_deg_rho"],
+            "hotspot theta1, theta2 (deg)": (round(metrics["azimuth_peak_theta1_deg"]),
+                                             round(metrics["azimuth_peak_theta2_deg"])),
+            "yaw 0 / peak": metrics["yaw_near0_over_peak_ratio"],
+            "fragmented": metrics["multi_arc_fraction"]}

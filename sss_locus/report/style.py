@@ -1,0 +1,65 @@
+"""Shared look of the book's figures: platform names and colours from the data, quantity labels,
+and the figure sizes that fit the book's content column.
+
+Nothing here is keyed by a platform's key: a platform's display name is its ``name`` in
+``data/platforms.toml`` (or a user's file), and its colour follows its position in that file, so
+every chapter draws the same platform in the same colour and a new platform needs no code.
+"""
+
+from __future__ import annotations
+
+import textwrap
+from collections.abc import Iterable
+
+PALETTE = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
+           "tab:pink", "tab:olive", "tab:cyan", "tab:gray")
+"""Platform colours, in the order the platforms appear in the data (matplotlib's tab10)."""
+
+QUANTITY_LABELS = {
+    "r1_m": "range $r_1$", "r2_m": "range $r_2$", "mean_range_m": "mean range",
+    "baseline_m": "baseline $|t|$", "elevation_misalignment_deg": "elevation misalignment",
+    "abs_psi1_deg": r"$|\psi_1|$", "abs_psi2_deg": r"$|\psi_2|$",
+    "azimuth1_deg": r"azimuth $\theta_1$", "azimuth2_deg": r"azimuth $\theta_2$",
+    "abs_elevation1_deg": r"$|\phi_1|$", "abs_elevation2_deg": r"$|\phi_2|$",
+    "abs_yaw2_deg": "|yaw of vehicle 2|", "pitch2_deg": "pitch of vehicle 2",
+    "abs_pitch2_deg": "|pitch of vehicle 2|",
+}
+"""Display names (matplotlib mathtext) of the pose-space quantities."""
+
+AXIS_LABELS = {
+    "locus_length_m": "locus length (m)",
+    "elevation_misalignment_deg": "elevation misalignment (deg)",
+}
+"""Axis labels with units of the survey-pass quantities."""
+
+
+def platform_colors(platforms: Iterable, order: Iterable[str] | None = None) -> dict[str, str]:
+    """Colour of each platform: its position in ``order`` (default: the data file's order of
+    the given platforms' keys) picks an entry of :data:`PALETTE`.
+
+    Parameters
+    ----------
+    platforms : iterable of Platform or str
+        Platforms (objects with ``key``) or their keys.
+    order : iterable of str, optional
+        All platform keys in data-file order; default
+        :func:`sss_locus.experiments.platforms.load_platforms` order.
+    """
+    keys = [getattr(p, "key", p) for p in platforms]
+    if order is None:
+        from ..experiments.platforms import load_platforms
+
+        order = list(load_platforms())
+    order = list(order) + [k for k in keys if k not in order]
+    return {k: PALETTE[order.index(k) % len(PALETTE)] for k in keys}
+
+
+def platform_name(platform) -> str:
+    """Display name of a platform: its ``name`` in the data file."""
+    return platform.name
+
+
+def platform_title(platform, width: int = 60, prefix: str = "") -> str:
+    """``prefix`` plus the platform's display name, wrapped to lines of at most ``width``
+    characters (names from the data can be long)."""
+    return textwrap.fill(f"{prefix}{platform_name(platform)}", width)

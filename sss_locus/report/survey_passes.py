@@ -1,0 +1,262 @@
+"""Figures, tables and prose numbers of the survey-pass chapter (``notebooks/survey_passes.ipynb``).
+
+The curves come from :func:`sss_locus.experiments.planning.crossing_angle_curve`; this module only
+draws them (:func:`plot_fig5`, the paper's Fig. 5; :func:`plot_offset_models`, the offset-model
+comparison; :func:`plot_pitch_depth`, the AUV's pitch and altitude ratios), lays them out as
+tables (:func:`peak_table`, :func:`offset_model_table`) and writes them as prose for glue
+(:func:`curve_texts`, :func:`offset_model_texts`, :func:`pitch_depth_texts`,
+:func:`describe_setup`, :func:`describe_offset_model`). Platform names and colours come from the
+data (:mod:`sss_locus.report.style`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from ..experiments.envelopes import OffsetModel, SurveyEnvelope
+from ..experiments.planning import VALUES, CrossingAngleCurve, curve_shape_rho, rejected_share
+from .style import AXIS_LABELS, platform_colors
+from .text import fmt_change, fmt_interval, fmt_sig
+
+UNITS = {"locus_length_m": "m", "elevation_misalignment_deg": "°"}
+"""Prose unit of each curve quantity."""
+
+TAGS = {"locus_length_m": "len", "elevation_misalignment_deg": "mis"}
+"""Short name of each curve quantity in glue keys (``sp-boat-len-90``)."""
+
+GAMMAS = (0, 90, 180)
+"""Crossing angles (deg) whose medians are stated in the prose and tables."""
+
+
+def model_tag(spec: str) -> str:
+    """An offset-model spec as a glue-key and file-name part: ``"matched:2.5:same"`` ->
+    ``"matched-2p5-same"``."""
+    return spec.replace(":", "-").replace(".", "p")
+
+
+def _pitch_range(lo: float, hi: float) -> str:
+    if lo == hi:
+        return f"{hi:g}°"
+    return f"within ±{hi:g}°" if lo == -hi else f"{lo:g}° to {hi:g}°"
+
+
+def describe_setup(platform, envelope: SurveyEnvelope) -> str:
+    """One platform's passes in words, from its data: ``"<name>: <altitude and pitch>"``."""
+    lo, hi = envelope.altitude_min_m, envelope.altitude_max_m
+    alt = f"{lo:g} m" if lo == hi else f"{lo:g}–{hi:g} m"
+    level = envelope.pitch_min_deg == envelope.pitch_max_deg == 0
+    pitch = "level" if level else f"pitch {_pitch_range(envelope.pitch_min_deg, envelope.pitch_max_deg)}"
+    if envelope.level_pass1 and not level:
+        pitch = f"pass 1 level, pass 2 at {pitch}"
+    if envelope.same_altitude:
+        return f"{platform.name}: {pitch}, both passes at one altitude above the feature, {alt} (the water depth)"
+    return f"{platform.name}: altitude above the feature {alt} and {pitch}, drawn per pass"
+
+
+SIDE_RULE_TEXT = {"random": "on a random side of the vehicle", "same": "on the same side as pass 1",
+                  "opposite": "on the opposite side to pass 1"}
+"""Pass 2's side of the vehicle under each ``OffsetModel.side_rule``, in words."""
+
+
+def describe_offset_model(model: OffsetModel) -> str:
+    """Where the passes see the feature across their swaths, in words."""
+    if model.kind == "independent":
+        text = "each pass sees the feature anywhere in its swath"
+        text += "" if model.side_rule == "random" else f", pass 2 {SIDE_RULE_TEXT[model.side_rule]}"
+    else:
+        text = (f"pass 2 sees the feature at pass 1's ground offset ±{model.jitter_m:g} m, "
+                f"{SIDE_RULE_TEXT[model.side_rule]}")
+    return text if model.side1 == "random" else f"{text}; pass 1 sees it on its {model.side1} side"
+
+
+def plot_fig5(curves: Mapping[str, CrossingAngleCurve]):
+    """The paper's Fig. 5: (a) locus length and (b) elevation misalignment against crossing
+    angle, median line and interquartile band per platform. Returns the figure."""
+    colors = platform_colors([cur.platform for cur in curves.values()])
+    fig, axs = plt.subplots(2, 1, figsize=(8, 7.5), sharex=True, constrained_layout=True)
+    for ax, v, tag in zip(axs, VALUES, "ab"):
+        for k, cur in curves.items():
+            c = cur.curve
+            ax.fill_between(c["crossing_angle_deg"], c[f"{v}_q25"], c[f"{v}_q75"], color=colors[k],
+                            alpha=0.2, lw=0)
+            ax.plot(c["crossing_angle_deg"], c[f"{v}_median"], color=colors[k], lw=1.8,
+                    label=f"{cur.platform.name}: median, IQR shaded")
+        ax.set_ylabel(AXIS_LABELS[v])
+        ax.set_title(f"({tag}) {AXIS_LABELS[v].split(' (')[0]} against crossing angle")
+        ax.set_ylim(bottom=0)
+        ax.grid(alpha=0.3)
+    axs[0].legend(fontsize=8, loc="upper left")
+    axs[1].set_xlabel(r"crossing angle $\gamma$ between the passes (deg)")
+    axs[1].set_xticks(np.arange(0, 181, 20))
+    axs[1].set_xlim(0, 180)
+    return fig
+
+
+def curve_texts(prefix: str, cur: CrossingAngleCurve) -> dict[str, str]:
+    """Glue texts of one main curve, keyed ``<prefix>-<len|mis>-...``: peak angle and its
+    interval, medians at 0/90/180°, the peak median and the medians there over the peak; plus
+    ``<prefix>-rejected`` (share of drawn pairs rejected), ``-rejected-max`` (largest share at
+    one angle) and ``-shape-rho`` (rank correlation of the two median curves over the grid)."""
+    out = {}
+    c = cur.curve
+    for v in VALUES:
+        tag, unit, pk = TAGS[v], UNITS[v], cur.peak[v]
+        out[f"{prefix}-{tag}-peak-deg"] = f"{pk['angle_deg']:.0f}"
+        out[f"{prefix}-{tag}-peak-ci"] = f"{pk['ci_low_deg']:.0f}–{pk['ci_high_deg']:.0f}"
+        for g in GAMMAS:
+            out[f"{prefix}-{tag}-{g}"] = fmt_interval(cur.at(g, v), unit)
+        peak_med = c[f"{v}_median"].max()
+        out[f"{prefix}-{tag}-peak-value"] = f"{fmt_sig(peak_med, 2)} {unit}"
+        out[f"{prefix}-{tag}-0-over-peak"] = fmt_sig(c[f"{v}_median"].iloc[0] / peak_med, 2)
+        out[f"{prefix}-{tag}-180-over-peak"] = fmt_sig(c[f"{v}_median"].iloc[-1] / peak_med, 2)
+        out[f"{prefix}-{tag}-90-over-peak"] = fmt_sig(cur.at(90, v)["median"] / peak_med, 2)
+    rejected, rejected_max = rejected_share(cur.acceptance)
+    out[f"{prefix}-rejected"] = f"{100 * rejected:.2g} %"
+    out[f"{prefix}-rejected-max"] = f"{100 * rejected_max:.2g} %"
+    out[f"{prefix}-shape-rho"] = f"{curve_shape_rho(c):.2f}"
+    return out
+
+
+def peak_table(curves: Mapping[str, CrossingAngleCurve]) -> pd.DataFrame:
+    """Peak angle with its interval and the medians at 0/90/180° of each platform and quantity."""
+    rows = []
+    for k, cur in curves.items():
+        for name, pk in cur.peak.items():
+            rows.append({"platform": k, "quantity": name, "peak angle (deg)": pk["angle_deg"],
+                         "95 % CI (deg)": f"{pk['ci_low_deg']:.0f}–{pk['ci_high_deg']:.0f}",
+                         **{f"median at {g}°": fmt_sig(cur.at(g, name)["median"], 3) for g in GAMMAS}})
+    return pd.DataFrame(rows)
+
+
+def plot_offset_models(main: Mapping[str, CrossingAngleCurve],
+                       sensitivity: Mapping[tuple[str, str], CrossingAngleCurve], main_label: str):
+    """Median length (row a) and misalignment (row b) per platform (columns): the main curves
+    (black, legend ``main_label``) and one line per offset model of ``sensitivity`` (keyed
+    ``(platform key, spec)``). Returns the figure."""
+    keys = list(main)
+    fig, axs = plt.subplots(2, len(keys), figsize=(6.2 * len(keys), 7.5), sharex=True,
+                            constrained_layout=True, squeeze=False)
+    styles = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for j, k in enumerate(keys):
+        own = [cur for (kk, _), cur in sensitivity.items() if kk == k]
+        for i, v in enumerate(VALUES):
+            ax = axs[i, j]
+            c = main[k].curve
+            ax.plot(c["crossing_angle_deg"], c[f"{v}_median"], color="k", lw=2, label=main_label)
+            for n, cur in enumerate(own):
+                ax.plot(cur.curve["crossing_angle_deg"], cur.curve[f"{v}_median"],
+                        color=styles[n % len(styles)], lw=1.3, label=cur.offset_model.label)
+            ax.set_ylabel("median " + AXIS_LABELS[v])
+            ax.set_ylim(bottom=0)
+            ax.grid(alpha=0.3)
+            ax.set_title(f"({'ab'[i]}{j + 1}) {main[k].platform.name}", fontsize=10)
+        axs[1, j].set_xlabel(r"crossing angle $\gamma$ (deg)")
+        axs[1, j].set_xticks(np.arange(0, 181, 30))
+        axs[1, j].set_xlim(0, 180)
+    axs[0, 0].legend(fontsize=7.5)
+    return fig
+
+
+def offset_model_table(sensitivity: Mapping[tuple[str, str], CrossingAngleCurve]) -> pd.DataFrame:
+    """Peak angle, medians at 0°, the peak, 90° and 180°, and the smallest acceptance of each
+    (platform, offset model) curve."""
+    rows = []
+    for (k, _), cur in sensitivity.items():
+        pk, peak = cur.peak["locus_length_m"], cur.curve["locus_length_m_median"].max()
+        rows.append({"platform": k, "offset model": cur.offset_model.label,
+                     "peak angle (deg)": pk["angle_deg"],
+                     "peak 95 % CI (deg)": f"{pk['ci_low_deg']:.0f}–{pk['ci_high_deg']:.0f}",
+                     "median at 0°": fmt_sig(cur.at(0)["median"], 2), "at peak": fmt_sig(peak, 2),
+                     "at 90°": fmt_sig(cur.at(90)["median"], 2),
+                     "at 180°": fmt_sig(cur.at(180)["median"], 2),
+                     "acceptance (min over angles)": f"{cur.acceptance['acceptance'].min():.3f}"})
+    return pd.DataFrame(rows)
+
+
+def offset_model_texts(sensitivity: Mapping[tuple[str, str], CrossingAngleCurve]) -> dict[str, str]:
+    """Glue texts ``sp-<platform>-<model tag>-...`` of the offset-model curves: length and
+    misalignment peak angles, the length peak's interval, medians at 0/90/180° over the peak."""
+    out = {}
+    for (k, spec), cur in sensitivity.items():
+        p, pk = f"sp-{k}-{model_tag(spec)}", cur.peak["locus_length_m"]
+        peak = cur.curve["locus_length_m_median"].max()
+        out[f"{p}-len-peak-deg"] = f"{pk['angle_deg']:.0f}"
+        out[f"{p}-len-peak-ci"] = f"{pk['ci_low_deg']:.0f}–{pk['ci_high_deg']:.0f}"
+        out[f"{p}-mis-peak-deg"] = f"{cur.peak['elevation_misalignment_deg']['angle_deg']:.0f}"
+        for g in GAMMAS:
+            out[f"{p}-len-{g}-over-peak"] = fmt_sig(cur.at(g)["median"] / peak, 2)
+    return out
+
+
+def _change(r) -> str:
+    return fmt_change(r["ratio"], r["ratio_ci_low"], r["ratio_ci_high"])
+
+
+def pitch_depth_texts(pitch: pd.DataFrame, depth: pd.DataFrame,
+                      pitch_levels_deg: Sequence[float]) -> dict[str, str]:
+    """Glue texts ``sp-auv-pitch-*``, ``sp-auv-pitchvar-*`` and ``sp-auv-depth-*``.
+
+    ``pitch`` has one row per pitch level (both passes pitched) followed by the level-pass-1
+    rows turning to port and to starboard; ``depth`` one row per altitude, the first the
+    reference. Both hold :func:`~sss_locus.experiments.planning.median_ratio` columns.
+    """
+    out = {}
+    for i, p in enumerate(pitch_levels_deg):
+        out[f"sp-auv-pitch-{i}-effect"] = _change(pitch.iloc[i])
+        out[f"sp-auv-pitch-{i}-deg"] = f"{p:g}"
+    r = pitch.iloc[len(pitch_levels_deg) - 1]
+    out["sp-auv-pitch-max-up"] = fmt_sig(r["median_x"], 2)
+    out["sp-auv-pitch-max-down"] = fmt_sig(r["median_y"], 2)
+    out["sp-auv-pitchvar-deg"] = f"{pitch_levels_deg[-1]:g}"
+    out["sp-auv-pitchvar-port-effect"] = _change(pitch.iloc[-2])
+    out["sp-auv-pitchvar-stbd-effect"] = _change(pitch.iloc[-1])
+    hi, lo = depth.iloc[-1], depth.iloc[0]
+    out["sp-auv-depth-effect"] = _change(hi)
+    out["sp-auv-depth-effect-norm"] = fmt_change(hi["norm_ratio"], hi["norm_ratio_ci_low"],
+                                                 hi["norm_ratio_ci_high"])
+    out["sp-auv-depth-lo"] = f"{lo['altitude (m)']:g}"
+    out["sp-auv-depth-hi"] = f"{hi['altitude (m)']:g}"
+    return out
+
+
+VARIANT_COLORS = ("tab:purple", "tab:green")
+"""Colours of the level-pass-1 rows of :func:`plot_pitch_depth` (turning to port, starboard)."""
+
+
+def plot_pitch_depth(pitch: pd.DataFrame, depth: pd.DataFrame, band_deg: tuple[float, float],
+                     n_both: int):
+    """(a) Nose-up over nose-down median-length ratios with intervals, one row per ``pitch`` row
+    (the first ``n_both`` with both passes pitched, in black; the rest in
+    :data:`VARIANT_COLORS`); (b) median length and length per unit range at each altitude of
+    ``depth`` relative to the first. ``band_deg`` is the crossing-angle band both were run in.
+    Returns the figure."""
+    fig, axs = plt.subplots(1, 2, figsize=(12, 4.4), constrained_layout=True,
+                            gridspec_kw={"width_ratios": [1.4, 1]})
+    ax = axs[0]
+    y = np.arange(len(pitch))[::-1]
+    colors = ["k"] * n_both + [VARIANT_COLORS[i % 2] for i in range(len(pitch) - n_both)]
+    for yi, (_, r), c in zip(y, pitch.iterrows(), colors):
+        ax.errorbar(r["ratio"], yi, xerr=[[r["ratio"] - r["ratio_ci_low"]], [r["ratio_ci_high"] - r["ratio"]]],
+                    fmt="o", color=c, capsize=3)
+    ax.set_yticks(y, pitch["comparison"])
+    ax.axvline(1, color="k", lw=0.8)
+    ax.set_xlabel("median locus length, nose-up / nose-down")
+    ax.set_title(f"(a) pitch sign, γ in the worst band {band_deg[0]:.0f}–{band_deg[1]:.0f}°", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax = axs[1]
+    h = depth["altitude (m)"]
+    for col, fmt, color, label in (("ratio", "o-", "k", "locus length"),
+                                   ("norm_ratio", "s--", "0.5", "length / mean range")):
+        ax.errorbar(h, depth[col], yerr=[depth[col] - depth[f"{col}_ci_low"], depth[f"{col}_ci_high"] - depth[col]],
+                    fmt=fmt, capsize=3, color=color, label=label)
+    ax.axhline(1, color="k", lw=0.8)
+    ax.set_xlabel("altitude of both passes above the feature (m)")
+    ax.set_ylabel(f"median relative to {h.iloc[0]:g} m")
+    ax.set_title("(b) operating altitude, same band", fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return fig

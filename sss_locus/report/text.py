@@ -1,0 +1,98 @@
+"""Prose formatting of computed numbers, for glued text and tables (never computation).
+
+Every number the book states in prose goes through one of these functions, so the same kind of
+number reads the same way on every page: significant figures (:func:`fmt_sig`), a median with its
+interval (:func:`fmt_interval`), fractions as percentages (:func:`fmt_percent`), ratios as
+changes (:func:`fmt_change`), crossing-angle bands (:func:`fmt_bands`) and quantity names
+(:func:`plain_label`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import pandas as pd
+
+from ..experiments.pose_stats import round_sig
+from .style import QUANTITY_LABELS
+
+
+def fmt_sig(x: float, digits: int = 2) -> str:
+    """``x`` to ``digits`` significant figures, e.g. ``fmt_sig(0.012345) == "0.012"``.
+
+    Non-finite values read ``"n/a"``.
+
+    >>> fmt_sig(123.4), fmt_sig(2.0), fmt_sig(float("nan"))
+    ('120', '2.0', 'n/a')
+    """
+    if not math.isfinite(x):
+        return "n/a"
+    decimals = max(0, digits - 1 - int(math.floor(math.log10(abs(x))))) if x else 0
+    return f"{float(round_sig(x, digits)):.{decimals}f}"
+
+
+def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> str:
+    """A median and its 95 % interval: ``"3.1 m (95 % CI 2.9–3.4 m)"``.
+
+    ``estimate`` holds ``median``, ``ci_low`` and ``ci_high``; a degree sign is written without a
+    space (``"20° (95 % CI 18°–22°)"``).
+
+    >>> fmt_interval({"median": 3.14, "ci_low": 2.9, "ci_high": 3.41}, "m")
+    '3.1 m (95 % CI 2.9–3.4 m)'
+    """
+    sep = "" if unit == "°" else " "
+    lo, hi = fmt_sig(estimate["ci_low"], digits), fmt_sig(estimate["ci_high"], digits)
+    return f"{fmt_sig(estimate['median'], digits)}{sep}{unit} (95 % CI {lo}–{hi}{sep}{unit})"
+
+
+def fmt_percent(fraction: float) -> str:
+    """A fraction as a percentage with enough digits to tell it from 0 % and 100 %.
+
+    >>> fmt_percent(0.5), fmt_percent(0.0004), fmt_percent(0.9996), fmt_percent(1.0)
+    ('50.0 %', '0.04 %', '99.96 %', '100.0 %')
+    """
+    x = float(fraction)
+    if x in (0.0, 1.0) or 0.001 <= x <= 0.999:
+        return f"{100 * x:.1f} %"
+    return f"{100 * x:.2f} %" if x > 0.999 else f"{100 * x:.2g} %"
+
+
+def fmt_change(ratio: float, ci_low: float, ci_high: float) -> str:
+    """A ratio of medians as a signed change in whole percent with its interval.
+
+    >>> fmt_change(0.52, 0.47, 0.58)
+    '-48 % (95 % CI -53 % to -42 %)'
+    """
+    def one(x: float) -> str:
+        v = int(round(100 * (x - 1)))
+        return f"{v:+d} %" if v else "0 %"
+
+    return f"{one(ratio)} (95 % CI {one(ci_low)} to {one(ci_high)})"
+
+
+def fmt_bands(bands: pd.DataFrame, kind: str) -> str:
+    """The ``kind`` ("prefer" or "avoid") bands of
+    :func:`~sss_locus.experiments.planning.planning_bands` as text, ``"none"`` if there are none.
+
+    >>> b = pd.DataFrame({"kind": ["prefer", "prefer", "avoid"], "lo_deg": [0.0, 170.0, 60.0],
+    ...                   "hi_deg": [0.0, 180.0, 110.0]})
+    >>> fmt_bands(b, "prefer"), fmt_bands(b, "avoid")
+    ('0°, 170–180°', '60–110°')
+    """
+    rows = bands[bands["kind"] == kind]
+    parts = [f"{r.lo_deg:.0f}°" if r.lo_deg == r.hi_deg else f"{r.lo_deg:.0f}–{r.hi_deg:.0f}°"
+             for r in rows.itertuples()]
+    return ", ".join(parts) if parts else "none"
+
+
+def plain_label(quantity: str) -> str:
+    """A quantity's display name as plain text (no LaTeX), e.g. ``"|ψ₂|"``.
+
+    >>> plain_label("abs_psi2_deg"), plain_label("unknown_q")
+    ('|ψ₂|', 'unknown_q')
+    """
+    text = QUANTITY_LABELS.get(quantity, quantity).replace("$", "")
+    for tex, uni in (("\\psi", "ψ"), ("\\phi", "φ"), ("\\theta", "θ"), ("_1", "₁"), ("_2", "₂")):
+        text = text.replace(tex, uni)
+    return text

@@ -1,0 +1,115 @@
+"""Figures of the three-views chapter (``notebooks/three_views.ipynb``): the survey patterns
+(resolution, plane angle, conditioning) and the sweep over the headings of passes 2 and 3.
+
+Tables are those of :func:`sss_locus.experiments.three_view_patterns.three_view_table` (per
+platform key and pattern name) and
+:func:`sss_locus.experiments.three_view_patterns.heading_sweep` (per platform key). Platforms are
+:class:`~sss_locus.experiments.platforms.Platform` objects; their names come from the data.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.colors import LogNorm
+from matplotlib.ticker import NullFormatter
+
+from .style import platform_title
+
+PATTERN_TAGS = {"repeat + reciprocal": "rr", "two lines + cross line": "cross",
+                "three headings 60 deg apart": "sixty"}
+"""Short tag of each pattern of :data:`~sss_locus.experiments.three_view_patterns.PATTERNS` in
+the chapter's glue keys (``tv-<platform>-<tag>-...``)."""
+
+OUTCOMES = (("resolved (1 point)", 1, "tab:green"), ("two-fold ambiguity", 2, "tab:orange"),
+            ("no candidate", 0, "tab:gray"))
+"""Bars of panel (a): label, number of valid candidates, colour."""
+
+
+def pattern_label(name: str) -> str:
+    """A pattern's name on two lines, for an axis: ``"two lines +\\ncross line"``."""
+    return name.replace(" + ", " +\n").replace(" 60 deg apart", "\n60° apart")
+
+
+def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.DataFrame]],
+                  range_sigma_m: float):
+    """Three panels per platform (one row each); returns the figure.
+
+    (a) share of configurations with one, two or no valid candidate; (b) angle between the two
+    planes (box: quartiles, whiskers: 5-95 %, log scale); (c) first-order 95 % point error for a
+    ``range_sigma_m`` range error (``point_error_q95_m``, log scale).
+    ``tables[platform.key][pattern]`` is a three-view table.
+    """
+    fig, axs = plt.subplots(len(platforms), 3, figsize=(13, 3.6 * len(platforms)), constrained_layout=True,
+                            squeeze=False)
+    for row, pf in zip(axs, platforms):
+        by_pattern = tables[pf.key]
+        short = [pattern_label(n) for n in by_pattern]
+        fr = np.array([[(t.n_valid == v).mean() for _, v, _ in OUTCOMES] for t in by_pattern.values()])
+        left = np.zeros(len(short))
+        for j, (lab, _, col) in enumerate(OUTCOMES):
+            row[0].barh(short, fr[:, j], left=left, color=col, label=lab)
+            left += fr[:, j]
+        row[0].set_xlim(0, 1)
+        row[0].set_xlabel("fraction of configurations")
+        row[0].set_title(platform_title(pf, 45, prefix="(a) "), fontsize=10)
+        row[0].legend(fontsize=7, loc="lower left")
+        for ax, column, xlabel in (
+                (row[1], "plane_angle_deg", "angle between the two planes (deg)"),
+                (row[2], "point_error_q95_m", f"95 % point error for {100 * range_sigma_m:g} cm range error (m)")):
+            ax.boxplot([t[column].to_numpy() for t in by_pattern.values()], orientation="horizontal",
+                       tick_labels=short, whis=(5, 95), showfliers=False)
+            ax.set_xscale("log")
+            ax.xaxis.set_minor_formatter(NullFormatter())
+            ax.set_xlabel(xlabel)
+        row[1].set_title("(b) plane angle (box: quartiles; whiskers: 5–95 %)", fontsize=10)
+        row[2].set_title("(c) conditioning, first order", fontsize=10)
+        for ax in row:
+            ax.grid(alpha=0.3, axis="x")
+    return fig
+
+
+def sym_grid(sweep: pd.DataFrame, value: str) -> tuple[np.ndarray, np.ndarray]:
+    """Cell edges and a symmetric square grid of ``sweep[value]`` over the headings.
+
+    The sweep holds one row per pair ``heading2_deg <= heading3_deg``; swapping passes 2 and 3
+    changes nothing, so each value fills both ``z[i, j]`` and ``z[j, i]`` (NaN where no pair
+    was run). Edges are half a grid step either side of each heading (for ``pcolormesh``).
+    """
+    h = np.unique(np.concatenate([sweep.heading2_deg, sweep.heading3_deg]))
+    z = np.full((h.size, h.size), np.nan)
+    i, j = np.searchsorted(h, sweep.heading2_deg), np.searchsorted(h, sweep.heading3_deg)
+    z[i, j] = sweep[value].to_numpy()
+    z[j, i] = sweep[value].to_numpy()
+    step = h[1] - h[0] if h.size > 1 else 1.0
+    edges = np.concatenate([h - step / 2, [h[-1] + step / 2]])
+    return edges, z
+
+
+def plot_heading_sweep(platforms: Sequence, sweeps: Mapping[str, pd.DataFrame], range_sigma_m: float):
+    """Median plane angle (left) and median first-order 95 % point error for a ``range_sigma_m``
+    range error (right, log colour scale) against the headings of passes 2 and 3, one row per
+    platform; returns the figure. ``sweeps[platform.key]`` is a heading sweep with noise."""
+    fig, axs = plt.subplots(len(platforms), 2, figsize=(11, 4.6 * len(platforms)), constrained_layout=True,
+                            squeeze=False)
+    for row, pf in zip(axs, platforms):
+        sweep = sweeps[pf.key]
+        e, z = sym_grid(sweep, "plane_angle_median_deg")
+        m = row[0].pcolormesh(e, e, z, cmap="viridis", shading="flat")
+        fig.colorbar(m, ax=row[0], label="median plane angle (deg)")
+        e, z = sym_grid(sweep, "point_error_q95_median_m")
+        m = row[1].pcolormesh(e, e, z, cmap="magma_r", norm=LogNorm(), shading="flat")
+        fig.colorbar(m, ax=row[1], label=f"median 95 % point error per {100 * range_sigma_m:g} cm range error (m)")
+        ticks = np.unique(sweep.heading2_deg)
+        ticks = ticks if ticks.size <= 7 else ticks[::2]
+        for ax, t in zip(row, ("plane angle", "conditioning")):
+            ax.set_xlabel("heading of pass 2, $h_2$ (deg)")
+            ax.set_ylabel("heading of pass 3, $h_3$ (deg)")
+            ax.set_title(f"{platform_title(pf, 60)}:\n{t}", fontsize=10)
+            ax.set_aspect("equal")
+            ax.set_xticks(ticks)
+            ax.set_yticks(ticks)
+    return fig
