@@ -3,11 +3,21 @@
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from .validation import as_float_array
+from .validation import InputTypeError, as_float_array, as_real_array, row_exponents
+
+RADIANS_FAN_DEG = math.pi
+"""An azimuth aperture of at most this many "degrees" is read as a likely radian value (a
+sidescan fan of up to 180 deg is at most pi rad; no sidescan fan is 3 deg wide)."""
+
+RADIANS_SHAPE_RATIO = 10.0
+"""... together with an elevation aperture at most 1/this of the azimuth aperture: the shape
+of a sidescan beam (fan over beam is 100 for 50 x 0.5 deg, 481 for 130 x 0.27 deg), which the
+ratio keeps in radians too."""
 
 
 @dataclass(frozen=True)
@@ -32,6 +42,21 @@ class Aperture:
     min_range : float, default 0.0
         Minimum range in metres, >= 0.
 
+    All four must be real numbers (Python or NumPy ints and floats); booleans, complex numbers,
+    strings, dates and other types raise
+    :class:`~sss_locus.geometry.validation.InputTypeError` (a ``TypeError``, also a
+    ``ValueError``), values out of range a ``ValueError``, each naming the field.
+
+    Warns
+    -----
+    UserWarning
+        When the two angles look like a sidescan beam given in radians: ``azimuth_deg <= pi``
+        (:data:`RADIANS_FAN_DEG`) and ``elevation_deg <= azimuth_deg / 10``
+        (:data:`RADIANS_SHAPE_RATIO`), e.g. ``Aperture(2.27, 0.0047, 150)`` for the EdgeTech
+        2205's 130 x 0.27 deg. Real sidescan fans are tens of degrees wide, so degree values
+        never meet both conditions; a narrow non-sidescan aperture (e.g. 2 x 2 deg) does not
+        meet the second.
+
     Examples
     --------
     >>> Aperture(azimuth_deg=130.0, elevation_deg=0.27, max_range=150.0)  # EdgeTech 2205
@@ -47,7 +72,10 @@ class Aperture:
         for name in ("azimuth_deg", "elevation_deg", "max_range", "min_range"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-                raise ValueError(f"Aperture.{name} must be a real number; got {value!r}")
+                raise InputTypeError(
+                    f"Aperture.{name} must be a real number (int or float); got "
+                    f"{type(value).__name__} {value!r}"
+                )
             if not math.isfinite(value):
                 raise ValueError(f"Aperture.{name} must be finite; got {value!r}")
             object.__setattr__(self, name, float(value))
@@ -63,6 +91,15 @@ class Aperture:
             raise ValueError(
                 f"Aperture.max_range must be > min_range ({self.min_range} m); got {self.max_range}"
             )
+        if (self.azimuth_deg <= RADIANS_FAN_DEG
+                and self.elevation_deg <= self.azimuth_deg / RADIANS_SHAPE_RATIO):
+            warnings.warn(
+                f"Aperture(azimuth_deg={self.azimuth_deg:g}, elevation_deg={self.elevation_deg:g}) "
+                "looks like a sidescan beam given in radians; the angles are FULL apertures in "
+                f"degrees (did you mean {math.degrees(self.azimuth_deg):.4g} x "
+                f"{math.degrees(self.elevation_deg):.4g} deg?)",
+                UserWarning, stacklevel=3,
+            )
 
     @property
     def half_azimuth_rad(self) -> float:
@@ -75,8 +112,9 @@ class Aperture:
         return math.radians(self.elevation_deg) / 2.0
 
     def range_ok(self, r) -> np.ndarray:
-        """True where ``min_range <= r <= max_range`` (``r`` in metres, any shape)."""
-        r = np.asarray(r, dtype=np.float64)
+        """True where ``min_range <= r <= max_range`` (``r``: real numbers in metres, any shape;
+        False for NaN)."""
+        r = as_real_array(r, "r")
         return (r >= self.min_range) & (r <= self.max_range)
 
     def contains(self, points) -> np.ndarray:
@@ -89,14 +127,17 @@ class Aperture:
         Parameters
         ----------
         points : array_like, shape (..., 3)
-            Cartesian coordinates in metres.
+            Cartesian coordinates in metres: finite real numbers, any magnitude (``|p|`` is
+            formed at a power-of-two scale where its square would overflow or underflow).
 
         Returns
         -------
         numpy.ndarray of bool, shape (...)
         """
         p = as_float_array(points, "points", tail=(3,))
-        r = np.linalg.norm(p, axis=-1)
+        e = row_exponents(p[..., 0], p[..., 1], p[..., 2])  # |p| without overflow or underflow
+        r = np.linalg.norm(p, axis=-1) if e is None else np.ldexp(
+            np.linalg.norm(np.ldexp(p, -e[..., None]), axis=-1), e)
         theta = np.arctan2(p[..., 1], p[..., 0])
         with np.errstate(invalid="ignore", divide="ignore"):
             phi = np.arcsin(np.clip(np.where(r > 0, p[..., 2] / r, 0.0), -1.0, 1.0))

@@ -9,138 +9,19 @@ ambiguity locus. Its length is computed here exactly (see :mod:`sss_locus.geomet
 
 from __future__ import annotations
 
-import enum
 import functools
-from dataclasses import dataclass
 
 import numpy as np
 
-from .validation import as_float_array, as_positive_array, as_rotation_matrices, broadcast_leading
+from .validation import (as_float_array, as_positive_array, as_rotation_matrices, broadcast_leading,
+                         check_aperture, check_max_abs, row_exponents)
+from .locus_result import MAX_ARCS, LocusResult, LocusStatus
 from .aperture import Aperture
 from .fastpath import transpose_into
 from .arcs import crop_circle
 from .tolerances import COINCIDENT_ORIGINS_RTOL, TANGENT_RTOL
 
-MAX_ARCS = 8
-"""Width of the arc arrays: eight half-space conditions (four per aperture) bound at most eight
-disjoint arcs."""
-
-
 _CHUNK = 4096
-
-
-class LocusStatus(enum.IntEnum):
-    """What the two range spheres and the apertures give for one configuration."""
-
-    CIRCLE = 0
-    """The spheres meet in a circle; ``length`` is the part of it inside both apertures."""
-    TANGENT = 1
-    """The spheres touch in one point (``center``); ``length`` is 0, ``n_arcs`` is 1 if the
-    point is inside both apertures (its arc has ``arc_start == arc_end == 0``), else 0."""
-    NO_INTERSECTION = 2
-    """The spheres do not meet (the ranges are inconsistent with the pose); empty locus."""
-    COINCIDENT_ORIGINS = 3
-    """The sensor origins coincide: the plane is undefined (equal ranges give the whole sphere,
-    unequal ranges nothing). Reported as an empty locus with zero centre, normal and radius."""
-    OUT_OF_RANGE = 4
-    """The circle exists but a measured range lies outside its aperture's
-    ``[min_range, max_range]``: nothing was observable, empty locus."""
-
-
-@dataclass(frozen=True)
-class LocusResult:
-    """The ambiguity locus for a batch of two-view configurations (leading shape ``S``).
-
-    All vectors are in sensor 1's frame (x boresight, y left, z up), lengths in metres, angles in
-    radians. The circle is ``p1(alpha) = center + radius (cos(alpha) basis1 + sin(alpha) basis2)``.
-
-    Attributes
-    ----------
-    u : ndarray, shape S + (3,)
-        ``R^T t``; the plane is ``2 u . p1 = C``.
-    C : ndarray, shape S
-        ``r2**2 - r1**2 - |t|**2`` (m^2).
-    center, normal, basis1, basis2 : ndarray, shape S + (3,)
-        Circle centre (m) and unit normal, and the in-plane unit vectors of its parametrisation.
-        Zero where the origins coincide.
-    radius : ndarray, shape S
-        Circle radius (m); 0 unless the status is ``CIRCLE`` (or ``OUT_OF_RANGE`` with a circle).
-    exists : ndarray of bool, shape S
-        The spheres meet (in a circle or a tangent point).
-    status : ndarray of int8, shape S
-        :class:`LocusStatus` codes.
-    in_range : ndarray of bool, shape S
-        Both measured ranges lie within their apertures' range limits.
-    length : ndarray, shape S
-        Locus length (m): arc length of the circle inside both apertures. Never NaN.
-    n_arcs : ndarray of int, shape S
-        Number of disjoint arcs; ``> 1`` means the locus is fragmented. A circle wholly inside
-        both apertures is one arc.
-    arc_start, arc_end : ndarray, shape S + (MAX_ARCS,)
-        Arc end points in ``alpha``: ``arc_start`` in [-pi, pi), ``arc_start < arc_end <=
-        arc_start + 2 pi``; NaN-padded beyond ``n_arcs``.
-    """
-
-    u: np.ndarray
-    C: np.ndarray
-    center: np.ndarray
-    normal: np.ndarray
-    basis1: np.ndarray
-    basis2: np.ndarray
-    radius: np.ndarray
-    exists: np.ndarray
-    status: np.ndarray
-    in_range: np.ndarray
-    length: np.ndarray
-    n_arcs: np.ndarray
-    arc_start: np.ndarray
-    arc_end: np.ndarray
-    R: np.ndarray
-    t: np.ndarray
-
-    @property
-    def shape(self) -> tuple[int, ...]:
-        """Batch shape ``S``."""
-        return self.length.shape
-
-    def point_at(self, alpha, frame: int = 1) -> np.ndarray:
-        """Points of the circle at angles ``alpha`` (shape ``S`` or ``S + (n,)``), in frame 1 or 2."""
-        alpha = np.asarray(alpha, dtype=np.float64)
-        extra = alpha.ndim - len(self.shape)
-        if extra < 0 or alpha.shape[: len(self.shape)] != self.shape:
-            raise ValueError(f"alpha must have shape {self.shape} + (...); got {alpha.shape}")
-        expand = (Ellipsis,) + (None,) * extra + (slice(None),)
-        r = self.radius[(Ellipsis,) + (None,) * extra][..., None]
-        p = self.center[expand] + r * (
-            np.cos(alpha)[..., None] * self.basis1[expand] + np.sin(alpha)[..., None] * self.basis2[expand]
-        )
-        if frame == 1:
-            return p
-        if frame == 2:
-            R = self.R[(Ellipsis,) + (None,) * extra + (slice(None), slice(None))]
-            return np.einsum("...ij,...j->...i", R, p) + self.t[expand]
-        raise ValueError(f"frame must be 1 or 2; got {frame!r}")
-
-    def points(self, n_per_arc: int = 64, frame: int = 1) -> np.ndarray:
-        """Points along every arc of the locus, for figures.
-
-        Returns
-        -------
-        ndarray, shape S + (MAX_ARCS, n_per_arc, 3)
-            Evenly spaced in ``alpha`` from each arc's start to its end, in sensor ``frame``'s
-            coordinates (m); NaN for arcs beyond ``n_arcs``.
-        """
-        if not (isinstance(n_per_arc, (int, np.integer)) and n_per_arc >= 2):
-            raise ValueError(f"n_per_arc must be an integer >= 2; got {n_per_arc!r}")
-        s = np.linspace(0.0, 1.0, int(n_per_arc))
-        alpha = self.arc_start[..., None] + (self.arc_end - self.arc_start)[..., None] * s
-        flat = alpha.reshape(self.shape + (-1,))
-        return self.point_at(flat, frame).reshape(self.shape + (MAX_ARCS, int(n_per_arc), 3))
-
-    def angle_of(self, p1) -> np.ndarray:
-        """Circle angle ``alpha`` of points ``p1`` (frame 1, shape ``S + (3,)``), by projection."""
-        d = as_float_array(p1, "p1", tail=(3,)) - self.center
-        return np.arctan2(np.sum(d * self.basis2, axis=-1), np.sum(d * self.basis1, axis=-1))
 
 
 @functools.lru_cache(maxsize=64)
@@ -214,6 +95,10 @@ def _apply_normals(normals: np.ndarray, vectors: np.ndarray, out: np.ndarray) ->
 
 def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
     """Compute one chunk of rows into ``out`` (this chunk's slices of the result arrays).
+
+    ``out["in_range"]`` is filled in already. Every length (``t``, ``r1``, ``r2``) may carry a
+    per-row power-of-two scale: the chunk is homogeneous in them (angles, statuses and arcs do
+    not change; lengths scale by the factor, ``C`` by its square).
 
     Vectors are handled component-major, shape (3, n) (row ``i`` is component ``i`` of every
     configuration), so each operation runs over contiguous rows instead of broadcasting over
@@ -293,7 +178,7 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
     start, end = out["arc_start"], out["arc_end"]
     angle, n_arcs, _, _ = crop_circle(coef[0], coef[1], coef[2], groups, MAX_ARCS, out=(start, end))
 
-    in_range = ap1.range_ok(r1) & ap2.range_ok(r2)
+    in_range = out["in_range"]  # filled by the caller, from the unscaled ranges
     observable = exists & in_range
     measurable = circle & in_range
     length = out["length"]
@@ -318,7 +203,7 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
     status[coincident] = LocusStatus.COINCIDENT_ORIGINS
     for name, value in (("u", u), ("center", center), ("normal", normal), ("basis1", e1), ("basis2", e2)):
         transpose_into(out[name], value)
-    for name, value in (("C", C), ("radius", radius), ("exists", exists), ("in_range", in_range)):
+    for name, value in (("C", C), ("radius", radius), ("exists", exists)):
         out[name][...] = value
 
 
@@ -339,13 +224,18 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> Lo
     R : array_like, shape (..., 3, 3), or scipy.spatial.transform.Rotation
         Rotation taking sensor-1 coordinates to sensor-2 coordinates: ``p2 = R p1 + t``.
     t : array_like, shape (..., 3)
-        Translation (m) of the same transform: sensor 1's origin expressed in frame 2.
+        Translation (m) of the same transform: sensor 1's origin expressed in frame 2. Each
+        component in [-1e150, 1e150].
     r1, r2 : array_like, shape (...)
-        Measured ranges (m) to the feature from sensor 1 and sensor 2; must be > 0.
+        Measured ranges (m) to the feature from sensor 1 and sensor 2, in
+        [``LENGTH_MIN``, ``LENGTH_MAX``] = [1e-150, 1e150] (so that ``C``, m^2, is representable;
+        see :mod:`sss_locus.geometry.validation`).
     aperture1, aperture2 : Aperture
         Fields of view of the two sensors, each in its own frame.
 
-    The batch shapes of ``R``, ``t``, ``r1`` and ``r2`` broadcast together to ``S``.
+    The batch shapes of ``R``, ``t``, ``r1`` and ``r2`` broadcast together to ``S`` (which may
+    be empty, e.g. ``(0,)`` or ``(2, 0)``). Numeric arguments must be real numbers: Python or
+    NumPy ints and floats, or arrays of them.
 
     Returns
     -------
@@ -354,17 +244,23 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> Lo
 
     Raises
     ------
+    TypeError
+        (:class:`~sss_locus.geometry.validation.InputTypeError`, also a ``ValueError``) naming
+        the argument: a numeric argument given as booleans, complex numbers, strings, dates,
+        datetimes or timedeltas, ``None`` or an object array; an aperture that is not an
+        :class:`Aperture`.
     ValueError
-        If ``R`` is not a proper rotation (orthonormal with determinant +1, to 1e-9), any input is
-        NaN or infinite, a range is not positive, an aperture is not an :class:`Aperture`, or
-        the batch shapes do not broadcast.
+        Naming the argument: ``R`` is not a proper rotation (orthonormal with determinant +1, to
+        1e-9), an input is NaN or infinite or has the wrong trailing shape, a range is not
+        positive, a length is outside the range above, or the batch shapes do not broadcast.
 
     Notes
     -----
     Exact: each aperture bound is an affine half-space on the circle (the elevation bound is
     affine because ``|p1| = r1`` on the circle), giving closed-form boundary angles; the locus is
     the arrangement of these arcs. Nothing samples the circle. Degenerate cases are reported
-    through :class:`LocusStatus`, never as NaN lengths.
+    through :class:`LocusStatus`, never as NaN lengths. Scale-covariant and exact at every
+    accepted magnitude: configurations far from 1 m are computed at a power-of-two scale.
 
     Examples
     --------
@@ -375,13 +271,13 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> Lo
     >>> float(res.radius) > 0
     True
     """
-    for name, ap in (("aperture1", aperture1), ("aperture2", aperture2)):
-        if not isinstance(ap, Aperture):
-            raise ValueError(f"{name} must be an sss_locus.Aperture; got {type(ap).__name__}")
+    check_aperture(aperture1, "aperture1", Aperture)
+    check_aperture(aperture2, "aperture2", Aperture)
     R = as_rotation_matrices(R, "R")
     t = as_float_array(t, "t", tail=(3,))
-    r1 = as_positive_array(r1, "r1")
-    r2 = as_positive_array(r2, "r2")
+    check_max_abs(t, "t")
+    r1 = as_positive_array(r1, "r1", bounded=True)
+    r2 = as_positive_array(r2, "r2", bounded=True)
     shape = broadcast_leading({"R": R.shape[:-2], "t": t.shape[:-1], "r1": r1.shape, "r2": r2.shape})
     n = int(np.prod(shape, dtype=np.int64))
     Rf = np.broadcast_to(R, shape + (3, 3)).reshape(n, 3, 3)
@@ -389,12 +285,23 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> Lo
     r1f = np.broadcast_to(r1, shape).reshape(n)
     r2f = np.broadcast_to(r2, shape).reshape(n)
 
+    results = {k: np.empty((n,) + tail, dtype=dtype) for k, (tail, dtype) in _FIELDS.items()}
+    np.logical_and(aperture1.range_ok(r1f), aperture2.range_ok(r2f), out=results["in_range"])
+    # Lengths far from 1 m: each configuration is computed at a power-of-two scale (exact) where
+    # no square or fourth power overflows or underflows, and its lengths are scaled back.
+    e = row_exponents(r1f, r2f, tf[:, 0], tf[:, 1], tf[:, 2])
+    ts, r1s, r2s = (tf, r1f, r2f) if e is None else (
+        np.ldexp(tf, -e[:, None]), np.ldexp(r1f, -e), np.ldexp(r2f, -e))
     # Chunks of _CHUNK rows keep every temporary in cache; each chunk writes its rows of the
     # result arrays directly (no concatenation afterwards).
-    results = {k: np.empty((n,) + tail, dtype=dtype) for k, (tail, dtype) in _FIELDS.items()}
     for i in range(0, n, _CHUNK):
         rows = slice(i, min(i + _CHUNK, n))
-        _locus_chunk(Rf[rows], tf[rows], r1f[rows], r2f[rows], aperture1, aperture2,
+        _locus_chunk(Rf[rows], ts[rows], r1s[rows], r2s[rows], aperture1, aperture2,
                      {k: v[rows] for k, v in results.items()})
+    if e is not None:
+        for k in ("u", "center"):
+            results[k] = np.ldexp(results[k], e[:, None])
+        for k, power in (("radius", 1), ("length", 1), ("C", 2)):
+            results[k] = np.ldexp(results[k], power * e)
     fields = {k: v.reshape(shape + v.shape[1:]) for k, v in results.items()}
     return LocusResult(R=Rf.reshape(shape + (3, 3)), t=tf.reshape(shape + (3,)), **fields)

@@ -6,7 +6,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .validation import as_float_array, as_rotation_matrices, broadcast_leading
+from .validation import as_float_array, as_rotation_matrices, broadcast_leading, row_exponents
 
 
 class ElevationMisalignment(NamedTuple):
@@ -41,18 +41,32 @@ def elevation_misalignment(R, t) -> ElevationMisalignment:
         Rotation from sensor-1 to sensor-2 coordinates.
     t : array_like, shape (..., 3)
         Translation (m); sensor 1's origin in frame 2 is ``t``, sensor 2's origin in frame 1 is
-        ``-R^T t``.
+        ``-R^T t``. Finite real numbers of any magnitude (the angles are computed at a
+        power-of-two scale where ``|t|^2`` would overflow or underflow).
 
     Returns
     -------
     ElevationMisalignment
-        Batch shape is the broadcast of ``R``'s and ``t``'s batch shapes.
+        Batch shape is the broadcast of ``R``'s and ``t``'s batch shapes (may be empty).
+
+    Raises
+    ------
+    TypeError
+        (:class:`~sss_locus.geometry.validation.InputTypeError`, also a ``ValueError``) naming
+        ``R`` or ``t`` given as booleans, complex numbers, strings, dates or timedeltas, ``None``
+        or an object array.
+    ValueError
+        Naming the argument: ``R`` not a proper rotation (to 1e-9), a non-finite value, a wrong
+        trailing shape, or batch shapes that do not broadcast.
     """
     R = as_rotation_matrices(R, "R")
     t = as_float_array(t, "t", tail=(3,))
     shape = broadcast_leading({"R": R.shape[:-2], "t": t.shape[:-1]})
     R = np.broadcast_to(R, shape + (3, 3))
     t = np.broadcast_to(t, shape + (3,))
+    e = row_exponents(t[..., 0], t[..., 1], t[..., 2])
+    if e is not None:  # angles are scale-free: a power-of-two scale keeps |t|^2 representable
+        t = np.ldexp(t, -e[..., None])
     to_2_in_1 = -np.einsum("...ji,...j->...i", R, t)
     baseline = np.linalg.norm(t, axis=-1)
     defined = baseline > 0.0

@@ -21,12 +21,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .validation import as_float_array, as_positive_array, as_rotation_matrices, broadcast_leading
+from .validation import (as_float_array, as_positive_array, as_rotation_matrices, broadcast_leading,
+                         check_aperture, row_exponents)
 from .aperture import Aperture
 from .tolerances import (COINCIDENT_ORIGINS_RTOL, COINCIDENT_PLANES_RTOL, LINE_TANGENT_RTOL,
                          PARALLEL_PLANES_SIN_TOL)
-
-
 
 class ThreeViewStatus(enum.IntEnum):
     """What the three range spheres give for one configuration (before the aperture test)."""
@@ -126,6 +125,20 @@ def _transform(R, t, p):
 
 
 def _solve(R12, t12, R13, t13, r1, r2, r3, ap1, ap2, ap3) -> dict:
+    """The result fields, lengths in metres. Each configuration whose lengths are far from 1 m is
+    solved at a power-of-two scale (exact), so that no product of up to five lengths (``p0``)
+    overflows or underflows; its lengths are scaled back before the aperture test."""
+    e = row_exponents(r1, r2, r3, *np.moveaxis(t12, -1, 0), *np.moveaxis(t13, -1, 0))
+    if e is None:
+        return _solve_scaled(R12, t12, R13, t13, r1, r2, r3, ap1, ap2, ap3, None)
+    down = [np.ldexp(x, -e) for x in (r1, r2, r3)]
+    return _solve_scaled(R12, np.ldexp(t12, -e[..., None]), R13, np.ldexp(t13, -e[..., None]),
+                         *down, ap1, ap2, ap3, (e, t12, t13))
+
+
+def _solve_scaled(R12, t12, R13, t13, r1, r2, r3, ap1, ap2, ap3, unscaled) -> dict:
+    """:func:`_solve` for lengths scaled by ``2**-e``; ``unscaled`` is ``(e, t12, t13)`` with
+    the translations in metres (None if not scaled)."""
     u2, c2 = _plane(R12, t12, r1, r2)
     u3, c3 = _plane(R13, t13, r1, r3)
     n2 = np.linalg.norm(u2, axis=-1)  # = |t12|
@@ -155,6 +168,10 @@ def _solve(R12, t12, R13, t13, r1, r2, r3, ap1, ap2, ap3) -> dict:
     cand = p0[..., None, :] + np.stack([h, -h], axis=-1)[..., None] * d[..., None, :]
     exists = np.stack([two | tangent, two], axis=-1)
     cand = np.where(exists[..., None], cand, 0.0)
+    ratio = np.where(has_line, dist / r1, np.inf)
+    if unscaled is not None:  # lengths back to metres, exactly
+        e, t12, t13 = unscaled
+        cand, p0, h = np.ldexp(cand, e[..., None, None]), np.ldexp(p0, e[..., None]), np.ldexp(h, e)
 
     valid = (exists & ap1.contains(cand) & ap2.contains(_transform(R12, t12, cand))
              & ap3.contains(_transform(R13, t13, cand)))
@@ -168,7 +185,7 @@ def _solve(R12, t12, R13, t13, r1, r2, r3, ap1, ap2, ap3) -> dict:
         candidates=cand, valid=valid, n_valid=valid.sum(axis=-1).astype(np.int64), status=status,
         line_point=p0, line_direction=d,
         plane_angle_deg=np.where(coincident_origin, 0.0, angle),
-        line_distance_ratio=np.where(has_line, dist / r1, np.inf),
+        line_distance_ratio=ratio,
         half_separation=h,
     )
 
@@ -185,11 +202,14 @@ def three_view_points(R12, t12, R13, t13, r1, r2, r3, aperture1: Aperture, apert
     t12, t13 : array_like, shape (..., 3)
         Translations (m): sensor 1's origin in frame 2 (frame 3).
     r1, r2, r3 : array_like, shape (...)
-        Measured ranges (m) to the feature; > 0.
+        Measured ranges (m) to the feature; > 0. Any finite magnitude: configurations far from
+        1 m are solved at a power-of-two scale (exact), so no square overflows or underflows.
     aperture1, aperture2, aperture3 : Aperture
         Fields of view of the three sensors, each in its own frame.
 
-    The batch shapes broadcast together to ``S``.
+    The batch shapes broadcast together to ``S`` (which may be empty, e.g. ``(0,)`` or
+    ``(2, 0)``). Numeric arguments must be real numbers: Python or NumPy ints and floats, or
+    arrays of them.
 
     Returns
     -------
@@ -200,10 +220,14 @@ def three_view_points(R12, t12, R13, t13, r1, r2, r3, aperture1: Aperture, apert
 
     Raises
     ------
+    TypeError
+        (:class:`~sss_locus.geometry.validation.InputTypeError`, also a ``ValueError``) naming
+        the argument: booleans, complex numbers, strings, dates, datetimes or timedeltas,
+        ``None`` or object arrays for a numeric argument; an aperture that is not an
+        :class:`Aperture`.
     ValueError
-        Naming the argument: a rotation that is not proper, a non-finite value, a range that is
-        not positive, an aperture that is not an :class:`Aperture`, or batch shapes that do not
-        broadcast.
+        Naming the argument: a rotation that is not proper, a non-finite value, a wrong
+        trailing shape, a range that is not positive, or batch shapes that do not broadcast.
 
     Notes
     -----
@@ -225,8 +249,7 @@ def three_view_points(R12, t12, R13, t13, r1, r2, r3, aperture1: Aperture, apert
     True
     """
     for name, ap in (("aperture1", aperture1), ("aperture2", aperture2), ("aperture3", aperture3)):
-        if not isinstance(ap, Aperture):
-            raise ValueError(f"{name} must be an sss_locus.Aperture; got {type(ap).__name__}")
+        check_aperture(ap, name, Aperture)
     R12 = as_rotation_matrices(R12, "R12")
     R13 = as_rotation_matrices(R13, "R13")
     t12 = as_float_array(t12, "t12", tail=(3,))

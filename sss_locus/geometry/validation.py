@@ -1,8 +1,22 @@
-"""Input validation shared by the kernels.
+"""Input validation and magnitude rescaling shared by the kernels.
 
-Every public kernel converts its inputs through these helpers so that bad input fails early with
-a ``ValueError`` that names the argument and the allowed range, instead of surfacing later as a
-NaN or a traceback from inside numpy.
+Every public kernel converts its inputs through these helpers so that bad input fails early,
+naming the argument and what is allowed, instead of surfacing later as a NaN or a traceback from
+inside numpy:
+
+* numeric arguments accept real numbers only (Python or NumPy ints and floats, and arrays of
+  them). Booleans, complex numbers, strings and bytes, dates, datetimes and timedeltas, ``None``
+  and object arrays (``Decimal``, ``Fraction``, integers beyond int64, mixed lists) raise
+  :class:`InputTypeError`, a ``TypeError`` that is also a ``ValueError``;
+* values must be finite (``ValueError``);
+* lengths whose squares a kernel returns (the two-view ``C``, m^2) must lie within
+  [:data:`LENGTH_MIN`, :data:`LENGTH_MAX`] metres, so that every returned number is
+  representable in float64 (``ValueError`` naming the range).
+
+Inside that range the kernels are exact at any magnitude: they rescale each configuration by a
+power of two (:func:`row_exponents`), which is exact in binary floating point, so no square or
+fourth power overflows or underflows (the locus is scale-covariant: lengths scale with a common
+factor, angles and statuses do not change).
 """
 
 from __future__ import annotations
@@ -12,17 +26,65 @@ import numpy as np
 ROTATION_ATOL = 1e-9
 """Tolerance on ``max |R^T R - I|`` and ``|det R - 1|`` for a matrix to count as a rotation."""
 
+LENGTH_MAX = 1e150
+"""Largest range or translation component (m) :func:`~sss_locus.geometry.two_view_locus`
+accepts: its ``C`` (m^2, a sum of squared lengths) must stay below the float64 maximum
+(about 1.8e308)."""
 
-def as_float_array(value, name: str, *, tail: tuple[int, ...] = ()) -> np.ndarray:
-    """Return ``value`` as a finite float64 array whose trailing dimensions are ``tail``."""
-    try:
-        arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a real numeric array; got {type(value).__name__}") from exc
+LENGTH_MIN = 1e-150
+"""Smallest range (m) :func:`~sss_locus.geometry.two_view_locus` accepts: the squares in ``C``
+must stay above the smallest normal float64 (about 2.2e-308), where precision is lost."""
+
+_REAL_KINDS = "iuf"  # signed and unsigned integers, floats
+_SAFE_EXPONENT = 60
+"""Batches whose configurations' largest lengths all lie within 2**-60 .. 2**60 are computed
+without rescaling (see :func:`row_exponents`)."""
+
+
+class InputTypeError(TypeError, ValueError):
+    """An argument of the wrong type: a numeric argument that is not real numbers (bool,
+    complex, str, date, object, ...), or an aperture that is not an :class:`Aperture`.
+
+    A ``TypeError``; also a ``ValueError`` so that callers that catch the kernels' other input
+    errors catch this one too.
+    """
+
+
+def _describe(value, arr: np.ndarray) -> str:
+    if isinstance(value, np.ndarray) or arr.ndim:
+        kinds = {"b": "booleans", "c": "complex numbers", "U": "strings", "S": "bytes",
+                 "M": "datetimes", "m": "timedeltas", "O": "Python objects", "V": "records"}
+        what = kinds.get(arr.dtype.kind, str(arr.dtype))
+        return f"an array of {what} (dtype {arr.dtype})"
+    return f"{type(value).__name__} {value!r}"
+
+
+def as_real_array(value, name: str) -> np.ndarray:
+    """Return ``value`` as a float64 array, refusing anything but real numbers.
+
+    Raises :class:`InputTypeError` naming ``name`` for booleans, complex numbers, strings,
+    dates and timedeltas, ``None`` and object arrays. NaN and infinity pass (see
+    :func:`as_float_array` for the finite check).
+    """
+    arr = value if isinstance(value, np.ndarray) else np.asarray(value)
+    if arr.dtype.kind not in _REAL_KINDS:
+        raise InputTypeError(
+            f"{name} must be real numbers (int or float); got {_describe(value, arr)}"
+        )
+    return arr.astype(np.float64, copy=False)
+
+
+def as_float_array(value, name: str, *, tail: tuple[int, ...] = (), finite: bool = True) -> np.ndarray:
+    """Return ``value`` as a float64 array of real numbers whose trailing dimensions are ``tail``.
+
+    Non-real input raises :class:`InputTypeError`; a wrong shape, or (with ``finite``) NaN or
+    infinity, a ``ValueError``; each message names ``name``.
+    """
+    arr = as_real_array(value, name)
     if tail and (arr.ndim < len(tail) or arr.shape[arr.ndim - len(tail):] != tail):
         want = "(..., " + ", ".join(str(n) for n in tail) + ")"
         raise ValueError(f"{name} must have shape {want}; got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
+    if finite and not np.all(np.isfinite(arr)):
         bad = np.argwhere(~np.isfinite(arr))[0]
         raise ValueError(
             f"{name} must be finite; found NaN or infinity at index {tuple(int(i) for i in bad)}"
@@ -30,12 +92,40 @@ def as_float_array(value, name: str, *, tail: tuple[int, ...] = ()) -> np.ndarra
     return arr
 
 
-def as_positive_array(value, name: str) -> np.ndarray:
-    """Return ``value`` as a finite float64 array of strictly positive numbers."""
+def check_aperture(value, name: str, cls: type) -> None:
+    """Refuse an aperture argument that is not a ``cls`` instance, naming ``name``."""
+    if not isinstance(value, cls):
+        raise InputTypeError(f"{name} must be an sss_locus.Aperture; got {type(value).__name__}")
+
+
+def as_positive_array(value, name: str, *, bounded: bool = False) -> np.ndarray:
+    """Return ``value`` as a finite float64 array of strictly positive numbers (ranges, m).
+
+    With ``bounded``, values must also lie in [:data:`LENGTH_MIN`, :data:`LENGTH_MAX`].
+    """
     arr = as_float_array(value, name)
-    if np.any(arr <= 0.0):
-        raise ValueError(f"{name} must be > 0 (a measured range in metres); got min {arr.min()!r}")
+    if arr.size == 0:
+        return arr
+    lo = arr.min()
+    if lo <= 0.0:
+        raise ValueError(f"{name} must be > 0 (a measured range in metres); got min {lo!r}")
+    if bounded:
+        hi = arr.max()
+        if lo < LENGTH_MIN or hi > LENGTH_MAX:
+            raise ValueError(
+                f"{name} must lie in [{LENGTH_MIN:g}, {LENGTH_MAX:g}] m (its square must be "
+                f"representable in float64); got {lo if lo < LENGTH_MIN else hi!r}"
+            )
     return arr
+
+
+def check_max_abs(arr: np.ndarray, name: str, limit: float = LENGTH_MAX) -> None:
+    """Refuse any ``|component|`` of ``arr`` above ``limit`` (m), naming ``name``."""
+    if arr.size and np.abs(arr).max() > limit:
+        raise ValueError(
+            f"{name} components must lie in [-{limit:g}, {limit:g}] m (their squares must be "
+            f"representable in float64); got {arr.flat[np.argmax(np.abs(arr))]!r}"
+        )
 
 
 def as_rotation_matrices(value, name: str = "R") -> np.ndarray:
@@ -80,3 +170,23 @@ def broadcast_leading(named_shapes: dict[str, tuple[int, ...]]) -> tuple[int, ..
             f"the batch shapes of the arguments do not broadcast together: {desc} "
             "(batch shape = shape without the trailing vector/matrix dimensions)"
         ) from None
+
+
+def row_exponents(*columns: np.ndarray) -> np.ndarray | None:
+    """Per-row powers of two that bring each configuration's lengths to about 1, or None.
+
+    ``columns`` are same-shape arrays of lengths (m), one per scalar length of a configuration
+    (ranges, translation components). Returns ``e`` (int, that shape) with ``max |row| * 2**-e``
+    in [0.5, 1) (``e = 0`` for an all-zero row), or None when every row's largest length lies
+    within ``2**-60 .. 2**60``, where no intermediate of the kernels (at most a fourth power of a
+    length) overflows or underflows and rescaling would not change the results.
+    """
+    big = np.abs(columns[0])
+    for c in columns[1:]:
+        big = np.maximum(big, np.abs(c))
+    if big.size == 0:
+        return None
+    lo, hi = big.min(), big.max()
+    if hi <= 2.0 ** _SAFE_EXPONENT and (lo == 0.0 or lo >= 2.0 ** -_SAFE_EXPONENT):
+        return None
+    return np.frexp(big)[1]
