@@ -34,7 +34,7 @@ from sss_locus import (Aperture, LocusStatus, elevation_misalignment, relative_p
                        three_view_points, two_view_locus)
 from sss_locus.geometry.locus import LocusResult
 from sss_locus.geometry.misalignment import ElevationMisalignment
-from sss_locus.geometry.three_view_points import ThreeViewResult, ThreeViewStatus
+from sss_locus.geometry.three_view_points import ThreeViewResult, ThreeViewStatus as TVS
 
 WIDE = Aperture(130.0, 20.0, 150.0)  # wide enough that most seeded loci are several arcs long
 R0 = Rotation.from_euler("zyx", [30.0, -20.0, 10.0], degrees=True).as_matrix()
@@ -266,6 +266,11 @@ def _three_view_configs(n=200, seed=5):
     p1 = np.stack([rng.uniform(20, 120, n), rng.uniform(-60, 60, n), rng.uniform(-20, 5, n)], 1)
     R12, R13 = (Rotation.random(n, random_state=rng).as_matrix() for _ in range(2))
     t12, t13 = rng.normal(scale=30.0, size=(n, 3)), rng.normal(scale=30.0, size=(n, 3))
+    # degenerate rows: three origins on one line (coincident planes), sensor 2 at sensor 1
+    p1 = np.concatenate([p1, [[50.0, 10.0, -5.0]] * 2])
+    R12, R13 = (np.concatenate([R, np.stack([np.eye(3)] * 2)]) for R in (R12, R13))
+    t12 = np.concatenate([t12, [[0.0, 0.0, -10.0], [0.0, 0.0, 0.0]]])
+    t13 = np.concatenate([t13, [[0.0, 0.0, -25.0], [5.0, 0.0, 0.0]]])
     def rng_(R, t):
         return np.linalg.norm(np.einsum("nij,nj->ni", R, p1) + t, axis=1)
     return dict(R12=R12, t12=t12, R13=R13, t13=t13, r1=np.linalg.norm(p1, axis=1),
@@ -283,6 +288,7 @@ def test_three_view_power_of_two_scale_is_exact(p):
     cfg = _three_view_configs()
     ref, big = _three_view_at(1.0, cfg, THREE_APS), _three_view_at(2.0 ** p, cfg, THREE_APS)
     assert (ref.n_valid > 0).mean() > 0.8
+    assert list(ref.status[-2:]) == [TVS.COINCIDENT_PLANES, TVS.COINCIDENT_ORIGINS]
     for name in THREE_LENGTHS:
         np.testing.assert_array_equal(getattr(big, name), getattr(ref, name) * 2.0 ** p, err_msg=name)
     for name in THREE_FREE:
@@ -324,6 +330,18 @@ def test_relative_pose_and_contains_any_magnitude(k):
     ap = Aperture(130.0, 20.0, 150.0 * k, 1.0 * k)
     p = np.array([[100.0, 10.0, 3.0], [100.0, 10.0, 30.0], [0.5, 0.0, 0.0], [200.0, 0.0, 0.0]])
     np.testing.assert_array_equal(ap.contains(p * k), [True, False, False, False])
+
+
+@pytest.mark.parametrize("k", [1e-200, 1e200])
+def test_zero_rows_do_not_hide_tiny_or_huge_ones(k):
+    """A batch with an all-zero row (coincident origins, a point at the origin) next to rows of
+    extreme magnitude: each row still gets its own scale."""
+    mis = elevation_misalignment(np.eye(3), np.array([[0.0, 0.0, 0.0], [3.0, 0.0, 3.0]]) * k)
+    np.testing.assert_array_equal(mis.defined, [False, True])
+    np.testing.assert_allclose(mis.psi2_deg[1], 45.0, rtol=1e-12)
+    ap = Aperture(130.0, 20.0, 150.0 * k)
+    p = np.array([[0.0, 0.0, 0.0], [100.0, 0.0, 0.0], [200.0, 0.0, 0.0]]) * k
+    np.testing.assert_array_equal(ap.contains(p), [True, True, False])
 
 
 def test_relative_pose_difference_overflow_is_refused():

@@ -108,13 +108,13 @@ def as_positive_array(value, name: str, *, bounded: bool = False) -> np.ndarray:
         return arr
     lo = arr.min()
     if lo <= 0.0:
-        raise ValueError(f"{name} must be > 0 (a measured range in metres); got min {lo!r}")
+        raise ValueError(f"{name} must be > 0 (a measured range in metres); got min {lo:.6g}")
     if bounded:
         hi = arr.max()
         if lo < LENGTH_MIN or hi > LENGTH_MAX:
             raise ValueError(
                 f"{name} must lie in [{LENGTH_MIN:g}, {LENGTH_MAX:g}] m (its square must be "
-                f"representable in float64); got {lo if lo < LENGTH_MIN else hi!r}"
+                f"representable in float64); got {lo if lo < LENGTH_MIN else hi:.6g}"
             )
     return arr
 
@@ -124,7 +124,7 @@ def check_max_abs(arr: np.ndarray, name: str, limit: float = LENGTH_MAX) -> None
     if arr.size and np.abs(arr).max() > limit:
         raise ValueError(
             f"{name} components must lie in [-{limit:g}, {limit:g}] m (their squares must be "
-            f"representable in float64); got {arr.flat[np.argmax(np.abs(arr))]!r}"
+            f"representable in float64); got {arr.flat[np.argmax(np.abs(arr))]:.6g}"
         )
 
 
@@ -186,7 +186,8 @@ def row_exponents(*columns: np.ndarray) -> np.ndarray | None:
         big = np.maximum(big, np.abs(c))
     if big.size == 0:
         return None
-    lo, hi = big.min(), big.max()
-    if hi <= 2.0 ** _SAFE_EXPONENT and (lo == 0.0 or lo >= 2.0 ** -_SAFE_EXPONENT):
+    hi = big.max()
+    lo = np.where(big > 0.0, big, hi).min()  # smallest non-zero row (all-zero rows need nothing)
+    if 2.0 ** -_SAFE_EXPONENT <= lo and hi <= 2.0 ** _SAFE_EXPONENT or hi == 0.0:
         return None
     return np.frexp(big)[1]
