@@ -157,23 +157,7 @@ def parse_notebook_parameters(notebook: Path) -> dict[str, Parameter]:
 def _coerce(param: Parameter, value: Any, from_text: bool) -> Any:
     """Check (and for command-line text, convert) one value; raise ParameterError if wrong."""
     if from_text:
-        text = str(value)
-        if param.type == "str":
-            return text
-        if param.type == "bool":
-            lowered = text.strip().lower()
-            if lowered in ("true", "1", "yes"):
-                return True
-            if lowered in ("false", "0", "no"):
-                return False
-            raise ParameterError(f"parameter {param.name!r} = {text!r}: expected a bool (true/false)")
-        try:
-            value = ast.literal_eval(text)
-        except (ValueError, SyntaxError):
-            if param.type == "any":
-                return text
-            raise ParameterError(f"parameter {param.name!r} = {text!r}: expected a value of type "
-                                 f"{param.type}{_allowed(param)}") from None
+        value = _from_text(param, str(value))
     if param.type != "any":
         expected = _TYPES[param.type]
         if expected is float and isinstance(value, int) and not isinstance(value, bool):
@@ -190,6 +174,26 @@ def _coerce(param: Parameter, value: Any, from_text: bool) -> Any:
     except ConstraintError as exc:
         raise ParameterError(str(exc)) from None
     return value
+
+
+def _from_text(param: Parameter, text: str) -> Any:
+    """Command-line text converted to the parameter's type (checked by the caller)."""
+    if param.type == "str":
+        return text
+    if param.type == "bool":
+        lowered = text.strip().lower()
+        if lowered in ("true", "1", "yes"):
+            return True
+        if lowered in ("false", "0", "no"):
+            return False
+        raise ParameterError(f"parameter {param.name!r} = {text!r}: expected a bool (true/false)")
+    try:
+        return ast.literal_eval(text)
+    except (ValueError, SyntaxError):
+        if param.type == "any":
+            return text
+        raise ParameterError(f"parameter {param.name!r} = {text!r}: expected a value of type "
+                             f"{param.type}{_allowed(param)}") from None
 
 
 def _allowed(param: Parameter) -> str:
