@@ -104,9 +104,9 @@ def notebook_error(nb: dict[str, Any]) -> tuple[str, str] | None:
     """
     number = 0
     for cell in nb.get("cells", []):
-        if cell.get("cell_type") != "code":
+        if cell.get("cell_type") != "code" or "injected-parameters" in cell.get("metadata", {}).get("tags", []):
             continue
-        number += 1
+        number += 1  # the code cell's number in the source notebook
         for output in cell.get("outputs", []):
             if output.get("output_type") == "error":
                 source = "".join(cell.get("source", "")).strip().splitlines() or [""]
@@ -184,8 +184,11 @@ def problems(entries: Sequence[Any]) -> list[str]:
         if other:
             found.append(f"{name}: figure(s) {', '.join(sorted(other))} come from another run")
     if len(set(profiles.values())) > 1:
-        usual = Counter(profiles.values()).most_common(1)[0][0]
+        ranked = Counter(profiles.values()).most_common()
+        tie = ranked[0][1] == ranked[1][1]
+        usual = ranked[0][0]
+        mix = ", ".join(f"{count} with {profile!r}" for profile, count in ranked)
         for nb_name, profile in profiles.items():
-            if profile != usual:
-                found.append(f"{nb_name}: computed with profile {profile!r}, the others with {usual!r}")
+            if tie or profile != usual:
+                found.append(f"{nb_name}: computed with profile {profile!r}, not like the rest ({mix})")
     return found
