@@ -419,3 +419,22 @@ def test_malformed_registry_names_the_key(tmp_path, body, fragment):
     with pytest.raises(ValueError) as info:
         load_registry(registry, root=tmp_path)
     assert fragment in str(info.value) and str(registry) in str(info.value)
+
+
+def test_every_temporary_name_is_unique(tmp_path, monkeypatch):
+    """Two writers of one label must never share a temporary file: no name is ever reused."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.pipeline.export import export_figure
+
+    used: list[str] = []
+    real_replace = os.replace
+    monkeypatch.setattr(os, "replace", lambda src, dst: (used.append(str(src)), real_replace(src, dst))[1])
+    fig, _ = plt.subplots()
+    for _ in range(2):
+        export_figure(fig, "fig-same", _frame(), caption="C.", parameters={}, out_dir=tmp_path)
+    plt.close(fig)
+    assert len(used) >= 2 * 6 and len(set(used)) == len(used)
