@@ -31,6 +31,9 @@ Layout
     - ``jupyter-book/``: Jupyter Book's own output folder (doctrees and the site being built;
       the finished site is moved to ``html/`` only when the build succeeds),
     - ``jupyter/``: IPython, Jupyter and Matplotlib state of the kernels (hermetic runs).
+    - ``tmp/``: private staging folders of runs in progress (deleted when a run ends),
+    - ``failed/<name>.ipynb``: the notebook of the last failed run, for reading (never rendered),
+    - ``.lock``: the build area's lock (run commits and book builds, one at a time).
 ``cache_dir()``
     On-disk cache of expensive results (``.cache/`` by default, git-ignored; override with
     ``SSS_LOCUS_CACHE_DIR``). Entries are keyed on notebook, parameters, seed and package version,

@@ -124,10 +124,19 @@ def test_remove_figures_of_one_notebook_only(tmp_path, fig):
     assert [m["label"] for m in load_manifests(tmp_path)] == ["fig-b"]
 
 
-def test_default_folder_is_in_the_build_area(tmp_path, fig, monkeypatch):
-    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path))
+def test_default_folder_is_beside_the_run_never_the_build_area(tmp_path, fig, monkeypatch):
+    """Outside the runner (plain papermill, interactive) figures go to figures/ in the working
+    directory (papermill --cwd: the output's folder); the runner points them at its staging."""
+    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path / "build"))
+    monkeypatch.delenv("SSS_LOCUS_FIGURES_DIR", raising=False)
+    monkeypatch.chdir(tmp_path)
     export_figure(fig, "fig-demo", DATA, caption="C.", parameters={})
-    assert (tmp_path / "source" / "_extra" / "figures" / "fig-demo.png").is_file()
+    assert (tmp_path / "figures" / "fig-demo.png").is_file()
+    assert not (tmp_path / "build").exists()
+    monkeypatch.setenv("SSS_LOCUS_FIGURES_DIR", str(tmp_path / "staging"))
+    export_figure(fig, "fig-demo", DATA, caption="C.", parameters={})
+    assert (tmp_path / "staging" / "fig-demo.json").is_file()
+    assert not [p for p in tmp_path.rglob("*") if ".tmp-" in p.name]  # no temporary file left
 
 
 def test_manifest_vanishing_mid_scan_is_skipped(tmp_path, fig, monkeypatch):

@@ -3,8 +3,11 @@ provenance, book build and the ``sss-locus`` command line.
 
 ``registry``
     ``notebooks/registry.toml``: notebooks, executed copies, parameter profiles.
-``runner``
-    Hermetic papermill runs, up-to-date checks.
+``runner``, ``outputs``, ``atomic``
+    Hermetic, atomic papermill runs (staging folder, commit under the build area's lock, signals
+    as exceptions), up-to-date checks and the consistency check of executed copies and figures.
+``constraints``
+    Ranges, allowed values and memory bounds declared in notebook parameter comments.
 ``cache``
     ``cached(fn)``: Parquet results keyed on the function, its arguments and a fingerprint of
     ``geometry/``, ``experiments/`` and ``data/``.

@@ -23,7 +23,7 @@ from typing import Any
 from urllib.parse import unquote, urlsplit
 
 from sss_locus import paths
-from sss_locus.pipeline import export, provenance
+from sss_locus.pipeline import export, outputs, provenance
 from sss_locus.pipeline.runner import hermetic_env
 
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
@@ -212,8 +212,32 @@ def site_problems(html_dir: Path) -> list[str]:
     return problems
 
 
+def check_executed() -> None:
+    """Refuse, in one message, executed copies that cannot make one book (see
+    :func:`sss_locus.pipeline.outputs.problems`)."""
+    from sss_locus.pipeline.registry import load_registry
+
+    found = outputs.problems(list(load_registry().values()))
+    if found:
+        raise ValueError(
+            f"cannot build the book: {len(found)} executed cop{'y is' if len(found) == 1 else 'ies are'} "
+            "not part of one consistent, successful set (rerun with `sss-locus run <name>` or "
+            "`sss-locus book`):\n  " + "\n  ".join(found))
+
+
 def build(log=print) -> Path:
-    """Stage and build the site with ``jupyter-book build -W -n --keep-going --all``; return index.html."""
+    """Check the executed copies, stage and build the site with ``jupyter-book build -W -n
+    --keep-going --all``; return index.html.
+
+    Holds the build area's lock throughout, so no run commits new results mid-build and two
+    builds never share Jupyter Book's output folder.
+    """
+    with outputs.build_lock():
+        check_executed()
+        return _build(log)
+
+
+def _build(log) -> Path:
     root = stage()
     missing = missing_toc_files(root)
     if missing:

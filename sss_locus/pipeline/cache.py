@@ -20,10 +20,17 @@ The seed is an argument like any other.
 Storage
 -------
 ``<cache>/frames/<key[:2]>/<key>/data-<i>.parquet`` (one file per returned frame) plus
-``manifest.json`` (key parts, SHA-256 and shape of each Parquet file, creation time). Each file is
-written to a temporary name and renamed; the manifest is written last. An entry whose manifest is
-missing, unreadable or does not match the Parquet bytes (partial write, corruption) is deleted and
-recomputed, never used.
+``manifest.json`` (key parts, SHA-256 and shape of each Parquet file, creation time). A new entry
+is written complete into a private temporary folder (``.tmp-<key>-<pid>-<random>``) and renamed to
+its final name in one step, so an entry folder another process can see is always complete; if two
+processes compute one entry at once, the first rename wins and the other uses its own result.
+Anything else found under an entry's name (a manifest that is not an object, missing or altered
+Parquet files, a file instead of a folder, an entry of an older format) is renamed aside, deleted
+and recomputed, never used; nothing is deleted that another process may still be writing.
+
+``sss-locus cache`` shows the size; ``sss-locus cache --prune`` (:func:`prune`) deletes entries
+no current input reaches (made by other code, data or package version: their keys can never be
+asked for again), broken entries, and temporary folders whose writer is gone.
 
 The returned frames are always the ones read back from Parquet, so a cache hit and a fresh
 computation give identical dtypes.
@@ -38,6 +45,7 @@ import inspect
 import json
 import os
 import shutil
+import time
 import uuid
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -47,7 +55,7 @@ import numpy as np
 import pandas as pd
 
 from sss_locus import paths
-from sss_locus.pipeline import provenance
+from sss_locus.pipeline import atomic, provenance
 
 CACHE_FORMAT = 2
 DATA_NAME = "data-{index}.parquet"
@@ -80,6 +88,8 @@ def _read_valid(folder: Path, key: str) -> tuple[bool, list[pd.DataFrame] | None
     try:
         manifest = json.loads((folder / MANIFEST_NAME).read_text(encoding="utf-8"))
         files = manifest["files"]
+        if not isinstance(manifest, dict) or not isinstance(files, list):
+            return False, None
         frames = []
         for index, entry in enumerate(files):
             path = folder / DATA_NAME.format(index=index)
@@ -94,12 +104,6 @@ def _read_valid(folder: Path, key: str) -> tuple[bool, list[pd.DataFrame] | None
         return bool(manifest.get("is_tuple")), frames
     except Exception:  # unreadable, not JSON, wrong shape, bad Parquet: the entry is unusable
         return False, None
-
-
-def _write_atomic_bytes(path: Path, blob: bytes) -> None:
-    tmp = path.with_name(f".{path.name}.{uuid.uuid4().hex}.tmp")
-    tmp.write_bytes(blob)
-    os.replace(tmp, path)
 
 
 def cached_result(
@@ -130,8 +134,8 @@ def cached_result(
     is_tuple, frames = _read_valid(folder, key)
     if frames is not None:
         return tuple(frames) if is_tuple else frames[0]
-    if folder.exists():
-        shutil.rmtree(folder, ignore_errors=True)  # partial or corrupted: recompute
+    if folder.exists() or folder.is_symlink():
+        _discard(folder)  # broken (complete entries appear in one rename): recompute
 
     result = compute()
     is_tuple = isinstance(result, tuple)
@@ -139,27 +143,102 @@ def cached_result(
     if not frames or not all(isinstance(f, pd.DataFrame) for f in frames):
         raise ValueError("compute must return a pandas DataFrame or a tuple of DataFrames, got "
                          f"{type(result).__name__}")
-    folder.mkdir(parents=True, exist_ok=True)
-    stored, files = [], []
-    for index, frame in enumerate(frames):
-        target = folder / DATA_NAME.format(index=index)
-        tmp = folder / f".{target.name}.{uuid.uuid4().hex}.tmp"
-        frame.to_parquet(tmp, index=not isinstance(frame.index, pd.RangeIndex))
-        blob = tmp.read_bytes()
-        os.replace(tmp, target)
-        back = pd.read_parquet(target)
-        stored.append(back)
-        files.append({"sha256": hashlib.sha256(blob).hexdigest(), "shape": list(back.shape)})
-    manifest = {
-        "key": key,
-        "key_parts": json.loads(json.dumps(dict(key_parts), default=provenance.json_default)),
-        "package_version": provenance.package_version(),
-        "is_tuple": is_tuple,
-        "files": files,
-        "created_utc": provenance.utc_now(),
-    }
-    _write_atomic_bytes(folder / MANIFEST_NAME, (json.dumps(manifest, indent=2, sort_keys=True) + "\n").encode())
+    parent = folder.parent
+    if parent.exists() and not parent.is_dir():
+        _discard(parent)
+    parent.mkdir(parents=True, exist_ok=True)
+    tmp = parent / f".tmp-{key}-{os.getpid()}-{uuid.uuid4().hex[:12]}"
+    try:
+        tmp.mkdir()
+        stored, files = [], []
+        for index, frame in enumerate(frames):
+            target = tmp / DATA_NAME.format(index=index)
+            frame.to_parquet(target, index=not isinstance(frame.index, pd.RangeIndex))
+            back = pd.read_parquet(target)
+            stored.append(back)
+            files.append({"sha256": hashlib.sha256(target.read_bytes()).hexdigest(), "shape": list(back.shape)})
+        manifest = {
+            "key": key,
+            "key_parts": json.loads(json.dumps(dict(key_parts), default=provenance.json_default)),
+            "package_version": provenance.package_version(),
+            "is_tuple": is_tuple,
+            "files": files,
+            "created_utc": provenance.utc_now(),
+        }
+        (tmp / MANIFEST_NAME).write_text(json.dumps(manifest, indent=2, sort_keys=True) + "\n", encoding="utf-8")
+        try:
+            os.rename(tmp, folder)  # atomic; fails if another process got there first
+        except OSError:
+            pass  # theirs is as good as ours
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
     return tuple(stored) if is_tuple else stored[0]
+
+
+def _discard(path: Path) -> None:
+    """Rename ``path`` aside (one step, so no reader sees it half-deleted), then delete it."""
+    aside = atomic.temp_name(path, "trash")
+    try:
+        os.rename(path, aside)
+    except OSError:
+        return  # already gone (another process discarded it)
+    if aside.is_dir() and not aside.is_symlink():
+        shutil.rmtree(aside, ignore_errors=True)
+    else:
+        aside.unlink(missing_ok=True)
+
+
+def _entries(root: Path) -> list[Path]:
+    frames = root / "frames"
+    if not frames.is_dir():
+        return []
+    return [p for shard in frames.iterdir() if shard.is_dir() for p in shard.iterdir()]
+
+
+def _size(path: Path) -> int:
+    if path.is_file() or path.is_symlink():
+        return path.lstat().st_size
+    return sum(p.lstat().st_size for p in path.rglob("*") if p.is_file())
+
+
+def usage(cache_dir: Path | None = None, *, prune_unreachable: bool = False) -> dict[str, int]:
+    """Entries, bytes and entries reachable by the current inputs; with ``prune_unreachable``,
+    also delete the rest (see :func:`prune`)."""
+    root = paths.cache_dir() if cache_dir is None else Path(cache_dir)
+    report = {"entries": 0, "bytes": 0, "reachable": 0, "removed": 0, "freed": 0}
+    for path in _entries(root):
+        size = _size(path)
+        if path.name.startswith("."):  # a temporary folder or trash
+            if prune_unreachable and not atomic.pid_alive(atomic.pid_of_temp(path)) \
+                    and time.time() - path.lstat().st_mtime > 60:
+                _discard(path)
+                report["removed"] += 1
+                report["freed"] += size
+            continue
+        report["entries"] += 1
+        report["bytes"] += size
+        reachable = False
+        try:
+            manifest = json.loads((path / MANIFEST_NAME).read_text(encoding="utf-8"))
+            reachable = (isinstance(manifest, dict) and manifest.get("key") == path.name
+                         and cache_key(manifest["key_parts"]) == path.name
+                         and _read_valid(path, path.name)[1] is not None)
+        except Exception:  # unreadable or malformed: not reachable
+            reachable = False
+        report["reachable"] += reachable
+        if prune_unreachable and not reachable:
+            _discard(path)
+            report["removed"] += 1
+            report["freed"] += size
+    return report
+
+
+def prune(cache_dir: Path | None = None) -> dict[str, int]:
+    """Delete entries no current input reaches: their key, recomputed from the key parts they
+    record with today's package version and code/data fingerprint, is not their name (or they
+    are broken); and temporary folders whose writing process is gone. Returns the counts of
+    :func:`usage` (taken before deleting) plus ``removed`` and ``freed`` bytes."""
+    return usage(cache_dir, prune_unreachable=True)
 
 
 def canonical(value: Any, name: str = "argument") -> Any:

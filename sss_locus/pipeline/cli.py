@@ -1,4 +1,4 @@
-"""Command line: ``sss-locus run``, ``sss-locus book``, ``sss-locus params``, ``sss-locus list``.
+"""Command line: ``sss-locus run``, ``book``, ``params``, ``list`` and ``cache``.
 
 Examples::
 
@@ -7,6 +7,10 @@ Examples::
     sss-locus book                       # every notebook with its `book` profile, then the site
     sss-locus book --profile quick       # the same from the fast profile
     sss-locus book --no-run              # rebuild the site from the executed copies as they are
+    sss-locus cache --prune              # cache size; delete entries no current input reaches
+
+Every parameter value is checked (type, range, allowed values, memory) before a kernel starts.
+A failing notebook is reported in one line (cell and error); add --verbose for the traceback.
 """
 
 from __future__ import annotations
@@ -30,7 +34,9 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--profile", default="book", help="parameter profile from notebooks/registry.toml (default: book)")
     run.add_argument("-p", "--parameter", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
                      help="override one parameter (repeatable); VALUE is converted to the declared type")
-    run.add_argument("--output", help="write the executed copy here instead of the build area")
+    run.add_argument("--output", help="side run: write the executed copy here (its figures into figures/ "
+                     "beside it) instead of the build area")
+    run.add_argument("--verbose", action="store_true", help="show the full traceback of a failing cell")
 
     book = sub.add_parser("book", help="run every notebook, then build the book")
     book.add_argument("--profile", default="book", help="parameter profile for every notebook (default: book)")
@@ -39,6 +45,12 @@ def _parser() -> argparse.ArgumentParser:
                       help="notebooks run at the same time (default: number of CPUs, at most 4)")
     book.add_argument("--force", action="store_true",
                       help="rerun every notebook, even those whose executed copy is up to date")
+    book.add_argument("--verbose", action="store_true", help="show the full traceback of a failing cell")
+
+    cache = sub.add_parser("cache", help="show the result cache's size; --prune deletes unreachable entries")
+    cache.add_argument("--prune", action="store_true",
+                       help="delete entries no current input reaches (other code, data or version), "
+                       "broken entries and abandoned temporary files")
 
     params = sub.add_parser("params", help="list a notebook's parameters and profiles")
     params.add_argument("notebook")
@@ -77,7 +89,7 @@ def _book(args: argparse.Namespace) -> int:
                       f"data and environment as its executed copy; --force reruns it)")
             else:
                 stale.append(entry)
-        run_many(stale, args.profile, jobs=args.jobs)
+        run_many(stale, args.profile, jobs=args.jobs, verbose=args.verbose)
     index = bookbuild.build()
     print(f"Built in {time.perf_counter() - start:.0f} s. Open the book:")
     print(index)
@@ -103,19 +115,38 @@ def _list(_: argparse.Namespace) -> int:
     return 0
 
 
+def _cache(args: argparse.Namespace) -> int:
+    from sss_locus.pipeline import cache
+
+    report = cache.prune() if args.prune else cache.usage()
+    print(f"cache {paths.cache_dir()}: {report['entries']} entries, {report['bytes'] / 1e6:.1f} MB "
+          f"({report['reachable']} reachable by the current code and data)")
+    if args.prune:
+        print(f"pruned {report['removed']} entries/temporary files, {report['freed'] / 1e6:.1f} MB")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
+    from sss_locus.pipeline.runner import NotebookFailed
+
     args = _parser().parse_args(argv)
-    handler = {"run": _run, "book": _book, "params": _params, "list": _list}[args.command]
+    handler = {"run": _run, "book": _book, "params": _params, "list": _list, "cache": _cache}[args.command]
     try:
         return handler(args)
+    except NotebookFailed as exc:
+        print(f"sss-locus {args.command}: error: {exc}", file=sys.stderr)
+        if getattr(args, "verbose", False) and exc.traceback:
+            print(exc.traceback, file=sys.stderr)
+        elif exc.traceback:
+            print("(the full traceback: add --verbose)", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt as exc:
+        print(f"sss-locus {args.command}: interrupted ({exc or 'Ctrl-C'}); the last good results are "
+              "unchanged", file=sys.stderr)
+        return 130
     except (ValueError, FileNotFoundError, RuntimeError) as exc:  # ParameterError is a ValueError
         print(f"sss-locus {args.command}: error: {exc}", file=sys.stderr)
         return 2
-    except Exception as exc:
-        if type(exc).__name__ == "PapermillExecutionError":
-            print(f"sss-locus {args.command}: a notebook cell failed:\n{exc}", file=sys.stderr)
-            return 1
-        raise
 
 
 if __name__ == "__main__":

@@ -10,7 +10,13 @@ Notebooks publish figures with :func:`sss_locus.pipeline.publish.publish`, which
 and the notebook places the figure with ``{glue:figure} fig-locus-concept`` and
 ``:name: fig-locus-concept`` in a markdown cell of the *same* notebook.
 
-It writes, under :func:`sss_locus.paths.figures_dir` (served by the site at ``figures/``):
+Where it writes (:func:`default_out_dir`): into ``$SSS_LOCUS_FIGURES_DIR`` when the runner
+set it (``sss-locus run`` / ``book`` point it at the run's private staging folder and move the
+figures into the build area, :func:`sss_locus.paths.figures_dir`, only when the whole run
+succeeded), otherwise into ``figures/`` beside the run (the kernel's working directory, which
+``papermill --cwd`` sets to the output's folder). A plain papermill run or an interactive session
+therefore never writes into the build area. Each file is written to a unique temporary name and
+renamed, so two writers of one label never share a temporary file. The files:
 
 ``<label>.png`` (``dpi`` >= 200), ``<label>.svg``, ``<label>.pdf``
     The figure (vector formats without timestamps, so reruns are byte-comparable).
@@ -37,10 +43,14 @@ import numpy as np
 import pandas as pd
 
 from sss_locus import paths
-from sss_locus.pipeline import provenance
+from sss_locus.pipeline import atomic, provenance
 
-LABEL_PATTERN = re.compile(r"^fig-[a-z0-9]+(?:-[a-z0-9]+)*$")
-DATA_NAME_PATTERN = re.compile(r"^[a-z0-9]+(?:[_-][a-z0-9]+)*$")
+# Used with fullmatch: the whole string must match (``$`` alone would accept a trailing newline).
+LABEL_PATTERN = re.compile(r"fig-[a-z0-9]+(?:-[a-z0-9]+)*")
+DATA_NAME_PATTERN = re.compile(r"[a-z0-9]+(?:[_-][a-z0-9]+)*")
+#: Set by the runner: the folder a run exports into, and the run key recorded in each manifest.
+FIGURES_DIR_ENV = "SSS_LOCUS_FIGURES_DIR"
+RUN_KEY_ENV = "SSS_LOCUS_RUN_KEY"
 MIN_DPI = 200
 IMAGE_FORMATS = ("png", "svg", "pdf")
 # Fixed metadata so that SVG and PDF bytes do not change with the clock.
@@ -48,7 +58,7 @@ _SAVE_METADATA = {"svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate"
 
 
 def _check_label(label: str) -> None:
-    if not isinstance(label, str) or not LABEL_PATTERN.match(label):
+    if not isinstance(label, str) or not LABEL_PATTERN.fullmatch(label):
         raise ValueError(
             f"label must look like 'fig-some-name' (lower-case letters, digits, single hyphens; "
             f"pattern {LABEL_PATTERN.pattern}), got {label!r}"
@@ -62,7 +72,7 @@ def _normalise_data(label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame])
     if isinstance(data, Mapping) and data:
         frames = {}
         for name, frame in data.items():
-            if not isinstance(name, str) or not DATA_NAME_PATTERN.match(name):
+            if not isinstance(name, str) or not DATA_NAME_PATTERN.fullmatch(name):
                 raise ValueError(
                     f"data keys must be short names of lower-case letters, digits, '_' or '-', "
                     f"got {name!r}"
@@ -77,10 +87,24 @@ def _normalise_data(label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame])
     )
 
 
+def default_out_dir() -> Path:
+    """``$SSS_LOCUS_FIGURES_DIR`` (set by the runner), else ``figures/`` in the working directory."""
+    override = os.environ.get(FIGURES_DIR_ENV)
+    return Path(override) if override else Path.cwd() / paths.FIGURES_SUBDIR
+
+
 def _write_atomic(path: Path, text: str) -> None:
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(text, encoding="utf-8")
-    os.replace(tmp, path)
+    atomic.write_atomic(path, text)
+
+
+def _save_atomic(path: Path, save: Any) -> None:
+    """``save(tmp)`` to a unique temporary name, then rename it to ``path``."""
+    tmp = atomic.temp_name(path)
+    try:
+        save(tmp)
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
 
 
 def _bibtex_escape(text: str) -> str:
@@ -180,7 +204,8 @@ def export_figure(
     dpi : int
         Resolution of the PNG, at least 200.
     out_dir : pathlib.Path, optional
-        Output folder; defaults to :func:`sss_locus.paths.figures_dir`.
+        Output folder; defaults to :func:`default_out_dir` (never the build area outside the
+        runner).
 
     Returns
     -------
@@ -201,7 +226,7 @@ def export_figure(
     if seed is None and "seed" in params:
         seed = params["seed"]
 
-    out = paths.figures_dir() if out_dir is None else Path(out_dir)
+    out = default_out_dir() if out_dir is None else Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     manifest_path = out / f"{label}.json"
     manifest_path.unlink(missing_ok=True)  # incomplete until the new manifest is written
@@ -213,12 +238,12 @@ def export_figure(
     with matplotlib.rc_context({"svg.hashsalt": label}):
         for fmt in IMAGE_FORMATS:
             target = out / f"{label}.{fmt}"
-            fig.savefig(target, format=fmt, dpi=int(dpi), bbox_inches="tight",
-                        metadata=_SAVE_METADATA.get(fmt))
+            _save_atomic(target, lambda tmp, fmt=fmt: fig.savefig(
+                tmp, format=fmt, dpi=int(dpi), bbox_inches="tight", metadata=_SAVE_METADATA.get(fmt)))
             written.append(target)
     for name, frame in frames.items():
         index = not isinstance(frame.index, pd.RangeIndex)
-        frame.to_csv(out / name, index=index)
+        _save_atomic(out / name, lambda tmp, frame=frame, index=index: frame.to_csv(tmp, index=index))
         written.append(out / name)
 
     manifest: dict[str, Any] = {
@@ -233,6 +258,7 @@ def export_figure(
         "package_version": provenance.package_version(),
         "run_time_utc": provenance.utc_now(),
         "dpi": int(dpi),
+        "run_key": os.environ.get(RUN_KEY_ENV),  # ties the figure to its executed copy
     }
     bib_path = out / f"{label}.bib"
     _write_atomic(bib_path, bibtex_entry(manifest))
@@ -256,7 +282,8 @@ def load_manifests(out_dir: Path | None = None) -> list[dict[str, Any]]:
     for path in sorted(out.glob("fig-*.json")):
         manifest = _read_manifest(path)
         files = manifest.get("files", {}) if manifest else {}
-        if files and all(provenance.file_sha256(out / name) == entry["sha256"] for name, entry in files.items()):
+        if files and all(isinstance(entry, dict) and provenance.file_sha256(out / name) == entry.get("sha256")
+                         for name, entry in files.items()):
             manifests.append(manifest)
     return sorted(manifests, key=lambda m: (m["notebook"], m["label"]))
 
@@ -268,9 +295,12 @@ def _read_manifest(path: Path) -> dict[str, Any] | None:
     figures, so a manifest seen by ``glob`` may be gone by the time it is read.
     """
     try:
-        return json.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
+        manifest = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):  # vanished, or half-written by a pre-atomic writer
         return None
+    if not isinstance(manifest, dict) or not isinstance(manifest.get("files"), dict):
+        return None
+    return manifest
 
 
 def remove_figures_of(notebook: str, out_dir: Path | None = None) -> list[str]:

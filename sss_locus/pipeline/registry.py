@@ -18,11 +18,13 @@ parameter of the notebook's ``parameters``-tagged cell with a value of the right
 Parameters cell
 ---------------
 The cell tagged ``parameters`` holds one assignment per line, of a literal, optionally annotated
-and commented; the comment is shown in error messages and ``sss-locus params``::
+and commented; the comment is shown in error messages and ``sss-locus params``, and may end with
+the parameter's constraints (range, allowed values, memory per unit; see
+:mod:`sss_locus.pipeline.constraints`), checked before any kernel starts::
 
-    n_points = 2000        # Monte Carlo samples per platform
-    seed: int = 1          # random seed
-    platform = "auv"       # key of data/platforms.toml
+    n_points = 2000        # Monte Carlo samples per platform [1, 5_000_000] ~200 B
+    seed: int = 1          # random seed [0, ]
+    platform = "auv"       # key of data/platforms.toml {"auv", "boat"}
 
 The type of a parameter is its annotation if present, otherwise the type of its default value
 (``int``, ``float``, ``bool``, ``str``, ``list``, ``tuple``, ``dict``); a default of ``None``
@@ -32,6 +34,7 @@ accepts any literal.
 from __future__ import annotations
 
 import ast
+import re
 import io
 import json
 import tokenize
@@ -41,8 +44,11 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
+from sss_locus.pipeline.constraints import Constraint, ConstraintError, check, split_comment
 
 REQUIRED_PROFILES = ("book", "quick")
+#: Registry names: lower-case words joined by underscores (used with fullmatch).
+NAME_PATTERN = re.compile(r"[a-z][a-z0-9_]*")
 _TYPES: dict[str, type] = {
     "int": int, "float": float, "bool": bool, "str": str,
     "list": list, "tuple": tuple, "dict": dict,
@@ -61,10 +67,13 @@ class Parameter:
     type: str
     default: Any
     doc: str = ""
+    constraint: Constraint = field(default_factory=Constraint)
 
     def describe(self) -> str:
         line = f"{self.name}: {self.type} = {self.default!r}"
-        return f"{line}  # {self.doc}" if self.doc else line
+        allowed = self.constraint.describe()
+        doc = "; ".join(x for x in (self.doc, f"allowed: {allowed}" if allowed else "") if x)
+        return f"{line}  # {doc}" if doc else line
 
 
 def _comments_by_line(source: str) -> dict[int, str]:
@@ -122,7 +131,13 @@ def parse_parameters_source(source: str, where: str = "parameters cell") -> dict
             type_name = "any" if default is None else type(default).__name__
             if type_name not in _TYPES and type_name != "any":
                 type_name = "any"
-        params[name] = Parameter(name, type_name, default, comments.get(node.lineno, ""))
+        try:
+            doc, constraint = split_comment(comments.get(node.lineno, ""), name, default)
+            if default is not None:
+                check(name, default, constraint)
+        except ConstraintError as exc:
+            raise ParameterError(f"{where}, line {node.lineno}: {exc}") from None
+        params[name] = Parameter(name, type_name, default, doc, constraint)
     return params
 
 
@@ -142,34 +157,48 @@ def parse_notebook_parameters(notebook: Path) -> dict[str, Parameter]:
 def _coerce(param: Parameter, value: Any, from_text: bool) -> Any:
     """Check (and for command-line text, convert) one value; raise ParameterError if wrong."""
     if from_text:
-        text = str(value)
-        if param.type == "str":
-            return text
-        if param.type == "bool":
-            lowered = text.strip().lower()
-            if lowered in ("true", "1", "yes"):
-                return True
-            if lowered in ("false", "0", "no"):
-                return False
-            raise ParameterError(f"expected a value of type bool (true/false) for {param.name!r}, got {text!r}")
-        try:
-            value = ast.literal_eval(text)
-        except (ValueError, SyntaxError):
-            if param.type == "any":
-                return text
-            raise ParameterError(f"expected a value of type {param.type} for {param.name!r}, got {text!r}") from None
-    if param.type == "any":
-        return value
-    expected = _TYPES[param.type]
-    if expected is float and isinstance(value, int) and not isinstance(value, bool):
-        return float(value)
-    if expected is tuple and isinstance(value, list):
-        return tuple(value)
-    if expected is not bool and isinstance(value, bool) or not isinstance(value, expected):
-        raise ParameterError(
-            f"expected a value of type {param.type} for {param.name!r}, got {value!r} ({type(value).__name__})"
-        )
+        value = _from_text(param, str(value))
+    if param.type != "any":
+        expected = _TYPES[param.type]
+        if expected is float and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)
+        if expected is tuple and isinstance(value, list):
+            value = tuple(value)
+        if expected is not bool and isinstance(value, bool) or not isinstance(value, expected):
+            raise ParameterError(f"parameter {param.name!r} = {value!r} ({type(value).__name__}): expected a "
+                                 f"value of type {param.type}{_allowed(param)}")
+    if param.constraint.element_type == "float" and isinstance(value, (list, tuple)):
+        value = type(value)(float(v) if isinstance(v, int) and not isinstance(v, bool) else v for v in value)
+    try:
+        check(param.name, value, param.constraint)
+    except ConstraintError as exc:
+        raise ParameterError(str(exc)) from None
     return value
+
+
+def _from_text(param: Parameter, text: str) -> Any:
+    """Command-line text converted to the parameter's type (checked by the caller)."""
+    if param.type == "str":
+        return text
+    if param.type == "bool":
+        lowered = text.strip().lower()
+        if lowered in ("true", "1", "yes"):
+            return True
+        if lowered in ("false", "0", "no"):
+            return False
+        raise ParameterError(f"parameter {param.name!r} = {text!r}: expected a bool (true/false)")
+    try:
+        return ast.literal_eval(text)
+    except (ValueError, SyntaxError):
+        if param.type == "any":
+            return text
+        raise ParameterError(f"parameter {param.name!r} = {text!r}: expected a value of type "
+                             f"{param.type}{_allowed(param)}") from None
+
+
+def _allowed(param: Parameter) -> str:
+    allowed = param.constraint.describe()
+    return f" (allowed: {allowed})" if allowed else ""
 
 
 def validate_parameters(
@@ -183,13 +212,14 @@ def validate_parameters(
     """
     checked: dict[str, Any] = {}
     for name, value in values.items():
+        if name not in spec:
+            listing = "\n".join("  " + p.describe() for p in spec.values()) or "  (none)"
+            raise ParameterError(f"notebook {notebook!r} has no parameter {name!r}\n"
+                                 f"Valid parameters of {notebook!r}:\n{listing}")
         try:
-            if name not in spec:
-                raise ParameterError(f"notebook {notebook!r} has no parameter {name!r}")
             checked[name] = _coerce(spec[name], value, from_text)
         except ParameterError as exc:
-            listing = "\n".join("  " + p.describe() for p in spec.values()) or "  (none)"
-            raise ParameterError(f"{exc}\nValid parameters of {notebook!r}:\n{listing}") from None
+            raise ParameterError(f"notebook {notebook!r}: {exc}") from None
     return checked
 
 
@@ -235,30 +265,65 @@ def load_registry(registry_file: Path | None = None, root: Path | None = None) -
     """Read and check the registry; entries in file order.
 
     ``root`` is the folder that ``source`` paths are relative to (default: the repository).
+    Every malformed shape raises ``ValueError`` naming the file and the key.
     """
     registry_file = paths.REGISTRY_FILE if registry_file is None else Path(registry_file)
     root = paths.REPO_ROOT if root is None else Path(root)
-    with open(registry_file, "rb") as fh:
-        data = tomllib.load(fh)
+    try:
+        with open(registry_file, "rb") as fh:
+            data = tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{registry_file}: not valid TOML ({exc})") from None
+    notebooks = data.get("notebooks", {})
+    unknown_top = set(data) - {"notebooks"}
+    if unknown_top:
+        raise ValueError(f"{registry_file}: unknown top-level key(s) {', '.join(sorted(unknown_top))} "
+                         "(only [notebooks.<name>] tables)")
+    if not isinstance(notebooks, dict):
+        raise ValueError(f"{registry_file}: notebooks must be a table of [notebooks.<name>] tables, "
+                         f"got {type(notebooks).__name__}")
     entries: dict[str, NotebookEntry] = {}
-    for name, table in data.get("notebooks", {}).items():
+    seen_executed: dict[str, str] = {}
+    for name, table in notebooks.items():
         where = f"{registry_file}: notebooks.{name}"
+        if not NAME_PATTERN.fullmatch(name):
+            raise ValueError(f"{where}: notebook names must be lower-case letters, digits and '_', "
+                             f"starting with a letter (pattern {NAME_PATTERN.pattern}), got {name!r}")
+        if not isinstance(table, dict):
+            raise ValueError(f"{where} must be a table, got {type(table).__name__}")
         missing = [k for k in ("source", "executed", "profiles") if k not in table]
         if missing:
             raise ValueError(f"{where}: missing key(s) {', '.join(missing)}")
         unknown = set(table) - {"source", "executed", "profiles", "title"}
         if unknown:
             raise ValueError(f"{where}: unknown key(s) {', '.join(sorted(unknown))}")
-        absent = [p for p in REQUIRED_PROFILES if p not in table["profiles"]]
+        for key in ("source", "executed", "title"):
+            if key in table and not (isinstance(table[key], str) and table[key].strip()):
+                raise ValueError(f"{where}.{key} must be a non-empty string, got {table[key]!r}")
+        profiles = table["profiles"]
+        if not isinstance(profiles, dict):
+            raise ValueError(f"{where}.profiles must be a table of profiles, got {type(profiles).__name__}")
+        for profile, values in profiles.items():
+            if not isinstance(values, dict):
+                raise ValueError(f"{where}.profiles.{profile} must be a table of parameter values, "
+                                 f"got {type(values).__name__}")
+        absent = [p for p in REQUIRED_PROFILES if p not in profiles]
         if absent:
             raise ValueError(f"{where}: profile(s) {', '.join(absent)} required")
-        executed = str(table["executed"])
-        if not executed.endswith(".ipynb") or Path(executed).is_absolute() or ".." in Path(executed).parts:
-            raise ValueError(f"{where}.executed must be a relative .ipynb path inside the build area, got {executed!r}")
+        executed = table["executed"]
+        parts = Path(executed).parts
+        if not executed.endswith(".ipynb") or Path(executed).is_absolute() or ".." in parts:
+            raise ValueError(f"{where}.executed must be a relative .ipynb path inside the "
+                             f"build area, got {executed!r}")
+        normal = Path(executed).as_posix().lower()
+        if normal in seen_executed:
+            raise ValueError(f"{where}.executed: {executed!r} is already the executed copy of "
+                             f"notebooks.{seen_executed[normal]}; every notebook needs its own")
+        seen_executed[normal] = name
         source = root / table["source"]
         if not source.is_file():
             raise ValueError(f"{where}.source: no such notebook {source}")
-        entries[name] = NotebookEntry(name, source, executed, {k: dict(v) for k, v in table["profiles"].items()})
+        entries[name] = NotebookEntry(name, source, executed, {k: dict(v) for k, v in profiles.items()})
     return entries
 
 

@@ -7,7 +7,16 @@
 * The kernel's working directory is the executed copy's folder (papermill ``--cwd``).
 * The cell papermill injects with the run's parameters is tagged ``hide-input`` and labelled,
   so the book shows it as a small collapsed block.
-* Figures a notebook exported earlier are removed first; the run re-exports them.
+* Runs are atomic: papermill runs in a child process (its own session) into a private staging
+  folder (``<build>/tmp/run-...``; a side run's beside its ``--output``) with the kernel's
+  connection file in that folder too. Only a run that succeeds replaces the executed copy and
+  its figures (:func:`sss_locus.pipeline.outputs.commit_run`, under the build area's lock). A run
+  that fails or is interrupted (exception, Ctrl-C, SIGTERM, SIGHUP) kills its papermill child
+  (the kernel exits with its parent), deletes the staging folder and leaves the last good results
+  untouched; a failed run's notebook is kept as ``<build>/failed/<name>.ipynb`` for reading
+  (outside the book source, so it cannot pass as a result).
+* Side runs (``output=``) write the executed copy there and its figures into ``figures/`` beside
+  it; they never touch the build area's results.
 * The executed copy records a *run key* (hash of the notebook source, its parameters and
   profile, the package code and ``data/``, and ``environment.lock``): :func:`is_up_to_date` tells
   ``sss-locus book`` that rerunning would reproduce the same result, so it can be skipped.
@@ -15,12 +24,14 @@
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
+import shutil
+import signal
 import subprocess
 import sys
 import time
+import uuid
 from collections.abc import Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from contextlib import contextmanager
@@ -28,7 +39,8 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import export, provenance
+from sss_locus.pipeline import atomic, export, outputs, provenance
+from sss_locus.pipeline.outputs import run_key
 from sss_locus.pipeline.registry import NotebookEntry
 
 KERNEL_NAME = "sss-locus"
@@ -86,30 +98,31 @@ def patched_environ(values: dict[str, str]) -> Iterator[None]:
                 os.environ[key] = old
 
 
-def run_key(entry: NotebookEntry, profile: str, parameters: dict[str, Any]) -> str:
-    """Hash of everything an executed copy depends on (see the module docstring)."""
-    payload = json.dumps(
-        {"source": provenance.file_sha256(entry.source), "profile": profile, "parameters": parameters,
-         "code": provenance.code_sha256(), "lock": provenance.lock_sha256()},
-        sort_keys=True, default=provenance.json_default,
-    )
-    return hashlib.sha256(payload.encode()).hexdigest()
-
-
 def is_up_to_date(entry: NotebookEntry, profile: str) -> bool:
-    """True when the executed copy came from an identical run and its figures are intact."""
-    executed = entry.executed_path()
+    """True when the executed copy came from an identical, successful run and its figures are
+    the ones that run exported, intact."""
     try:
-        meta = json.loads(executed.read_text(encoding="utf-8"))["metadata"]
-    except (OSError, ValueError, KeyError):
+        meta = json.loads(entry.executed_path().read_text(encoding="utf-8"))["metadata"]
+        ours = meta.get("sss_locus", {})
+        if ours.get("run_key") != run_key(entry, profile, entry.resolve(profile)):
+            return False
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return False
-    ours = meta.get("sss_locus", {})
-    if meta.get("papermill", {}).get("exception") or ours.get("run_key") != run_key(
-        entry, profile, entry.resolve(profile)
-    ):
-        return False
-    intact = {m["label"] for m in export.load_manifests() if m["notebook"] == entry.source_relative}
-    return set(ours.get("figures", [])) <= intact
+    return not outputs.problems([entry])
+
+
+class NotebookFailed(RuntimeError):
+    """A cell of a notebook raised, or the run was cut short; the last good results are kept.
+
+    ``str()`` is one line (the failing cell and the error's last line, and where the failed
+    notebook was kept); ``traceback`` holds the full traceback.
+    """
+
+    def __init__(self, summary: str, traceback: str = "", kept: Path | None = None) -> None:
+        where = f"; the failed notebook is kept in {kept}" if kept else ""
+        super().__init__(summary + where)
+        self.traceback = traceback
+        self.kept = kept
 
 
 def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any],
@@ -139,71 +152,155 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
     executed.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
 
 
+_CHILD = "import json, sys, papermill; papermill.execute_notebook(**json.load(open(sys.argv[1])))"
+
+
+def _execute(entry: NotebookEntry, staging: Path, notebook: Path, cwd: Path,
+             parameters: dict[str, Any]) -> None:
+    """Run papermill in a child process (own session) into ``notebook``; kill it if we stop."""
+    args = staging / "papermill-args.json"
+    args.write_text(json.dumps({
+        "input_path": str(entry.source), "output_path": str(notebook), "parameters": parameters,
+        "kernel_name": KERNEL_NAME, "cwd": str(cwd), "progress_bar": False, "log_output": False,
+    }, default=provenance.json_default), encoding="utf-8")
+    log_file = staging / "papermill.log"
+    with open(log_file, "wb") as log_fh:
+        child = subprocess.Popen([sys.executable, "-c", _CHILD, str(args)], stdout=log_fh,
+                                 stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True)
+        try:
+            code = child.wait()
+        finally:
+            if child.poll() is None:  # we were interrupted: stop papermill (the kernel follows)
+                os.killpg(child.pid, signal.SIGTERM)
+                try:
+                    child.wait(timeout=10)
+                except subprocess.TimeoutExpired:
+                    os.killpg(child.pid, signal.SIGKILL)
+                    child.wait()
+    if code != 0:
+        nb = outputs.read_notebook(notebook) if notebook.is_file() else None
+        error = outputs.notebook_error(nb) if nb else None
+        if error:
+            raise NotebookFailed(f"notebook {entry.name!r} failed in {error[0]}", error[1])
+        tail = log_file.read_text(encoding="utf-8", errors="replace").strip().splitlines()[-1:] or ["?"]
+        raise NotebookFailed(f"notebook {entry.name!r} did not run: {tail[0]}",
+                             log_file.read_text(encoding="utf-8", errors="replace"))
+
+
 def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[str, Any] | None = None,
                  *, from_text: bool = False, output: Path | None = None, log=print) -> Path:
-    """Execute one registered notebook into its executed copy; return that path.
+    """Execute one registered notebook, atomically, into its executed copy; return that path.
 
     Parameters are the notebook defaults, then the profile's values, then ``overrides`` (command
-    line text when ``from_text``); all are validated before anything runs. Raises
-    :class:`sss_locus.pipeline.registry.ParameterError` for bad parameters and
-    ``papermill.PapermillExecutionError`` when a cell fails (the executed copy then holds the
-    traceback).
+    line text when ``from_text``); all are validated (types and declared constraints) before
+    anything runs. Raises :class:`sss_locus.pipeline.registry.ParameterError` for bad parameters
+    and :class:`NotebookFailed` when a cell fails; the executed copy and figures of the last good
+    run are then untouched. ``output`` makes a side run: the executed copy goes there and its
+    figures into ``figures/`` beside it, and the build area's results are not touched.
     """
-    import papermill
-
     parameters = entry.resolve(profile, overrides, from_text=from_text)
-    executed = entry.executed_path() if output is None else Path(output)
+    side = output is not None
+    executed = Path(output).resolve() if side else entry.executed_path()
+    figures = executed.parent / paths.FIGURES_SUBDIR if side else paths.figures_dir()
+    if side and paths.build_dir().resolve() in executed.parents:
+        raise ValueError(f"--output {executed} is inside the build area {paths.build_dir()}: "
+                         "side runs must go elsewhere (run without --output to update the book)")
     executed.parent.mkdir(parents=True, exist_ok=True)
+    tmp_root = executed.parent if side else paths.build_dir() / "tmp"
+    tmp_root.mkdir(parents=True, exist_ok=True)
+    staging = tmp_root / f".run-{entry.name}-{os.getpid()}-{uuid.uuid4().hex[:12]}"
+    key = run_key(entry, profile, parameters)
     env = hermetic_env()
-    env[provenance.NOTEBOOK_ENV] = entry.source_relative
-    env[provenance.PROFILE_ENV] = profile
-    env[provenance.PARAMETERS_ENV] = json.dumps(parameters, sort_keys=True, default=provenance.json_default)
-    with patched_environ(env):
-        install_kernelspec()
-        removed = export.remove_figures_of(entry.source_relative)
-        start = time.perf_counter()
-        papermill.execute_notebook(
-            str(entry.source), str(executed), parameters=parameters, kernel_name=KERNEL_NAME,
-            cwd=str(executed.parent), progress_bar=False, log_output=False,
-        )
-    exported = [m["label"] for m in export.load_manifests() if m["notebook"] == entry.source_relative]
-    _label_injected_cell(executed, profile, parameters,
-                         {"run_key": run_key(entry, profile, parameters), "figures": exported})
+    env.update({
+        provenance.NOTEBOOK_ENV: entry.source_relative, provenance.PROFILE_ENV: profile,
+        provenance.PARAMETERS_ENV: json.dumps(parameters, sort_keys=True, default=provenance.json_default),
+        export.FIGURES_DIR_ENV: str(staging / "figures"), export.RUN_KEY_ENV: key,
+        "JUPYTER_RUNTIME_DIR": str(staging / "runtime"),  # connection file goes with the staging folder
+    })
+    staged = staging / executed.name
+    start = time.perf_counter()
+    try:
+        with atomic.signals_as_exceptions(), patched_environ(env):
+            (staging / "runtime").mkdir(parents=True)
+            install_kernelspec()
+            try:
+                _execute(entry, staging, staged, executed.parent, parameters)
+            except NotebookFailed as exc:
+                kept = executed.with_name(executed.stem + ".failed.ipynb") if side else \
+                    paths.build_dir() / "failed" / executed.name
+                if staged.is_file():
+                    kept.parent.mkdir(parents=True, exist_ok=True)
+                    os.replace(staged, kept)
+                    exc.kept = kept
+                    exc.args = (f"{exc.args[0]}; the failed notebook is kept in {kept}",)
+                raise
+            exported = sorted(m["label"] for m in export.load_manifests(staging / "figures"))
+            _label_injected_cell(staged, profile, parameters, {"run_key": key, "figures": exported})
+            with outputs.build_lock() if not side else _nothing():
+                outputs.commit_run(staged, staging / "figures", executed, figures,
+                                   None if side else entry.source_relative)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
     log(f"ran {entry.name} [{profile}] in {time.perf_counter() - start:.1f} s -> {executed}")
-    gone = sorted(set(removed) - set(exported))
     if exported:
-        log(f"  figures: {', '.join(exported)}")
-    if gone:
-        log(f"  no longer exported: {', '.join(gone)}")
+        log(f"  figures: {', '.join(exported)} -> {figures}")
     return executed
 
 
-def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=print) -> None:
+@contextmanager
+def _nothing() -> Iterator[None]:
+    yield
+
+
+def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=print,
+             verbose: bool = False) -> None:
     """Run several registered notebooks with one profile, up to ``jobs`` at a time.
 
     With ``jobs > 1`` each notebook runs in its own ``sss-locus run`` process (the environment
     variables a run sets are per process). Every notebook is attempted; failures are reported
-    together at the end as a ``RuntimeError``.
+    together at the end as a ``RuntimeError``. If this process is interrupted, the running
+    children get SIGTERM (each cleans up after itself) before the interruption propagates.
     """
     if jobs <= 1 or len(entries) <= 1:
+        failures = []
         for entry in entries:
-            run_notebook(entry, profile, log=log)
+            try:
+                run_notebook(entry, profile, log=log)
+            except NotebookFailed as exc:
+                failures.append(f"{entry.name}: {exc}" + (f"\n{exc.traceback}" if verbose else ""))
+        if failures:
+            raise RuntimeError(f"{len(failures)} notebook(s) failed:\n" + "\n".join(failures))
         return
     install_kernelspec()
+    children: dict[str, subprocess.Popen] = {}
 
-    def one(entry: NotebookEntry) -> subprocess.CompletedProcess:
-        cmd = [sys.executable, "-m", "sss_locus.pipeline.cli", "run", entry.name, "--profile", profile]
-        return subprocess.run(cmd, capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    def one(entry: NotebookEntry) -> tuple[int, str, str]:
+        cmd = [sys.executable, "-m", "sss_locus.pipeline.cli", "run", entry.name, "--profile", profile,
+               *(["--verbose"] if verbose else [])]
+        child = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                 stdin=subprocess.DEVNULL)
+        children[entry.name] = child
+        out, err = child.communicate()
+        return child.returncode, out, err
 
-    failures = []
-    with ThreadPoolExecutor(max_workers=jobs) as pool:
-        futures = {pool.submit(one, entry): entry for entry in entries}
-        for future in as_completed(futures):
-            entry, result = futures[future], future.result()
-            for line in result.stdout.splitlines():
-                if not line.startswith("Rebuild the site"):
-                    log(line)
-            if result.returncode != 0:
-                failures.append(f"{entry.name}: {result.stderr.strip()[-4000:]}")
+    failures: list[str] = []
+    futures: dict = {}
+    with atomic.signals_as_exceptions(), ThreadPoolExecutor(max_workers=jobs) as pool:
+        try:
+            futures = {pool.submit(one, entry): entry for entry in entries}
+            for future in as_completed(futures):
+                entry, (code, out, err) = futures[future], future.result()
+                for line in out.splitlines():
+                    if not line.startswith("Rebuild the site"):
+                        log(line)
+                if code != 0:
+                    failures.append(f"{entry.name}: {err.strip()[-4000:]}")
+        except BaseException:
+            for future in futures:
+                future.cancel()
+            for child in children.values():
+                if child.poll() is None:
+                    child.terminate()
+            raise
     if failures:
         raise RuntimeError(f"{len(failures)} notebook(s) failed:\n" + "\n".join(failures))
