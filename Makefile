@@ -1,4 +1,6 @@
 # Two commands: `make book` and `make test`. Everything else is set up on demand.
+# `make pdf` (after `make book`) prints the whole book to _build/pdf/sss-locus-book.pdf with
+# headless Chromium (Debian package `chromium`, or Google Chrome).
 #
 # .venv is (re)built from environment.lock whenever the lock or pyproject.toml changes: the stamp
 # file name carries their hash. uv (pinned and hash-checked in the lock itself) does the install;
@@ -12,7 +14,7 @@ VPY := $(VENV)/bin/python
 ENV_KEY := $(shell cat environment.lock pyproject.toml | $(PYTHON) -c "import hashlib, sys; print(hashlib.sha256(sys.stdin.buffer.read()).hexdigest()[:16])")
 STAMP := $(VENV)/.installed-$(ENV_KEY)
 
-.PHONY: book quick-book test venv lock clean
+.PHONY: book quick-book pdf test venv lock clean
 
 book: $(STAMP)
 	$(VENV)/bin/sss-locus book
@@ -20,6 +22,9 @@ book: $(STAMP)
 # The same book from the fast `quick` parameter profile (seconds per notebook).
 quick-book: $(STAMP)
 	$(VENV)/bin/sss-locus book --profile quick
+
+pdf: $(STAMP)
+	$(VPY) -m sss_locus.pipeline.bookpdf
 
 test: $(STAMP)
 	$(VPY) -m pytest

@@ -129,3 +129,86 @@ def test_figures_index_lists_only_registered_notebooks_in_book_order():
     ]
     listed = [m["label"] for m in bookbuild._in_book_order(manifests)]
     assert listed == ["fig-a", "fig-b"]
+
+
+def test_each_figure_page_has_its_files_source_and_citation(quick_book):
+    """Under each figure on its own page: files, data CSVs, a link to the code cell that drew it
+    (an anchor in that cell's output), the executed notebook for download, and the BibTeX."""
+    html = quick_book["html"]
+    manifests = load_manifests(quick_book["area"] / "source" / "_extra" / "figures")
+    by_notebook = {entry.source_relative: entry for entry in REGISTRY.values()}
+    assert manifests
+    for m in manifests:
+        if m["notebook"] not in by_notebook:
+            continue
+        entry = by_notebook[m["notebook"]]
+        page = html / Path(entry.executed).with_suffix(".html")
+        text = unescape(page.read_text())
+        label = m["label"]
+        assert f'id="{label}-cite"' in text, (label, page)
+        assert f'id="{label}-source"' in text and f'href="#{label}-source"' in text
+        assert f"code cell [{m['cell']}]" in text and isinstance(m["cell"], int)
+        for name in m["files"]:
+            if name.endswith((".csv", ".png", ".pdf", ".svg")):
+                assert f'href="../figures/{name}"' in text, (label, name)
+        notebook = Path(entry.executed).name
+        assert f'href="../notebooks/{notebook}"' in text
+        assert (html / "notebooks" / notebook).is_file()
+        assert f"@misc{{sss-locus:{label}," in text
+
+
+def test_every_figure_bibtex_entry_parses_and_compiles(quick_book, tmp_path):
+    pybtex_database = pytest.importorskip("pybtex.database")
+    figures = quick_book["area"] / "source" / "_extra" / "figures"
+    bibs = sorted(figures.glob("fig-*.bib"))
+    assert len(bibs) >= 10
+    text = "\n".join(b.read_text(encoding="utf-8") for b in bibs)
+    entries = pybtex_database.parse_string(text, "bibtex").entries
+    assert len(entries) == len(bibs)
+    for key, entry in entries.items():
+        assert len(entry.fields["title"]) < 200, key
+        for field in ("title", "author", "year", "version", "note"):
+            assert entry.fields.get(field), (key, field)
+    import shutil
+
+    if not (shutil.which("pdflatex") and shutil.which("bibtex")):
+        pytest.skip("no TeX installation to compile the entries")
+    from latex_check import compile_latex
+
+    compile_latex(tmp_path, text, list(entries))
+
+
+def test_interactive_concept_view_is_served_locally(quick_book):
+    html = quick_book["html"]
+    page = (html / "executed" / "concept.html").read_text()
+    assert 'id="fig-locus-concept-3d"' in page
+    assert 'src="../plotly/plotly.min.js"' in page
+    assert (html / "plotly" / "plotly.min.js").stat().st_size > 1_000_000
+    for other in html.rglob("*.html"):
+        assert "cdn.plot.ly" not in other.read_text(errors="replace"), other
+
+
+def _chromium():
+    import shutil
+
+    return next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome")
+                 if shutil.which(n)), None)
+
+
+def test_interactive_view_renders_with_the_network_blocked(quick_book):
+    browser = _chromium()
+    if browser is None:
+        pytest.skip("no headless Chromium")
+    page = quick_book["html"] / "executed" / "concept.html"
+    common = [browser, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+              "--disable-background-networking", "--proxy-server=127.0.0.1:9",
+              "--proxy-bypass-list=<-loopback>", f"--user-data-dir={quick_book['area'] / 'chromium'}",
+              "--virtual-time-budget=15000"]
+    dom = subprocess.run([*common, "--dump-dom", page.as_uri()], capture_output=True, text=True,
+                         timeout=180).stdout
+    # plotly.js, once it has run, adds these to the figure's div (not in the served HTML).
+    assert "js-plotly-plot" in dom and "modebar" in dom
+    shot = quick_book["area"] / "concept-offline.png"
+    subprocess.run([*common, "--window-size=1280,2400", f"--screenshot={shot}", page.as_uri()],
+                   capture_output=True, timeout=180)
+    assert shot.is_file() and shot.stat().st_size > 10_000

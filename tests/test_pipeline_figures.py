@@ -38,6 +38,7 @@ def test_all_files_and_manifest_are_written(tmp_path, fig, monkeypatch):
     assert on_disk == manifest
     assert manifest["notebook"] == "notebooks/concept.ipynb" and manifest["profile"] == "quick"
     assert manifest["parameters"] == {"n": 4, "seed": 7} and manifest["seed"] == 7
+    assert manifest["cell"] is None  # not run from a notebook cell
     for key in ("git_commit", "lock_sha256", "package_version", "run_time_utc", "caption"):
         assert manifest[key]
     assert manifest["lock_sha256"] == provenance.lock_sha256() != "missing"
@@ -76,8 +77,8 @@ def test_bibtex_entry(tmp_path, fig):
                   parameters={}, out_dir=tmp_path)
     bib = (tmp_path / "fig-demo.bib").read_text()
     assert bib.startswith("@misc{sss-locus:fig-demo,")
-    assert "title = {{Locus of $\\theta_1$ \\& width\\_m at 50\\% range}}" in bib
-    assert "figures/fig-demo.png" in bib and "More text" not in bib
+    assert "title = {{Figure fig-demo: Locus of $\\theta_1$ \\& width\\_m at 50\\% range}}" in bib
+    assert "More text" not in bib
     assert bib.count("{") == bib.count("}")
 
 

@@ -23,13 +23,15 @@ from typing import Any
 from urllib.parse import unquote, urlsplit
 
 from sss_locus import paths
-from sss_locus.pipeline import export, outputs, provenance
+from sss_locus.pipeline import citation, export, outputs, provenance
 from sss_locus.pipeline.runner import hermetic_env
 
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
 FIGURES_PAGE = "figures.md"
 FIGURES_MARKER = "<!-- FIGURES-INDEX -->"
 MATHJAX_DIST = "sphinx-mathjax-offline"
+#: The site folder (under ``_extra``) of plotly.js, served locally for the interactive views.
+PLOTLY_SUBDIR = "plotly"
 # --all: an incremental Sphinx build only re-reads changed pages, so a warning in an unchanged
 # page would pass -W on the second try; the book is small, rebuild every page every time.
 JB_FLAGS = ("-W", "-n", "--keep-going", "--all")
@@ -49,6 +51,46 @@ def copy_mathjax() -> Path:
     shutil.copytree(source, target)
     stamp.write_text(dist.version)
     return target
+
+
+def copy_plotly() -> Path:
+    """Copy ``plotly.min.js`` shipped by the ``plotly`` package to ``_extra/plotly`` (no CDN)."""
+    dist = metadata.distribution("plotly")
+    source = Path(dist.locate_file("plotly/package_data/plotly.min.js"))
+    if not source.is_file():
+        raise FileNotFoundError(f"plotly.min.js not found at {source} (package plotly {dist.version})")
+    target = paths.extra_dir() / PLOTLY_SUBDIR
+    target.mkdir(parents=True, exist_ok=True)
+    if provenance.file_sha256(target / source.name) != provenance.file_sha256(source):
+        shutil.copy2(source, target / source.name)
+    return target
+
+
+def stage_figure_pages(root: Path, manifests: list[dict[str, Any]]) -> None:
+    """Write the block placed under each figure (``_cite/<label>.md``, see
+    :func:`sss_locus.pipeline.citation.cite_block`) and copy the executed notebooks to the site
+    (``notebooks/<name>.ipynb``) for download."""
+    cite_dir = root / citation.CITE_SUBDIR
+    shutil.rmtree(cite_dir, ignore_errors=True)
+    cite_dir.mkdir(parents=True)
+    for m in manifests:
+        bib = (paths.figures_dir() / f"{m['label']}.bib").read_text(encoding="utf-8")
+        (cite_dir / f"{m['label']}.md").write_text(citation.cite_block(m, bib), encoding="utf-8")
+    target = paths.extra_dir() / citation.NOTEBOOKS_SUBDIR
+    shutil.rmtree(target, ignore_errors=True)
+    target.mkdir(parents=True)
+    for notebook in sorted(paths.executed_dir().glob("*.ipynb")):
+        shutil.copy2(notebook, target / notebook.name)
+
+
+def stage_config(root: Path) -> None:
+    """Copy ``_config.yml``, turning the repository buttons on when ``repository.url`` is set."""
+    import yaml
+
+    config = yaml.safe_load(paths.CONFIG_FILE.read_text(encoding="utf-8"))
+    if citation.repository_url():
+        config.setdefault("html", {}).update(use_repository_button=True, use_issues_button=True)
+    (root / paths.CONFIG_FILE.name).write_text(yaml.safe_dump(config, sort_keys=False), encoding="utf-8")
 
 
 def _file_links(manifest: dict[str, Any]) -> str:
@@ -114,13 +156,15 @@ def stage() -> Path:
     """Copy the book source into the build area and generate the figures page; return the root."""
     root = paths.source_dir()
     root.mkdir(parents=True, exist_ok=True)
-    for name in (paths.CONFIG_FILE, paths.TOC_FILE):
-        shutil.copy2(name, root / name.name)
+    stage_config(root)
+    shutil.copy2(paths.TOC_FILE, root / paths.TOC_FILE.name)
     staged_book = root / paths.BOOK_DIR.name
     shutil.rmtree(staged_book, ignore_errors=True)
     shutil.copytree(paths.BOOK_DIR, staged_book)
     paths.figures_dir().mkdir(parents=True, exist_ok=True)
     copy_mathjax()
+    copy_plotly()
+    stage_figure_pages(root, export.load_manifests())
     page = staged_book / FIGURES_PAGE
     text = page.read_text(encoding="utf-8")
     if FIGURES_MARKER not in text:
@@ -169,7 +213,8 @@ class _PageScan(HTMLParser):
             self.refs.append((f"{tag}.src", values["src"]))
         if tag == "link" and values.get("href") and values.get("rel") in ("stylesheet", "icon"):
             self.refs.append(("link.href", values["href"]))
-        if tag == "a" and values.get("href") and "/figures/" in "/" + values["href"]:
+        if tag == "a" and values.get("href") and any(
+                f"/{folder}/" in "/" + values["href"] for folder in ("figures", "notebooks")):
             self.refs.append(("a.href", values["href"]))
         if tag in self.SKIP:
             self._skip += 1
@@ -192,7 +237,7 @@ def site_problems(html_dir: Path) -> list[str]:
     """
     problems = []
     for page in sorted(Path(html_dir).rglob("*.html")):
-        if page.relative_to(html_dir).parts[0] in ("_static", "_sources", "mathjax", "figures"):
+        if page.relative_to(html_dir).parts[0] in ("_static", "_sources", "mathjax", "figures", "plotly"):
             continue  # theme templates and copied assets, not pages
         scan = _PageScan()
         scan.feed(page.read_text(encoding="utf-8", errors="replace"))
@@ -256,7 +301,7 @@ def _build(log) -> Path:
         assert proc.stdout is not None
         for line in proc.stdout:
             sys.stdout.write(line)
-            if "WARNING" in line or "ERROR" in line:
+            if "WARNING" in line or "ERROR" in line or "CRITICAL" in line:
                 problems.append(_ANSI.sub("", line).strip())
     if proc.returncode != 0:
         listing = "\n  ".join(problems) or "(no WARNING/ERROR lines; see the output above)"

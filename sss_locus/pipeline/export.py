@@ -43,7 +43,7 @@ import numpy as np
 import pandas as pd
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, provenance
+from sss_locus.pipeline import atomic, citation, provenance
 
 # Used with fullmatch: the whole string must match (``$`` alone would accept a trailing newline).
 LABEL_PATTERN = re.compile(r"fig-[a-z0-9]+(?:-[a-z0-9]+)*")
@@ -107,65 +107,10 @@ def _save_atomic(path: Path, save: Any) -> None:
         tmp.unlink(missing_ok=True)
 
 
-def _bibtex_escape(text: str) -> str:
-    """Escape BibTeX/LaTeX specials outside ``$...$`` math; keep math as written."""
-    pieces = text.split("$")
-    for i in range(0, len(pieces), 2):  # even pieces are outside math
-        piece = pieces[i]
-        for char in "\\{}":
-            piece = piece.replace(char, "")
-        for char in "&%#_":
-            piece = piece.replace(char, "\\" + char)
-        pieces[i] = piece
-    return "$".join(pieces)
-
-
-def _citation_meta() -> dict[str, Any]:
-    """Title, authors and URL of the project from CITATION.cff (needs PyYAML; book extra)."""
-    meta: dict[str, Any] = {"title": "sss-locus", "authors": ["{sss-locus contributors}"], "url": None}
-    try:
-        import yaml
-
-        cff = yaml.safe_load(paths.CITATION_FILE.read_text(encoding="utf-8"))
-    except (ImportError, OSError, ValueError):
-        return meta
-    if not isinstance(cff, dict):
-        return meta
-    meta["title"] = str(cff.get("title", meta["title"]))
-    authors = []
-    for author in cff.get("authors") or []:
-        if "family-names" in author:
-            authors.append(f"{author['family-names']}, {author.get('given-names', '')}".strip(", "))
-        elif "name" in author:
-            authors.append("{" + str(author["name"]) + "}")
-    meta["authors"] = authors or meta["authors"]
-    meta["url"] = cff.get("url") or cff.get("repository-code")
-    return meta
-
-
 def bibtex_entry(manifest: Mapping[str, Any]) -> str:
-    """A ``@misc`` BibTeX entry citing one exported figure, from its manifest."""
-    meta = _citation_meta()
-    label = manifest["label"]
-    first_sentence = re.split(r"(?<=[.!?])\s", manifest["caption"].strip(), maxsplit=1)[0].rstrip(".")
-    fields = {
-        "title": "{" + _bibtex_escape(first_sentence) + "}",
-        "author": " and ".join(meta["authors"]),
-        "year": manifest["run_time_utc"][:4],
-        "howpublished": (
-            f"Figure \\texttt{{{label}}} in {_bibtex_escape(meta['title'])}, "
-            f"file \\texttt{{figures/{label}.png}}"
-        ),
-        "note": (
-            f"Notebook \\texttt{{{manifest['notebook']}}}, profile {manifest['profile']}, "
-            f"commit \\texttt{{{provenance.short_commit(manifest['git_commit'])}}}, "
-            f"sss-locus {manifest['package_version']}"
-        ),
-    }
-    if meta["url"]:
-        fields["url"] = str(meta["url"])
-    body = ",\n".join(f"  {key} = {{{value}}}" for key, value in fields.items())
-    return f"@misc{{sss-locus:{label},\n{body}\n}}\n"
+    """A ``@misc`` BibTeX entry citing one exported figure, from its manifest (every field valid
+    LaTeX; see :func:`sss_locus.pipeline.citation.figure_bibtex`)."""
+    return citation.figure_bibtex(manifest)
 
 
 def export_figure(
@@ -177,6 +122,7 @@ def export_figure(
     parameters: Mapping[str, Any],
     seed: int | None = None,
     notebook: str | None = None,
+    cell: int | None = None,
     dpi: int = 300,
     out_dir: Path | None = None,
 ) -> dict[str, Any]:
@@ -192,8 +138,8 @@ def export_figure(
     data : pandas.DataFrame or dict of str to pandas.DataFrame
         The values actually plotted, written as CSV next to the images.
     caption : str
-        The figure's caption (MyST/LaTeX math in ``$...$`` allowed); its first sentence becomes
-        the BibTeX title.
+        The figure's caption (MyST/LaTeX math in ``$...$`` allowed); its first sentence (cut
+        short) becomes the BibTeX title.
     parameters : mapping
         The notebook parameters the figure depends on (JSON-serialisable; numpy scalars are fine).
     seed : int, optional
@@ -201,6 +147,9 @@ def export_figure(
     notebook : str, optional
         Notebook that drew the figure; defaults to what the runner reports
         (:func:`sss_locus.pipeline.provenance.current_notebook`).
+    cell : int, optional
+        Execution count (``In [n]``) of the notebook cell that drew the figure; recorded in the
+        manifest so that the book links the figure to that cell.
     dpi : int
         Resolution of the PNG, at least 200.
     out_dir : pathlib.Path, optional
@@ -250,6 +199,7 @@ def export_figure(
         "label": label,
         "caption": caption.strip(),
         "notebook": notebook or provenance.current_notebook(),
+        "cell": int(cell) if isinstance(cell, (int, np.integer)) and cell > 0 else None,
         "profile": provenance.current_profile(),
         "parameters": params,
         "seed": json.loads(json.dumps(seed, default=provenance.json_default)),

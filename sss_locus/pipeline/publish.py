@@ -14,6 +14,14 @@ and, in a markdown cell of the same notebook, the caption is written nowhere els
     {glue:md}`fig-survey-passes-caption:myst`
     ```
 
+    ```{include} ../_cite/fig-survey-passes.md
+    ```
+
+The included block (written by :mod:`sss_locus.pipeline.bookbuild` at every build) sits under
+the figure: its files, its data, a link to the code cell that drew it and to the notebook, and its
+BibTeX entry. ``publish`` marks its own cell with an anchor (``#<label>-source``) for that link
+and records the cell's execution count (``In [n]``) in the manifest.
+
 The run's parameters, profile and notebook come from the runner (``sss-locus run`` / ``book``
 put them in the kernel's environment, :func:`run_parameters`); the notebook never retypes them.
 Outside the runner (a plain ``papermill`` call or an interactive session) the manifest says so:
@@ -63,7 +71,13 @@ def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame
     from IPython.display import Markdown
     from myst_nb import glue
 
-    export.export_figure(fig, label, data, caption=caption, parameters=run_parameters())
+    from IPython import get_ipython
+    from IPython.display import HTML, display
+
+    shell = get_ipython()
+    cell = getattr(shell, "execution_count", None) if shell is not None else None
+    export.export_figure(fig, label, data, caption=caption, parameters=run_parameters(), cell=cell)
+    display(HTML(f'<span id="{label}-source" class="figure-source-anchor"></span>'))
     glue(label, fig, display=False)
     glue(f"{label}-caption", Markdown(caption), display=False)
     plt.close(fig)

@@ -154,3 +154,91 @@ def plot_locus_concept(data: dict[str, pd.DataFrame], aperture, feature: np.ndar
     fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=8, frameon=False)
     fig.subplots_adjust(left=0.0, right=1.0, top=1.05, bottom=0.12)
     return fig
+
+
+# --- The interactive view (plotly): the same scene, to turn and zoom in a browser. -------------
+
+PLOTLY_JS = "../plotly/plotly.min.js"
+"""Where a book page finds plotly.js: the site's own copy (``sss_locus.pipeline.bookbuild``)."""
+
+
+def _lines(points: np.ndarray) -> tuple[list, list, list]:
+    """Coordinates of a list of polylines, separated by ``None`` (one plotly trace)."""
+    xs, ys, zs = [], [], []
+    for line in points:
+        for values, coords in zip((xs, ys, zs), np.asarray(line).T):
+            values.extend([*coords.tolist(), None])
+    return xs, ys, zs
+
+
+def _sensor_traces(go, aperture, axes: np.ndarray, origin: np.ndarray, r: float, colour: str,
+                   k: int) -> list:
+    """One sensor's sphere (faint), aperture cap and wedge edges, and frame, as plotly traces."""
+    def world(p):
+        return p @ axes.T + origin
+
+    th, ph = np.meshgrid(np.linspace(-np.pi, np.pi, 49), np.linspace(-np.pi / 2, np.pi / 2, 25))
+    sphere = world(_on_sphere(r, th, ph))
+    th = np.linspace(-aperture.half_azimuth_rad, aperture.half_azimuth_rad, 41)
+    ph = np.linspace(-aperture.half_elevation_rad, aperture.half_elevation_rad, 9)
+    cap = world(_on_sphere(r, th[:, None], ph[None, :]))
+    edges = [np.concatenate([cap[0], cap[:, -1], cap[-1, ::-1], cap[::-1, 0]])]
+    edges += [np.stack([origin, c]) for c in (cap[0, 0], cap[0, -1], cap[-1, 0], cap[-1, -1])]
+    flat = dict(colorscale=[[0, colour], [1, colour]], showscale=False, hoverinfo="skip")
+    traces = [
+        go.Surface(x=sphere[..., 0], y=sphere[..., 1], z=sphere[..., 2], opacity=0.12,
+                   name=f"range sphere {k}, r{k} = {r:.1f} m", legendgroup=f"sphere{k}",
+                   showlegend=True, **flat),
+        go.Surface(x=cap[..., 0], y=cap[..., 1], z=cap[..., 2], opacity=0.45,
+                   name=f"aperture {k} (sphere inside it)", legendgroup=f"aperture{k}",
+                   showlegend=True, **flat),
+        go.Scatter3d(**dict(zip("xyz", _lines(edges))), mode="lines", legendgroup=f"aperture{k}",
+                     showlegend=False, line=dict(color=colour, width=3, dash="dot"), hoverinfo="skip"),
+    ]
+    for j, (c, a) in enumerate(zip(AXIS_COLOURS, "xyz")):
+        end = origin + 3.0 * axes[:, j]
+        traces.append(go.Scatter3d(x=[origin[0], end[0]], y=[origin[1], end[1]], z=[origin[2], end[2]],
+                                   mode="lines", line=dict(color=c.removeprefix("tab:"), width=6),
+                                   name="sensor frames (x red, y green, z blue)", legendgroup="frames",
+                                   showlegend=(k == 1 and j == 0), hoverinfo="skip"))
+    return traces
+
+
+def interactive_locus_concept(data: dict[str, pd.DataFrame], aperture, feature: np.ndarray, *,
+                              locus_length_m: float):
+    """The concept scene of :func:`plot_locus_concept` as a plotly figure: drag to rotate, scroll
+    to zoom, click a legend entry to hide or show the spheres, apertures, circle or locus.
+    Returns a ``plotly.graph_objects.Figure``."""
+    import plotly.graph_objects as go
+
+    circle, sensors = _xyz(data["circle"]), data["sensors"]
+    traces = []
+    for (i, row), colour in zip(sensors.iterrows(), ("darkorange", "rebeccapurple")):
+        traces += _sensor_traces(go, aperture, _sensor_axes(row), _xyz(sensors)[i], row["range_m"],
+                                 colour, i + 1)
+    traces.append(go.Scatter3d(x=circle[:, 0], y=circle[:, 1], z=circle[:, 2], mode="lines",
+                               line=dict(color="#4d4d4d", width=4, dash="dash"),
+                               name="intersection circle"))
+    arcs = [_xyz(arc) for _, arc in data["locus"].groupby("arc", sort=True)]
+    traces.append(go.Scatter3d(**dict(zip("xyz", _lines(arcs))), mode="lines",
+                               line=dict(color="crimson", width=10),
+                               name=f"ambiguity locus, {locus_length_m:.1f} m"))
+    traces.append(go.Scatter3d(x=[feature[0]], y=[feature[1]], z=[feature[2]], mode="markers",
+                               marker=dict(symbol="diamond", size=6, color="gold",
+                                           line=dict(color="black", width=1)), name="feature"))
+    fig = go.Figure(traces)
+    fig.update_layout(
+        scene=dict(xaxis_title="x1 (m)", yaxis_title="y1 (m)", zaxis_title="z1 (m)", aspectmode="data"),
+        legend=dict(orientation="h", yanchor="top", y=-0.02, itemclick="toggle"),
+        margin=dict(l=0, r=0, t=10, b=0), height=640,
+    )
+    return fig
+
+
+def offline_html(fig, div_id: str, plotly_js: str = PLOTLY_JS) -> str:
+    """HTML of a plotly figure that loads plotly.js from ``plotly_js`` (the site's copy), not
+    from a CDN."""
+    if not plotly_js.endswith(".js"):
+        raise ValueError(f"plotly_js must be the path of a .js file, got {plotly_js!r}")
+    return fig.to_html(full_html=False, include_plotlyjs=plotly_js, div_id=div_id,
+                       config={"displaylogo": False, "responsive": True})

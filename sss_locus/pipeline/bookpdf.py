@@ -1,0 +1,112 @@
+"""The whole book as one PDF (``make pdf``): Jupyter Book's ``singlehtml`` build, printed by
+headless Chromium.
+
+Run after ``make book`` (it uses the executed notebooks and exported figures in the build area)::
+
+    .venv/bin/python -m sss_locus.pipeline.bookpdf     # prints the path of the PDF
+
+The single page is built into ``<build>/singlehtml`` and printed to ``<build>/pdf/sss-locus-book.pdf``
+with Chromium from the operating system (Debian/Ubuntu package ``chromium``, or Google Chrome):
+the figures are the book's own (embedded PNGs), math is typeset by the site's local MathJax, and
+the interactive views and the "cite this figure" dropdowns are left out of the print.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+from sss_locus import paths
+from sss_locus.pipeline import bookbuild
+from sss_locus.pipeline.runner import hermetic_env
+
+PDF_NAME = "sss-locus-book.pdf"
+BROWSERS = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable", "chrome")
+#: Printing rules added to the single page: no navigation, no interactive plots, no dropdowns.
+PRINT_CSS = """
+@media print {
+  .bd-header, .bd-sidebar-primary, .bd-sidebar-secondary, .header-article, .prev-next-area,
+  .bd-footer, .bd-footer-article, .bd-footer-content, .plotly-graph-div, .figure-cite details,
+  .sd-dropdown, .toggle-details, button { display: none !important; }
+  .bd-main, .bd-content, .bd-article-container { max-width: 100% !important; }
+  figure, img, table { break-inside: avoid; }
+  h1 { break-before: page; }
+}
+"""
+
+
+def find_browser() -> str:
+    """Path of a Chromium-family browser, or a clear error saying how to install one."""
+    override = os.environ.get("SSS_LOCUS_CHROMIUM")
+    for name in ((override,) if override else ()) + BROWSERS:
+        found = shutil.which(name)
+        if found:
+            return found
+    raise FileNotFoundError(
+        "make pdf prints the book with headless Chromium, and none was found on PATH (looked for "
+        + ", ".join(BROWSERS) + "). Install it, e.g. `sudo apt-get install chromium` on Debian or "
+        "Ubuntu, or set SSS_LOCUS_CHROMIUM to the browser's path."
+    )
+
+
+def build_singlehtml(log=print) -> Path:
+    """Stage the book and build it with the ``singlehtml`` builder; return its ``index.html``."""
+    root = bookbuild.stage()
+    missing = bookbuild.missing_toc_files(root)
+    if missing:
+        raise FileNotFoundError("the book has not been built yet (missing: " + ", ".join(missing)
+                                + "); run `make book` first")
+    out = paths.build_dir() / "singlehtml"
+    cmd = [str(Path(sys.executable).with_name("jupyter-book")), "build", str(root), "--builder",
+           "singlehtml", "--path-output", str(out), "--all"]
+    log("$ " + " ".join(cmd))
+    result = subprocess.run(cmd, env={**os.environ, **hermetic_env()}, cwd=root, text=True,
+                            capture_output=True, errors="replace")
+    if result.returncode != 0:
+        raise RuntimeError(f"singlehtml build failed (exit {result.returncode}):\n{result.stdout[-4000:]}"
+                           f"\n{result.stderr[-4000:]}")
+    index = out / "_build" / "singlehtml" / "index.html"
+    if not index.is_file():
+        raise RuntimeError(f"singlehtml build finished but {index} is missing")
+    css = index.parent / "_static" / "sss-locus-print.css"
+    css.write_text(PRINT_CSS, encoding="utf-8")
+    html = index.read_text(encoding="utf-8")
+    link = '<link rel="stylesheet" href="_static/sss-locus-print.css">'
+    if link not in html:
+        index.write_text(html.replace("</head>", link + "\n</head>", 1), encoding="utf-8")
+    return index
+
+
+def print_pdf(index: Path, target: Path, browser: str, timeout_s: float = 300) -> Path:
+    """Print ``index`` to ``target`` with headless ``browser``; return ``target``."""
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.unlink(missing_ok=True)
+    profile = paths.build_dir() / "chromium-profile"
+    cmd = [browser, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+           "--disable-background-networking", f"--user-data-dir={profile}", "--no-pdf-header-footer",
+           "--run-all-compositor-stages-before-draw", "--virtual-time-budget=30000",
+           f"--print-to-pdf={target}", index.resolve().as_uri()]
+    result = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout_s,
+                            stdin=subprocess.DEVNULL)
+    if not target.is_file() or not target.read_bytes().startswith(b"%PDF"):
+        raise RuntimeError(f"{browser} did not write a PDF (exit {result.returncode}):\n{result.stderr[-3000:]}")
+    return target
+
+
+def main(argv: list[str] | None = None) -> int:
+    try:
+        browser = find_browser()  # before any work: a missing tool is the common failure
+        index = build_singlehtml(log=lambda line: print(line, file=sys.stderr))
+        pdf = print_pdf(index, paths.build_dir() / "pdf" / PDF_NAME, browser)
+    except (FileNotFoundError, RuntimeError, subprocess.TimeoutExpired) as exc:
+        print(f"make pdf: {exc}", file=sys.stderr)
+        return 1
+    print(pdf)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

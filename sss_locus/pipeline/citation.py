@@ -1,0 +1,323 @@
+"""Citation metadata: figure BibTeX entries, the site's base URL, and ``.zenodo.json``.
+
+One source for each fact:
+
+* the project's title, authors, version and release date: ``CITATION.cff``;
+* the public address of the built site: ``html.baseurl`` in ``_config.yml`` (empty until the
+  site is published; figure entries get a ``url`` only when it is set);
+* the repository (launch and source buttons): ``repository.url`` in ``_config.yml``.
+
+``.zenodo.json`` (read by Zenodo when a GitHub release is archived, so that the release receives a
+DOI) is generated from ``CITATION.cff``; regenerate it after editing the CFF file with::
+
+    .venv/bin/python -m sss_locus.pipeline.citation          # writes .zenodo.json
+    .venv/bin/python -m sss_locus.pipeline.citation --check  # exit 1 if it is out of date
+
+Every BibTeX field is valid LaTeX: TeX specials outside ``$...$`` math are escaped, non-ASCII
+characters become LaTeX commands (``latexcodec``, a dependency of ``sphinxcontrib-bibtex``) and
+the Markdown emphasis of captions becomes ``\\emph``/``\\textbf``/``\\texttt``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import codecs
+import json
+import re
+import sys
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from sss_locus import paths
+
+ZENODO_FILE: Path = paths.REPO_ROOT / ".zenodo.json"
+#: Site folder (``_extra/notebooks``) holding the executed notebooks offered for download.
+NOTEBOOKS_SUBDIR = "notebooks"
+#: Staged folder of the per-figure blocks (``<source>/_cite/<label>.md``).
+CITE_SUBDIR = "_cite"
+#: Longest short caption in a figure's BibTeX ``title`` (characters, before escaping).
+SHORT_CAPTION_CHARS = 90
+_SPECIALS = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "&": r"\&", "%": r"\%",
+             "#": r"\#", "_": r"\_", "^": r"\^{}", "~": r"\~{}", "$": r"\$"}
+_MARKDOWN = ((re.compile(r"\*\*(.+?)\*\*"), "textbf"), (re.compile(r"(?<![\w*])\*(?!\s)(.+?)\*"), "emph"),
+             (re.compile(r"`([^`]+)`"), "texttt"))
+
+
+def _escape_text(text: str) -> str:
+    """Escape plain text (no math) for LaTeX."""
+    import latexcodec  # noqa: F401  (registers the "ulatex" codecs)
+
+    out = []
+    for char in text:
+        if char in _SPECIALS:
+            out.append(_SPECIALS[char])
+        elif ord(char) < 128:
+            out.append(char)
+        else:
+            try:
+                out.append("{" + codecs.encode(char, "ulatex+ascii") + "}")
+            except UnicodeEncodeError:
+                raise ValueError(
+                    f"character {char!r} (U+{ord(char):04X}) has no LaTeX equivalent; "
+                    "use ASCII, $...$ math or a common accented letter or symbol"
+                ) from None
+    return "".join(out)
+
+
+def latex_escape(text: str, *, markdown: bool = False) -> str:
+    """``text`` as LaTeX: specials escaped outside ``$...$`` (math kept as written when the
+    dollars pair up and its braces balance), non-ASCII as LaTeX commands.
+
+    With ``markdown=True``, ``**bold**``, ``*emphasis*`` and ```code``` become ``\\textbf``,
+    ``\\emph`` and ``\\texttt``.
+
+    >>> latex_escape("50% of width_m & 3° ($\\\\theta_1$)")
+    '50\\\\% of width\\\\_m \\\\& 3{$^\\\\circ$} ($\\\\theta_1$)'
+    """
+    pieces = text.split("$")
+    math_ok = len(pieces) % 2 == 1 and all(p.count("{") == p.count("}") for p in pieces[1::2])
+    if not math_ok:
+        pieces = [text]
+    out = []
+    for i, piece in enumerate(pieces):
+        if i % 2:
+            out.append("$" + piece + "$")
+            continue
+        if not markdown:
+            out.append(_escape_text(piece))
+            continue
+        # Markdown spans first (on the raw text), then escape the pieces between and inside them.
+        spans: list[tuple[int, int, str, str]] = []
+        for pattern, command in _MARKDOWN:
+            for m in pattern.finditer(piece):
+                if not any(s < m.end() and m.start() < e for s, e, _, _ in spans):
+                    spans.append((m.start(), m.end(), command, m.group(1)))
+        pos, parts = 0, []
+        for start, end, command, inner in sorted(spans):
+            parts.append(_escape_text(piece[pos:start]))
+            parts.append(f"\\{command}{{{_escape_text(inner)}}}")
+            pos = end
+        parts.append(_escape_text(piece[pos:]))
+        out.append("".join(parts))
+    return "".join(out)
+
+
+def short_caption(caption: str, limit: int = SHORT_CAPTION_CHARS) -> str:
+    """The caption's first sentence (or clause, at ``;``), cut at a word to ``limit`` characters.
+
+    >>> short_caption("Locus length vs. range; details. More.")
+    'Locus length vs. range'
+    """
+    text = " ".join(caption.split())
+    head = re.split(r"(?<=[a-z0-9)\]$][.!?])\s+(?=[A-Z(])|;\s", text, maxsplit=1)[0].rstrip(".")
+    if len(head) <= limit:
+        return head
+    cut = head[:limit].rsplit(" ", 1)[0].rstrip(",:;")
+    if cut.count("$") % 2:  # do not cut inside math
+        cut = cut[: cut.rfind("$")].rstrip()
+    return cut + "…"
+
+
+def _load_yaml(path: Path) -> dict[str, Any]:
+    import yaml
+
+    data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    if not isinstance(data, dict):
+        raise ValueError(f"{path} must hold a YAML mapping")
+    return data
+
+
+def load_cff(path: Path | None = None) -> dict[str, Any]:
+    """``CITATION.cff`` as a dict."""
+    return _load_yaml(paths.CITATION_FILE if path is None else path)
+
+
+def _config_value(section: str, key: str, config: Path | None = None) -> str | None:
+    try:
+        value = (_load_yaml(paths.CONFIG_FILE if config is None else config).get(section) or {}).get(key)
+    except OSError:
+        return None
+    value = str(value or "").strip()
+    return value or None
+
+
+def base_url(config: Path | None = None) -> str | None:
+    """The published site's address (``html.baseurl`` in ``_config.yml``), without a trailing
+    slash; ``None`` while it is empty."""
+    value = _config_value("html", "baseurl", config)
+    if value and not re.match(r"^https?://[^\s/]+", value):
+        raise ValueError(f"html.baseurl in _config.yml must be an http(s) URL or empty, got {value!r}")
+    return value.rstrip("/") if value else None
+
+
+def repository_url(config: Path | None = None) -> str | None:
+    """The repository's address (``repository.url`` in ``_config.yml``), or ``None``."""
+    return _config_value("repository", "url", config)
+
+
+def _bibtex_authors(cff: Mapping[str, Any]) -> str:
+    names = []
+    for author in cff.get("authors") or []:
+        if "family-names" in author:
+            given = author.get("given-names", "")
+            names.append(latex_escape(f"{author['family-names']}, {given}".strip(", ")))
+        elif "name" in author:  # an entity: braces keep BibTeX from splitting it
+            names.append("{" + latex_escape(str(author["name"])) + "}")
+    return " and ".join(names) or "{sss-locus contributors}"
+
+
+def figure_url(label: str, config: Path | None = None) -> str | None:
+    """Public address of a figure's PNG, when ``html.baseurl`` is set."""
+    base = base_url(config)
+    return f"{base}/{paths.FIGURES_SUBDIR}/{label}.png" if base else None
+
+
+def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None = None,
+                  config: Path | None = None) -> str:
+    """A ``@misc`` BibTeX entry citing one exported figure, from its manifest.
+
+    Fields: ``title`` (label and short caption), ``author`` and ``howpublished`` (from
+    ``CITATION.cff``), ``year`` (of the run), ``version`` (of the package), ``note`` (notebook,
+    profile and commit) and ``url`` when ``html.baseurl`` is configured.
+    """
+    from sss_locus.pipeline.provenance import short_commit
+
+    if cff is None:
+        try:
+            cff = load_cff()
+        except (OSError, ValueError, ImportError):
+            cff = {}
+    label = manifest["label"]
+    fields = {
+        "title": "{" + latex_escape(f"Figure {label}: ") + latex_escape(short_caption(manifest["caption"]),
+                                                                       markdown=True) + "}",
+        "author": _bibtex_authors(cff),
+        "year": latex_escape(str(manifest["run_time_utc"])[:4]),
+        "version": latex_escape(str(manifest["package_version"])),
+        "howpublished": "Figure in \\emph{" + latex_escape(str(cff.get("title", "sss-locus"))) + "}",
+        "note": (f"Notebook \\texttt{{{latex_escape(str(manifest['notebook']))}}}, "
+                 f"profile {latex_escape(str(manifest['profile']))}, "
+                 f"commit \\texttt{{{latex_escape(short_commit(str(manifest['git_commit'])))}}}"),
+    }
+    url = figure_url(label, config)
+    if url:
+        fields["url"] = url.replace("%", r"\%").replace("#", r"\#")
+    body = ",\n".join(f"  {key} = {{{value}}}" for key, value in fields.items())
+    return f"@misc{{sss-locus:{label},\n{body}\n}}\n"
+
+
+def launch_links(notebook: str, config: Path | None = None) -> dict[str, str]:
+    """Binder and Colab addresses of a source notebook (repository-relative path), when
+    ``repository.url`` in ``_config.yml`` is a GitHub repository; otherwise ``{}``."""
+    repo = repository_url(config)
+    m = re.match(r"^https://github\.com/([^/\s]+)/([^/\s]+?)(?:\.git)?/?$", repo or "")
+    if not m or not notebook.endswith(".ipynb"):
+        return {}
+    branch = _config_value("repository", "branch", config) or "main"
+    org, name = m.groups()
+    return {"Binder": f"https://mybinder.org/v2/gh/{org}/{name}/{branch}?labpath={notebook}",
+            "Colab": f"https://colab.research.google.com/github/{org}/{name}/blob/{branch}/{notebook}"}
+
+
+def cite_block(manifest: Mapping[str, Any], bibtex: str, *, site_root: str = "..",
+               config: Path | None = None) -> str:
+    """The MyST block placed under a figure on its own page (``{include}``-d there): its files and
+    data, the code cell and notebook that made it, launch links, and its BibTeX entry.
+
+    ``site_root`` is the site root relative to the page (notebook pages sit one folder down).
+    """
+    label = manifest["label"]
+    kinds = {".png": "PNG", ".svg": "SVG", ".pdf": "PDF"}
+    files = sorted(manifest["files"])
+    images = [f'<a href="{site_root}/{manifest["files"][n]["url"]}">{kinds[Path(n).suffix]}</a>'
+              for n in files if Path(n).suffix in kinds]
+    data = [f'<a href="{site_root}/{manifest["files"][n]["url"]}" download>{n}</a>'
+            for n in files if n.endswith(".csv")]
+    meta = [f'<a href="{site_root}/{paths.FIGURES_SUBDIR}/{label}.json">manifest</a>',
+            f'<a href="{site_root}/{paths.FIGURES_SUBDIR}/{label}.bib" download>BibTeX</a>']
+    notebook = str(manifest["notebook"])
+    name = Path(notebook).name
+    cell = manifest.get("cell")
+    where = f'<a href="#{label}-source">code cell [{cell}]</a>' if cell else \
+        f'<a href="#{label}-source">code cell</a>'
+    source = (f"{where} of <code>{notebook}</code> · "
+              f'<a href="{site_root}/{NOTEBOOKS_SUBDIR}/{name}" download>download the executed notebook</a>')
+    launch = " · ".join(f'<a href="{url}">open in {k}</a>' for k, url in launch_links(notebook, config).items())
+    lines = [
+        f'<div class="figure-cite" id="{label}-cite">',
+        "",
+        f"**Figure <code>{label}</code>**: {' · '.join(images)} · data: {' · '.join(data) or 'none'} · "
+        f"{' · '.join(meta)}<br>",
+        f"**Made by** {source}{' · ' + launch if launch else ''}"
+        f" (profile <code>{manifest['profile']}</code>, commit "
+        f"<code>{str(manifest['git_commit'])[:12]}</code>)",
+        "",
+        ":::{dropdown} Cite this figure (BibTeX)",
+        "```bibtex",
+        bibtex.rstrip(),
+        "```",
+        ":::",
+        "",
+        "</div>",
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def zenodo_metadata(cff: Mapping[str, Any]) -> dict[str, Any]:
+    """Zenodo deposit metadata (``.zenodo.json``) from a CITATION.cff mapping."""
+    creators = []
+    for author in cff.get("authors") or []:
+        if "family-names" in author:
+            creator = {"name": f"{author['family-names']}, {author.get('given-names', '')}".strip(", ")}
+        else:
+            creator = {"name": str(author["name"])}
+        if author.get("affiliation"):
+            creator["affiliation"] = author["affiliation"]
+        if author.get("orcid"):
+            creator["orcid"] = str(author["orcid"]).rsplit("/", 1)[-1]
+        creators.append(creator)
+    meta: dict[str, Any] = {
+        "title": cff["title"],
+        "description": " ".join(str(cff.get("abstract", cff["title"])).split()),
+        "upload_type": "software",
+        "creators": creators,
+        "version": str(cff["version"]),
+        "license": {"id": str(cff["license"])},
+        "keywords": list(cff.get("keywords") or []),
+    }
+    if cff.get("date-released"):
+        meta["publication_date"] = str(cff["date-released"])
+    related = [{"identifier": cff[key], "relation": "isSupplementTo", "scheme": "url"}
+               for key in ("repository-code", "url") if cff.get(key)]
+    if related:
+        meta["related_identifiers"] = related
+    return meta
+
+
+def zenodo_json(cff: Mapping[str, Any] | None = None) -> str:
+    """The text of ``.zenodo.json`` generated from ``CITATION.cff``."""
+    return json.dumps(zenodo_metadata(load_cff() if cff is None else cff), indent=2,
+                      ensure_ascii=False) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description="Generate .zenodo.json from CITATION.cff.")
+    parser.add_argument("--check", action="store_true", help="only check that .zenodo.json is up to date")
+    args = parser.parse_args(argv)
+    text = zenodo_json()
+    current = ZENODO_FILE.read_text(encoding="utf-8") if ZENODO_FILE.exists() else None
+    if args.check:
+        if current != text:
+            print(f"{ZENODO_FILE.name} is out of date; run python -m sss_locus.pipeline.citation",
+                  file=sys.stderr)
+            return 1
+        return 0
+    ZENODO_FILE.write_text(text, encoding="utf-8")
+    print(ZENODO_FILE)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
