@@ -17,6 +17,7 @@ import sys
 import time
 
 from sss_locus import paths
+from sss_locus.pipeline import scaleout
 from sss_locus.pipeline.registry import ParameterError, get_entry, load_registry
 
 
@@ -31,6 +32,7 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("-p", "--parameter", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
                      help="override one parameter (repeatable); VALUE is converted to the declared type")
     run.add_argument("--output", help="write the executed copy here instead of the build area")
+    scaleout.add_arguments(run)
 
     book = sub.add_parser("book", help="run every notebook, then build the book")
     book.add_argument("--profile", default="book", help="parameter profile for every notebook (default: book)")
@@ -39,6 +41,7 @@ def _parser() -> argparse.ArgumentParser:
                       help="notebooks run at the same time (default: number of CPUs, at most 4)")
     book.add_argument("--force", action="store_true",
                       help="rerun every notebook, even those whose executed copy is up to date")
+    scaleout.add_arguments(book)
 
     params = sub.add_parser("params", help="list a notebook's parameters and profiles")
     params.add_argument("notebook")
@@ -107,6 +110,9 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     handler = {"run": _run, "book": _book, "params": _params, "list": _list}[args.command]
     try:
+        if args.command in ("run", "book"):
+            with scaleout.scheduler_environment(args):
+                return handler(args)
         return handler(args)
     except (ValueError, FileNotFoundError, RuntimeError) as exc:  # ParameterError is a ValueError
         print(f"sss-locus {args.command}: error: {exc}", file=sys.stderr)
