@@ -53,6 +53,7 @@ from ..geometry import Aperture, relative_pose, three_view_points, two_view_locu
 from ..geometry.validation import as_float_array
 from ..paths import DATA_DIR
 from .inputs import read_toml, sourced, table
+from .rowstats import nanquantile_rows
 from .view_sets import Views, views_from_survey
 
 NOISE_FILE: Path = DATA_DIR / "noise.toml"
@@ -289,26 +290,17 @@ def monte_carlo(views: Views, noise: NoiseModel, aperture: Aperture, *, kind: st
         if kind == "two":
             rows.append(pd.DataFrame({
                 "circle_miss_q": np.quantile(out["circle_miss_m"], quantile, axis=1),
-                "near_q": _nanq(out["near_m"], quantile), "far_q": _nanq(out["far_m"], quantile),
+                "near_q": nanquantile_rows(out["near_m"], quantile), "far_q": nanquantile_rows(out["far_m"], quantile),
                 "empty_fraction": out["empty"].mean(axis=1),
                 "length_median_m": np.median(out["length_m"], axis=1),
                 "length0_m": zero["length_m"][:, 0], "far0_m": zero["far_m"][:, 0]}))
         else:
             rows.append(pd.DataFrame({
-                "point_error_q": _nanq(out["point_error_m"], quantile),
+                "point_error_q": nanquantile_rows(out["point_error_m"], quantile),
                 "lost_fraction": out["lost"].mean(axis=1),
                 "ambiguous_fraction": (out["n_valid"] == 2).mean(axis=1),
                 "n_valid0": zero["n_valid"][:, 0]}))
     return pd.concat(rows, ignore_index=True)
-
-
-def _nanq(x, q):
-    """Row-wise quantile ignoring NaN; NaN for all-NaN rows (without a warning)."""
-    ok = ~np.isnan(x).all(axis=1)
-    out = np.full(x.shape[0], np.nan)
-    if ok.any():
-        out[ok] = np.nanquantile(x[ok], q, axis=1)
-    return out
 
 
 def first_order(views: Views, noise: NoiseModel, aperture: Aperture, *, kind: str = "two",

@@ -106,12 +106,15 @@ def curve_summary(samples: pd.DataFrame, values=VALUES, *, n_resamples: int = 20
         for v in values:
             x = g[v].to_numpy(float)
             boot[v][:, j] = bootstrap_median(x, n_resamples, rng)
-            lo, hi = _interval(boot[v][:, j], confidence_level)
             q25, med, q75 = np.quantile(x, [0.25, 0.5, 0.75])
-            row.update({f"{v}_median": med, f"{v}_q25": q25, f"{v}_q75": q75,
-                        f"{v}_ci_low": lo, f"{v}_ci_high": hi})
+            row.update({f"{v}_median": med, f"{v}_q25": q25, f"{v}_q75": q75})
         rows.append(row)
-    return pd.DataFrame(rows), boot
+    curve = pd.DataFrame(rows)
+    for v in values:  # one quantile call per value for the whole grid
+        curve[f"{v}_ci_low"], curve[f"{v}_ci_high"] = _interval(boot[v], confidence_level)
+    order = ["crossing_angle_deg", "n"] + [f"{v}_{s}" for v in values
+                                          for s in ("median", "q25", "q75", "ci_low", "ci_high")]
+    return curve[order], boot
 
 
 def peak_angle(curve: pd.DataFrame, boot: np.ndarray, value: str = "locus_length_m", *,

@@ -50,6 +50,7 @@ from scipy.spatial.transform import Rotation
 
 from ..geometry import elevation_misalignment, relative_pose, two_view_locus
 from .platforms import SIDES, Platform
+from .scale import map_chunks
 from .straight_pass import attitude_angles, transducer_stack, vehicle_attitude
 
 BLOCK_SIZE = 4096
@@ -252,6 +253,13 @@ def _evaluate(spec: PoseSpaceSpec, g: dict[str, np.ndarray]) -> pd.DataFrame:
     })
 
 
+def _evaluate_blocks(spec: PoseSpaceSpec, seed: int, first: int, stop: int, n: int) -> pd.DataFrame:
+    """Rows of blocks ``first .. stop - 1`` (cut at row ``n``): one chunk of the study."""
+    blocks = [draw_block(spec, seed, k) for k in range(first, stop)]
+    g = {key: np.concatenate([b[key] for b in blocks])[:n - first * BLOCK_SIZE] for key in blocks[0]}
+    return _evaluate(spec, g)
+
+
 def sample_geometry(spec: PoseSpaceSpec, n: int, seed: int) -> dict[str, np.ndarray]:
     """The first ``n`` raw configurations (``R``, ``t``, ranges, angles, world positions ``f``,
     ``o1``, ``o2`` ...) for ``seed``; the rows of :func:`sample_pose_space` in the same order."""
@@ -279,7 +287,9 @@ def sample_pose_space(spec: PoseSpaceSpec, n_samples: int, seed: int, *,
     seed : int
         Non-negative; the table depends only on ``(spec, n_samples, seed)``.
     chunk_size : int
-        Rows per kernel evaluation (memory); does not change the result.
+        Rows per kernel evaluation (memory; rounded down to whole blocks of
+        :data:`BLOCK_SIZE`, at least one) and per chunk of work (:mod:`sss_locus.experiments.scale`:
+        chunks run in-process or on a Dask cluster); does not change the result.
 
     Returns
     -------
@@ -294,17 +304,8 @@ def sample_pose_space(spec: PoseSpaceSpec, n_samples: int, seed: int, *,
     n, seed = _check_n_seed(n_samples, seed)
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size must be a positive integer; got {chunk_size!r}")
-    frames, pending, done = [], [], 0
+    per_task = max(1, chunk_size // BLOCK_SIZE)  # whole blocks per kernel call and per chunk
     n_blocks = -(-n // BLOCK_SIZE)
-    for k in range(n_blocks):
-        pending.append(draw_block(spec, seed, k))
-        last = k == n_blocks - 1
-        while pending and (sum(len(p["r1"]) for p in pending) >= chunk_size or last):
-            g = {key: np.concatenate([p[key] for p in pending]) for key in pending[0]}
-            take = min(chunk_size, n - done, len(g["r1"]))
-            frames.append(_evaluate(spec, {key: v[:take] for key, v in g.items()}))
-            done += take
-            rest = {key: v[take:] for key, v in g.items()}
-            pending = [rest] if len(rest["r1"]) and done < n else []
-    out = pd.concat(frames, ignore_index=True)
+    tasks = [(spec, seed, k, min(k + per_task, n_blocks), n) for k in range(0, n_blocks, per_task)]
+    out = pd.concat(map_chunks(_evaluate_blocks, tasks), ignore_index=True)
     return out[list(COLUMNS)]

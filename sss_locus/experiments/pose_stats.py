@@ -79,12 +79,13 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
         raise ValueError(f"columns {constant} are constant: their rank correlation is undefined")
     candidates = [c for c in candidates if c not in constant]
     X, Y = centred_ranks(candidates), centred_ranks(targets)
+    XX, YY = X * X, Y * Y  # formed once, not per resample (the same products)
 
     def weighted_corr(w):
         sw = w.sum()
         mx, my = w @ X / sw, w @ Y / sw
-        vx = w @ (X * X) / sw - mx ** 2
-        vy = w @ (Y * Y) / sw - my ** 2
+        vx = w @ XX / sw - mx ** 2
+        vy = w @ YY / sw - my ** 2
         cxy = X.T @ (w[:, None] * Y) / sw - np.outer(mx, my)
         return cxy / np.sqrt(np.outer(vx, vy))
 

@@ -53,6 +53,7 @@ import pandas as pd
 from ..geometry import elevation_misalignment, relative_pose, two_view_locus
 from .envelopes import OffsetModel, SurveyEnvelope
 from .platforms import SIDES, Platform
+from .scale import map_chunks
 from .straight_pass import REJECTION_REASONS, observe_pass, swath_m
 
 BLOCK_SIZE = 256
@@ -172,6 +173,18 @@ def _evaluate(platform, gamma_deg, d) -> pd.DataFrame:
     })
 
 
+def _simulate_angle(platform, envelope, offset_model, gamma, n, seed) -> tuple[pd.DataFrame, dict]:
+    """One crossing angle (one chunk of the study): its samples and its acceptance row."""
+    blocks = [draw_block(platform, envelope, offset_model, gamma, seed, k)
+              for k in range(-(-n // BLOCK_SIZE))]
+    d = {k: np.concatenate([b[0][k] for b in blocks])[:n] for k in blocks[0][0]}
+    rej, accepted = sum(b[1] for b in blocks), sum(b[2] for b in blocks)
+    return _evaluate(platform, gamma, d), {
+        "crossing_angle_deg": float(gamma), "n_tried": int(accepted + rej.sum()),
+        "n_accepted": int(accepted), "acceptance": accepted / float(accepted + rej.sum()),
+        **{f"rejected_{r}": int(c) for r, c in zip(REJECTION_REASONS, rej)}}
+
+
 def simulate_passes(platform: Platform, envelope: SurveyEnvelope, offset_model: OffsetModel,
                     crossing_angles_deg, n_per_angle: int, seed: int
                     ) -> tuple[pd.DataFrame, pd.DataFrame]:
@@ -207,14 +220,7 @@ def simulate_passes(platform: Platform, envelope: SurveyEnvelope, offset_model: 
     if not isinstance(envelope, SurveyEnvelope) or not isinstance(offset_model, OffsetModel):
         raise ValueError("envelope must be a SurveyEnvelope and offset_model an OffsetModel")
     check_envelope(platform, envelope)
-    frames, acc = [], []
-    for gamma in angles:
-        blocks = [draw_block(platform, envelope, offset_model, gamma, seed, k)
-                  for k in range(-(-n // BLOCK_SIZE))]
-        d = {k: np.concatenate([b[0][k] for b in blocks])[:n] for k in blocks[0][0]}
-        rej, accepted = sum(b[1] for b in blocks), sum(b[2] for b in blocks)
-        frames.append(_evaluate(platform, gamma, d))
-        acc.append({"crossing_angle_deg": float(gamma), "n_tried": int(accepted + rej.sum()),
-                    "n_accepted": int(accepted), "acceptance": accepted / float(accepted + rej.sum()),
-                    **{f"rejected_{r}": int(c) for r, c in zip(REJECTION_REASONS, rej)}})
+    chunks = map_chunks(_simulate_angle, [(platform, envelope, offset_model, float(g), n, seed)
+                                          for g in angles])
+    frames, acc = [c[0] for c in chunks], [c[1] for c in chunks]
     return pd.concat(frames, ignore_index=True)[list(COLUMNS)], pd.DataFrame(acc)

@@ -186,3 +186,17 @@ def transpose_into(dst: np.ndarray, src: np.ndarray) -> np.ndarray:
         for i in range(dst.shape[0]):
             dst[i] = src[:, i]
     return dst
+
+
+def rotate_rows(Rc: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``R @ v`` for stacks of component-major vectors.
+
+    ``Rc`` (3, 3, n) holds ``R[:, i, j]`` at ``[i, j]``; ``v`` (..., 3, n) holds vector
+    components along its second-last axis. Summed in the order ``R_i0 v_0 + R_i1 v_1 + R_i2 v_2``.
+    """
+    return Rc[:, 0] * v[..., 0:1, :] + Rc[:, 1] * v[..., 1:2, :] + Rc[:, 2] * v[..., 2:3, :]
+
+
+def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product of component-major vectors (3, n), in the operation order of ``np.cross``."""
+    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])

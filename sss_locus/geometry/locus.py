@@ -17,7 +17,7 @@ from .validation import (as_float_array, as_positive_array, as_rotation_matrices
                          check_aperture, check_max_abs, row_exponents)
 from .locus_result import MAX_ARCS, LocusResult, LocusStatus
 from .aperture import Aperture
-from .fastpath import transpose_into
+from .fastpath import cross_rows, rotate_rows, transpose_into
 from .arcs import crop_circle
 from .tolerances import COINCIDENT_ORIGINS_RTOL, TANGENT_RTOL
 
@@ -38,20 +38,6 @@ def _bounds(ap: Aperture) -> tuple[np.ndarray, np.ndarray, bool]:
     s_el = el[:, 3:].copy()
     s_el.flags.writeable = False
     return normals, s_el, union
-
-
-def _rotate(Rc: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """``R @ v`` for stacks of component-major vectors.
-
-    ``Rc`` (3, 3, n) holds ``R[:, i, j]`` at ``[i, j]``; ``v`` (..., 3, n) holds vector
-    components along its second-last axis. Summed in the order ``R_i0 v_0 + R_i1 v_1 + R_i2 v_2``.
-    """
-    return Rc[:, 0] * v[..., 0:1, :] + Rc[:, 1] * v[..., 1:2, :] + Rc[:, 2] * v[..., 2:3, :]
-
-
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Cross product of component-major vectors (3, n), in the operation order of ``np.cross``."""
-    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
 
 def _apply_normals(normals: np.ndarray, vectors: np.ndarray, out: np.ndarray) -> None:
@@ -143,7 +129,7 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
     np.logical_and(mag[0] <= mag[1], mag[0] <= mag[2], out=axis[0], casting="unsafe")
     np.logical_and(axis[0] == 0.0, mag[1] <= mag[2], out=axis[1], casting="unsafe")
     np.subtract(1.0, axis[0] + axis[1], out=axis[2])
-    e1 = _cross(axis, normal)
+    e1 = cross_rows(axis, normal)
     e1_norm = np.sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2])
     zero = e1_norm == 0.0  # only where the normal is zero (coincident origins)
     if zero.any():
@@ -151,7 +137,7 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
     e1 /= e1_norm
     if some_coincident:
         e1[:, coincident] = 0.0
-    e2 = _cross(normal, e1)
+    e2 = cross_rows(normal, e1)
 
     # Coefficients A, B, D (as coef[0], coef[1], coef[2], each (8, n): four bounds per sensor)
     # of the bounds on the circle. Sensor 1 sees the circle directly; sensor 2 through
@@ -160,7 +146,7 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
     normals2, s2, union2 = _bounds(ap2)
     coef = np.empty((3, 8, n))
     frame1 = np.stack([e1, e2, center])  # (3 vectors, 3 components, n)
-    frame2 = _rotate(Rc, frame1)
+    frame2 = rotate_rows(Rc, frame1)
     frame2[2] += tc
     _apply_normals(normals1, frame1, coef[:, :4])
     _apply_normals(normals2, frame2, coef[:, 4:])
@@ -214,9 +200,11 @@ _FIELDS = {  # result arrays: trailing shape and dtype
     "in_range": ((), np.bool_), "length": ((), np.float64), "n_arcs": ((), np.int64),
     "arc_start": ((MAX_ARCS,), np.float64), "arc_end": ((MAX_ARCS,), np.float64),
 }
+_VECTORS = ("u", "center", "normal", "basis1", "basis2", "arc_start", "arc_end")
 
 
-def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> LocusResult:
+def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture, *,
+                   outputs: str = "all") -> LocusResult:
     """Ambiguity locus of a feature seen by two sidescan sensors with known relative pose.
 
     Parameters
@@ -232,6 +220,10 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> Lo
         see :mod:`sss_locus.geometry.validation`).
     aperture1, aperture2 : Aperture
         Fields of view of the two sensors, each in its own frame.
+    outputs : {"all", "lengths"}
+        ``"lengths"`` leaves out the per-row vectors and arcs (``u``, ``center``, ``normal``,
+        ``basis1``, ``basis2``, ``arc_start``, ``arc_end`` are ``None``): the same lengths,
+        counts and statuses with 4x less result memory.
 
     The batch shapes of ``R``, ``t``, ``r1`` and ``r2`` broadcast together to ``S`` (which may
     be empty, e.g. ``(0,)`` or ``(2, 0)``). Numeric arguments must be real numbers: Python or
@@ -273,6 +265,8 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> Lo
     """
     check_aperture(aperture1, "aperture1", Aperture)
     check_aperture(aperture2, "aperture2", Aperture)
+    if outputs not in ("all", "lengths"):
+        raise ValueError(f"outputs must be 'all' or 'lengths'; got {outputs!r}")
     R = as_rotation_matrices(R, "R")
     t = as_float_array(t, "t", tail=(3,))
     check_max_abs(t, "t")
@@ -285,23 +279,28 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture) -> Lo
     r1f = np.broadcast_to(r1, shape).reshape(n)
     r2f = np.broadcast_to(r2, shape).reshape(n)
 
-    results = {k: np.empty((n,) + tail, dtype=dtype) for k, (tail, dtype) in _FIELDS.items()}
+    # Chunks of _CHUNK rows keep every temporary in cache; each chunk writes its rows of the
+    # result arrays directly. Outputs left out go to one chunk-sized scratch area instead.
+    kept = _FIELDS if outputs == "all" else {k: f for k, f in _FIELDS.items() if k not in _VECTORS}
+    results = {k: np.empty((n,) + tail, dtype=dtype) for k, (tail, dtype) in kept.items()}
+    scratch = {k: np.empty((min(n, _CHUNK),) + _FIELDS[k][0]) for k in _FIELDS if k not in kept}
     np.logical_and(aperture1.range_ok(r1f), aperture2.range_ok(r2f), out=results["in_range"])
     # Lengths far from 1 m: each configuration is computed at a power-of-two scale (exact) where
     # no square or fourth power overflows or underflows, and its lengths are scaled back.
     e = row_exponents(r1f, r2f, tf[:, 0], tf[:, 1], tf[:, 2])
     ts, r1s, r2s = (tf, r1f, r2f) if e is None else (
         np.ldexp(tf, -e[:, None]), np.ldexp(r1f, -e), np.ldexp(r2f, -e))
-    # Chunks of _CHUNK rows keep every temporary in cache; each chunk writes its rows of the
-    # result arrays directly (no concatenation afterwards).
     for i in range(0, n, _CHUNK):
         rows = slice(i, min(i + _CHUNK, n))
-        _locus_chunk(Rf[rows], ts[rows], r1s[rows], r2s[rows], aperture1, aperture2,
-                     {k: v[rows] for k, v in results.items()})
+        out = {k: v[rows] for k, v in results.items()}
+        out.update({k: v[:rows.stop - i] for k, v in scratch.items()})
+        _locus_chunk(Rf[rows], ts[rows], r1s[rows], r2s[rows], aperture1, aperture2, out)
     if e is not None:
         for k in ("u", "center"):
-            results[k] = np.ldexp(results[k], e[:, None])
+            if k in results:
+                results[k] = np.ldexp(results[k], e[:, None])
         for k, power in (("radius", 1), ("length", 1), ("C", 2)):
             results[k] = np.ldexp(results[k], power * e)
-    fields = {k: v.reshape(shape + v.shape[1:]) for k, v in results.items()}
+    results.update(dict.fromkeys(scratch))
+    fields = {k: None if v is None else v.reshape(shape + v.shape[1:]) for k, v in results.items()}
     return LocusResult(R=Rf.reshape(shape + (3, 3)), t=tf.reshape(shape + (3,)), **fields)

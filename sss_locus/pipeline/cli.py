@@ -21,6 +21,7 @@ import sys
 import time
 
 from sss_locus import paths
+from sss_locus.pipeline import scaleout
 from sss_locus.pipeline.registry import ParameterError, get_entry, load_registry
 
 
@@ -37,6 +38,7 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--output", help="side run: write the executed copy here (its figures into figures/ "
                      "beside it) instead of the build area")
     run.add_argument("--verbose", action="store_true", help="show the full traceback of a failing cell")
+    scaleout.add_arguments(run)
 
     book = sub.add_parser("book", help="run every notebook, then build the book")
     book.add_argument("--profile", default="book", help="parameter profile for every notebook (default: book)")
@@ -46,6 +48,7 @@ def _parser() -> argparse.ArgumentParser:
     book.add_argument("--force", action="store_true",
                       help="rerun every notebook, even those whose executed copy is up to date")
     book.add_argument("--verbose", action="store_true", help="show the full traceback of a failing cell")
+    scaleout.add_arguments(book)
 
     cache = sub.add_parser("cache", help="show the result cache's size; --prune deletes unreachable entries")
     cache.add_argument("--prune", action="store_true",
@@ -132,6 +135,9 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     handler = {"run": _run, "book": _book, "params": _params, "list": _list, "cache": _cache}[args.command]
     try:
+        if args.command in ("run", "book"):
+            with scaleout.scheduler_environment(args):
+                return handler(args)
         return handler(args)
     except NotebookFailed as exc:
         print(f"sss-locus {args.command}: error: {exc}", file=sys.stderr)

@@ -1,0 +1,90 @@
+"""Where the Monte Carlo studies run: in this process (default) or on a Dask cluster.
+
+Each study is split into fixed chunks whose random draws come from their own
+``numpy.random.SeedSequence`` children (the samplers' independently seeded blocks:
+:mod:`sss_locus.experiments.pose_space`, :mod:`sss_locus.experiments.survey_passes`), and the
+chunks' results are combined in chunk order. Where a chunk runs therefore does not change a
+single number: the result is bit-identical serial, with one worker or with many.
+
+The choice is made by the environment variable :data:`SCHEDULER_ENV` (``sss-locus run`` and
+``sss-locus book`` set it from ``--scheduler ADDRESS`` / ``--workers N``):
+
+* unset or empty: every chunk runs here, in order; Dask is not imported;
+* ``local:N``: a local cluster of ``N`` single-threaded worker processes, started on first use
+  and kept for the rest of the process;
+* anything else: the address of a running Dask distributed scheduler (``tcp://host:8786``).
+
+Dask (``dask[distributed]``) is the optional extra ``scale`` of the package.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Sequence
+from typing import Any
+
+SCHEDULER_ENV = "SSS_LOCUS_SCHEDULER"
+"""Environment variable naming the Dask scheduler (see the module docstring)."""
+
+_CLIENTS: dict[str, Any] = {}
+
+
+def parse_scheduler(value: str | None) -> tuple[str, int | str] | None:
+    """``None`` (in-process), ``("local", n_workers)`` or ``("address", address)``.
+
+    Raises ``ValueError`` naming :data:`SCHEDULER_ENV` for ``local:N`` with ``N`` not a
+    positive integer.
+    """
+    text = (value or "").strip()
+    if not text:
+        return None
+    if text.startswith("local:"):
+        count = text.split(":", 1)[1]
+        if not count.isdigit() or int(count) < 1:
+            raise ValueError(f"{SCHEDULER_ENV}=local:N needs N a positive integer (worker "
+                             f"processes); got {text!r}")
+        return ("local", int(count))
+    return ("address", text)
+
+
+def client(value: str):
+    """The Dask client for a scheduler setting (created once per process and setting)."""
+    kind, arg = parse_scheduler(value)
+    if value not in _CLIENTS:
+        try:
+            from dask.distributed import Client, LocalCluster
+        except ImportError as exc:  # pragma: no cover - depends on the installed extras
+            raise RuntimeError(f"{SCHEDULER_ENV}={value!r} needs Dask: install the extra "
+                               "`sss-locus[scale]` (dask[distributed])") from exc
+        if kind == "local":
+            cluster = LocalCluster(n_workers=arg, threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+            _CLIENTS[value] = Client(cluster)
+        else:
+            _CLIENTS[value] = Client(arg)
+    return _CLIENTS[value]
+
+
+def close_clients() -> None:
+    """Close every client (and local cluster) this process opened."""
+    while _CLIENTS:
+        dask_client = _CLIENTS.popitem()[1]
+        cluster = getattr(dask_client, "cluster", None)
+        dask_client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def map_chunks(fn: Callable, tasks: Sequence[tuple]) -> list:
+    """``[fn(*task) for task in tasks]``, in order, here or on the configured Dask cluster.
+
+    ``fn`` must be a module-level function and each task's arguments picklable; each chunk is
+    a pure function of its arguments (its own seed), so the result does not depend on where it
+    ran.
+    """
+    setting = os.environ.get(SCHEDULER_ENV, "")
+    if parse_scheduler(setting) is None or len(tasks) < 2:
+        return [fn(*task) for task in tasks]
+    dask_client = client(setting)
+    futures = dask_client.map(fn, *zip(*tasks), pure=False)
+    return dask_client.gather(futures)

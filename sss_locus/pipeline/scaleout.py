@@ -1,0 +1,54 @@
+"""``--scheduler`` / ``--workers`` of ``sss-locus run`` and ``sss-locus book``.
+
+The notebooks' Monte Carlo studies read :data:`sss_locus.experiments.scale.SCHEDULER_ENV`
+(kernels inherit this process's environment). ``--workers N`` starts one local cluster of
+``N`` worker processes here, shared by every notebook of the run; ``--scheduler ADDRESS``
+uses a running Dask scheduler. Neither given: the studies run in the kernel, without Dask.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from collections.abc import Iterator
+from contextlib import contextmanager
+
+from sss_locus.experiments.scale import SCHEDULER_ENV
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add the two mutually exclusive options to a sub-command."""
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("--scheduler", metavar="ADDRESS",
+                       help="run the Monte Carlo chunks on this Dask scheduler (e.g. tcp://host:8786)")
+    group.add_argument("--workers", type=int, metavar="N",
+                       help="run the Monte Carlo chunks on a local Dask cluster of N processes")
+
+
+@contextmanager
+def scheduler_environment(args: argparse.Namespace) -> Iterator[None]:
+    """Set :data:`SCHEDULER_ENV` for the duration of a command (and start a local cluster)."""
+    if args.workers is not None and args.workers < 1:
+        raise ValueError(f"--workers must be a positive integer; got {args.workers}")
+    if args.scheduler is None and args.workers is None:
+        yield
+        return
+    saved = os.environ.get(SCHEDULER_ENV)
+    cluster = None
+    try:
+        if args.workers is not None:
+            from dask.distributed import LocalCluster
+
+            cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+            os.environ[SCHEDULER_ENV] = cluster.scheduler_address
+        else:
+            os.environ[SCHEDULER_ENV] = args.scheduler
+        yield
+    finally:
+        if saved is None:
+            os.environ.pop(SCHEDULER_ENV, None)
+        else:
+            os.environ[SCHEDULER_ENV] = saved
+        if cluster is not None:
+            cluster.close()
