@@ -6,8 +6,10 @@ inside numpy:
 
 * numeric arguments accept real numbers only (Python or NumPy ints and floats, and arrays of
   them). Booleans, complex numbers, strings and bytes, dates, datetimes and timedeltas, ``None``
-  and object arrays (``Decimal``, ``Fraction``, integers beyond int64, mixed lists) raise
-  :class:`InputTypeError`, a ``TypeError`` that is also a ``ValueError``;
+  and object arrays (``Decimal``, ``Fraction``, integers beyond int64, lists mixing numbers
+  with dates or ``None``) raise :class:`InputTypeError`, a ``TypeError`` that is also a
+  ``ValueError``. The check is on the dtype NumPy gives the input, so a Python list mixing
+  floats with ``True``/``False`` (which NumPy reads as floats) is not caught;
 * values must be finite (``ValueError``);
 * lengths whose squares a kernel returns (the two-view ``C``, m^2) must lie within
   [:data:`LENGTH_MIN`, :data:`LENGTH_MAX`] metres, so that every returned number is
