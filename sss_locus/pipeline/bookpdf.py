@@ -53,7 +53,9 @@ def find_browser() -> str:
 
 
 def build_singlehtml(log=print) -> Path:
-    """Stage the book and build it with the ``singlehtml`` builder; return its ``index.html``."""
+    """Stage the book, build it with the ``singlehtml`` builder; return the page to print."""
+    import yaml
+
     root = bookbuild.stage()
     missing = bookbuild.missing_toc_files(root)
     if missing:
@@ -68,15 +70,23 @@ def build_singlehtml(log=print) -> Path:
     if result.returncode != 0:
         raise RuntimeError(f"singlehtml build failed (exit {result.returncode}):\n{result.stdout[-4000:]}"
                            f"\n{result.stderr[-4000:]}")
-    index = out / "_build" / "singlehtml" / "index.html"
-    if not index.is_file():
-        raise RuntimeError(f"singlehtml build finished but {index} is missing")
-    css = index.parent / "_static" / "sss-locus-print.css"
-    css.write_text(PRINT_CSS, encoding="utf-8")
-    html = index.read_text(encoding="utf-8")
-    link = '<link rel="stylesheet" href="_static/sss-locus-print.css">'
-    if link not in html:
-        index.write_text(html.replace("</head>", link + "\n</head>", 1), encoding="utf-8")
+
+    # Sphinx writes the single page as the root document (book/intro.html; index.html only
+    # redirects to it) but with links relative to the site root, while the book's own HTML links
+    # (figures, notebooks, plotly) are relative to a page one folder down. Print a copy at the
+    # site root with those links made root-relative as well.
+    root_doc = yaml.safe_load((root / paths.TOC_FILE.name).read_text(encoding="utf-8"))["root"]
+    site = out / "_build" / "singlehtml"
+    single = site / f"{root_doc}.html"
+    if not single.is_file():
+        raise RuntimeError(f"singlehtml build finished but {single} is missing")
+    (site / "_static" / "sss-locus-print.css").write_text(PRINT_CSS, encoding="utf-8")
+    html = single.read_text(encoding="utf-8")
+    for folder in ("figures", "notebooks", "plotly", "mathjax"):
+        html = html.replace(f'"../{folder}/', f'"{folder}/')
+    html = html.replace("</head>", '<link rel="stylesheet" href="_static/sss-locus-print.css">\n</head>', 1)
+    index = site / "book-print.html"
+    index.write_text(html, encoding="utf-8")
     return index
 
 
@@ -85,9 +95,12 @@ def print_pdf(index: Path, target: Path, browser: str, timeout_s: float = 300) -
     target.parent.mkdir(parents=True, exist_ok=True)
     target.unlink(missing_ok=True)
     profile = paths.build_dir() / "chromium-profile"
+    # Offline on purpose: everything the page needs is in the build, and a page waiting for an
+    # unreachable host would stall the print. The proxy address refuses every connection.
     cmd = [browser, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-           "--disable-background-networking", f"--user-data-dir={profile}", "--no-pdf-header-footer",
-           "--run-all-compositor-stages-before-draw", "--virtual-time-budget=30000",
+           "--disable-background-networking", "--proxy-server=127.0.0.1:9",
+           "--proxy-bypass-list=<-loopback>", f"--user-data-dir={profile}", "--no-pdf-header-footer",
+           "--virtual-time-budget=30000",
            f"--print-to-pdf={target}", index.resolve().as_uri()]
     result = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout_s,
                             stdin=subprocess.DEVNULL)

@@ -232,7 +232,9 @@ def cite_block(manifest: Mapping[str, Any], bibtex: str, *, site_root: str = "..
     files = sorted(manifest["files"])
     images = [f'<a href="{site_root}/{manifest["files"][n]["url"]}">{kinds[Path(n).suffix]}</a>'
               for n in files if Path(n).suffix in kinds]
-    data = [f'<a href="{site_root}/{manifest["files"][n]["url"]}" download>{n}</a>'
+    # Link text: the part after the label ("circle.csv"); a whole name would meet smart dashes.
+    data = [f'<a href="{site_root}/{manifest["files"][n]["url"]}" download>'
+            f'{n.removeprefix(label).lstrip("-") if n != f"{label}.csv" else "CSV"}</a>'
             for n in files if n.endswith(".csv")]
     meta = [f'<a href="{site_root}/{paths.FIGURES_SUBDIR}/{label}.json">manifest</a>',
             f'<a href="{site_root}/{paths.FIGURES_SUBDIR}/{label}.bib" download>BibTeX</a>']
