@@ -2,6 +2,8 @@
 
 * Puts this directory on ``sys.path`` so the test-support module ``reference_locus`` imports
   the same way under every pytest import mode.
+* ``build_area``: a fixture giving each test its own build area and cache (environment
+  variables), so pipeline tests never touch ``_build/`` or ``.cache/``.
 * Registers hypothesis profiles: ``default`` (no per-example deadline: the first call of a
   numpy kernel can be slow on a loaded machine, and speed is measured in ``benchmarks/``, not
   in tests) and ``thorough`` (more examples; select with ``--hypothesis-profile=thorough``).
@@ -11,6 +13,8 @@ from __future__ import annotations
 
 import os
 import sys
+
+import pytest
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
 if _HERE not in sys.path:
@@ -34,3 +38,13 @@ else:
         suppress_health_check=[HealthCheck.too_slow],
     )
     settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
+
+
+@pytest.fixture
+def build_area(tmp_path, monkeypatch):
+    """A private build area (``<tmp>/build``) and cache for one test; returns the build area."""
+    area = tmp_path / "build"
+    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(area))
+    monkeypatch.setenv("SSS_LOCUS_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.delenv("SSS_LOCUS_FIGURES_DIR", raising=False)
+    return area

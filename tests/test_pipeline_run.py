@@ -16,6 +16,7 @@ import pytest
 pytest.importorskip("papermill")
 nbformat = pytest.importorskip("nbformat")
 
+from notebook_support import write_notebook  # noqa: E402
 from sss_locus.pipeline import cli  # noqa: E402
 from sss_locus.pipeline.registry import NotebookEntry, ParameterError  # noqa: E402
 from sss_locus.pipeline.runner import KERNEL_NAME, NotebookFailed, is_up_to_date, run_notebook  # noqa: E402
@@ -42,24 +43,7 @@ print(json.dumps({"n": n, "scale": scale, "cwd": os.getcwd(), "python": sys.exec
 
 
 def tiny_notebook(folder: Path) -> Path:
-    nb = nbformat.v4.new_notebook()
-    nb.cells = [
-        nbformat.v4.new_markdown_cell("# Tiny\n\nMath: $x^2$."),
-        nbformat.v4.new_code_cell(PARAMETERS, metadata={"tags": ["parameters"]}),
-        nbformat.v4.new_code_cell(BODY),
-    ]
-    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
-    path = folder / "tiny.ipynb"
-    nbformat.write(nb, path)
-    return path
-
-
-@pytest.fixture
-def build_area(tmp_path, monkeypatch):
-    area = tmp_path / "build"
-    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(area))
-    monkeypatch.setenv("SSS_LOCUS_CACHE_DIR", str(tmp_path / "cache"))
-    return area
+    return write_notebook(folder / "tiny.ipynb", PARAMETERS, BODY, markdown="# Tiny\n\nMath: $x^2$.")
 
 
 @pytest.fixture

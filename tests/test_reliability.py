@@ -24,6 +24,7 @@ import pytest
 pytest.importorskip("papermill")
 nbformat = pytest.importorskip("nbformat")
 
+from notebook_support import write_notebook  # noqa: E402
 from sss_locus.pipeline import cache, outputs  # noqa: E402
 from sss_locus.pipeline.registry import NotebookEntry, load_registry  # noqa: E402
 from sss_locus.pipeline.runner import NotebookFailed, run_notebook  # noqa: E402
@@ -57,22 +58,12 @@ run_notebook(entry, "book", overrides, log=lambda *_: None)
 
 
 def tiny_notebook(folder: Path, label: str = "fig-tiny-reliable") -> Path:
-    nb = nbformat.v4.new_notebook()
-    nb.cells = [nbformat.v4.new_code_cell(PARAMETERS, metadata={"tags": ["parameters"]}),
-                nbformat.v4.new_code_cell(BODY.replace("fig-tiny-reliable", label))]
-    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
-    path = folder / "tiny.ipynb"
-    nbformat.write(nb, path)
-    return path
+    return write_notebook(folder / "tiny.ipynb", PARAMETERS, BODY.replace("fig-tiny-reliable", label))
 
 
 @pytest.fixture
-def area(tmp_path, monkeypatch):
-    build = tmp_path / "build"
-    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(build))
-    monkeypatch.setenv("SSS_LOCUS_CACHE_DIR", str(tmp_path / "cache"))
-    monkeypatch.delenv("SSS_LOCUS_FIGURES_DIR", raising=False)
-    return build
+def area(build_area):
+    return build_area
 
 
 @pytest.fixture
