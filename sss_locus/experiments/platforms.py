@@ -38,6 +38,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..paths import DATA_DIR
+from . import userdata
 from .inputs import check_range, read_toml, sourced, string, table
 
 PLATFORMS_FILE: Path = DATA_DIR / "platforms.toml"
@@ -247,8 +248,12 @@ def parse_platforms(doc: Mapping[str, Any]) -> dict[str, Platform]:
 
 
 def load_platforms(path: str | Path | None = None) -> dict[str, Platform]:
-    """Read and validate ``data/platforms.toml`` (or ``path``); platforms by key."""
-    return parse_platforms(read_toml(PLATFORMS_FILE if path is None else path))
+    """Read and validate the platforms; by key, in data order (shipped first, then new keys).
+
+    Default: ``data/`` merged with the active user data (:mod:`sss_locus.experiments.userdata`);
+    ``path``: that one file only.
+    """
+    return parse_platforms(userdata.document() if path is None else read_toml(path))
 
 
 def load_platform(key: str, path: str | Path | None = None) -> Platform:
