@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ..paths import DATA_DIR
-from . import userdata
+from . import datadoc
 from .inputs import read_toml, sourced, table
 
 SURVEY_FILE: Path = DATA_DIR / "survey.toml"
@@ -162,7 +162,7 @@ class OffsetModel:
 def load_envelope(platform_key: str, path: str | Path | None = None) -> SurveyEnvelope:
     """The survey envelope of ``platform_key`` from ``data/`` merged with the active user data
     (:mod:`sss_locus.experiments.userdata`), or from the file ``path`` only."""
-    return parse_envelope(userdata.document() if path is None else read_toml(path), platform_key)
+    return parse_envelope(datadoc.document() if path is None else read_toml(path), platform_key)
 
 
 def parse_envelope(doc: dict, platform_key: str) -> SurveyEnvelope:
@@ -185,6 +185,6 @@ def default_offset_model(kind: str = "independent", side_rule: str = "random",
     if kind != "matched":
         return OffsetModel(kind, 0.0, side_rule)
     if doc is None:
-        doc = userdata.document() if path is None else read_toml(path)
+        doc = datadoc.document() if path is None else read_toml(path)
     t = table(table(doc, "offset_models", ""), "matched", "offset_models")
     return OffsetModel(kind, sourced(t, "jitter_m", "offset_models.matched", {}, lo=0.0), side_rule)

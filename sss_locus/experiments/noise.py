@@ -52,7 +52,7 @@ from scipy.spatial.transform import Rotation
 from ..geometry import Aperture, relative_pose, three_view_points, two_view_locus
 from ..geometry.validation import as_float_array
 from ..paths import DATA_DIR
-from . import userdata
+from . import datadoc
 from .inputs import read_toml, sourced, table
 from .rowstats import nanquantile_rows
 from .view_sets import Views, views_from_survey
@@ -121,7 +121,7 @@ class NoiseModel:
 def load_noise_model(platform_key: str, path: str | Path | None = None) -> NoiseModel:
     """The noise model of ``platform_key`` from ``data/`` merged with the active user data
     (:mod:`sss_locus.experiments.userdata`), or from the file ``path`` only."""
-    return parse_noise_model(userdata.document() if path is None else read_toml(path), platform_key)
+    return parse_noise_model(datadoc.document() if path is None else read_toml(path), platform_key)
 
 
 def parse_noise_model(doc: dict, platform_key: str) -> NoiseModel:

@@ -38,7 +38,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..paths import DATA_DIR
-from . import userdata
+from . import datadoc
 from .inputs import check_range, read_toml, sourced, string, table
 
 PLATFORMS_FILE: Path = DATA_DIR / "platforms.toml"
@@ -289,7 +289,7 @@ def load_platforms(path: str | Path | None = None) -> dict[str, Platform]:
     Default: ``data/`` merged with the active user data (:mod:`sss_locus.experiments.userdata`);
     ``path``: that one file only.
     """
-    return parse_platforms(userdata.document() if path is None else read_toml(path))
+    return parse_platforms(datadoc.document() if path is None else read_toml(path))
 
 
 def load_platform(key: str, path: str | Path | None = None) -> Platform:

@@ -23,129 +23,16 @@ them before it validates parameters, and a notebook's imports cell calls
 
 from __future__ import annotations
 
-import copy
-import hashlib
-import re
-import tomllib
-from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from ..paths import DATA_DIR
-from .inputs import read_toml
-
-#: Platform, sonar, envelope and noise keys (``_`` becomes ``-`` in figure labels and glue keys).
-KEY_PATTERN = re.compile(r"[a-z][a-z0-9_]*")
-#: Shipped files, in merge order, and the top-level tables a user file may hold.
-SHIPPED_FILES: tuple[str, ...] = ("platforms.toml", "survey.toml", "noise.toml")
-USER_TABLES: tuple[str, ...] = ("sonars", "platforms", "envelopes", "offset_models", "noise")
-SET_NOTE = "user override: --set "
-
-
-@dataclass(frozen=True)
-class DataInputs:
-    """User data files (absolute paths) and ``KEY.PATH=VALUE`` overrides, in order."""
-
-    files: tuple[str, ...] = ()
-    sets: tuple[str, ...] = ()
-
-    @property
-    def is_default(self) -> bool:
-        return not self.files and not self.sets
-
-
-_ACTIVE = DataInputs()
-
-
-def label_key(key: str) -> str:
-    """A data key as it appears in figure labels and glue keys: ``my_auv`` -> ``my-auv``
-    (injective on keys matching :data:`KEY_PATTERN`, which never contain ``-``)."""
-    if not isinstance(key, str) or not KEY_PATTERN.fullmatch(key):
-        raise ValueError(f"key must match {KEY_PATTERN.pattern} (lower-case letter, then lower-case "
-                         f"letters, digits or '_'); got {key!r}")
-    return key.replace("_", "-")
-
-
-def _is_number_entry(value: Any) -> bool:
-    return isinstance(value, Mapping) and "value" in value
-
-
-def merge(base: Mapping[str, Any], over: Mapping[str, Any]) -> dict[str, Any]:
-    """``base`` with ``over`` merged in by key (tables recursively; numbers replaced whole)."""
-    out = copy.deepcopy(dict(base))
-    for key, value in over.items():
-        if isinstance(value, Mapping) and not _is_number_entry(value) and isinstance(out.get(key), Mapping) \
-                and not _is_number_entry(out.get(key)):
-            out[key] = merge(out[key], value)
-        else:
-            out[key] = copy.deepcopy(value)
-    return out
-
-
-def check_user_document(doc: Mapping[str, Any], where: str) -> None:
-    """Only the known top-level tables, and keys of the form :data:`KEY_PATTERN`."""
-    unknown = set(doc) - set(USER_TABLES) - {"schema_version"}
-    if unknown:
-        raise ValueError(f"{where}: unknown top-level keys {sorted(unknown)}; allowed: {list(USER_TABLES)}")
-    for name in USER_TABLES:
-        tables = doc.get(name, {})
-        if not isinstance(tables, Mapping):
-            raise ValueError(f"{where}: {name} must be a table; got {type(tables).__name__}")
-        for key in tables:
-            if not KEY_PATTERN.fullmatch(key):
-                raise ValueError(f"{where}: {name}.{key}: keys must match {KEY_PATTERN.pattern} "
-                                 "(lower-case letter, then lower-case letters, digits or '_')")
-
-
-def parse_set(text: str, base: Mapping[str, Any]) -> dict[str, Any]:
-    """The override document of one ``KEY.PATH=VALUE`` (VALUE read as TOML, else a string)."""
-    if not isinstance(text, str) or "=" not in text:
-        raise ValueError(f"--set expects KEY.PATH=VALUE (e.g. platforms.auv.transducers.port.tilt_deg=15); "
-                         f"got {text!r}")
-    path, _, raw = (s.strip() for s in text.partition("="))
-    parts = path.split(".")
-    if len(parts) < 3 or parts[0] not in USER_TABLES or not all(parts):
-        raise ValueError(f"--set {text!r}: KEY.PATH must start with one of {list(USER_TABLES)}, then a key "
-                         "and a field (e.g. platforms.auv.transducers.port.tilt_deg)")
-    try:
-        value = tomllib.loads(f"v = {raw}")["v"]
-    except tomllib.TOMLDecodeError:
-        value = raw
-    target: Any = base
-    for part in parts:
-        target = target.get(part) if isinstance(target, Mapping) else None
-    if parts[-1] == "value":
-        raise ValueError(f"--set {text!r}: name the field, not its .value (drop the trailing '.value')")
-    if _is_number_entry(target) or (target is None and isinstance(value, (int, float))
-                                    and not isinstance(value, bool)):
-        value = {"value": value, "assumption": f"{SET_NOTE}{path}={raw}"}
-    doc: dict[str, Any] = {}
-    node = doc
-    for part in parts[:-1]:
-        node = node.setdefault(part, {})
-    node[parts[-1]] = value
-    return doc
-
-
-def shipped_document() -> dict[str, Any]:
-    doc: dict[str, Any] = {}
-    for name in SHIPPED_FILES:
-        doc = merge(doc, read_toml(DATA_DIR / name))
-    return doc
-
-
-def document(inputs: DataInputs | None = None) -> dict[str, Any]:
-    """The merged data document of ``inputs`` (default: the active inputs, :func:`use`)."""
-    inputs = _ACTIVE if inputs is None else inputs
-    doc = shipped_document()
-    for path in inputs.files:
-        user = read_toml(path)
-        check_user_document(user, str(path))
-        doc = merge(doc, user)
-    for text in inputs.sets:
-        doc = merge(doc, parse_set(text, doc))
-    return doc
+from .datadoc import (KEY_PATTERN, SET_NOTE, SHIPPED_FILES, USER_TABLES, DataInputs, activate, active,  # noqa: F401
+                      check_user_document, document, file_sha256, files_read, label_key, make_inputs,
+                      merge, parse_set, shipped_document)
+from .envelopes import default_offset_model, parse_envelope
+from .noise import parse_noise_model
+from .platforms import parse_platforms
 
 
 def validate(inputs: DataInputs) -> dict[str, Any]:
@@ -153,10 +40,6 @@ def validate(inputs: DataInputs) -> dict[str, Any]:
 
     Raises ``ValueError`` naming the file or the full key path of the first bad entry.
     """
-    from .envelopes import default_offset_model, parse_envelope
-    from .noise import parse_noise_model
-    from .platforms import parse_platforms
-
     for path in inputs.files:
         if not Path(path).is_file():
             raise ValueError(f"data file {path} does not exist")
@@ -170,48 +53,17 @@ def validate(inputs: DataInputs) -> dict[str, Any]:
     return doc
 
 
-def make_inputs(files: Iterable[str | Path] = (), sets: Iterable[str] = ()) -> DataInputs:
-    """Absolute paths of ``files`` and the overrides, as :class:`DataInputs` (not validated)."""
-    files, sets = list(files or ()), list(sets or ())
-    for name, items, kind in (("data_files", files, (str, Path)), ("data_set", sets, str)):
-        for item in items:
-            if not isinstance(item, kind):
-                raise ValueError(f"{name} must be a list of strings; got {item!r}")
-    return DataInputs(tuple(str(Path(f).expanduser().resolve()) for f in files), tuple(sets))
-
-
 def use(data_files: Iterable[str | Path] = (), data_set: Iterable[str] = ()) -> DataInputs:
     """Validate and activate user data for this process (a notebook calls this with its
     ``data_files`` and ``data_set`` parameters); return the active :class:`DataInputs`."""
-    global _ACTIVE
     inputs = make_inputs(data_files, data_set)
     validate(inputs)
-    _ACTIVE = inputs
+    activate(inputs)
     return inputs
-
-
-def active() -> DataInputs:
-    return _ACTIVE
-
-
-def file_sha256(path: str | Path) -> str:
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
-
-
-def files_read(inputs: DataInputs | None = None) -> list[dict[str, str]]:
-    """Every data file a load reads, shipped then the user's: ``{"path", "sha256", "role"}``."""
-    inputs = _ACTIVE if inputs is None else inputs
-    rows = [{"path": f"data/{name}", "sha256": file_sha256(DATA_DIR / name), "role": "shipped"}
-            for name in SHIPPED_FILES]
-    rows += [{"path": path, "sha256": file_sha256(path), "role": "user"} for path in inputs.files]
-    return rows
 
 
 def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = None) -> dict[str, Any]:
     """The sonar, mounting and envelope values the named platforms resolve to (for manifests)."""
-    from .envelopes import parse_envelope
-    from .platforms import parse_platforms
-
     doc = document(inputs)
     platforms = parse_platforms(doc)
     out: dict[str, Any] = {}
@@ -240,7 +92,7 @@ def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = No
 
 def record(platform_keys: Iterable[str] = (), inputs: DataInputs | None = None) -> dict[str, Any]:
     """The data-input record of a run: files read with SHA-256, overrides, resolved values."""
-    inputs = _ACTIVE if inputs is None else inputs
+    inputs = active() if inputs is None else inputs
     return {"files": files_read(inputs), "overrides": list(inputs.sets),
             "values": resolved_values(platform_keys, inputs)}
 
