@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ..paths import DATA_DIR
+from . import datadoc
 from .inputs import read_toml, sourced, table
 
 SURVEY_FILE: Path = DATA_DIR / "survey.toml"
@@ -159,8 +160,13 @@ class OffsetModel:
 
 
 def load_envelope(platform_key: str, path: str | Path | None = None) -> SurveyEnvelope:
-    """The survey envelope of ``platform_key`` from ``data/survey.toml`` (or ``path``)."""
-    doc = read_toml(SURVEY_FILE if path is None else path)
+    """The survey envelope of ``platform_key`` from ``data/`` merged with the active user data
+    (:mod:`sss_locus.experiments.userdata`), or from the file ``path`` only."""
+    return parse_envelope(datadoc.document() if path is None else read_toml(path), platform_key)
+
+
+def parse_envelope(doc: dict, platform_key: str) -> SurveyEnvelope:
+    """The validated ``[envelopes.<platform_key>]`` table of a parsed document."""
     envs = table(doc, "envelopes", "")
     if platform_key not in envs:
         raise ValueError(f"platform_key must be one of {sorted(envs)}; got {platform_key!r}")
@@ -173,9 +179,12 @@ def load_envelope(platform_key: str, path: str | Path | None = None) -> SurveyEn
 
 
 def default_offset_model(kind: str = "independent", side_rule: str = "random",
-                         path: str | Path | None = None) -> OffsetModel:
-    """An :class:`OffsetModel` with the defaults of ``data/survey.toml`` (matched jitter)."""
+                         path: str | Path | None = None, doc: dict | None = None) -> OffsetModel:
+    """An :class:`OffsetModel` with the defaults of the data (matched jitter): ``doc``, the file
+    ``path``, or ``data/`` merged with the active user data."""
     if kind != "matched":
         return OffsetModel(kind, 0.0, side_rule)
-    t = table(table(read_toml(SURVEY_FILE if path is None else path), "offset_models", ""), "matched", "offset_models")
+    if doc is None:
+        doc = datadoc.document() if path is None else read_toml(path)
+    t = table(table(doc, "offset_models", ""), "matched", "offset_models")
     return OffsetModel(kind, sourced(t, "jitter_m", "offset_models.matched", {}, lo=0.0), side_rule)

@@ -52,6 +52,7 @@ from scipy.spatial.transform import Rotation
 from ..geometry import Aperture, relative_pose, three_view_points, two_view_locus
 from ..geometry.validation import as_float_array
 from ..paths import DATA_DIR
+from . import datadoc
 from .inputs import read_toml, sourced, table
 from .rowstats import nanquantile_rows
 from .view_sets import Views, views_from_survey
@@ -118,8 +119,13 @@ class NoiseModel:
 
 
 def load_noise_model(platform_key: str, path: str | Path | None = None) -> NoiseModel:
-    """The noise model of ``platform_key`` from ``data/noise.toml`` (or ``path``)."""
-    doc = read_toml(NOISE_FILE if path is None else path)
+    """The noise model of ``platform_key`` from ``data/`` merged with the active user data
+    (:mod:`sss_locus.experiments.userdata`), or from the file ``path`` only."""
+    return parse_noise_model(datadoc.document() if path is None else read_toml(path), platform_key)
+
+
+def parse_noise_model(doc: dict, platform_key: str) -> NoiseModel:
+    """The validated ``[noise.<platform_key>]`` table of a parsed document."""
     tables = table(doc, "noise", "")
     if platform_key not in tables:
         raise ValueError(f"platform_key must be one of {sorted(tables)}; got {platform_key!r}")

@@ -38,6 +38,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..paths import DATA_DIR
+from . import datadoc
 from .inputs import check_range, read_toml, sourced, string, table
 
 PLATFORMS_FILE: Path = DATA_DIR / "platforms.toml"
@@ -112,6 +113,42 @@ class Transducer:
             y = -y
         z = np.cross(x, y)
         return Rotation.from_matrix(np.column_stack([x, y, z]))
+
+
+    def world_pose(self, position_m, yaw_deg, pitch_deg, roll_deg) -> tuple[np.ndarray, np.ndarray]:
+        """The sensor's pose in the world from the vehicle's pose (batched).
+
+        Parameters (broadcast together to a batch shape ``S``)
+        ----------
+        position_m : array_like, shape S + (3,)
+            The vehicle reference point in the world frame (``x``, ``y`` horizontal, ``z`` up), m.
+        yaw_deg, pitch_deg, roll_deg : array_like, shape S
+            Vehicle attitude, degrees: ``R_world_vehicle = Rz(yaw) Ry(-pitch) Rx(roll)``, yaw
+            positive toward port (counter-clockwise from above), pitch positive nose-up.
+
+        Returns
+        -------
+        rotation : ndarray, shape S + (3, 3)
+            Sensor-to-world rotation (columns: the sensor's ``x`` boresight, ``y`` across-track
+            fan, ``z`` along-track axes in the world), as :func:`sss_locus.relative_pose` takes it.
+        origin : ndarray, shape S + (3,)
+            The transducer's origin in the world, m.
+
+        ``sss_locus.relative_pose(*a.world_pose(...), *b.world_pose(...))`` gives the ``(R, t)``
+        of :func:`sss_locus.two_view_locus` with no hand-built rotation.
+        """
+        pos = np.asarray(position_m, float)
+        angles = np.broadcast_arrays(*(np.asarray(v, float) for v in (yaw_deg, pitch_deg, roll_deg)))
+        shape = np.broadcast_shapes(pos.shape[:-1], angles[0].shape)
+        if pos.shape[-1:] != (3,) or not all(np.all(np.isfinite(a)) for a in (pos, *angles)):
+            raise ValueError(f"position_m must be finite with shape (..., 3) and the angles finite; got "
+                             f"position_m of shape {pos.shape}")
+        euler = np.stack([np.broadcast_to(a, shape).ravel() for a in
+                          (angles[0], -angles[1], angles[2])], -1)
+        Rv = Rotation.from_euler("ZYX", euler, degrees=True).as_matrix().reshape(shape + (3, 3))
+        W = Rv @ self.rotation.as_matrix()
+        origin = np.broadcast_to(pos, shape + (3,)) + Rv @ self.position_m
+        return W, origin
 
 
 @dataclass(frozen=True)
@@ -247,8 +284,12 @@ def parse_platforms(doc: Mapping[str, Any]) -> dict[str, Platform]:
 
 
 def load_platforms(path: str | Path | None = None) -> dict[str, Platform]:
-    """Read and validate ``data/platforms.toml`` (or ``path``); platforms by key."""
-    return parse_platforms(read_toml(PLATFORMS_FILE if path is None else path))
+    """Read and validate the platforms; by key, in data order (shipped first, then new keys).
+
+    Default: ``data/`` merged with the active user data (:mod:`sss_locus.experiments.userdata`);
+    ``path``: that one file only.
+    """
+    return parse_platforms(datadoc.document() if path is None else read_toml(path))
 
 
 def load_platform(key: str, path: str | Path | None = None) -> Platform:

@@ -24,10 +24,15 @@ ratio keeps in radians too."""
 class Aperture:
     """Field of view of a sidescan transducer, in its own sensor frame.
 
-    Sensor frame (the paper's, Sec. III-A): ``x`` along the boresight, ``y`` to the left, ``z``
-    up. A point at range ``r``, azimuth ``theta`` and elevation ``phi`` has
-    ``x = r cos(theta) cos(phi)``, ``y = r sin(theta) cos(phi)``, ``z = r sin(phi)``. Azimuth is
-    the wide fan (across-track), elevation the narrow beam (along-track).
+    Sensor frame (the paper's, Sec. III-A): ``x`` along the boresight, ``y`` in the plane of the
+    wide azimuth fan, ``z = x × y`` along the narrow elevation beam. A point at range ``r``,
+    azimuth ``theta`` and elevation ``phi`` has ``x = r cos(theta) cos(phi)``,
+    ``y = r sin(theta) cos(phi)``, ``z = r sin(phi)``. Azimuth is the wide fan (across-track),
+    elevation the narrow beam (along-track). Drawn with the fan horizontal (the paper's figure),
+    ``y`` is to the left and ``z`` up; on a vehicle the fan is the vertical across-track plane, so
+    ``y`` points down and inboard and ``z`` along-track (``data/README.md``,
+    :mod:`sss_locus.experiments.platforms`; ``Transducer.world_pose`` composes it with a vehicle
+    pose).
 
     Parameters
     ----------

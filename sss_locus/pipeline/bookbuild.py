@@ -105,6 +105,20 @@ def _file_links(manifest: dict[str, Any]) -> str:
     return " · ".join(links)
 
 
+def _data_line(manifest: dict[str, Any]) -> str:
+    """The data files (with SHA-256), overrides and platform values a figure was computed from."""
+    inputs = manifest.get("data_inputs") or {}
+    files = ", ".join(f"`{Path(f['path']).name if f.get('role') == 'user' else f['path']}` "
+                      f"({f.get('role')}, sha256 `{f['sha256'][:12]}`)" for f in inputs.get("files", []))
+    sets = "".join(f"; override `{o}`" for o in inputs.get("overrides", []))
+    values = "".join(
+        f"; {v['name']}: {v['sonar']['name']}, {v['sonar']['azimuth_deg']:g}° × "
+        f"{v['sonar']['elevation_deg']:g}°, {v['sonar']['max_range_m']:g} m, tilt "
+        + "/".join(f"{t:g}" for t in dict.fromkeys(v["tilt_deg"].values())) + "°"
+        for v in (inputs.get("values") or {}).values())
+    return (files or "not recorded") + sets + values + "."
+
+
 def figures_index(manifests: list[dict[str, Any]]) -> str:
     """Markdown (MyST) listing every exported figure with its files, provenance and BibTeX."""
     if not manifests:
@@ -128,6 +142,8 @@ def figures_index(manifests: list[dict[str, Any]]) -> str:
             f"Parameters: {params}; seed `{m['seed']}`; commit `{provenance.short_commit(m['git_commit'])}`; "
             f"sss-locus {m['package_version']}; environment.lock `{m['lock_sha256'][:12]}`; "
             f"run {m['run_time_utc']}.",
+            "",
+            f"Data: {_data_line(m)}",
             "",
             "Cite this figure:",
             "",

@@ -173,6 +173,24 @@ def figure_url(label: str, config: Path | None = None) -> str | None:
     return f"{base}/{paths.FIGURES_SUBDIR}/{label}.png" if base else None
 
 
+def data_note(manifest: Mapping[str, Any]) -> str:
+    """``; computed for <platform>: <sonar>, <aperture>, <range>, tilt ...; data: <files>``
+    (LaTeX) from a manifest's ``data_inputs``; empty when it has none."""
+    inputs = manifest.get("data_inputs") or {}
+    parts = []
+    for key, v in (inputs.get("values") or {}).items():
+        s = v.get("sonar", {})
+        tilts = "/".join(f"{t:g}" for t in dict.fromkeys((v.get("tilt_deg") or {}).values()))
+        parts.append(f"{key} ({v.get('name', '')}: {s.get('name', '')}, {s.get('azimuth_deg', 0):g} x "
+                     f"{s.get('elevation_deg', 0):g} deg, {s.get('max_range_m', 0):g} m, tilt {tilts} deg)")
+    users = [f"{Path(f['path']).name} (sha256 {f['sha256'][:12]})" for f in inputs.get("files", [])
+             if f.get("role") == "user"]
+    users += [f"--set {o}" for o in inputs.get("overrides", [])]
+    note = ("; computed for " + "; ".join(parts)) if parts else ""
+    note += ("; user data: " + ", ".join(users)) if users else ""
+    return latex_escape(note)
+
+
 def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None = None,
                   config: Path | None = None) -> str:
     """A ``@misc`` BibTeX entry citing one exported figure, from its manifest.
@@ -198,7 +216,8 @@ def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None 
         "howpublished": "Figure in \\emph{" + latex_escape(str(cff.get("title", "sss-locus"))) + "}",
         "note": (f"Notebook \\texttt{{{latex_escape(str(manifest['notebook']))}}}, "
                  f"profile {latex_escape(str(manifest['profile']))}, "
-                 f"commit \\texttt{{{latex_escape(short_commit(str(manifest['git_commit'])))}}}"),
+                 f"commit \\texttt{{{latex_escape(short_commit(str(manifest['git_commit'])))}}}"
+                 + data_note(manifest)),
     }
     url = figure_url(label, config)
     if url:

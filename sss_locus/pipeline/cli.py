@@ -8,6 +8,8 @@ Examples::
     sss-locus book --profile quick       # the same from the fast profile
     sss-locus book --no-run              # rebuild the site from the executed copies as they are
     sss-locus cache --prune              # cache size; delete entries no current input reaches
+    sss-locus run pose_space --data my.toml -p platforms '["my_auv"]'   # your sonar and vehicle
+    sss-locus book --data my.toml --set platforms.auv.transducers.port.tilt_deg=15
 
 Every parameter value is checked (type, range, allowed values, memory) before a kernel starts.
 A failing notebook is reported in one line (cell and error); add --verbose for the traceback.
@@ -25,6 +27,24 @@ from sss_locus.pipeline import scaleout
 from sss_locus.pipeline.registry import ParameterError, get_entry, load_registry
 
 
+def _data_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--data", action="append", default=[], metavar="FILE.toml",
+                        help="your data file (schema of data/*.toml): its sonars, platforms, envelopes, "
+                        "offset_models and noise tables add to or override the shipped ones by key "
+                        "(repeatable; validated before any notebook starts)")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE", dest="set_values",
+                        help="override one data value, e.g. platforms.auv.transducers.port.tilt_deg=15 "
+                        "(repeatable; recorded as a user override)")
+
+
+def _data_inputs(args: argparse.Namespace):
+    """Validate --data/--set before anything runs; activate them in this process (the
+    ``{keys of ...}`` constraints then see the user's keys)."""
+    from sss_locus.experiments import userdata
+
+    return userdata.use(args.data, args.set_values)
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="sss-locus", description=__doc__.split("\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -38,6 +58,7 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--output", help="side run: write the executed copy here (its figures into figures/ "
                      "beside it) instead of the build area")
     run.add_argument("--verbose", action="store_true", help="show the full traceback of a failing cell")
+    _data_arguments(run)
     scaleout.add_arguments(run)
 
     book = sub.add_parser("book", help="run every notebook, then build the book")
@@ -48,6 +69,10 @@ def _parser() -> argparse.ArgumentParser:
     book.add_argument("--force", action="store_true",
                       help="rerun every notebook, even those whose executed copy is up to date")
     book.add_argument("--verbose", action="store_true", help="show the full traceback of a failing cell")
+    book.add_argument("-p", "--parameter", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
+                      help="override one parameter in every notebook that declares it (repeatable), "
+                      "e.g. -p platforms '[\"auv\", \"my_auv\"]'")
+    _data_arguments(book)
     scaleout.add_arguments(book)
 
     cache = sub.add_parser("cache", help="show the result cache's size; --prune deletes unreachable entries")
@@ -65,15 +90,21 @@ def _parser() -> argparse.ArgumentParser:
 def _run(args: argparse.Namespace) -> int:
     from sss_locus.pipeline.runner import run_notebook
 
+    data = _data_inputs(args)
     entry = get_entry(args.notebook)
+    overrides = _overrides(args.parameter)
+    run_notebook(entry, args.profile, overrides, from_text=True, output=args.output, data=data)
+    print("Rebuild the site from the executed copies with: sss-locus book --no-run")
+    return 0
+
+
+def _overrides(pairs: list[list[str]]) -> dict[str, str]:
     overrides: dict[str, str] = {}
-    for name, value in args.parameter:
+    for name, value in pairs:
         if name in overrides:
             raise ParameterError(f"parameter {name!r} given twice")
         overrides[name] = value
-    run_notebook(entry, args.profile, overrides, from_text=True, output=args.output)
-    print("Rebuild the site from the executed copies with: sss-locus book --no-run")
-    return 0
+    return overrides
 
 
 def _book(args: argparse.Namespace) -> int:
@@ -83,16 +114,23 @@ def _book(args: argparse.Namespace) -> int:
     start = time.perf_counter()
     entries = load_registry()
     if not args.no_run:
-        for entry in entries.values():
-            entry.resolve(args.profile)  # validate every profile before running anything
+        from sss_locus.pipeline.runner import declared_overrides, resolve_parameters
+
+        data = _data_inputs(args)
+        overrides = _overrides(args.parameter)
+        unknown = set(overrides) - {n for e in entries.values() for n in e.parameters()}
+        if unknown:
+            raise ParameterError(f"no notebook has the parameter(s) {sorted(unknown)}")
+        for entry in entries.values():  # validate every notebook's parameters before running anything
+            resolve_parameters(entry, args.profile, declared_overrides(entry, overrides), from_text=True, data=data)
         stale = []
         for entry in entries.values():
-            if not args.force and is_up_to_date(entry, args.profile):
+            if not args.force and is_up_to_date(entry, args.profile, declared_overrides(entry, overrides), data):
                 print(f"up to date: {entry.name} [{args.profile}] (same notebook, parameters, code, "
                       f"data and environment as its executed copy; --force reruns it)")
             else:
                 stale.append(entry)
-        run_many(stale, args.profile, jobs=args.jobs, verbose=args.verbose)
+        run_many(stale, args.profile, jobs=args.jobs, verbose=args.verbose, overrides=overrides, data=data)
     index = bookbuild.build()
     print(f"Built in {time.perf_counter() - start:.0f} s. Open the book:")
     print(index)

@@ -5,7 +5,7 @@ A comment in a ``parameters`` cell may end with, in this order and each optional
     n_per_arc = 200          # points drawn per locus arc [2, 1_000_000] ~190 B
     step_deg = 1.0           # grid step (deg) (0, 90]
     side = "port"            # sensor 2's side {"port", "either"}
-    platforms = ["auv"]      # keys of data/platforms.toml {"auv", "boat"}
+    platforms = ["auv"]      # keys of data/platforms.toml {keys of platforms}
 
 ``[lo, hi]``
     A range; ``[``/``]`` include the bound, ``(``/``)`` exclude it, an empty bound is open
@@ -13,6 +13,10 @@ A comment in a ``parameters`` cell may end with, in this order and each optional
     holding anything else are part of the description.
 ``{a, b, ...}``
     The allowed values (Python literals).
+``{keys of <table>}``
+    The keys of a data table (``platforms``, ``sonars``, ``envelopes``, ``noise``) of ``data/``
+    merged with the active user data (``--data``, ``--set``;
+    :mod:`sss_locus.experiments.userdata`), read when the value is checked.
 ``~N B`` (or ``kB``, ``MB``, ``GB``)
     The memory one unit of the value costs (measured or estimated): the value times ``N`` must
     stay within the memory budget (:func:`memory_budget`), so a run that cannot fit is refused
@@ -57,6 +61,15 @@ class Constraint:
     choices: tuple[Any, ...] | None = None
     bytes_each: float | None = None
     element_type: str | None = None  # "int", "float", "str", "bool" for list/tuple parameters
+    data_table: str | None = None  # choices are the keys of this data table (``{keys of <table>}``)
+
+    def allowed_choices(self) -> tuple[Any, ...] | None:
+        """The allowed values: the declared ones, or the current keys of the data table."""
+        if self.data_table is None:
+            return self.choices
+        from sss_locus.experiments import userdata
+
+        return tuple(userdata.document().get(self.data_table, {}))
 
     def describe(self) -> str:
         """What is allowed, e.g. ``[1, 5000000]``, ``one of 'auv', 'boat'``."""
@@ -67,7 +80,10 @@ class Constraint:
             lo = "" if self.low is None else _number(self.low)
             hi = "" if self.high is None else _number(self.high)
             parts.append(f"{'(' if self.low_open else '['}{lo}, {hi}{')' if self.high_open else ']'}")
-        if self.choices is not None:
+        if self.data_table is not None:
+            parts.append(f"a key of [{self.data_table}] in data/ and --data files: one of "
+                         + ", ".join(repr(c) for c in self.allowed_choices()))
+        elif self.choices is not None:
             parts.append("one of " + ", ".join(repr(c) for c in self.choices))
         if self.bytes_each:
             parts.append(f"at most {_bytes(memory_budget())} of memory at ~{_bytes(self.bytes_each)} each")
@@ -121,7 +137,10 @@ def split_comment(comment: str, name: str, default: Any) -> tuple[str, Constrain
             fields["low"] = float(ast.literal_eval(lo)) if lo else None
             fields["high"] = float(ast.literal_eval(hi)) if hi else None
             fields["low_open"], fields["high_open"] = match["range"][0] == "(", match["range"][-1] == ")"
-        if match["choices"]:
+        data_keys = re.fullmatch(r"\{\s*keys of ([a-z_]+)\s*\}", match["choices"] or "")
+        if data_keys:
+            fields["data_table"] = data_keys.group(1)
+        elif match["choices"]:
             fields["choices"] = tuple(ast.literal_eval(match["choices"][1:-1] + ","))
         if match["mem"]:
             fields["bytes_each"] = float(match["mem"]) * _UNITS[match["unit"]]
@@ -137,6 +156,7 @@ def check(name: str, value: Any, constraint: Constraint) -> None:
     """Raise :class:`ConstraintError` (one line: parameter, value, what is allowed) if broken."""
     items = list(value) if isinstance(value, (list, tuple)) else [value]
     allowed = constraint.describe()
+    choices = constraint.allowed_choices()
     for index, item in enumerate(items):
         where = f"{name}[{index}]" if isinstance(value, (list, tuple)) else name
         if constraint.element_type and isinstance(value, (list, tuple)):
@@ -146,7 +166,7 @@ def check(name: str, value: Any, constraint: Constraint) -> None:
             if not ok:
                 raise ConstraintError(f"parameter {where!r} = {item!r}: must be {constraint.element_type} "
                                       f"(allowed: {allowed})")
-        if constraint.choices is not None and item not in constraint.choices:
+        if choices is not None and item not in choices:
             raise ConstraintError(f"parameter {where!r} = {item!r} is not allowed: {allowed}")
         if constraint.low is not None or constraint.high is not None:
             if isinstance(item, bool) or not isinstance(item, (int, float)) or math.isnan(item):

@@ -26,7 +26,9 @@ renamed, so two writers of one label never share a temporary file. The files:
     A "cite this figure" BibTeX entry.
 ``<label>.json``
     The manifest, written last (atomically): label, caption, notebook, profile, parameters, seed,
-    git commit, lock-file hash, package version, run time (UTC) and every file with its SHA-256.
+    git commit, lock-file hash, package version, run time (UTC), the data inputs
+    (:func:`data_inputs`: data files with SHA-256, overrides, resolved platform values) and every
+    file with its SHA-256.
     A figure without a manifest is incomplete and is ignored by :func:`load_manifests`.
 """
 
@@ -105,6 +107,23 @@ def _save_atomic(path: Path, save: Any) -> None:
         os.replace(tmp, path)
     finally:
         tmp.unlink(missing_ok=True)
+
+
+def data_inputs(parameters: Mapping[str, Any]) -> dict[str, Any]:
+    """The data a figure was computed from: every data file read (path, role, SHA-256), the
+    ``--set`` overrides and the resolved sonar, mounting and envelope values of the platforms
+    the run's parameters name (``platforms``, ``sonar_platform``); see
+    :func:`sss_locus.experiments.userdata.record`."""
+    from sss_locus.experiments import userdata
+
+    keys = parameters.get("platforms", [])
+    keys = [keys] if isinstance(keys, str) else list(keys or [])
+    if isinstance(parameters.get("sonar_platform"), str):
+        keys.append(parameters["sonar_platform"])
+    try:
+        return userdata.record([k for k in dict.fromkeys(keys) if isinstance(k, str)])
+    except (OSError, ValueError) as exc:  # never lose a figure over its provenance
+        return {"error": str(exc)}
 
 
 def bibtex_entry(manifest: Mapping[str, Any]) -> str:
@@ -209,6 +228,7 @@ def export_figure(
         "run_time_utc": provenance.utc_now(),
         "dpi": int(dpi),
         "run_key": os.environ.get(RUN_KEY_ENV),  # ties the figure to its executed copy
+        "data_inputs": data_inputs(params),
     }
     bib_path = out / f"{label}.bib"
     _write_atomic(bib_path, bibtex_entry(manifest))

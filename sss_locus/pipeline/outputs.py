@@ -131,10 +131,14 @@ def read_notebook(path: Path) -> dict[str, Any] | None:
 
 
 def run_key(entry: Any, profile: str, parameters: dict[str, Any]) -> str:
-    """Hash of everything an executed copy depends on (see the module docstring)."""
+    """Hash of everything an executed copy depends on (see the module docstring), including the
+    SHA-256 of each user data file named by its ``data_files`` parameter."""
+    user_files = parameters.get("data_files") or [] if isinstance(parameters, dict) else []
     payload = json.dumps(
         {"source": provenance.file_sha256(entry.source), "profile": profile, "parameters": parameters,
-         "code": provenance.code_sha256(), "lock": provenance.lock_sha256()},
+         "code": provenance.code_sha256(), "lock": provenance.lock_sha256(),
+         # the bytes of the user's data files (--data): editing one makes its readers stale
+         **({"data_files": [provenance.file_sha256(Path(f)) for f in user_files]} if user_files else {})},
         sort_keys=True, default=provenance.json_default,
     )
     return hashlib.sha256(payload.encode()).hexdigest()
@@ -174,7 +178,7 @@ def problems(entries: Sequence[Any]) -> list[str]:
         except (OSError, ValueError):
             current = None
         if current != ours["run_key"]:
-            found.append(f"{name}: stale (the notebook, code, data/ or environment.lock changed since it ran)")
+            found.append(f"{name}: stale (the notebook, code, data/, its --data files or environment.lock changed since it ran)")
             continue
         mine = {label: m for label, m in figures.items() if m.get("notebook") == entry.source_relative}
         absent = [label for label in ours.get("figures", []) if label not in mine]

@@ -98,13 +98,28 @@ def patched_environ(values: dict[str, str]) -> Iterator[None]:
                 os.environ[key] = old
 
 
-def is_up_to_date(entry: NotebookEntry, profile: str) -> bool:
-    """True when the executed copy came from an identical, successful run and its figures are
-    the ones that run exported, intact."""
+def resolve_parameters(entry: NotebookEntry, profile: str, overrides: dict[str, Any] | None = None,
+                       *, from_text: bool = False, data: Any = None) -> dict[str, Any]:
+    """The run's parameters: :meth:`NotebookEntry.resolve`, then the user data inputs
+    (``data``, a :class:`sss_locus.experiments.userdata.DataInputs` from ``--data``/``--set``)
+    as the ``data_files``/``data_set`` parameters of a notebook that declares them."""
+    parameters = entry.resolve(profile, overrides, from_text=from_text)
+    if data is not None and not data.is_default:
+        for name, value in (("data_files", list(data.files)), ("data_set", list(data.sets))):
+            if name in parameters and value:
+                parameters[name] = value
+    return parameters
+
+
+def is_up_to_date(entry: NotebookEntry, profile: str, overrides: dict[str, Any] | None = None,
+                  data: Any = None) -> bool:
+    """True when the executed copy came from an identical, successful run (same parameters,
+    ``--data`` files' bytes and overrides) and its figures are the ones that run exported, intact."""
     try:
         meta = json.loads(entry.executed_path().read_text(encoding="utf-8"))["metadata"]
         ours = meta.get("sss_locus", {})
-        if ours.get("run_key") != run_key(entry, profile, entry.resolve(profile)):
+        wanted = resolve_parameters(entry, profile, overrides, from_text=True, data=data)
+        if ours.get("run_key") != run_key(entry, profile, wanted):
             return False
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return False
@@ -139,6 +154,10 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
             }
             source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
             header = f"# Parameters of this run (profile '{profile}'), injected by papermill\n"
+            if "data" in extra:
+                header += "".join(f"# data file read: {f['path']} ({f['role']}, sha256 {f['sha256']})\n"
+                                  for f in extra["data"]["files"])
+                header += "".join(f"# data override: {o}\n" for o in extra["data"]["overrides"])
             if not source.startswith(header):
                 cell["source"] = header + source
     nb.setdefault("metadata", {})["sss_locus"] = {
@@ -188,7 +207,7 @@ def _execute(entry: NotebookEntry, staging: Path, notebook: Path, cwd: Path,
 
 
 def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[str, Any] | None = None,
-                 *, from_text: bool = False, output: Path | None = None, log=print) -> Path:
+                 *, from_text: bool = False, output: Path | None = None, log=print, data: Any = None) -> Path:
     """Execute one registered notebook, atomically, into its executed copy; return that path.
 
     Parameters are the notebook defaults, then the profile's values, then ``overrides`` (command
@@ -196,9 +215,11 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     anything runs. Raises :class:`sss_locus.pipeline.registry.ParameterError` for bad parameters
     and :class:`NotebookFailed` when a cell fails; the executed copy and figures of the last good
     run are then untouched. ``output`` makes a side run: the executed copy goes there and its
-    figures into ``figures/`` beside it, and the build area's results are not touched.
+    figures into ``figures/`` beside it, and the build area's results are not touched. ``data``
+    (:class:`sss_locus.experiments.userdata.DataInputs`, validated by the caller) becomes the
+    notebook's ``data_files``/``data_set`` parameters.
     """
-    parameters = entry.resolve(profile, overrides, from_text=from_text)
+    parameters = resolve_parameters(entry, profile, overrides, from_text=from_text, data=data)
     side = output is not None
     executed = Path(output).resolve() if side else entry.executed_path()
     figures = executed.parent / paths.FIGURES_SUBDIR if side else paths.figures_dir()
@@ -235,7 +256,13 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
                     exc.args = (f"{exc.args[0]}; the failed notebook is kept in {kept}",)
                 raise
             exported = sorted(m["label"] for m in export.load_manifests(staging / "figures"))
-            _label_injected_cell(staged, profile, parameters, {"run_key": key, "figures": exported})
+            record = {"run_key": key, "figures": exported}
+            if "data_files" in parameters:
+                from sss_locus.experiments import userdata
+
+                inputs = userdata.make_inputs(parameters["data_files"], parameters.get("data_set", []))
+                record["data"] = {"files": userdata.files_read(inputs), "overrides": list(inputs.sets)}
+            _label_injected_cell(staged, profile, parameters, record)
             with outputs.build_lock() if not side else _nothing():
                 outputs.commit_run(staged, staging / "figures", executed, figures,
                                    None if side else entry.source_relative)
@@ -247,25 +274,32 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     return executed
 
 
+def declared_overrides(entry: NotebookEntry, overrides: dict[str, str] | None) -> dict[str, str]:
+    """The overrides whose parameter ``entry`` declares."""
+    names = entry.parameters()
+    return {k: v for k, v in (overrides or {}).items() if k in names}
+
+
 @contextmanager
 def _nothing() -> Iterator[None]:
     yield
 
 
 def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=print,
-             verbose: bool = False) -> None:
+             verbose: bool = False, overrides: dict[str, str] | None = None, data: Any = None) -> None:
     """Run several registered notebooks with one profile, up to ``jobs`` at a time.
 
     With ``jobs > 1`` each notebook runs in its own ``sss-locus run`` process (the environment
     variables a run sets are per process). Every notebook is attempted; failures are reported
-    together at the end as a ``RuntimeError``. If this process is interrupted, the running
+    together at the end as a ``RuntimeError``. ``overrides`` (command-line text) apply to the
+    notebooks that declare each parameter; ``data`` are the ``--data``/``--set`` inputs. If this process is interrupted, the running
     children get SIGTERM (each cleans up after itself) before the interruption propagates.
     """
     if jobs <= 1 or len(entries) <= 1:
         failures = []
         for entry in entries:
             try:
-                run_notebook(entry, profile, log=log)
+                run_notebook(entry, profile, declared_overrides(entry, overrides), from_text=True, log=log, data=data)
             except NotebookFailed as exc:
                 failures.append(f"{entry.name}: {exc}" + (f"\n{exc.traceback}" if verbose else ""))
         if failures:
@@ -277,6 +311,11 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
     def one(entry: NotebookEntry) -> tuple[int, str, str]:
         cmd = [sys.executable, "-m", "sss_locus.pipeline.cli", "run", entry.name, "--profile", profile,
                *(["--verbose"] if verbose else [])]
+        for name, value in declared_overrides(entry, overrides).items():
+            cmd += ["-p", name, value]
+        if data is not None:
+            cmd += [arg for f in data.files for arg in ("--data", f)]
+            cmd += [arg for o in data.sets for arg in ("--set", o)]
         child = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                  stdin=subprocess.DEVNULL)
         children[entry.name] = child

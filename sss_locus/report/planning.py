@@ -17,6 +17,7 @@ import pandas as pd
 from matplotlib.patches import Patch
 
 from ..experiments.planning import CrossingAngleCurve, band_at
+from ..experiments.userdata import label_key
 from .survey_passes import model_tag
 from .text import fmt_bands
 
@@ -96,10 +97,11 @@ def bands_table(curves: Mapping[tuple[str, str], CrossingAngleCurve],
 
 
 def band_texts(bands: Mapping[tuple[str, str], pd.DataFrame]) -> dict[str, str]:
-    """Glue texts ``pl-<platform>-<model tag>-prefer``, ``-avoid`` and ``-90``."""
+    """Glue texts ``pl-<platform>-<model tag>-prefer``, ``-avoid`` and ``-90`` (``<platform>``:
+    the key with ``_`` as ``-``)."""
     out = {}
     for (key, spec), b in bands.items():
-        tag = f"pl-{key}-{model_tag(spec)}"
+        tag = f"pl-{label_key(key)}-{model_tag(spec)}"
         out[f"{tag}-prefer"] = fmt_bands(b, "prefer")
         out[f"{tag}-avoid"] = fmt_bands(b, "avoid")
         out[f"{tag}-90"] = band_at(b, 90.0)

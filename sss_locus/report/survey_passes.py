@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 
 from ..experiments.envelopes import OffsetModel, SurveyEnvelope
+from ..experiments.userdata import label_key
 from ..experiments.planning import VALUES, CrossingAngleCurve, curve_shape_rho, rejected_share
 from .style import AXIS_LABELS, platform_colors
 from .text import fmt_change, fmt_interval, fmt_sig
@@ -182,7 +183,7 @@ def offset_model_texts(sensitivity: Mapping[tuple[str, str], CrossingAngleCurve]
     misalignment peak angles, the length peak's interval, medians at 0/90/180° over the peak."""
     out = {}
     for (k, spec), cur in sensitivity.items():
-        p, pk = f"sp-{k}-{model_tag(spec)}", cur.peak["locus_length_m"]
+        p, pk = f"sp-{label_key(k)}-{model_tag(spec)}", cur.peak["locus_length_m"]
         peak = cur.curve["locus_length_m_median"].max()
         out[f"{p}-len-peak-deg"] = f"{pk['angle_deg']:.0f}"
         out[f"{p}-len-peak-ci"] = f"{pk['ci_low_deg']:.0f}–{pk['ci_high_deg']:.0f}"
@@ -197,8 +198,9 @@ def _change(r) -> str:
 
 
 def pitch_depth_texts(pitch: pd.DataFrame, depth: pd.DataFrame,
-                      pitch_levels_deg: Sequence[float]) -> dict[str, str]:
-    """Glue texts ``sp-auv-pitch-*``, ``sp-auv-pitchvar-*`` and ``sp-auv-depth-*``.
+                      pitch_levels_deg: Sequence[float], prefix: str = "sp-auv") -> dict[str, str]:
+    """Glue texts ``<prefix>-pitch-*``, ``<prefix>-pitchvar-*`` and ``<prefix>-depth-*``
+    (``prefix``: ``sp-`` plus the studied platform's label key, e.g. ``sp-auv``).
 
     ``pitch`` has one row per pitch level (both passes pitched) followed by the level-pass-1
     rows turning to port and to starboard; ``depth`` one row per altitude, the first the
@@ -206,20 +208,20 @@ def pitch_depth_texts(pitch: pd.DataFrame, depth: pd.DataFrame,
     """
     out = {}
     for i, p in enumerate(pitch_levels_deg):
-        out[f"sp-auv-pitch-{i}-effect"] = _change(pitch.iloc[i])
-        out[f"sp-auv-pitch-{i}-deg"] = f"{p:g}"
+        out[f"{prefix}-pitch-{i}-effect"] = _change(pitch.iloc[i])
+        out[f"{prefix}-pitch-{i}-deg"] = f"{p:g}"
     r = pitch.iloc[len(pitch_levels_deg) - 1]
-    out["sp-auv-pitch-max-up"] = fmt_sig(r["median_x"], 2)
-    out["sp-auv-pitch-max-down"] = fmt_sig(r["median_y"], 2)
-    out["sp-auv-pitchvar-deg"] = f"{pitch_levels_deg[-1]:g}"
-    out["sp-auv-pitchvar-port-effect"] = _change(pitch.iloc[-2])
-    out["sp-auv-pitchvar-stbd-effect"] = _change(pitch.iloc[-1])
+    out[f"{prefix}-pitch-max-up"] = fmt_sig(r["median_x"], 2)
+    out[f"{prefix}-pitch-max-down"] = fmt_sig(r["median_y"], 2)
+    out[f"{prefix}-pitchvar-deg"] = f"{pitch_levels_deg[-1]:g}"
+    out[f"{prefix}-pitchvar-port-effect"] = _change(pitch.iloc[-2])
+    out[f"{prefix}-pitchvar-stbd-effect"] = _change(pitch.iloc[-1])
     hi, lo = depth.iloc[-1], depth.iloc[0]
-    out["sp-auv-depth-effect"] = _change(hi)
-    out["sp-auv-depth-effect-norm"] = fmt_change(hi["norm_ratio"], hi["norm_ratio_ci_low"],
+    out[f"{prefix}-depth-effect"] = _change(hi)
+    out[f"{prefix}-depth-effect-norm"] = fmt_change(hi["norm_ratio"], hi["norm_ratio_ci_low"],
                                                  hi["norm_ratio_ci_high"])
-    out["sp-auv-depth-lo"] = f"{lo['altitude (m)']:g}"
-    out["sp-auv-depth-hi"] = f"{hi['altitude (m)']:g}"
+    out[f"{prefix}-depth-lo"] = f"{lo['altitude (m)']:g}"
+    out[f"{prefix}-depth-hi"] = f"{hi['altitude (m)']:g}"
     return out
 
 

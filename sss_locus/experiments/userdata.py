@@ -1,0 +1,106 @@
+"""The data a run reads: the shipped ``data/*.toml`` merged with a user's files and overrides.
+
+A user file (``sss-locus run/book --data FILE.toml``, or the notebook parameter ``data_files``)
+has the schema of ``data/*.toml``: its ``sonars``, ``platforms``, ``envelopes``,
+``offset_models`` and ``noise`` tables add to or override the shipped ones **by key**, at any
+depth, so a file may hold a whole new platform or a single value::
+
+    [platforms.auv.transducers.port.tilt_deg]
+    value = 15.0
+    assumption = "our own mounting"
+
+A number (``{value = ..., source|assumption = ...}``) is always replaced whole, so a replaced
+value never keeps the shipped file's source. ``--set KEY.PATH=VALUE`` (the notebook parameter
+``data_set``) is the quick form for one value; it is recorded as the assumption
+``"user override: --set KEY.PATH=VALUE"``. Later files and overrides win over earlier ones.
+
+The active inputs (:func:`use`) are module state, set once per process: the command line sets
+them before it validates parameters, and a notebook's imports cell calls
+``userdata.use(data_files, data_set)``; the loaders (:func:`sss_locus.experiments.platforms.load_platforms`,
+:func:`sss_locus.experiments.envelopes.load_envelope`,
+:func:`sss_locus.experiments.noise.load_noise_model`) read :func:`document`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+from .datadoc import (KEY_PATTERN, SET_NOTE, SHIPPED_FILES, USER_TABLES, DataInputs, activate, active,  # noqa: F401
+                      check_user_document, document, file_sha256, files_read, label_key, make_inputs,
+                      merge, parse_set, shipped_document)
+from .envelopes import default_offset_model, parse_envelope
+from .noise import parse_noise_model
+from .platforms import parse_platforms
+
+
+def validate(inputs: DataInputs) -> dict[str, Any]:
+    """Read and validate everything ``inputs`` resolve to; return the merged document.
+
+    Raises ``ValueError`` naming the file or the full key path of the first bad entry.
+    """
+    for path in inputs.files:
+        if not Path(path).is_file():
+            raise ValueError(f"data file {path} does not exist")
+    doc = document(inputs)
+    parse_platforms(doc)
+    for key in doc.get("envelopes", {}):
+        parse_envelope(doc, key)
+    for key in doc.get("noise", {}):
+        parse_noise_model(doc, key)
+    default_offset_model("matched", doc=doc)
+    return doc
+
+
+def use(data_files: Iterable[str | Path] = (), data_set: Iterable[str] = ()) -> DataInputs:
+    """Validate and activate user data for this process (a notebook calls this with its
+    ``data_files`` and ``data_set`` parameters); return the active :class:`DataInputs`."""
+    inputs = make_inputs(data_files, data_set)
+    validate(inputs)
+    activate(inputs)
+    return inputs
+
+
+def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = None) -> dict[str, Any]:
+    """The sonar, mounting and envelope values the named platforms resolve to (for manifests)."""
+    doc = document(inputs)
+    platforms = parse_platforms(doc)
+    out: dict[str, Any] = {}
+    for key in platform_keys:
+        if key not in platforms:
+            continue
+        p = platforms[key]
+        s = p.sonar
+        entry: dict[str, Any] = {
+            "name": p.name,
+            "sonar": {"key": s.key, "name": s.name, "azimuth_deg": s.azimuth_deg,
+                      "elevation_deg": s.elevation_deg, "max_range_m": s.max_range_m,
+                      "min_range_m": s.min_range_m},
+            "tilt_deg": {side: t.tilt_deg for side, t in p.transducers.items()},
+            "attitude_max_deg": {"roll": p.roll_max_deg, "pitch": p.pitch_max_deg},
+            "depth_m": [p.depth_min_m, p.depth_max_m],
+        }
+        if key in doc.get("envelopes", {}):
+            entry["envelope"] = parse_envelope(doc, key).key()
+        user = sorted(k for k, v in p.provenance.items() if v.startswith("assumption: " + SET_NOTE))
+        if user:
+            entry["set_by_user"] = user
+        out[key] = entry
+    return out
+
+
+def record(platform_keys: Iterable[str] = (), inputs: DataInputs | None = None) -> dict[str, Any]:
+    """The data-input record of a run: files read with SHA-256, overrides, resolved values."""
+    inputs = active() if inputs is None else inputs
+    return {"files": files_read(inputs), "overrides": list(inputs.sets),
+            "values": resolved_values(platform_keys, inputs)}
+
+
+def describe_platform(key: str, inputs: DataInputs | None = None) -> str:
+    """One line naming a platform's sonar, aperture, range and tilt (for captions)."""
+    values = resolved_values([key], inputs)[key]
+    s, tilts = values["sonar"], sorted(set(values["tilt_deg"].values()))
+    tilt = "/".join(f"{t:g}" for t in tilts)
+    return (f"{values['name']}: {s['name']}, {s['azimuth_deg']:g}° × {s['elevation_deg']:g}°, "
+            f"{s['max_range_m']:g} m, tilt {tilt}°")
