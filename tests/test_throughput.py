@@ -30,3 +30,20 @@ def test_vehicle_attitude_special_angles_are_scipy_bit_for_bit():
     for yaw, pitch, roll in ((a, a, a), (a, np.zeros_like(a), -a), (-a, a / 2, np.zeros_like(a))):
         ref = Rotation.from_euler("ZYX", np.stack([yaw, -pitch, roll], axis=-1), degrees=True)
         assert np.array_equal(vehicle_attitude(yaw, pitch, roll).as_matrix(), ref.as_matrix())
+
+
+@pytest.mark.parametrize("platform_key, model", [("auv", "independent"), ("boat", "independent"),
+                                                  ("auv", "matched:2:same")])
+def test_survey_blocks_drawn_together_equal_blocks_drawn_alone(platform_key, model):
+    from sss_locus.experiments.envelopes import OffsetModel, load_envelope
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.survey_passes import draw_block, draw_blocks
+
+    pf, env, om = load_platform(platform_key), load_envelope(platform_key), OffsetModel.parse(model)
+    together = draw_blocks(pf, env, om, 35.0, 3, [0, 5, 1, 2])
+    for k, (rows, rejected, accepted) in zip([0, 5, 1, 2], together):
+        alone_rows, alone_rejected, alone_accepted = draw_block(pf, env, om, 35.0, 3, k)
+        assert accepted == alone_accepted and np.array_equal(rejected, alone_rejected)
+        assert rows.keys() == alone_rows.keys()
+        for key in rows:
+            assert rows[key].tobytes() == alone_rows[key].tobytes(), key
