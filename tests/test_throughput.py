@@ -47,3 +47,25 @@ def test_survey_blocks_drawn_together_equal_blocks_drawn_alone(platform_key, mod
         assert rows.keys() == alone_rows.keys()
         for key in rows:
             assert rows[key].tobytes() == alone_rows[key].tobytes(), key
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 10, 11, 1000, 1001])
+@pytest.mark.parametrize("ties", [False, True])
+def test_bootstrap_median_is_numpy_median_of_the_same_resamples(n, ties):
+    from sss_locus.experiments.planning import bootstrap_median
+
+    x = np.random.default_rng(n).normal(size=n)
+    if ties:
+        x = np.round(x, 1)
+    ref_rng, ours = np.random.default_rng(4), bootstrap_median(x, 150, np.random.default_rng(4), batch=64)
+    ref = np.concatenate([np.median(x[ref_rng.integers(0, n, (k, n))], axis=1) for k in (64, 64, 22)])
+    assert ours.tobytes() == ref.tobytes()
+
+
+def test_bootstrap_median_propagates_nan_like_numpy():
+    from sss_locus.experiments.planning import bootstrap_median
+
+    x = np.array([1.0, np.nan, 3.0, 4.0])
+    ref_rng, ours = np.random.default_rng(2), bootstrap_median(x, 30, np.random.default_rng(2))
+    ref = np.median(x[ref_rng.integers(0, 4, (30, 4))], axis=1)
+    assert np.array_equal(ours, ref, equal_nan=True)
