@@ -56,16 +56,17 @@ def test_bootstrap_median_is_numpy_median_of_the_same_resamples(n, ties):
 
     x = np.random.default_rng(n).normal(size=n)
     if ties:
-        x = np.round(x, 1)
+        x = np.round(x, 1) + 5.0  # many equal values (no zeros: see the signed-zero test)
     ref_rng, ours = np.random.default_rng(4), bootstrap_median(x, 150, np.random.default_rng(4), batch=64)
     ref = np.concatenate([np.median(x[ref_rng.integers(0, n, (k, n))], axis=1) for k in (64, 64, 22)])
     assert ours.tobytes() == ref.tobytes()
 
 
-def test_bootstrap_median_propagates_nan_like_numpy():
+@pytest.mark.parametrize("x", [[1.0, np.nan, 3.0, 4.0], [0.0, -0.0, 0.0, -0.0, 1.0, -1.0, -0.0]])
+def test_bootstrap_median_nan_and_signed_zeros_like_numpy(x):
     from sss_locus.experiments.planning import bootstrap_median
 
-    x = np.array([1.0, np.nan, 3.0, 4.0])
+    x = np.array(x)
     ref_rng, ours = np.random.default_rng(2), bootstrap_median(x, 30, np.random.default_rng(2))
-    ref = np.median(x[ref_rng.integers(0, 4, (30, 4))], axis=1)
-    assert np.array_equal(ours, ref, equal_nan=True)
+    ref = np.median(x[ref_rng.integers(0, x.size, (30, x.size))], axis=1)
+    assert ours.tobytes() == ref.tobytes()

@@ -70,7 +70,10 @@ def bootstrap_median(values, n_resamples: int, rng, *, batch: int = 64) -> np.nd
     if isinstance(n_resamples, bool) or int(n_resamples) < 1:
         raise ValueError(f"n_resamples must be a positive integer; got {n_resamples!r}")
     out = np.empty(int(n_resamples))
-    if np.isnan(x).any():  # NaN propagates as np.median does
+    zeros = np.signbit(x[x == 0])
+    if np.isnan(x).any() or 0 < zeros.sum() < zeros.size:
+        # NaN propagates as np.median does; with zeros of both signs which one np.median
+        # returns depends on its partition, so let it choose
         for i in range(0, out.size, batch):
             k = min(batch, out.size - i)
             out[i:i + k] = np.median(x[rng.integers(0, x.size, (k, x.size))], axis=1)
