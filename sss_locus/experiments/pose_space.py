@@ -237,7 +237,8 @@ def _evaluate(spec: PoseSpaceSpec, g: dict[str, np.ndarray]) -> pd.DataFrame:
     res = two_view_locus(g["R"], g["t"], g["r1"], g["r2"], ap, ap)
     mis = elevation_misalignment(g["R"], g["t"])
     mean_range = 0.5 * (g["r1"] + g["r2"])
-    side = lambda port: pd.Categorical(np.where(port, "port", "starboard"), categories=list(SIDES))
+    side = lambda port: pd.Categorical.from_codes(  # = Categorical of the names, without strings
+        np.where(port, SIDES.index("port"), SIDES.index("starboard")).astype(np.int8), categories=list(SIDES))
     return pd.DataFrame({
         "r1_m": g["r1"], "r2_m": g["r2"], "mean_range_m": mean_range,
         "baseline_m": np.linalg.norm(g["t"], axis=-1),

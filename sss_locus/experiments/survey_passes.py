@@ -58,6 +58,8 @@ from .straight_pass import REJECTION_REASONS, observe_pass, swath_m
 
 BLOCK_SIZE = 256
 """Accepted rows per independently seeded block (fixed: changing it changes every table)."""
+BATCH_BLOCKS = 64
+"""Blocks drawn together in one batch (speed and memory only; the result does not depend on it)."""
 MIN_ACCEPTANCE = 1e-3
 
 COLUMNS = (
@@ -86,9 +88,11 @@ def _seed_sequence(platform: Platform, seed: int, gamma_deg: float, block: int):
     return np.random.SeedSequence(seed, spawn_key=(pid, int(round((gamma_deg + 360.0) * 1000)), block))
 
 
-def _candidates(platform, env, model, gamma_deg, rng, m):
-    """``m`` candidate pass pairs: observations of both passes and the draw's rejection code."""
-    u = rng.random((10, m))
+def _candidates(platform, env, model, gamma_deg, u):
+    """Candidate pass pairs from uniforms ``u`` (10, m): observations of both passes and the
+    draw's rejection code. Row by row (no reductions across rows), so candidates of several
+    blocks evaluated together equal those evaluated block by block, bit for bit."""
+    m = u.shape[1]
     port1 = u[0] < 0.5 if model.side1 == "random" else np.full(m, model.side1 == "port")
     port2 = {"random": u[1] < 0.5, "same": port1, "opposite": ~port1}[model.side_rule]
     span = env.altitude_max_m - env.altitude_min_m
@@ -120,22 +124,44 @@ def draw_block(platform: Platform, envelope: SurveyEnvelope, model: OffsetModel,
                seed: int, block: int) -> tuple[dict[str, np.ndarray], np.ndarray, int]:
     """:data:`BLOCK_SIZE` accepted pass pairs at crossing angle ``gamma_deg``; the number of
     rejected draws per reason (aligned with :data:`REJECTION_REASONS`) and of accepted draws
-    (including those past :data:`BLOCK_SIZE`, which are not used) over all draws made."""
-    rng = np.random.default_rng(_seed_sequence(platform, seed, gamma_deg, block))
-    parts, have, tried, rejected = [], 0, 0, np.zeros(len(REJECTION_REASONS), np.int64)
-    while have < BLOCK_SIZE:
-        m = max(BLOCK_SIZE, 2 * (BLOCK_SIZE - have))
-        ob1, ob2, draws, reason = _candidates(platform, envelope, model, gamma_deg, rng, m)
-        keep = reason < 0
-        rejected += np.bincount(reason[~keep], minlength=len(REJECTION_REASONS))
-        tried += m
+    (including those past :data:`BLOCK_SIZE`, which are not used) over all draws made.
+
+    Block ``block`` draws rounds of ``m = max(BLOCK_SIZE, 2 * missing)`` candidates from its own
+    generator until it has :data:`BLOCK_SIZE` accepted ones."""
+    return draw_blocks(platform, envelope, model, gamma_deg, seed, [block])[0]
+
+
+def draw_blocks(platform: Platform, envelope: SurveyEnvelope, model: OffsetModel, gamma_deg: float,
+                seed: int, blocks) -> list[tuple[dict[str, np.ndarray], np.ndarray, int]]:
+    """:func:`draw_block` for each of ``blocks``, the same bit for bit, with each round's
+    candidates of all unfinished blocks evaluated in one batch (blocks of 256 rows are too
+    small for NumPy to run near its speed one by one)."""
+    blocks = list(blocks)
+    rngs = [np.random.default_rng(_seed_sequence(platform, seed, gamma_deg, k)) for k in blocks]
+    parts = [[] for _ in blocks]
+    have, tried = np.zeros(len(blocks), np.int64), np.zeros(len(blocks), np.int64)
+    rejected = np.zeros((len(blocks), len(REJECTION_REASONS)), np.int64)
+    active = list(range(len(blocks)))
+    while active:
+        sizes = [max(BLOCK_SIZE, 2 * (BLOCK_SIZE - int(have[i]))) for i in active]
+        u = np.concatenate([rngs[i].random((10, m)) for i, m in zip(active, sizes)], axis=1)
+        ob1, ob2, draws, reason = _candidates(platform, envelope, model, gamma_deg, u)
         row = dict(draws, **{f"{k}1": v for k, v in ob1.items()}, **{f"{k}2": v for k, v in ob2.items()})
-        parts.append({k: v[keep] for k, v in row.items()})
-        have += int(keep.sum())
-        if tried >= 20 * BLOCK_SIZE and have < MIN_ACCEPTANCE * tried:
-            raise ValueError(f"only {have} of {tried} pass pairs of platform {platform.key!r} at "
-                             f"crossing angle {gamma_deg} deg see the feature: check the envelope")
-    return {k: np.concatenate([p[k] for p in parts])[:BLOCK_SIZE] for k in parts[0]}, rejected, have
+        start = 0
+        for i, m in zip(active, sizes):
+            sl = slice(start, start + m)
+            start += m
+            keep = reason[sl] < 0
+            rejected[i] += np.bincount(reason[sl][~keep], minlength=len(REJECTION_REASONS))
+            tried[i] += m
+            parts[i].append({k: v[sl][keep] for k, v in row.items()})
+            have[i] += int(keep.sum())
+            if tried[i] >= 20 * BLOCK_SIZE and have[i] < MIN_ACCEPTANCE * tried[i]:
+                raise ValueError(f"only {have[i]} of {tried[i]} pass pairs of platform {platform.key!r} at "
+                                 f"crossing angle {gamma_deg} deg see the feature: check the envelope")
+        active = [i for i in active if have[i] < BLOCK_SIZE]
+    return [({k: np.concatenate([p[k] for p in parts[i]])[:BLOCK_SIZE] for k in parts[i][0]},
+             rejected[i], int(have[i])) for i in range(len(blocks))]
 
 
 def _check_inputs(angles, n, seed):
@@ -155,7 +181,8 @@ def _evaluate(platform, gamma_deg, d) -> pd.DataFrame:
     r1, r2 = d["range_m1"], d["range_m2"]
     res = two_view_locus(R, t, r1, r2, ap, ap)
     mis = elevation_misalignment(R, t)
-    side = lambda port: pd.Categorical(np.where(port, "port", "starboard"), categories=list(SIDES))
+    side = lambda port: pd.Categorical.from_codes(  # = Categorical of the names, without strings
+        np.where(port, SIDES.index("port"), SIDES.index("starboard")).astype(np.int8), categories=list(SIDES))
     return pd.DataFrame({
         "crossing_angle_deg": np.full(len(r1), float(gamma_deg)),
         "locus_length_m": res.length, "locus_length_normalized": res.length / (0.5 * (r1 + r2)),
@@ -175,8 +202,9 @@ def _evaluate(platform, gamma_deg, d) -> pd.DataFrame:
 
 def _simulate_angle(platform, envelope, offset_model, gamma, n, seed) -> tuple[pd.DataFrame, dict]:
     """One crossing angle (one chunk of the study): its samples and its acceptance row."""
-    blocks = [draw_block(platform, envelope, offset_model, gamma, seed, k)
-              for k in range(-(-n // BLOCK_SIZE))]
+    n_blocks = -(-n // BLOCK_SIZE)
+    blocks = [b for first in range(0, n_blocks, BATCH_BLOCKS) for b in draw_blocks(
+        platform, envelope, offset_model, gamma, seed, range(first, min(first + BATCH_BLOCKS, n_blocks)))]
     d = {k: np.concatenate([b[0][k] for b in blocks])[:n] for k in blocks[0][0]}
     rej, accepted = sum(b[1] for b in blocks), sum(b[2] for b in blocks)
     return _evaluate(platform, gamma, d), {

@@ -1,0 +1,72 @@
+"""The faster paths of the studies give the same numbers, bit for bit, as the plain ones.
+
+References: scipy's ``Rotation.from_euler`` for the vectorised vehicle attitude; one block at a
+time (the documented stream definition) for the samplers that draw many blocks together.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from sss_locus.experiments.straight_pass import vehicle_attitude
+
+
+@pytest.mark.parametrize("shape", [(), (1,), (9,), (4, 5), (20_000,)])
+def test_vehicle_attitude_is_scipy_from_euler_bit_for_bit(shape):
+    rng = np.random.default_rng(len(shape) * 7 + sum(shape))
+    yaw, pitch, roll = (rng.uniform(-180, 180, shape), rng.uniform(-90, 90, shape),
+                        rng.uniform(-180, 180, shape))
+    ours = vehicle_attitude(yaw, pitch, roll)
+    ref = Rotation.from_euler("ZYX", np.stack([yaw, -pitch, roll], axis=-1), degrees=True)
+    assert ours.single == ref.single
+    assert np.array_equal(ours.as_quat(), ref.as_quat())
+    assert np.array_equal(ours.as_matrix(), ref.as_matrix())
+
+
+def test_vehicle_attitude_special_angles_are_scipy_bit_for_bit():
+    a = np.array([0.0, -0.0, 90.0, -90.0, 180.0, -180.0, 45.0, 1e-300, 360.0, 720.5])
+    for yaw, pitch, roll in ((a, a, a), (a, np.zeros_like(a), -a), (-a, a / 2, np.zeros_like(a))):
+        ref = Rotation.from_euler("ZYX", np.stack([yaw, -pitch, roll], axis=-1), degrees=True)
+        assert np.array_equal(vehicle_attitude(yaw, pitch, roll).as_matrix(), ref.as_matrix())
+
+
+@pytest.mark.parametrize("platform_key, model", [("auv", "independent"), ("boat", "independent"),
+                                                  ("auv", "matched:2:same")])
+def test_survey_blocks_drawn_together_equal_blocks_drawn_alone(platform_key, model):
+    from sss_locus.experiments.envelopes import OffsetModel, load_envelope
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.survey_passes import draw_block, draw_blocks
+
+    pf, env, om = load_platform(platform_key), load_envelope(platform_key), OffsetModel.parse(model)
+    together = draw_blocks(pf, env, om, 35.0, 3, [0, 5, 1, 2])
+    for k, (rows, rejected, accepted) in zip([0, 5, 1, 2], together):
+        alone_rows, alone_rejected, alone_accepted = draw_block(pf, env, om, 35.0, 3, k)
+        assert accepted == alone_accepted and np.array_equal(rejected, alone_rejected)
+        assert rows.keys() == alone_rows.keys()
+        for key in rows:
+            assert rows[key].tobytes() == alone_rows[key].tobytes(), key
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 10, 11, 1000, 1001])
+@pytest.mark.parametrize("ties", [False, True])
+def test_bootstrap_median_is_numpy_median_of_the_same_resamples(n, ties):
+    from sss_locus.experiments.planning import bootstrap_median
+
+    x = np.random.default_rng(n).normal(size=n)
+    if ties:
+        x = np.round(x, 1) + 5.0  # many equal values (no zeros: see the signed-zero test)
+    ref_rng, ours = np.random.default_rng(4), bootstrap_median(x, 150, np.random.default_rng(4), batch=64)
+    ref = np.concatenate([np.median(x[ref_rng.integers(0, n, (k, n))], axis=1) for k in (64, 64, 22)])
+    assert ours.tobytes() == ref.tobytes()
+
+
+@pytest.mark.parametrize("x", [[1.0, np.nan, 3.0, 4.0], [0.0, -0.0, 0.0, -0.0, 1.0, -1.0, -0.0]])
+def test_bootstrap_median_nan_and_signed_zeros_like_numpy(x):
+    from sss_locus.experiments.planning import bootstrap_median
+
+    x = np.array(x)
+    ref_rng, ours = np.random.default_rng(2), bootstrap_median(x, 30, np.random.default_rng(2))
+    ref = np.median(x[ref_rng.integers(0, x.size, (30, x.size))], axis=1)
+    assert ours.tobytes() == ref.tobytes()
