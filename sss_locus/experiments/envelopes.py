@@ -17,7 +17,7 @@ import numpy as np
 
 from ..paths import DATA_DIR
 from . import datadoc
-from .inputs import read_toml, sourced, table
+from .inputs import platform_table, read_toml, sourced, table
 
 SURVEY_FILE: Path = DATA_DIR / "survey.toml"
 OFFSET_KINDS = ("independent", "matched")
@@ -167,10 +167,7 @@ def load_envelope(platform_key: str, path: str | Path | None = None) -> SurveyEn
 
 def parse_envelope(doc: dict, platform_key: str) -> SurveyEnvelope:
     """The validated ``[envelopes.<platform_key>]`` table of a parsed document."""
-    envs = table(doc, "envelopes", "")
-    if platform_key not in envs:
-        raise ValueError(f"platform_key must be one of {sorted(envs)}; got {platform_key!r}")
-    t, p, prov = table(envs, platform_key, "envelopes"), f"envelopes.{platform_key}", {}
+    (t, p), prov = platform_table(doc, "envelopes", platform_key), {}
     same = sourced(t, "same_altitude", p, prov, choices=(True, False))
     if not isinstance(same, bool):
         raise ValueError(f"{p}.same_altitude.value must be true or false; got {same!r}")

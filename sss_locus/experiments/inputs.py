@@ -25,6 +25,16 @@ def read_toml(path: str | Path) -> dict[str, Any]:
             raise ValueError(f"{path} is not valid TOML: {exc}") from exc
 
 
+def platform_table(doc: Mapping[str, Any], section: str,
+                   platform_key: str) -> tuple[Mapping[str, Any], str]:
+    """The ``[<section>.<platform_key>]`` table of a parsed document and its key path; an unknown
+    ``platform_key`` is refused naming the keys the section has."""
+    tables = table(doc, section, "")
+    if platform_key not in tables:
+        raise ValueError(f"platform_key must be one of {sorted(tables)}; got {platform_key!r}")
+    return table(tables, platform_key, section), f"{section}.{platform_key}"
+
+
 def check_range(value: float, path: str, lo: float, hi: float) -> float:
     if not (math.isfinite(value) and lo <= value <= hi):
         raise ValueError(f"{path} must be a finite number in [{lo}, {hi}]; got {value!r}")

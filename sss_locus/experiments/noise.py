@@ -53,7 +53,7 @@ from ..geometry import Aperture, relative_pose, three_view_points, two_view_locu
 from ..geometry.validation import as_float_array
 from ..paths import DATA_DIR
 from . import datadoc
-from .inputs import read_toml, sourced, table
+from .inputs import platform_table, read_toml, sourced
 from .rowstats import nanquantile_rows
 from .view_sets import Views, views_from_survey
 
@@ -126,10 +126,7 @@ def load_noise_model(platform_key: str, path: str | Path | None = None) -> Noise
 
 def parse_noise_model(doc: dict, platform_key: str) -> NoiseModel:
     """The validated ``[noise.<platform_key>]`` table of a parsed document."""
-    tables = table(doc, "noise", "")
-    if platform_key not in tables:
-        raise ValueError(f"platform_key must be one of {sorted(tables)}; got {platform_key!r}")
-    t, where = table(tables, platform_key, "noise"), f"noise.{platform_key}"
+    t, where = platform_table(doc, "noise", platform_key)
     names = [f.name for f in fields(NoiseModel)]
     unknown = set(t) - set(names)
     if unknown:
