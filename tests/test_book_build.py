@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 from html import unescape
@@ -215,3 +216,97 @@ def test_interactive_view_renders_with_the_network_blocked(quick_book):
     subprocess.run([*common, "--window-size=1280,2400", f"--screenshot={shot}", page.as_uri()],
                    capture_output=True, timeout=180)
     assert shot.is_file() and shot.stat().st_size > 10_000
+
+
+# -- a user's platform through the whole book -----------------------------------------------------
+
+EXAMPLE = paths.REPO_ROOT / "data" / "examples" / "my_auv.toml"
+
+
+@pytest.fixture(scope="module")
+def user_book(quick_book, tmp_path_factory):
+    """The quick book again, in a copy of ``quick_book``'s build area (its cache included, so the
+    shipped platforms' studies are cache hits), with the example file's ``my_auv`` beside the
+    paper's AUV and without the boat: a user platform added and a paper platform replaced."""
+    work = tmp_path_factory.mktemp("user-book")
+    area = work / "build"
+    shutil.copytree(quick_book["area"], area, ignore=shutil.ignore_patterns("html", "jupyter-book"))
+    user = work / "my_auv.toml"
+    shutil.copy(EXAMPLE, user)
+    env = {**os.environ, paths.BUILD_DIR_ENV: str(area)}
+    result = subprocess.run(
+        [sys.executable, "-m", "sss_locus.pipeline.cli", "book", "--profile", "quick", "--data", str(user),
+         "-p", "platforms", '["my_auv", "auv"]'],
+        env=env, capture_output=True, text=True, timeout=TIMEOUT_S, stdin=subprocess.DEVNULL)
+    if result.returncode != 0:
+        pytest.fail(f"user-platform book failed:\n{result.stdout[-6000:]}\n{result.stderr[-6000:]}")
+    return {"area": area, "html": area / "html", "user": user, "env": env}
+
+
+def _csv_hashes(area: Path) -> dict[str, str]:
+    import hashlib
+
+    return {p.name: hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in (area / "source" / "_extra" / "figures").glob("*.csv")}
+
+
+def test_user_platform_book_builds_and_places_every_figure(user_book):
+    html = user_book["html"]
+    assert bookbuild.site_problems(html) == []
+    pose = unescape((html / "executed" / "pose_space.html").read_text())
+    for label in ("fig-sensitivity-my-auv", "fig-heatmaps-my-auv", "fig-sensitivity-auv", "fig-heatmaps-auv"):
+        assert f'id="{label}"' in pose
+    assert "fig-heatmaps-boat" not in pose
+    assert "is left out here: this run does not include `boat`" in pose  # prose written for both
+    figures = (html / "book" / "figures.html").read_text()
+    assert "sss-locus:fig-heatmaps-my-auv" in figures and "sss-locus:fig-heatmaps-boat" not in figures
+
+
+def test_claims_page_says_the_inputs_are_not_the_papers(user_book):
+    claims = unescape((html := user_book["html"] / "book" / "claims.html").read_text())
+    assert "This build does not use the paper" in claims and "does not include `boat`" in claims.replace(
+        "<code class=\"docutils literal notranslate\"><span class=\"pre\">boat</span></code>", "`boat`")
+    assert "<table" not in claims, html  # verdicts written for the paper's inputs are not shown
+
+
+def test_user_figures_name_the_users_platform_and_values(user_book):
+    manifests = {m["label"]: m for m in load_manifests(user_book["area"] / "source" / "_extra" / "figures")}
+    for label in ("fig-sensitivity-my-auv", "fig-survey-passes", "fig-noise-crossing", "fig-rigs"):
+        m = manifests[label]
+        values = m["data_inputs"]["values"]["my_auv"]
+        assert values["sonar"]["azimuth_deg"] == 40.0 and values["tilt_deg"]["port"] == 15.0
+        assert any(f["role"] == "user" and f["path"] == str(user_book["user"]) for f in m["data_inputs"]["files"])
+        bib = (user_book["area"] / "source" / "_extra" / "figures" / f"{label}.bib").read_text()
+        assert "my\\_auv (Example AUV" in bib and "40 x 0.2 deg, 100 m, tilt 15 deg" in bib
+        assert "Example AUV" in m["caption"]
+
+
+def test_shipped_figures_keep_their_labels_and_data(quick_book, user_book):
+    """Adding a platform changes no figure of a shipped one: each per-platform figure of the AUV
+    has the same label and byte-identical data files as in the default build."""
+    before, after = _csv_hashes(quick_book["area"]), _csv_hashes(user_book["area"])
+    auv = {name: h for name, h in before.items() if name.startswith(("fig-sensitivity-auv", "fig-heatmaps-auv"))}
+    assert auv and all(after.get(name) == h for name, h in auv.items())
+
+
+def test_editing_one_user_value_makes_exactly_its_readers_stale(user_book):
+    env = user_book["env"]
+    script = ("import json, sys; from sss_locus.pipeline import outputs, registry; "
+              "print(json.dumps(sorted(e.name for e in registry.load_registry().values() "
+              "if outputs.problems([e]))))")
+
+    def stale():
+        out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=120)
+        assert out.returncode == 0, out.stderr
+        return set(json.loads(out.stdout))
+
+    assert stale() == set()
+    user = user_book["user"]
+    text = user.read_text()
+    user.write_text(text.replace("roll_sigma_deg = { value = 0.1", "roll_sigma_deg = { value = 0.2"))
+    assert stale() == {"noise", "three_views"}  # the two chapters that read noise models
+    user.write_text(text.replace("max_range_m = { value = 100.0", "max_range_m = { value = 90.0"))
+    readers = {n for n, e in REGISTRY.items() if "platforms" in e.parameters()}
+    assert stale() == readers  # every chapter that reads the platform
+    user.write_text(text)
+    assert stale() == set()

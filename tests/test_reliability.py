@@ -326,7 +326,8 @@ def test_cache_command_shows_size_and_prunes_unreachable_entries(tmp_path):
 
 @pytest.mark.parametrize("args, fragment", [
     (["concept", "-p", "n_per_arc", "100000000"], "parameter 'n_per_arc' = 100000000 is out of range"),
-    (["concept", "-p", "sonar_platform", "ship"], "parameter 'sonar_platform' = 'ship' is not allowed"),
+    (["concept", "-p", "platforms", '["ship"]'], "parameter 'platforms[0]' = 'ship' is not allowed"),
+    (["concept", "-p", "sonar_platform", "auv"], "parameter 'sonar_platform' is now 'platforms'"),
     (["planning", "-p", "n_per_angle", "[10, 'x']"], "parameter 'n_per_angle[1]' = 'x': must be int"),
     (["pose_space", "-p", "n_samples", "-5"], "parameter 'n_samples' = -5 is out of range: allowed [100, 5000000]"),
 ])

@@ -3,10 +3,8 @@ frames API (``Transducer.world_pose``)."""
 
 from __future__ import annotations
 
-import json
 import math
 import shutil
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -99,8 +97,10 @@ def test_platform_choices_follow_the_data():
     assert entry.resolve("quick", {"platforms": ["my_auv"]})["platforms"] == ["my_auv"]
 
 
-def test_run_key_follows_the_user_file_of_notebooks_that_read_data(tmp_path):
-    from sss_locus.pipeline.outputs import run_key
+def test_run_key_holds_the_data_file_paths_not_their_bytes(tmp_path):
+    """Editing a user file does not change any run key: the entries each run read are checked
+    one by one instead (test_user_platform_runs_through_the_platform_notebooks)."""
+    from sss_locus.pipeline.outputs import data_read_changed, run_key
     from sss_locus.pipeline.registry import load_registry
     from sss_locus.pipeline.runner import resolve_parameters
 
@@ -113,11 +113,16 @@ def test_run_key_follows_the_user_file_of_notebooks_that_read_data(tmp_path):
         return {name: run_key(e, "quick", resolve_parameters(e, "quick", data=data)) for name, e in entries.items()}
 
     before = keys()
-    user.write_text(user.read_text().replace("tilt_deg = { value = 15.0", "tilt_deg = { value = 16.0"))
-    after = keys()
-    readers = {name for name, e in entries.items() if "data_files" in e.parameters()}
-    assert {name for name in entries if before[name] != after[name]} == readers
-    assert "derivation" not in readers and {"pose_space", "survey_passes", "noise"} <= readers
+    record = {"parameters": {"data_files": [str(user)]},
+              "data_read": userdata.datadoc.entries_sha256(["noise.my_auv", "platforms.my_auv"], data)}
+    assert not data_read_changed(record)
+    user.write_text(user.read_text().replace("roll_sigma_deg = { value = 0.1", "roll_sigma_deg = { value = 0.2"))
+    assert keys() == before
+    assert data_read_changed(record)
+    assert not data_read_changed({**record, "data_read": {k: v for k, v in record["data_read"].items()
+                                                          if k == "platforms.my_auv"}})
+    user.unlink()
+    assert data_read_changed(record)  # unreadable inputs are stale, never silently fresh
 
 
 def _sensor_pose_by_hand(transducer, position, yaw, pitch, roll):
@@ -186,55 +191,3 @@ def test_world_pose_and_relative_pose_reproduce_observe_pass_and_the_locus():
     # the feature lies on the locus circle: distance to the centre equals the radius, in its plane
     c, nrm, rad = np.asarray(locus.center), np.asarray(locus.normal), float(locus.radius)
     assert abs(float(np.dot(p1 - c, nrm))) < 1e-6 and abs(np.linalg.norm(p1 - c) - rad) < 1e-6
-
-
-@pytest.mark.book
-def test_user_platform_runs_through_the_platform_notebooks(tmp_path, monkeypatch):
-    """The example file's `my_auv` through every platform-taking notebook (quick profile, small
-    parameters): figures labelled from the key, manifests and BibTeX naming its values."""
-    from sss_locus.pipeline import export
-    from sss_locus.pipeline.registry import load_registry
-    from sss_locus.pipeline.runner import is_up_to_date, run_notebook
-
-    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path / "build"))
-    monkeypatch.setenv("SSS_LOCUS_CACHE_DIR", str(tmp_path / "cache"))
-    user = tmp_path / "my_auv.toml"
-    shutil.copy(EXAMPLE, user)
-    data = userdata.use([user])
-    entries = load_registry()
-    # lean: the three studies that read all of platforms, envelopes and noise (each kernel start
-    # costs ~20 s); `sss-locus book --profile quick --data data/examples/my_auv.toml
-    # -p platforms '["my_auv"]'` runs the other platform-taking notebooks too
-    small = {"pose_space": {"n_samples": "2000", "n_check_samples": "1000", "boat_tilts_deg": "[25.0]"},
-             "survey_passes": {"n_per_angle": "40", "n_sensitivity": "20", "n_band": "20",
-                               "sensitivity_models": '["matched:10:same"]', "fine_step_deg": "30.0",
-                               "coarse_step_deg": "30.0"},
-             "noise": {"n_per_angle": "8", "n_draws": "4", "n_check": "3", "n_check_draws": "20",
-                       "fine_step_deg": "45.0", "coarse_step_deg": "45.0"},
-}
-    for name, params in small.items():
-        key = "sonar_platform" if name == "concept" else "platforms"
-        value = "my_auv" if name == "concept" else '["my_auv"]'
-        run_notebook(entries[name], "quick", {**params, key: value}, from_text=True, data=data, log=lambda *_: None)
-    manifests = {m["label"]: m for m in export.load_manifests()}
-    assert {"fig-sensitivity-my-auv", "fig-heatmaps-my-auv", "fig-survey-passes", "fig-noise-crossing"} <= set(manifests)
-    assert not any(label.endswith(("-auv", "-boat")) and not label.endswith("my-auv") for label in manifests)
-    for label in ("fig-sensitivity-my-auv", "fig-survey-passes", "fig-noise-crossing"):
-        m = manifests[label]
-        values = m["data_inputs"]["values"]["my_auv"]
-        assert values["sonar"]["azimuth_deg"] == 40.0 and values["tilt_deg"]["port"] == 15.0
-        assert any(f["role"] == "user" and f["path"] == str(user) for f in m["data_inputs"]["files"])
-        bib = Path(m["files"][f"{label}.bib"]["url"]).name
-        text = (tmp_path / "build" / "source" / "_extra" / "figures" / bib).read_text()
-        assert "my\\_auv (Example AUV" in text and "40 x 0.2 deg, 100 m, tilt 15 deg" in text
-    assert "Example AUV" in manifests["fig-sensitivity-my-auv"]["caption"]
-    # changing one value of the user file makes exactly these runs stale
-    overrides = {name: {**p, ("sonar_platform" if name == "concept" else "platforms"):
-                        ("my_auv" if name == "concept" else '["my_auv"]')} for name, p in small.items()}
-    assert all(is_up_to_date(entries[n], "quick", overrides[n], data) for n in small)
-    user.write_text(user.read_text().replace("max_range_m = { value = 100.0", "max_range_m = { value = 90.0"))
-    assert not any(is_up_to_date(entries[n], "quick", overrides[n], data) for n in small)
-    nb = json.loads((tmp_path / "build" / "source" / "executed" / "pose_space.ipynb").read_text())
-    injected = next(c for c in nb["cells"] if "injected-parameters" in c["metadata"].get("tags", []))
-    assert f"# data file read: {user} (user, sha256" in "".join(injected["source"])
-    assert Path(nb["metadata"]["sss_locus"]["parameters"]["data_files"][0]) == user

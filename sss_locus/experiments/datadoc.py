@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import copy
 import hashlib
+import json
+import os
 import re
 import tomllib
 from collections.abc import Iterable, Mapping
@@ -160,3 +162,33 @@ def files_read(inputs: DataInputs | None = None) -> list[dict[str, str]]:
             for name in SHIPPED_FILES]
     rows += [{"path": path, "sha256": file_sha256(path), "role": "user"} for path in inputs.files]
     return rows
+
+
+#: Environment variable naming a file to which the loaders append the data entries they read
+#: (set by the runner for a notebook's kernel; see :func:`note_read`).
+READS_ENV = "SSS_LOCUS_DATA_READS"
+
+
+def note_read(*entries: str) -> None:
+    """Record that this process read the data entries ``entries`` (dotted key paths such as
+    ``platforms.auv`` or a whole table ``platforms``), when :data:`READS_ENV` names a file.
+
+    The runner hashes exactly these entries of the run's merged data into the executed copy, so
+    an edit to a user file makes stale the runs that read the edited entries, and no others.
+    """
+    target = os.environ.get(READS_ENV)
+    if target:
+        with open(target, "a", encoding="utf-8") as fh:
+            fh.write("".join(f"{e}\n" for e in entries))
+
+
+def entries_sha256(entries: Iterable[str], inputs: DataInputs | None = None) -> dict[str, str]:
+    """SHA-256 of each dotted entry of the merged document of ``inputs`` (``null`` if absent)."""
+    doc = document(inputs)
+    out = {}
+    for entry in sorted(set(entries)):
+        node: Any = doc
+        for part in entry.split("."):
+            node = node.get(part) if isinstance(node, Mapping) else None
+        out[entry] = hashlib.sha256(json.dumps(node, sort_keys=True, default=str).encode()).hexdigest()
+    return out

@@ -162,6 +162,8 @@ class OffsetModel:
 def load_envelope(platform_key: str, path: str | Path | None = None) -> SurveyEnvelope:
     """The survey envelope of ``platform_key`` from ``data/`` merged with the active user data
     (:mod:`sss_locus.experiments.userdata`), or from the file ``path`` only."""
+    if path is None:
+        datadoc.note_read(f"envelopes.{platform_key}")
     return parse_envelope(datadoc.document() if path is None else read_toml(path), platform_key)
 
 
@@ -183,5 +185,7 @@ def default_offset_model(kind: str = "independent", side_rule: str = "random",
         return OffsetModel(kind, 0.0, side_rule)
     if doc is None:
         doc = datadoc.document() if path is None else read_toml(path)
+        if path is None:
+            datadoc.note_read("offset_models.matched")
     t = table(table(doc, "offset_models", ""), "matched", "offset_models")
     return OffsetModel(kind, sourced(t, "jitter_m", "offset_models.matched", {}, lo=0.0), side_rule)

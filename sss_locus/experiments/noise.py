@@ -121,6 +121,8 @@ class NoiseModel:
 def load_noise_model(platform_key: str, path: str | Path | None = None) -> NoiseModel:
     """The noise model of ``platform_key`` from ``data/`` merged with the active user data
     (:mod:`sss_locus.experiments.userdata`), or from the file ``path`` only."""
+    if path is None:
+        datadoc.note_read(f"noise.{platform_key}")
     return parse_noise_model(datadoc.document() if path is None else read_toml(path), platform_key)
 
 

@@ -289,14 +289,18 @@ def load_platforms(path: str | Path | None = None) -> dict[str, Platform]:
     Default: ``data/`` merged with the active user data (:mod:`sss_locus.experiments.userdata`);
     ``path``: that one file only.
     """
+    if path is None:
+        datadoc.note_read("platforms", "sonars")
     return parse_platforms(datadoc.document() if path is None else read_toml(path))
 
 
 def load_platform(key: str, path: str | Path | None = None) -> Platform:
     """One platform by key (e.g. ``"boat"`` or ``"auv"``)."""
-    platforms = load_platforms(path)
+    platforms = parse_platforms(datadoc.document() if path is None else read_toml(path))
     if key not in platforms:
         raise ValueError(f"platform must be one of {sorted(platforms)}; got {key!r}")
+    if path is None:
+        datadoc.note_read(f"platforms.{key}", f"sonars.{platforms[key].sonar.key}")
     return platforms[key]
 
 

@@ -27,6 +27,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from . import datadoc
 from .datadoc import (KEY_PATTERN, SET_NOTE, SHIPPED_FILES, USER_TABLES, DataInputs, activate, active,  # noqa: F401
                       check_user_document, document, file_sha256, files_read, label_key, make_inputs,
                       merge, parse_set, shipped_document)
@@ -71,6 +72,8 @@ def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = No
         if key not in platforms:
             continue
         p = platforms[key]
+        datadoc.note_read(  # a figure's manifest records these values: the run reads them
+            f"platforms.{key}", f"sonars.{p.sonar.key}", f"envelopes.{key}")
         s = p.sonar
         entry: dict[str, Any] = {
             "name": p.name,
@@ -104,3 +107,34 @@ def describe_platform(key: str, inputs: DataInputs | None = None) -> str:
     tilt = "/".join(f"{t:g}" for t in tilts)
     return (f"{values['name']}: {s['name']}, {s['azimuth_deg']:g}° × {s['elevation_deg']:g}°, "
             f"{s['max_range_m']:g} m, tilt {tilt}°")
+
+
+def _leaf_differences(a: Any, b: Any, path: str) -> list[str]:
+    """Dotted paths under ``path`` where ``a`` and ``b`` differ (a number entry counts as a leaf)."""
+    if isinstance(a, dict) and isinstance(b, dict) and "value" not in a and "value" not in b:
+        return [d for k in sorted(set(a) | set(b)) for d in _leaf_differences(a.get(k), b.get(k), f"{path}.{k}")]
+    return [] if a == b else [path]
+
+
+def changed_from_shipped(platform_keys: Iterable[str], inputs: DataInputs | None = None) -> list[str]:
+    """The data entries that the named platforms read and ``inputs`` change from the shipped data.
+
+    For each key: its ``platforms``, ``envelopes`` and ``noise`` tables and its sonar's table, and
+    the ``offset_models`` every survey study reads; as dotted key paths (e.g.
+    ``platforms.auv.transducers.port.tilt_deg``), or ``platforms.<key>`` for a key the shipped
+    data do not have. Empty when the platforms read exactly the shipped values.
+    """
+    doc, shipped = document(inputs), shipped_document()
+    found: list[str] = []
+    for key in platform_keys:
+        if key not in shipped.get("platforms", {}):
+            found.append(f"platforms.{key}")
+            continue
+        sonars = {doc["platforms"].get(key, {}).get("sonar"), shipped["platforms"][key].get("sonar")}
+        paths = [("platforms", key), *(("sonars", s) for s in sorted(sonars) if isinstance(s, str)),
+                 ("envelopes", key), ("noise", key)]
+        for table, name in paths:
+            found += _leaf_differences(doc.get(table, {}).get(name), shipped.get(table, {}).get(name),
+                                       f"{table}.{name}")
+    found += _leaf_differences(doc.get("offset_models"), shipped.get("offset_models"), "offset_models")
+    return list(dict.fromkeys(found))

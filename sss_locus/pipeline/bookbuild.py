@@ -4,8 +4,10 @@ The staged source (:func:`sss_locus.paths.source_dir`, ``<build>/source``) is th
 root: it receives copies of ``_config.yml``, ``_toc.yml`` and ``book/`` next to the executed
 notebooks (``executed/``), the exported figures and a local MathJax (``_extra/``, copied verbatim
 to the site root by ``html_extra_path``). The figures page is generated from the figure
-manifests. Jupyter Book writes into ``<build>/jupyter-book``; the finished site replaces
-``<build>/html`` only when the build and the site checks pass.
+manifests; the claims page gets a notice at its top when a chapter ran on other inputs than the
+paper's (:mod:`sss_locus.pipeline.paperinputs`). Jupyter Book writes into
+``<build>/jupyter-book``; the finished site replaces ``<build>/html`` only when the build and the
+site checks pass.
 """
 
 from __future__ import annotations
@@ -23,11 +25,12 @@ from typing import Any
 from urllib.parse import unquote, urlsplit
 
 from sss_locus import paths
-from sss_locus.pipeline import citation, export, outputs, provenance
+from sss_locus.pipeline import citation, export, outputs, paperinputs, provenance
 from sss_locus.pipeline.runner import hermetic_env
 
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
 FIGURES_PAGE = "figures.md"
+CLAIMS_PAGE = "claims.md"
 FIGURES_MARKER = "<!-- FIGURES-INDEX -->"
 MATHJAX_DIST = "sphinx-mathjax-offline"
 #: The site folder (under ``_extra``) of plotly.js, served locally for the interactive views.
@@ -168,6 +171,34 @@ def _in_book_order(manifests: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return sorted(listed, key=lambda m: (order[m["notebook"]], m["label"]))
 
 
+def paper_input_records() -> dict[str, Any]:
+    """Each registered notebook's recorded comparison with the paper's inputs (``None`` when its
+    executed copy has none), see :func:`sss_locus.pipeline.paperinputs.compare`."""
+    from sss_locus.pipeline.registry import load_registry
+
+    records = {}
+    for entry in load_registry().values():
+        nb = outputs.read_notebook(entry.executed_path()) if entry.executed_path().is_file() else None
+        records[entry.name] = ((nb or {}).get("metadata", {}).get("sss_locus") or {}).get("paper_inputs")
+    return records
+
+
+def stage_claims_notice(page: Path, records: dict[str, Any] | None = None) -> None:
+    """Put :func:`sss_locus.pipeline.paperinputs.claims_notice` of ``records`` (default: the
+    executed copies', :func:`paper_input_records`) under the first heading of the staged claims
+    ``page``; when a chapter lacks a paper platform, the notice replaces the rest of the page (its
+    table quotes numbers those chapters did not compute)."""
+    notice, replace = paperinputs.claims_notice(paper_input_records() if records is None else records)
+    if not notice:
+        return
+    lines = page.read_text(encoding="utf-8").splitlines(keepends=True)
+    head = next((i for i, line in enumerate(lines) if line.startswith("# ")), None)
+    if head is None:
+        raise ValueError(f"{page} must start with a '# ' heading (the claims notice goes under it)")
+    rest = [] if replace else ["\n", *lines[head + 1:]]
+    page.write_text("".join([*lines[:head + 1], "\n", notice, *rest]), encoding="utf-8")
+
+
 def stage() -> Path:
     """Copy the book source into the build area and generate the figures page; return the root."""
     root = paths.source_dir()
@@ -181,6 +212,7 @@ def stage() -> Path:
     copy_mathjax()
     copy_plotly()
     stage_figure_pages(root, export.load_manifests())
+    stage_claims_notice(staged_book / CLAIMS_PAGE)
     page = staged_book / FIGURES_PAGE
     text = page.read_text(encoding="utf-8")
     if FIGURES_MARKER not in text:

@@ -24,7 +24,7 @@ import time
 
 from sss_locus import paths
 from sss_locus.pipeline import scaleout
-from sss_locus.pipeline.registry import ParameterError, get_entry, load_registry
+from sss_locus.pipeline.registry import RENAMED, ParameterError, get_entry, load_registry
 
 
 def _data_arguments(parser: argparse.ArgumentParser) -> None:
@@ -119,6 +119,9 @@ def _book(args: argparse.Namespace) -> int:
         data = _data_inputs(args)
         overrides = _overrides(args.parameter)
         unknown = set(overrides) - {n for e in entries.values() for n in e.parameters()}
+        renamed = {f"{old!r} is now {RENAMED[old]!r}" for old in unknown if old in RENAMED}
+        if renamed:
+            raise ParameterError(f"renamed parameter(s): {', '.join(sorted(renamed))}")
         if unknown:
             raise ParameterError(f"no notebook has the parameter(s) {sorted(unknown)}")
         for entry in entries.values():  # validate every notebook's parameters before running anything

@@ -112,14 +112,12 @@ def _save_atomic(path: Path, save: Any) -> None:
 def data_inputs(parameters: Mapping[str, Any]) -> dict[str, Any]:
     """The data a figure was computed from: every data file read (path, role, SHA-256), the
     ``--set`` overrides and the resolved sonar, mounting and envelope values of the platforms
-    the run's parameters name (``platforms``, ``sonar_platform``); see
+    the run's ``platforms`` parameter names; see
     :func:`sss_locus.experiments.userdata.record`."""
     from sss_locus.experiments import userdata
 
     keys = parameters.get("platforms", [])
     keys = [keys] if isinstance(keys, str) else list(keys or [])
-    if isinstance(parameters.get("sonar_platform"), str):
-        keys.append(parameters["sonar_platform"])
     try:
         return userdata.record([k for k in dict.fromkeys(keys) if isinstance(k, str)])
     except (OSError, ValueError) as exc:  # never lose a figure over its provenance

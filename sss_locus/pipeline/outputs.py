@@ -131,17 +131,36 @@ def read_notebook(path: Path) -> dict[str, Any] | None:
 
 
 def run_key(entry: Any, profile: str, parameters: dict[str, Any]) -> str:
-    """Hash of everything an executed copy depends on (see the module docstring), including the
-    SHA-256 of each user data file named by its ``data_files`` parameter."""
-    user_files = parameters.get("data_files") or [] if isinstance(parameters, dict) else []
+    """Hash of everything an executed copy depends on (see the module docstring) except the
+    contents of the user's data files, which :func:`data_read_changed` checks entry by entry."""
     payload = json.dumps(
         {"source": provenance.file_sha256(entry.source), "profile": profile, "parameters": parameters,
-         "code": provenance.code_sha256(), "lock": provenance.lock_sha256(),
-         # the bytes of the user's data files (--data): editing one makes its readers stale
-         **({"data_files": [provenance.file_sha256(Path(f)) for f in user_files]} if user_files else {})},
+         "code": provenance.code_sha256(), "lock": provenance.lock_sha256()},
         sort_keys=True, default=provenance.json_default,
     )
     return hashlib.sha256(payload.encode()).hexdigest()
+
+
+def data_read_changed(record: dict[str, Any]) -> bool:
+    """True when a data entry the run read (``sss_locus.data_read`` of its executed copy: dotted
+    entries of the merged data with their SHA-256) differs now, or its data files cannot be read.
+
+    A run with ``--data`` files records the entries its loaders read
+    (:func:`sss_locus.experiments.datadoc.note_read`); an edit of a user file then makes stale
+    exactly the runs that read an edited entry (e.g. ``noise.my_auv``: the noise and three-view
+    chapters) and no others.
+    """
+    read = record.get("data_read")
+    if not read:
+        return False
+    from sss_locus.experiments import userdata
+
+    parameters = record.get("parameters", {})
+    try:
+        inputs = userdata.make_inputs(parameters.get("data_files") or [], parameters.get("data_set") or [])
+        return userdata.datadoc.entries_sha256(read, inputs) != read
+    except (OSError, ValueError):
+        return True
 
 
 def problems(entries: Sequence[Any]) -> list[str]:
@@ -177,7 +196,7 @@ def problems(entries: Sequence[Any]) -> list[str]:
             current = run_key(entry, ours.get("profile", ""), ours.get("parameters", {}))
         except (OSError, ValueError):
             current = None
-        if current != ours["run_key"]:
+        if current != ours["run_key"] or data_read_changed(ours):
             found.append(f"{name}: stale (the notebook, code, data/, its --data files or environment.lock changed since it ran)")
             continue
         mine = {label: m for label, m in figures.items() if m.get("notebook") == entry.source_relative}

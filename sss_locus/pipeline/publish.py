@@ -17,6 +17,18 @@ and, in a markdown cell of the same notebook, the caption is written nowhere els
     ```{include} ../_cite/fig-survey-passes.md
     ```
 
+A notebook that draws one figure per platform of the run cannot name the labels in a markdown
+cell (the platforms are a parameter). It publishes each figure as above and then glues the
+blocks that place them, one after the other, under one key (:func:`place`)::
+
+    place("ps-heatmaps-figures", [f"fig-heatmaps-{label_key(k)}" for k in platforms])
+
+and the markdown cell pastes them, parsed as MyST so the figures get their numbers and labels::
+
+    ```{glue:md} ps-heatmaps-figures
+    :format: myst
+    ```
+
 The included block (written by :mod:`sss_locus.pipeline.bookbuild` at every build) sits under
 the figure: its files, its data, a link to the code cell that drew it and to the notebook, and its
 BibTeX entry. ``publish`` marks its own cell with an anchor (``#<label>-source``) for that link
@@ -32,7 +44,7 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import pandas as pd
@@ -81,3 +93,20 @@ def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame
     glue(label, fig, display=False)
     glue(f"{label}-caption", Markdown(caption), display=False)
     plt.close(fig)
+
+
+def figure_block(label: str) -> str:
+    """The MyST that places the published figure ``label`` with its caption and citation block."""
+    return (f"```{{glue:figure}} {label}\n:name: {label}\n\n{{glue:md}}`{label}-caption:myst`\n```\n\n"
+            f"```{{include}} ../_cite/{label}.md\n```\n")
+
+
+def place(key: str, labels: Sequence[str]) -> None:
+    """Glue, as ``key``, the blocks placing each figure of ``labels`` (published by this notebook),
+    in order; paste them with a ``{glue:md}`` directive of format ``myst`` (module docstring)."""
+    from IPython.display import Markdown
+    from myst_nb import glue
+
+    if isinstance(labels, str) or not labels:
+        raise ValueError(f"labels must be a non-empty list of figure labels; got {labels!r}")
+    glue(key, Markdown("\n".join(figure_block(label) for label in labels)), display=False)

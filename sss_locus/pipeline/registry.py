@@ -201,6 +201,10 @@ def _allowed(param: Parameter) -> str:
     return f" (allowed: {allowed})" if allowed else ""
 
 
+#: Former parameter names and the parameter that replaced them (named in the error for the old name).
+RENAMED = {"sonar_platform": "platforms"}
+
+
 def validate_parameters(
     spec: dict[str, Parameter], values: dict[str, Any], *, notebook: str, from_text: bool = False
 ) -> dict[str, Any]:
@@ -213,6 +217,10 @@ def validate_parameters(
     checked: dict[str, Any] = {}
     for name, value in values.items():
         if name not in spec:
+            renamed = RENAMED.get(name)
+            if renamed in spec:
+                raise ParameterError(f"notebook {notebook!r}: parameter {name!r} is now {renamed!r} "
+                                     f"({spec[renamed].describe()})")
             listing = "\n".join("  " + p.describe() for p in spec.values()) or "  (none)"
             raise ParameterError(f"notebook {notebook!r} has no parameter {name!r}\n"
                                  f"Valid parameters of {notebook!r}:\n{listing}")

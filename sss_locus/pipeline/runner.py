@@ -39,8 +39,9 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, export, outputs, provenance
+from sss_locus.pipeline import atomic, export, outputs, paperinputs, provenance
 from sss_locus.pipeline.outputs import run_key
+from sss_locus.experiments.datadoc import READS_ENV
 from sss_locus.pipeline.registry import NotebookEntry
 
 KERNEL_NAME = "sss-locus"
@@ -237,6 +238,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
         provenance.PARAMETERS_ENV: json.dumps(parameters, sort_keys=True, default=provenance.json_default),
         export.FIGURES_DIR_ENV: str(staging / "figures"), export.RUN_KEY_ENV: key,
         "JUPYTER_RUNTIME_DIR": str(staging / "runtime"),  # connection file goes with the staging folder
+        READS_ENV: str(staging / "data-reads.txt"),  # the data entries the kernel's loaders read
     })
     staged = staging / executed.name
     start = time.perf_counter()
@@ -262,7 +264,12 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
 
                 inputs = userdata.make_inputs(parameters["data_files"], parameters.get("data_set", []))
                 record["data"] = {"files": userdata.files_read(inputs), "overrides": list(inputs.sets)}
+                reads = staging / "data-reads.txt"
+                record["data_read"] = userdata.datadoc.entries_sha256(
+                    reads.read_text(encoding="utf-8").split() if reads.is_file() else [], inputs)
+            record["paper_inputs"] = paperinputs.compare(entry, parameters)
             _label_injected_cell(staged, profile, parameters, record)
+            paperinputs.adapt_prose(staged, record["paper_inputs"])
             with outputs.build_lock() if not side else _nothing():
                 outputs.commit_run(staged, staging / "figures", executed, figures,
                                    None if side else entry.source_relative)

@@ -147,3 +147,22 @@ def plot_rigs(platforms: Mapping[str, Platform], plot_range_m: Mapping[str, floa
     handles, labels = axs[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=5, fontsize=8)
     return fig
+
+
+def coverage_text(platforms: Mapping[str, Platform]) -> str:
+    """One sentence per platform: its port transducer's tilt (with whether the data give a source
+    or an assumption for it), fan and the elevation angles the fan spans (MyST, for gluing)."""
+    out = []
+    for key, p in platforms.items():
+        t = p.transducers["port"]
+        note = p.provenance.get(f"platforms.{key}.transducers.port.tilt_deg", "")
+        kind = "assumed" if note.startswith("assumption") else "documented" if note.startswith("source") \
+            else "stated"
+        top, bottom = p.sonar.azimuth_deg / 2 - t.tilt_deg, t.tilt_deg + p.sonar.azimuth_deg / 2
+        where = ("the horizontal" if top == 0 else f"{top:g}° above the horizontal" if top > 0
+                 else f"{-top:g}° below the horizontal")
+        past = " (past nadir at 90°)" if bottom > 90 else ""
+        article = "an" if kind[0] in "aeiou" else "a"
+        out.append(f"{p.name}: {article} {kind} {t.tilt_deg:g}° look-down with a {p.sonar.azimuth_deg:g}° fan "
+                   f"spans from {where} to {bottom:g}° below it{past}.")
+    return " ".join(out)

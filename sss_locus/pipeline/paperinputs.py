@@ -1,0 +1,130 @@
+"""Where a run's inputs differ from the paper's, said wherever the book shows text written for them.
+
+The chapters' figures, captions, tables and glued numbers follow the run for any platform. Their
+prose cannot always: a paragraph that compares the AUV with the boat is written for the paper's
+platforms (each notebook's default ``platforms`` parameter) with the shipped ``data/``. Such a
+markdown cell carries the cell tag :data:`PROSE_TAG`. When a run's inputs differ from the paper's
+for that notebook — a default platform not selected, or a value one of them reads changed by
+``--data``/``--set`` — the runner replaces the tagged cells of the executed copy by one note per
+block of consecutive tagged cells saying why (:func:`adapt_prose`), and records the comparison in
+the copy's metadata (``sss_locus.paper_inputs``, :func:`compare`).
+
+The claims page quotes the chapters' numbers beside verdicts written for the paper's inputs. At
+every build, :func:`claims_notice` turns the recorded comparisons into a notice that
+:mod:`sss_locus.pipeline.bookbuild` puts at the top of the staged page; when a paper platform is
+missing from a chapter the page's table cannot be built at all and the notice replaces it.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+#: Cell tag of a markdown cell written for the paper's platforms with the shipped data.
+PROSE_TAG = "paper-inputs"
+
+
+def compare(entry: Any, parameters: Mapping[str, Any]) -> dict[str, list[str]] | None:
+    """How a run of ``entry`` (a registry entry) with ``parameters`` differs from the paper's inputs.
+
+    Returns ``None`` for a notebook without a ``platforms`` parameter, else a dict with
+    ``paper`` (the default platforms), ``missing`` (default platforms not selected), ``changed``
+    (data entries they read that the run's data files and overrides change, see
+    :func:`sss_locus.experiments.userdata.changed_from_shipped`) and ``added`` (selected platforms
+    the defaults do not have).
+    """
+    from sss_locus.experiments import userdata
+
+    declared = entry.parameters()
+    if "platforms" not in declared:
+        return None
+    paper = list(declared["platforms"].default)
+    used = list(parameters.get("platforms", paper))
+    inputs = userdata.make_inputs(parameters.get("data_files") or [], parameters.get("data_set") or [])
+    return {"paper": paper, "missing": [k for k in paper if k not in used],
+            "changed": userdata.changed_from_shipped([k for k in paper if k in used], inputs),
+            "added": [k for k in used if k not in paper]}
+
+
+def is_paper(record: Mapping[str, Any] | None) -> bool:
+    """True for a run on the paper's inputs (or a notebook that takes no platforms)."""
+    return not record or not (record.get("missing") or record.get("changed"))
+
+
+def _names(keys: Sequence[str]) -> str:
+    from sss_locus.experiments.datadoc import shipped_document
+
+    shipped = shipped_document().get("platforms", {})
+    return "; ".join(f"{shipped[k]['name']} (`{k}`)" if k in shipped else f"`{k}`" for k in keys)
+
+
+def _reasons(record: Mapping[str, Any]) -> str:
+    out = []
+    if record.get("missing"):
+        out.append("does not include " + ", ".join(f"`{k}`" for k in record["missing"]))
+    if record.get("changed"):
+        out.append("changes " + ", ".join(f"`{c}`" for c in record["changed"]))
+    return " and ".join(out)
+
+
+def prose_note(record: Mapping[str, Any]) -> str:
+    """The note that stands in for prose written for the paper's inputs (MyST)."""
+    return ("```{note}\nA passage written for the paper's platforms with the shipped data — "
+            f"{_names(record['paper'])} — is left out here: this run {_reasons(record)}. The figures, "
+            "captions and tables of this chapter show the values this run used.\n```\n")
+
+
+def adapt_prose(notebook: Path, record: Mapping[str, Any] | None) -> int:
+    """Replace the :data:`PROSE_TAG` cells of an executed ``notebook`` when ``record`` (from
+    :func:`compare`) is not the paper's inputs: the first cell of each block of consecutive
+    tagged cells becomes :func:`prose_note` (under its leading headings), the others are dropped. Returns the number replaced."""
+    if is_paper(record):
+        return 0
+    nb = json.loads(notebook.read_text(encoding="utf-8"))
+    cells, replaced, previous_tagged = [], 0, False
+    for cell in nb["cells"]:
+        tagged = cell["cell_type"] == "markdown" and PROSE_TAG in cell.get("metadata", {}).get("tags", [])
+        if tagged:
+            replaced += 1
+            if not previous_tagged:  # keep the cell's leading headings, then the note
+                lines = "".join(cell["source"]).splitlines(keepends=True)
+                n = next((i for i, line in enumerate(lines) if not line.startswith("#")), len(lines))
+                heads = "".join(lines[:n]) + ("\n" if n else "")
+                cells.append({**cell, "source": heads + prose_note(record)})
+        else:
+            cells.append(cell)
+        previous_tagged = tagged
+    nb["cells"] = cells
+    notebook.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+    return replaced
+
+
+def claims_notice(records: Mapping[str, Mapping[str, Any] | None]) -> tuple[str, bool]:
+    """The notice for the top of the claims page, from each chapter's recorded comparison.
+
+    ``records`` maps a notebook name to its ``sss_locus.paper_inputs`` record (``None`` when it
+    takes no platforms). Returns ``(markdown, replace_table)``: empty markdown when every chapter
+    ran on the paper's inputs (platforms added beside the paper's are noted only), and
+    ``replace_table`` True when a paper platform is missing from a chapter, whose numbers the
+    page's table then cannot show.
+    """
+    off = {name: r for name, r in records.items() if not is_paper(r)}
+    added = sorted({k for r in records.values() if r for k in r.get("added", [])})
+    if not off:
+        if not added:
+            return "", False
+        return ("```{note}\nThis build also ran the platform(s) " + ", ".join(f"`{k}`" for k in added)
+                + ". The claims below are about the paper's platforms only and quote their numbers; "
+                "the chapters show the added platforms beside them.\n```\n"), False
+    missing = any(r.get("missing") for r in off.values())
+    lines = "\n".join(f"- {{doc}}`/executed/{name}`: this run {_reasons(r)}." for name, r in off.items())
+    what = ("The table of claims is therefore not shown: its numbers are those of the paper's platforms, "
+            "which these chapters did not compute." if missing else
+            "The numbers below are this build's; the verdicts beside them were written for the paper's "
+            "inputs and **do not necessarily apply** to these numbers.")
+    return ("```{warning}\n**This build does not use the paper's inputs.** The verdicts on this page "
+            "were written for the paper's platforms with the shipped data "
+            f"({_names(list(dict.fromkeys(k for r in off.values() for k in r['paper'])))}), but\n\n{lines}\n\n{what} Rebuild without "
+            "`--data`, `--set` and `-p platforms` to check the paper's claims.\n```\n"), missing
