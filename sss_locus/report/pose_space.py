@@ -8,6 +8,7 @@ out as tables (:func:`seed_stability_table`, :func:`check_row`) and writes them 
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Mapping
 
 import matplotlib.pyplot as plt
@@ -79,7 +80,7 @@ def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""
     ax.set_title("(c) normalised length vs misalignment")
     ax.legend(loc="lower right", fontsize=SMALL_FONT_PT, markerscale=2)
     ax.grid(alpha=0.3)
-    fig.suptitle(title)
+    fig.suptitle(textwrap.fill(title, 75))
     return fig
 
 
@@ -93,7 +94,7 @@ def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
     for ax, (panel, x, y) in zip(axs.flat, HEATMAP_PANELS):
         xe, ye, z = median_grid(maps[panel])
         if len(ye) == 2:  # one bin along y (e.g. a boat that never pitches): a 1-D profile
-            ax.stairs(np.nan_to_num(z[0], nan=0.0), xe, color="tab:blue", lw=1.5)
+            ax.hlines(z[0], xe[:-1], xe[1:], color="tab:blue", lw=2)  # sparse (masked) bins: no line
             ax.set_xlabel(PANEL_AXIS_LABELS[x])
             ax.set_ylabel("median locus length (m)")
             ax.set_title(f"{PANEL_TITLES[panel]}\n({PANEL_AXIS_LABELS[y].split(' (')[0]} "
@@ -108,7 +109,7 @@ def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
         ax.set_title(PANEL_TITLES[panel])
         ax.set_facecolor("0.85")
     axs.flat[-1].axis("off")
-    fig.suptitle(title)
+    fig.suptitle(textwrap.fill(title, 75))
     return fig
 
 

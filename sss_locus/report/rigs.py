@@ -19,7 +19,7 @@ from matplotlib.patches import Circle, Rectangle
 from scipy.spatial import ConvexHull
 
 from ..experiments.platforms import Platform, frustum_points
-from .style import PAGE_WIDTH_IN, SMALL_FONT_PT
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 """Colours of a transducer's drawn x (boresight), y and z axes."""
@@ -144,7 +144,8 @@ def plot_rigs(platforms: Mapping[str, Platform], plot_range_m: Mapping[str, floa
         for c, view in enumerate(VIEWS):
             draw_rig(p, view, plot_range_m[key], axis_length_m[key], ax=axs[r, c])
             letter = chr(ord("a") + len(VIEWS) * r + c)
-            axs[r, c].set_title(f"({letter}) {p.name}\n{VIEW_TITLES[view]}", fontsize=9)
+            axs[r, c].set_title(f"{platform_title(p, 38, prefix=f'({letter}) ')}\n{VIEW_TITLES[view]}",
+                                fontsize=9)
     handles, labels = axs[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=SMALL_FONT_PT)
     return fig

@@ -44,7 +44,7 @@ def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.Data
     ``tables[platform.key][pattern]`` is a three-view table.
     """
     # one panel per row (three per platform): the pattern names label every panel's rows
-    fig, axs = plt.subplots(3 * len(platforms), 1, figsize=(PAGE_WIDTH_IN, 2.9 * 3 * len(platforms)),
+    fig, axs = plt.subplots(3 * len(platforms), 1, figsize=(PAGE_WIDTH_IN, 2.4 * 3 * len(platforms)),
                             constrained_layout=True, squeeze=False)
     axs = axs.reshape(len(platforms), 3)
     for row, pf in zip(axs, platforms):
