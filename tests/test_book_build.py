@@ -86,6 +86,25 @@ def test_every_exported_figure_is_served_and_indexed(quick_book):
         assert f"sss-locus:{manifest['label']}" in figures_page
 
 
+def test_every_published_figure_is_readable_at_the_column_width(quick_book):
+    """Every exported figure's smallest drawn text (tick labels, legends, colour bars,
+    annotations, titles) is at least 9 CSS px when the figure is shown in the book's content
+    column (660 px: an image in the main column of a built page in a 1280 px wide window,
+    measured with headless Chromium; see :mod:`sss_locus.pipeline.readability`)."""
+    from sss_locus.pipeline import readability
+
+    manifests = load_manifests(quick_book["area"] / "source" / "_extra" / "figures")
+    assert len(manifests) >= 10
+    small = []
+    for m in manifests:
+        px = readability.smallest_text_px(m)
+        if px is not None and px < readability.MIN_TEXT_PX:
+            t = m["text"]
+            small.append(f"{m['label']}: {t['min_text']!r} at {t['min_size_pt']:g} pt in a "
+                         f"{t['width_in']:.1f} in wide picture is {px:.1f} px")
+    assert not small, "text smaller than 9 px at the column width:\n" + "\n".join(small)
+
+
 def test_math_is_served_locally(quick_book):
     html = quick_book["html"]
     pages_with_math = 0

@@ -34,8 +34,10 @@ ALLOWED = {
     "paths": set(),
 }
 #: Modules allowed to import matplotlib: the report layer, and the pipeline's figure files
-#: (export writes a finished figure to PNG/SVG/PDF, publish closes it).
-MATPLOTLIB_OK = {"sss_locus.pipeline.export", "sss_locus.pipeline.publish"}
+#: (export writes a finished figure to PNG/SVG/PDF, publish closes it, readability measures the
+#: drawn text while the PNG is saved).
+MATPLOTLIB_OK = {"sss_locus.pipeline.export", "sss_locus.pipeline.publish",
+                 "sss_locus.pipeline.readability"}
 
 
 def _modules() -> dict[str, Path]:

@@ -142,7 +142,7 @@ def figures_index(manifests: list[dict[str, Any]]) -> str:
             "",
             f"<p>{_file_links(m)}</p>",
             "",
-            f"Parameters: {params}; seed `{m['seed']}`; commit `{provenance.short_commit(m['git_commit'])}`; "
+            f"Parameters: {params}; {_seed_text(m['seed'])}; commit `{provenance.short_commit(m['git_commit'])}`; "
             f"sss-locus {m['package_version']}; environment.lock `{m['lock_sha256'][:12]}`; "
             f"run {m['run_time_utc']}.",
             "",
@@ -156,6 +156,14 @@ def figures_index(manifests: list[dict[str, Any]]) -> str:
             "",
         ]
     return "\n".join(out)
+
+
+def _seed_text(seed) -> str:
+    """The figure index's seed note: the seed, or that the run has none (no ``seed`` parameter:
+    the notebook draws no random numbers, so the figure is the same on every run)."""
+    if seed is None:
+        return "no seed (deterministic: the notebook draws no random numbers)"
+    return f"seed `{seed}`"
 
 
 def _in_book_order(manifests: list[dict[str, Any]]) -> list[dict[str, Any]]:

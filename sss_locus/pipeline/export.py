@@ -27,8 +27,9 @@ renamed, so two writers of one label never share a temporary file. The files:
 ``<label>.json``
     The manifest, written last (atomically): label, caption, notebook, profile, parameters, seed,
     git commit, lock-file hash, package version, run time (UTC), the data inputs
-    (:func:`data_inputs`: data files with SHA-256, overrides, resolved platform values) and every
-    file with its SHA-256.
+    (:func:`data_inputs`: data files with SHA-256, overrides, resolved platform values), the
+    smallest drawn text and the picture's width (``text``, see
+    :mod:`sss_locus.pipeline.readability`) and every file with its SHA-256.
     A figure without a manifest is incomplete and is ignored by :func:`load_manifests`.
 """
 
@@ -45,7 +46,7 @@ import numpy as np
 import pandas as pd
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, citation, provenance
+from sss_locus.pipeline import atomic, citation, provenance, readability
 
 # Used with fullmatch: the whole string must match (``$`` alone would accept a trailing newline).
 LABEL_PATTERN = re.compile(r"fig-[a-z0-9]+(?:-[a-z0-9]+)*")
@@ -204,8 +205,11 @@ def export_figure(
     with matplotlib.rc_context({"svg.hashsalt": label}):
         for fmt in IMAGE_FORMATS:
             target = out / f"{label}.{fmt}"
-            _save_atomic(target, lambda tmp, fmt=fmt: fig.savefig(
-                tmp, format=fmt, dpi=int(dpi), bbox_inches="tight", metadata=_SAVE_METADATA.get(fmt)))
+            with readability.recording_text() as drawn:  # the PNG is drawn by Agg
+                _save_atomic(target, lambda tmp, fmt=fmt: fig.savefig(
+                    tmp, format=fmt, dpi=int(dpi), bbox_inches="tight", metadata=_SAVE_METADATA.get(fmt)))
+            if fmt == "png":
+                text = readability.text_record(drawn, _png_width_px(target) / int(dpi), fig.dpi)
             written.append(target)
     for name, frame in frames.items():
         index = not isinstance(frame.index, pd.RangeIndex)
@@ -225,6 +229,7 @@ def export_figure(
         "package_version": provenance.package_version(),
         "run_time_utc": provenance.utc_now(),
         "dpi": int(dpi),
+        "text": text,  # smallest drawn text and picture width: readability on the page
         "run_key": os.environ.get(RUN_KEY_ENV),  # ties the figure to its executed copy
         "data_inputs": data_inputs(params),
     }
@@ -237,6 +242,15 @@ def export_figure(
     }
     _write_atomic(manifest_path, json.dumps(manifest, indent=2, sort_keys=True) + "\n")
     return manifest
+
+
+def _png_width_px(path: Path) -> int:
+    """Pixel width of a PNG file, from its IHDR header."""
+    with open(path, "rb") as fh:
+        head = fh.read(24)
+    if head[:8] != b"\x89PNG\r\n\x1a\n":
+        raise ValueError(f"{path} is not a PNG file")
+    return int.from_bytes(head[16:20], "big")
 
 
 def load_manifests(out_dir: Path | None = None) -> list[dict[str, Any]]:

@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.ticker import NullFormatter
 
-from .style import platform_colors, platform_title
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_colors, platform_title
 
 LEVEL_COLORS = ("tab:red", "tab:orange", "gold", "tab:pink")
 """Colours of the noise levels (``noise_scales`` in order, repeating)."""
@@ -54,16 +54,18 @@ def curve_frames(curves: Mapping[str, Mapping[str, pd.DataFrame]],
             for lab in (by_label if labels is None else labels)}
 
 
-def _title(platform, what: str, width: int = 60) -> str:
+def _title(platform, what: str, width: int = 34) -> str:
     return f"{platform_title(platform, width)}:\n{what}"
 
 
-def _angle_axis(ax) -> None:
+def _angle_axis(ax, ncol: int = 1) -> None:
+    """Crossing-angle axis, grid, and the legend below the panel (never over the bands)."""
     ax.set_xlim(0, 180)
-    ax.set_xticks(np.arange(0, 181, 20))
+    ax.set_xticks(np.arange(0, 181, 30))
     ax.set_xlabel(r"crossing angle $\gamma$ (deg)")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=SMALL_FONT_PT, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=ncol,
+              frameon=False)
 
 
 def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.DataFrame]],
@@ -77,7 +79,7 @@ def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.
     ``"range only"`` and ``"attitude only"``.
     """
     head = level_label(noise_scales[0])
-    fig, axs = plt.subplots(len(platforms), 2, figsize=(12, 4.2 * len(platforms)),
+    fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 5.6 * len(platforms)),
                             constrained_layout=True, squeeze=False)
     for (ax, ax2), pf in zip(axs, platforms):
         by_label = curves[pf.key]
@@ -110,9 +112,9 @@ def plot_breakdown(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.Dat
     """Band width against crossing angle by error group (all errors at level ``head``; sensor
     position only; range only; median and interquartile range, log scale) with the noise-free
     locus length, one panel per platform; returns the figure."""
-    fig, axs = plt.subplots(1, len(platforms), figsize=(6 * len(platforms), 4), constrained_layout=True,
-                            squeeze=False)
-    for ax, pf in zip(axs[0], platforms):
+    fig, axs = plt.subplots(len(platforms), 1, figsize=(PAGE_WIDTH_IN, 4.6 * len(platforms)),
+                            constrained_layout=True, squeeze=False)
+    for ax, pf in zip(axs[:, 0], platforms):
         by_label = curves[pf.key]
         for lab, col in ((head, "tab:red"), *BREAKDOWN_COLORS.items()):
             c = by_label[lab]
@@ -126,7 +128,7 @@ def plot_breakdown(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.Dat
         ax.set_yscale("log")
         ax.set_ylabel("band width (m): median, IQR shaded")
         ax.set_title(platform_title(pf, 60), fontsize=10)
-        _angle_axis(ax)
+        _angle_axis(ax, ncol=3)
     return fig
 
 
@@ -138,7 +140,7 @@ def plot_check(check: pd.DataFrame, platforms: Sequence, scales: Sequence[float]
     three-view point error, bottom row), ``scale``, ``monte_carlo_m`` and ``first_order_m``.
     """
     colors = platform_colors(platforms)
-    fig, axs = plt.subplots(2, len(scales), figsize=(5 * len(scales), 8.8), constrained_layout=True,
+    fig, axs = plt.subplots(2, len(scales), figsize=(PAGE_WIDTH_IN, 8.8), constrained_layout=True,
                             squeeze=False)
     for row, kind, what in zip(axs, ("two", "three"), ("distance to the circle", "three-view point error")):
         for ax, scale in zip(row, scales):
@@ -157,5 +159,5 @@ def plot_check(check: pd.DataFrame, platforms: Sequence, scales: Sequence[float]
             ax.set_ylabel(f"first-order 95 % {what} (m)")
             ax.set_title(f"{'two views' if kind == 'two' else 'three views'}, noise ×{scale:g}", fontsize=10)
             ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=7)
+            ax.legend(fontsize=SMALL_FONT_PT)
     return fig

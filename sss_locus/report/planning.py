@@ -19,6 +19,7 @@ from matplotlib.patches import Patch
 from ..experiments.planning import CrossingAngleCurve, band_at
 from ..experiments.userdata import label_key
 from .survey_passes import model_tag
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT
 from .text import fmt_bands
 
 PAPER_AVOID_DEG = (10.0, 40.0)
@@ -46,7 +47,7 @@ def plot_planning_bands(curves: Mapping[tuple[str, str], CrossingAngleCurve],
     offset model and one column per platform (``curves`` and ``bands`` keyed
     ``(platform key, offset-model spec)``). Returns the figure."""
     specs, keys = _models_and_platforms(curves)
-    fig, axs = plt.subplots(len(specs), len(keys), figsize=(6.2 * len(keys), 3.6 * len(specs)),
+    fig, axs = plt.subplots(len(specs), len(keys), figsize=(PAGE_WIDTH_IN, 3.4 * len(specs) + 0.8),
                             sharex=True, constrained_layout=True, squeeze=False)
     lo_p, hi_p = paper_avoid_deg
     for i, spec in enumerate(specs):
@@ -72,11 +73,11 @@ def plot_planning_bands(curves: Mapping[tuple[str, str], CrossingAngleCurve],
             ax.grid(alpha=0.3)
     for ax in axs[-1]:
         ax.set_xlabel(r"crossing angle $\gamma$ (deg)")
-        ax.set_xticks(np.arange(0, 181, 20))
+        ax.set_xticks(np.arange(0, 181, 30))
     handles, labels = axs[0, 0].get_legend_handles_labels()
     handles += [Patch(color=BAND_COLORS[k], alpha=0.3) for k in ("prefer", "avoid")]
     labels += ["prefer (computed)", "avoid (computed)"]
-    axs[0, 0].legend(handles, labels, fontsize=8, loc="upper left")
+    fig.legend(handles, labels, fontsize=SMALL_FONT_PT, loc="outside lower center", ncol=2)
     return fig
 
 

@@ -8,6 +8,7 @@ out as tables (:func:`seed_stability_table`, :func:`check_row`) and writes them 
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Mapping
 
 import matplotlib.pyplot as plt
@@ -15,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from ..experiments.pose_stats import HEATMAP_PANELS, TARGETS, median_grid, stable_to
-from .style import QUANTITY_LABELS
+from .style import PAGE_WIDTH_IN, QUANTITY_LABELS, SMALL_FONT_PT
 from .text import fmt_sig, plain_label
 
 PANEL_TITLES = {
@@ -50,7 +51,8 @@ def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""
 
     ``rho`` is a :func:`~sss_locus.experiments.pose_stats.spearman_table`. Returns the figure.
     """
-    fig, axs = plt.subplots(1, 3, figsize=(13, 4.6), constrained_layout=True)
+    fig, mosaic = plt.subplot_mosaic([["a", "b"], ["c", "c"]], figsize=(PAGE_WIDTH_IN, 8), constrained_layout=True)
+    axs = [mosaic["a"], mosaic["b"], mosaic["c"]]
     names = ("(a) raw locus length", "(b) range-normalised length")
     for ax, target, name in zip(axs[:2], TARGETS, names):
         tab = rho[rho["target"] == target].iloc[::-1]
@@ -67,6 +69,8 @@ def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""
     ax = axs[2]
     for sel, size, alpha, color, label in ((~multi, 3, 0.35, "tab:blue", "one arc"),
                                            (multi, 9, 0.9, "tab:orange", "several arcs (fragmented)")):
+        if not sel.any():  # no legend entry for a class with no points
+            continue
         ax.scatter(subset.loc[sel, "elevation_misalignment_deg"],
                    subset.loc[sel, "locus_length_normalized"],
                    s=size, alpha=alpha, color=color, lw=0, label=label)
@@ -74,9 +78,9 @@ def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""
     ax.set_xlabel("elevation misalignment (deg)")
     ax.set_ylabel("locus length / mean range")
     ax.set_title("(c) normalised length vs misalignment")
-    ax.legend(loc="lower right", fontsize=8, markerscale=2)
+    ax.legend(loc="lower right", fontsize=SMALL_FONT_PT, markerscale=2)
     ax.grid(alpha=0.3)
-    fig.suptitle(title)
+    fig.suptitle(textwrap.fill(title, 75))
     return fig
 
 
@@ -86,9 +90,18 @@ def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
 
     ``maps`` is a :func:`~sss_locus.experiments.pose_stats.heatmaps` result. Returns the figure.
     """
-    fig, axs = plt.subplots(2, 3, figsize=(13, 8), constrained_layout=True)
+    fig, axs = plt.subplots(3, 2, figsize=(PAGE_WIDTH_IN, 10.5), constrained_layout=True)
     for ax, (panel, x, y) in zip(axs.flat, HEATMAP_PANELS):
         xe, ye, z = median_grid(maps[panel])
+        if len(ye) == 2:  # one bin along y (e.g. a boat that never pitches): a 1-D profile
+            ax.hlines(z[0], xe[:-1], xe[1:], color="tab:blue", lw=2)  # sparse (masked) bins: no line
+            ax.set_xlabel(PANEL_AXIS_LABELS[x])
+            ax.set_ylabel("median locus length (m)")
+            ax.set_title(f"{PANEL_TITLES[panel]}\n({PANEL_AXIS_LABELS[y].split(' (')[0]} "
+                         f"always {0.5 * (ye[0] + ye[1]):g}: by yaw only)")
+            ax.set_ylim(bottom=0)
+            ax.grid(alpha=0.3)
+            continue
         mesh = ax.pcolormesh(xe, ye, z, cmap="viridis", shading="flat")
         fig.colorbar(mesh, ax=ax, label="median locus length (m)")
         ax.set_xlabel(PANEL_AXIS_LABELS[x])
@@ -96,7 +109,7 @@ def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
         ax.set_title(PANEL_TITLES[panel])
         ax.set_facecolor("0.85")
     axs.flat[-1].axis("off")
-    fig.suptitle(title)
+    fig.suptitle(textwrap.fill(title, 75))
     return fig
 
 
@@ -144,8 +157,9 @@ def seed_stability_table(runs: Mapping[str, tuple[Mapping, Mapping]], seeds: tup
     ``runs`` maps a platform key to the two runs (dicts with ``rho``, ``metrics``, ``maps``)
     of the seeds in ``seeds``. Correlations with ``|rho| < small_rho`` in both seeds count as
     stable (noted). A heatmap row gives the share of bins shown in both runs that are stable
-    and, in the second seed's column, the median relative difference of their medians
-    (``stable`` None).
+    in ``bins stable (share)`` and the median relative difference of their medians in
+    ``median relative difference`` (seed columns and ``stable`` empty); both columns are empty
+    on the other rows.
     """
     sa, sb = (f"seed {s}" for s in seeds)
     rows = []
@@ -172,9 +186,11 @@ def seed_stability_table(runs: Mapping[str, tuple[Mapping, Mapping]], seeds: tup
             if not both.any():
                 continue
             x, y = ma["median"][both], mb["median"][both]
-            rows.append({"platform": key, "quantity": f"heatmap ({p}) bins stable to 2 s.f. (fraction)",
-                         sa: stable_to(x, y).mean(), sb: (np.abs(x - y) / x).median(), "stable": None,
-                         "note": "second column: median relative difference between seeds"})
+            rows.append({"platform": key, "quantity": f"heatmap ({p}): bins shown in both seeds",
+                         sa: None, sb: None, "stable": None,
+                         "bins stable (share)": stable_to(x, y).mean(),
+                         "median relative difference": (np.abs(x - y) / x).median(),
+                         "note": "share of bins whose medians agree to 2 s.f."})
     return pd.DataFrame(rows)
 
 

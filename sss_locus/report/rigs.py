@@ -19,6 +19,7 @@ from matplotlib.patches import Circle, Rectangle
 from scipy.spatial import ConvexHull
 
 from ..experiments.platforms import Platform, frustum_points
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 """Colours of a transducer's drawn x (boresight), y and z axes."""
@@ -91,7 +92,7 @@ def _draw_hull(ax, platform: Platform, view: str) -> None:
     else:
         ax.axhline(0.0, color="tab:cyan", lw=1)
         ax.text(0.98, 0.97, "waterline", color="tab:cyan", transform=ax.transAxes,
-                ha="right", va="top", fontsize=7)
+                ha="right", va="top", fontsize=SMALL_FONT_PT)
 
 
 def hull_size(platform: Platform) -> str:
@@ -137,15 +138,16 @@ def plot_rigs(platforms: Mapping[str, Platform], plot_range_m: Mapping[str, floa
     """The rig figure: one row per platform (in the data's order), top-down (left) and from the
     stern (right), each panel titled with its letter, the platform's name and the view;
     ``plot_range_m`` and ``axis_length_m`` are keyed by platform key. Returns the figure."""
-    fig, axs = plt.subplots(len(platforms), len(VIEWS), figsize=(9, 4.5 * len(platforms)),
+    fig, axs = plt.subplots(len(platforms), len(VIEWS), figsize=(PAGE_WIDTH_IN, 4.2 * len(platforms)),
                             constrained_layout=True, squeeze=False)
     for r, (key, p) in enumerate(platforms.items()):
         for c, view in enumerate(VIEWS):
             draw_rig(p, view, plot_range_m[key], axis_length_m[key], ax=axs[r, c])
             letter = chr(ord("a") + len(VIEWS) * r + c)
-            axs[r, c].set_title(f"({letter}) {p.name}\n{VIEW_TITLES[view]}", fontsize=9)
+            axs[r, c].set_title(f"{platform_title(p, 38, prefix=f'({letter}) ')}\n{VIEW_TITLES[view]}",
+                                fontsize=9)
     handles, labels = axs[0, 0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside lower center", ncol=5, fontsize=8)
+    fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=SMALL_FONT_PT)
     return fig
 
 

@@ -63,3 +63,12 @@ def platform_title(platform, width: int = 60, prefix: str = "") -> str:
     """``prefix`` plus the platform's display name, wrapped to lines of at most ``width``
     characters (names from the data can be long)."""
     return textwrap.fill(f"{prefix}{platform_name(platform)}", width)
+
+PAGE_WIDTH_IN = 7.8
+"""Largest figure width (inches) for the book's content column. A chapter shows a figure at most
+660 CSS px wide (the column at a 1280 px window; :mod:`sss_locus.pipeline.readability`), so
+``size_pt`` text appears ``size_pt / 72 * 660 / width_in`` px: at 7.8 in, 10 pt is 11.8 px and
+8.5 pt (the smallest used) 10 px; the readability test fails below 9 px."""
+
+SMALL_FONT_PT = 8.5
+"""Font size of legends and annotations (the smallest text of the book's figures)."""

@@ -20,7 +20,7 @@ import pandas as pd
 from ..experiments.envelopes import OffsetModel, SurveyEnvelope
 from ..experiments.userdata import label_key
 from ..experiments.planning import VALUES, CrossingAngleCurve, curve_shape_rho, rejected_share
-from .style import AXIS_LABELS, platform_colors
+from .style import AXIS_LABELS, PAGE_WIDTH_IN, SMALL_FONT_PT, platform_colors, platform_title
 from .text import fmt_change, fmt_interval, fmt_sig
 
 UNITS = {"locus_length_m": "m", "elevation_misalignment_deg": "°"}
@@ -78,7 +78,7 @@ def plot_fig5(curves: Mapping[str, CrossingAngleCurve]):
     """The paper's Fig. 5: (a) locus length and (b) elevation misalignment against crossing
     angle, median line and interquartile band per platform. Returns the figure."""
     colors = platform_colors([cur.platform for cur in curves.values()])
-    fig, axs = plt.subplots(2, 1, figsize=(8, 7.5), sharex=True, constrained_layout=True)
+    fig, axs = plt.subplots(2, 1, figsize=(PAGE_WIDTH_IN, 7.5), sharex=True, constrained_layout=True)
     for ax, v, tag in zip(axs, VALUES, "ab"):
         for k, cur in curves.items():
             c = cur.curve
@@ -90,7 +90,7 @@ def plot_fig5(curves: Mapping[str, CrossingAngleCurve]):
         ax.set_title(f"({tag}) {AXIS_LABELS[v].split(' (')[0]} against crossing angle")
         ax.set_ylim(bottom=0)
         ax.grid(alpha=0.3)
-    axs[0].legend(fontsize=8, loc="upper left")
+    axs[0].legend(fontsize=SMALL_FONT_PT, loc="upper left")
     axs[1].set_xlabel(r"crossing angle $\gamma$ between the passes (deg)")
     axs[1].set_xticks(np.arange(0, 181, 20))
     axs[1].set_xlim(0, 180)
@@ -139,7 +139,7 @@ def plot_offset_models(main: Mapping[str, CrossingAngleCurve],
     (black, legend ``main_label``) and one line per offset model of ``sensitivity`` (keyed
     ``(platform key, spec)``). Returns the figure."""
     keys = list(main)
-    fig, axs = plt.subplots(2, len(keys), figsize=(6.2 * len(keys), 7.5), sharex=True,
+    fig, axs = plt.subplots(2, len(keys), figsize=(PAGE_WIDTH_IN, 8.5), sharex=True,
                             constrained_layout=True, squeeze=False)
     styles = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for j, k in enumerate(keys):
@@ -149,17 +149,53 @@ def plot_offset_models(main: Mapping[str, CrossingAngleCurve],
             c = main[k].curve
             ax.plot(c["crossing_angle_deg"], c[f"{v}_median"], color="k", lw=2, label=main_label)
             for n, cur in enumerate(own):
+                color = styles[n % len(styles)]
                 ax.plot(cur.curve["crossing_angle_deg"], cur.curve[f"{v}_median"],
-                        color=styles[n % len(styles)], lw=1.3, label=cur.offset_model.label)
+                        color=color, lw=1.3, label=cur.offset_model.label)
+                if _mixes_sides(cur):  # two modes: show where the middle half lies, not only the median
+                    ax.fill_between(cur.curve["crossing_angle_deg"], cur.curve[f"{v}_q25"],
+                                    cur.curve[f"{v}_q75"], color=color, alpha=0.15, lw=0,
+                                    label=f"{cur.offset_model.label}: 25–75 %" if i == 0 else None)
             ax.set_ylabel("median " + AXIS_LABELS[v])
             ax.set_ylim(bottom=0)
             ax.grid(alpha=0.3)
-            ax.set_title(f"({'ab'[i]}{j + 1}) {main[k].platform.name}", fontsize=10)
+            ax.set_title(platform_title(main[k].platform, 40, prefix=f"({'ab'[i]}{j + 1}) "), fontsize=10)
         axs[1, j].set_xlabel(r"crossing angle $\gamma$ (deg)")
         axs[1, j].set_xticks(np.arange(0, 181, 30))
         axs[1, j].set_xlim(0, 180)
-    axs[0, 0].legend(fontsize=7.5)
+    handles, labels = axs[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=SMALL_FONT_PT)
     return fig
+
+
+def _mixes_sides(cur: CrossingAngleCurve) -> bool:
+    """Whether a curve's pass pairs mix same-side and opposite-side views (side rule random):
+    its values then come from two populations and its median can jump between them."""
+    return cur.offset_model.kind == "matched" and cur.offset_model.side_rule == "random"
+
+
+def offset_models_bimodal_note(sensitivity: Mapping[tuple[str, str], CrossingAngleCurve],
+                               value: str = "elevation_misalignment_deg") -> str:
+    """Caption sentence for the offset models whose pass pairs mix sides (:func:`_mixes_sides`):
+    their median jumps between the same-side and the opposite-side population from angle to
+    angle, with the widest quartile range (angle, quartiles) as computed. Empty if none mixes."""
+    out = []
+    for (k, _), cur in sensitivity.items():
+        if not _mixes_sides(cur):
+            continue
+        c = cur.curve
+        iqr = c[f"{value}_q75"] - c[f"{value}_q25"]
+        r = c.loc[iqr.idxmax()]
+        out.append(f"{cur.platform.name}: at {r['crossing_angle_deg']:.0f}° its quartiles are "
+                   f"{r[f'{value}_q25']:.0f}° and {r[f'{value}_q75']:.0f}°, median {r[f'{value}_median']:.0f}°")
+    if not out:
+        return ""
+    label = next(cur.offset_model.label for cur in sensitivity.values() if _mixes_sides(cur))
+    return (f" With its side random (`{label}`), about half of the pass pairs see the feature from the "
+            "same side and half from opposite sides, so each angle's values fall in two groups (near the "
+            "same-side and the opposite-side curves) and the median jumps between them from one angle to "
+            "the next: that zig-zag is sampling between two modes, not structure. The shaded band is its "
+            "25–75 % range (widest " + "; ".join(out) + ").")
 
 
 def offset_model_table(sensitivity: Mapping[tuple[str, str], CrossingAngleCurve]) -> pd.DataFrame:
@@ -236,8 +272,7 @@ def plot_pitch_depth(pitch: pd.DataFrame, depth: pd.DataFrame, band_deg: tuple[f
     :data:`VARIANT_COLORS`); (b) median length and length per unit range at each altitude of
     ``depth`` relative to the first. ``band_deg`` is the crossing-angle band both were run in.
     Returns the figure."""
-    fig, axs = plt.subplots(1, 2, figsize=(12, 4.4), constrained_layout=True,
-                            gridspec_kw={"width_ratios": [1.4, 1]})
+    fig, axs = plt.subplots(2, 1, figsize=(PAGE_WIDTH_IN, 8), constrained_layout=True)
     ax = axs[0]
     y = np.arange(len(pitch))[::-1]
     colors = ["k"] * n_both + [VARIANT_COLORS[i % 2] for i in range(len(pitch) - n_both)]
@@ -259,6 +294,6 @@ def plot_pitch_depth(pitch: pd.DataFrame, depth: pd.DataFrame, band_deg: tuple[f
     ax.set_xlabel("altitude of both passes above the feature (m)")
     ax.set_ylabel(f"median relative to {h.iloc[0]:g} m")
     ax.set_title("(b) operating altitude, same band", fontsize=10)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=SMALL_FONT_PT)
     ax.grid(alpha=0.3)
     return fig

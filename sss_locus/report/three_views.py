@@ -17,7 +17,7 @@ import pandas as pd
 from matplotlib.colors import LogNorm
 from matplotlib.ticker import NullFormatter
 
-from .style import platform_title
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
 
 PATTERN_TAGS = {"repeat + reciprocal": "rr", "two lines + cross line": "cross",
                 "three headings 60 deg apart": "sixty"}
@@ -43,8 +43,10 @@ def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.Data
     ``range_sigma_m`` range error (``point_error_q95_m``, log scale).
     ``tables[platform.key][pattern]`` is a three-view table.
     """
-    fig, axs = plt.subplots(len(platforms), 3, figsize=(13, 3.6 * len(platforms)), constrained_layout=True,
-                            squeeze=False)
+    # one panel per row (three per platform): the pattern names label every panel's rows
+    fig, axs = plt.subplots(3 * len(platforms), 1, figsize=(PAGE_WIDTH_IN, 2.4 * 3 * len(platforms)),
+                            constrained_layout=True, squeeze=False)
+    axs = axs.reshape(len(platforms), 3)
     for row, pf in zip(axs, platforms):
         by_pattern = tables[pf.key]
         short = [pattern_label(n) for n in by_pattern]
@@ -56,7 +58,7 @@ def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.Data
         row[0].set_xlim(0, 1)
         row[0].set_xlabel("fraction of configurations")
         row[0].set_title(platform_title(pf, 45, prefix="(a) "), fontsize=10)
-        row[0].legend(fontsize=7, loc="lower left")
+        row[0].legend(fontsize=SMALL_FONT_PT, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
         for ax, column, xlabel in (
                 (row[1], "plane_angle_deg", "angle between the two planes (deg)"),
                 (row[2], "point_error_q95_m", f"95 % point error for {100 * range_sigma_m:g} cm range error (m)")):
@@ -93,7 +95,7 @@ def plot_heading_sweep(platforms: Sequence, sweeps: Mapping[str, pd.DataFrame], 
     """Median plane angle (left) and median first-order 95 % point error for a ``range_sigma_m``
     range error (right, log colour scale) against the headings of passes 2 and 3, one row per
     platform; returns the figure. ``sweeps[platform.key]`` is a heading sweep with noise."""
-    fig, axs = plt.subplots(len(platforms), 2, figsize=(11, 4.6 * len(platforms)), constrained_layout=True,
+    fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 4.4 * len(platforms)), constrained_layout=True,
                             squeeze=False)
     for row, pf in zip(axs, platforms):
         sweep = sweeps[pf.key]
@@ -108,8 +110,17 @@ def plot_heading_sweep(platforms: Sequence, sweeps: Mapping[str, pd.DataFrame], 
         for ax, t in zip(row, ("plane angle", "conditioning")):
             ax.set_xlabel("heading of pass 2, $h_2$ (deg)")
             ax.set_ylabel("heading of pass 3, $h_3$ (deg)")
-            ax.set_title(f"{platform_title(pf, 60)}:\n{t}", fontsize=10)
+            ax.set_title(f"{platform_title(pf, 32)}:\n{t}", fontsize=10)
             ax.set_aspect("equal")
             ax.set_xticks(ticks)
             ax.set_yticks(ticks)
     return fig
+
+
+def parallel_pair_error(sweep: pd.DataFrame, value: str = "point_error_q95_median_m") -> float:
+    """Largest ``sweep[value]`` on the diagonal ``h2 = h3`` away from the corners: passes 2 and 3
+    parallel to each other but crossing pass 1 (heading not 0° or 180°). NaN if the grid has no
+    such cell."""
+    h2, h3 = sweep["heading2_deg"], sweep["heading3_deg"]
+    crossing = ~np.isclose(np.mod(h2, 180.0), 0.0)
+    return float(sweep.loc[np.isclose(h2, h3) & crossing, value].max())
