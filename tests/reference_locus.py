@@ -135,8 +135,9 @@ def circle_from_spheres(R, t, r1, r2):
     return kind, center, radius, e1, e2
 
 
-def _make_inside(R, t, center, radius, e1, e2, spec1, spec2):
-    """Return f(alpha) -> bool array: circle point at alpha inside both apertures."""
+def _make_inside(R, t, center, radius, e1, e2, spec1, spec2, half_spaces=()):
+    """Return f(alpha) -> bool array: circle point at alpha inside both apertures and every
+    half-space ``(n, d)``: ``n . p1 <= d`` tested on the frame-1 point itself."""
 
     def inside(alpha: np.ndarray) -> np.ndarray:
         c = radius * np.cos(alpha)
@@ -145,12 +146,16 @@ def _make_inside(R, t, center, radius, e1, e2, spec1, spec2):
         p1 = [center[i] + c * e1[i] + s * e2[i] for i in range(3)]
         # Frame-2 point p2 = R p1 + t.
         p2 = [R[i, 0] * p1[0] + R[i, 1] * p1[1] + R[i, 2] * p1[2] + t[i] for i in range(3)]
-        return inside_by_angles(*p1, spec1) & inside_by_angles(*p2, spec2)
+        ok = inside_by_angles(*p1, spec1) & inside_by_angles(*p2, spec2)
+        for n, d in half_spaces:
+            ok &= n[0] * p1[0] + n[1] * p1[1] + n[2] * p1[2] <= d
+        return ok
 
     return inside
 
 
-def reference_locus(R, t, r1, r2, aperture1, aperture2, n_steps: int = DEFAULT_STEPS):
+def reference_locus(R, t, r1, r2, aperture1, aperture2, n_steps: int = DEFAULT_STEPS,
+                    half_spaces=()):
     """Brute-force locus length and arc count for ONE configuration.
 
     Parameters
@@ -166,6 +171,8 @@ def reference_locus(R, t, r1, r2, aperture1, aperture2, n_steps: int = DEFAULT_S
         ``min_range`` (full angles in degrees, metres).
     n_steps : int
         Number of walk samples on the circle.
+    half_spaces : sequence of ((3,) array_like, float)
+        Extra conditions ``n . p1 <= d`` (frame 1), applied pointwise.
 
     Returns
     -------
@@ -188,7 +195,8 @@ def reference_locus(R, t, r1, r2, aperture1, aperture2, n_steps: int = DEFAULT_S
     if kind == "tangent":
         return ReferenceResult(0.0, 0, 0.0, [], step, kind)
 
-    inside = _make_inside(R, t, center, radius, e1, e2, spec1, spec2)
+    half_spaces = [(np.asarray(n, dtype=float), float(d)) for n, d in half_spaces]
+    inside = _make_inside(R, t, center, radius, e1, e2, spec1, spec2, half_spaces)
     alphas = np.arange(n_steps) * step
     state = inside(alphas)
     if state.all():

@@ -37,7 +37,7 @@ from reference_locus import (
     random_pose_configs,
     reference_locus,
 )
-from sss_locus import MAX_ARCS, Aperture, LocusStatus, two_view_locus
+from sss_locus import Aperture, LocusStatus, two_view_locus
 
 REFERENCE_STEPS = 2**16
 EXCLUDE_BELOW_STEPS = 10
@@ -53,8 +53,9 @@ def kernel_shortest_feature(result) -> np.ndarray:
 
     Infinity where there are no arcs or the single arc is the full circle.
     """
-    start = np.asarray(result.arc_start, dtype=float).reshape(-1, MAX_ARCS)
-    end = np.asarray(result.arc_end, dtype=float).reshape(-1, MAX_ARCS)
+    width = result.arc_start.shape[-1]  # MAX_ARCS, plus K with K extra half-spaces
+    start = np.asarray(result.arc_start, dtype=float).reshape(-1, width)
+    end = np.asarray(result.arc_end, dtype=float).reshape(-1, width)
     n_arcs = np.asarray(result.n_arcs).reshape(-1)
     out = np.full(n_arcs.shape, np.inf)
     for i, n in enumerate(n_arcs):

@@ -32,6 +32,12 @@ Method (Norman & Mangelson, Sec. IV-A, with every choice the paper leaves open n
    ``theta1`` is not exactly uniform).
    ``profile="unconstrained"`` is the idealised sweep the paper tried first: sensor 2's
    orientation is uniform over all rotations, and none of the constraints above apply.
+5. **The locus** is the circle cropped to both apertures (the paper's definition). With
+   ``water`` (a :class:`~sss_locus.experiments.water.WaterColumn`; off by default, so the
+   paper is reproduced as written) it is also cropped exactly to the water: below the sea
+   surface (vehicle 1's reference point ``water.vehicle_depth_m`` below it; the boat's at the
+   waterline) and, optionally, above a maximum water depth. The samples do not change, only the
+   locus: the tables with and without ``water`` compare row by row.
 
 Reproducibility: samples are produced in blocks of :data:`BLOCK_SIZE` rows; block ``k`` uses its
 own generator seeded by ``SeedSequence(seed, spawn_key=(k,))``. The table for ``(seed, n)`` is
@@ -52,6 +58,7 @@ from ..geometry import elevation_misalignment, relative_pose, two_view_locus
 from .platforms import SIDES, Platform
 from .scale import map_chunks
 from .straight_pass import attitude_angles, transducer_stack, vehicle_attitude
+from .water import WaterColumn
 
 BLOCK_SIZE = 4096
 """Rows per independently seeded block (fixed: changing it changes every table)."""
@@ -87,6 +94,9 @@ class PoseSpaceSpec:
         fixed-depth platforms, which are held at their depth exactly).
     tilt_deg : float or None
         Override the downward tilt of both transducers (degrees); ``None`` keeps the platform's.
+    water : WaterColumn or None
+        Crop every locus to the water column as well (see step 5 of the module docstring);
+        ``None`` (default): the paper's locus, cropped to the apertures only.
     """
 
     platform: Platform
@@ -98,6 +108,7 @@ class PoseSpaceSpec:
     roll_max_deg: float | None = None
     depth_envelope: bool = True
     tilt_deg: float | None = None
+    water: WaterColumn | None = None
 
     def __post_init__(self) -> None:
         for name, choices in (("profile", PROFILES), ("feature_distribution", FEATURE_DISTRIBUTIONS),
@@ -110,14 +121,20 @@ class PoseSpaceSpec:
                                                      roll_max_deg=self.roll_max_deg)
         if self.tilt_deg is not None:
             limited = limited.with_tilt(self.tilt_deg)
+        if self.water is not None:
+            if not isinstance(self.water, WaterColumn):
+                raise ValueError(f"water must be a WaterColumn or None; got {type(self.water).__name__}")
+            self.water.depth_for(limited)  # a depth the platform can have
         object.__setattr__(self, "platform", limited)
         object.__setattr__(self, "pitch_max_deg", limited.pitch_max_deg)
         object.__setattr__(self, "roll_max_deg", limited.roll_max_deg)
 
     def key(self) -> dict:
         """Plain-data description (for cache keys and figure manifests)."""
-        d = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "platform"}
+        d = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in ("platform", "water")}
         d["platform"] = self.platform.key
+        if self.water is not None:  # absent when off: the paper's runs keep their keys
+            d["water"] = self.water.key()
         return d
 
 
@@ -234,7 +251,12 @@ def draw_block(spec: PoseSpaceSpec, seed: int, block: int) -> dict[str, np.ndarr
 
 def _evaluate(spec: PoseSpaceSpec, g: dict[str, np.ndarray]) -> pd.DataFrame:
     ap = spec.platform.sonar.aperture()
-    res = two_view_locus(g["R"], g["t"], g["r1"], g["r2"], ap, ap)
+    crop = {}
+    if spec.water is not None:  # vehicle 1 is the world frame; its reference point at z = 0
+        R1, o1 = transducer_stack(spec.platform, g["port1"])
+        normals, offsets = spec.water.half_spaces(R1, o1[:, 2], spec.water.depth_for(spec.platform))
+        crop = dict(half_space_normals=normals, half_space_offsets=offsets)
+    res = two_view_locus(g["R"], g["t"], g["r1"], g["r2"], ap, ap, **crop)
     mis = elevation_misalignment(g["R"], g["t"])
     mean_range = 0.5 * (g["r1"] + g["r2"])
     side = lambda port: pd.Categorical.from_codes(  # = Categorical of the names, without strings

@@ -243,6 +243,9 @@ def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFr
     ``df`` is the table the heatmaps were made from (feature on the port side), ``rho`` the
     :func:`spearman_table` of the whole table, ``maps`` the :func:`heatmaps` of ``df``.
     Keys ending in ``_rho`` are Spearman correlations; ``*_ratio`` are ratios of medians.
+    ``multi_arc_fraction`` is the share of the rows of ``df`` (not of the whole table: in the
+    pose-space chapter ``df`` is the heatmap subset, sensor 2 on the port side like sensor 1)
+    whose locus has more than one arc.
     """
     m: dict[str, float | str] = {}
     for target, tag in (("locus_length_m", "raw"), ("locus_length_normalized", "norm")):
@@ -251,7 +254,7 @@ def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFr
         for _, row in tab.iterrows():
             m[f"{tag}_{row.quantity}_rho"] = row.rho
             m[f"{tag}_{row.quantity}_rank"] = float(_ + 1)
-    m["multi_arc_fraction"] = float((df["n_arcs"] > 1).mean())
+    m["multi_arc_fraction"] = float((df["n_arcs"] > 1).mean())  # of the rows of df (see above)
     # (a) range x range: median length with both ranges above half the maximum over the median
     # with both below it (from the samples, not from bin medians)
     half_r = maps["a"]["x_hi"].max() / 2

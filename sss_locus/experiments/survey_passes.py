@@ -22,6 +22,11 @@ For each crossing angle, configurations are drawn until ``n_per_angle`` are acce
    range at that ping. A draw failing any check is rejected and counted under one of
    :data:`REJECTION_REASONS` (first failing check, pass 1 before pass 2); the counts per angle
    are returned with the samples (never dropped silently).
+6. **Water** (``water``, off by default so the paper is reproduced as written): each locus is
+   also cropped exactly to the water (:class:`~sss_locus.experiments.water.WaterColumn`): the
+   sea surface lies ``altitude1_m + water.vehicle_depth_m`` above the feature (the boat's
+   reference point is at the waterline, so its altitude is the water depth at the feature).
+   The samples are the same with and without it.
 
 Symmetries (exact for mirror-image transducers; tested in ``tests/test_survey.py``)
 -------------------------------------------------------------------------------
@@ -55,6 +60,7 @@ from .envelopes import OffsetModel, SurveyEnvelope
 from .platforms import SIDES, Platform
 from .scale import map_chunks
 from .straight_pass import REJECTION_REASONS, observe_pass, swath_m
+from .water import WaterColumn
 
 BLOCK_SIZE = 256
 """Accepted rows per independently seeded block (fixed: changing it changes every table)."""
@@ -175,11 +181,16 @@ def _check_inputs(angles, n, seed):
     return g, int(n), int(seed)
 
 
-def _evaluate(platform, gamma_deg, d) -> pd.DataFrame:
+def _evaluate(platform, gamma_deg, d, water=None) -> pd.DataFrame:
     ap = platform.sonar.aperture()
     R, t = relative_pose(d["W1"], d["origin1"], d["W2"], d["origin2"])
     r1, r2 = d["range_m1"], d["range_m2"]
-    res = two_view_locus(R, t, r1, r2, ap, ap)
+    crop = {}
+    if water is not None:  # world origin at the feature: the surface is above vehicle 1
+        normals, offsets = water.half_spaces(d["W1"], d["origin1"][:, 2],
+                                             d["alt1"] + water.depth_for(platform))
+        crop = dict(half_space_normals=normals, half_space_offsets=offsets)
+    res = two_view_locus(R, t, r1, r2, ap, ap, **crop)
     mis = elevation_misalignment(R, t)
     side = lambda port: pd.Categorical.from_codes(  # = Categorical of the names, without strings
         np.where(port, SIDES.index("port"), SIDES.index("starboard")).astype(np.int8), categories=list(SIDES))
@@ -200,22 +211,22 @@ def _evaluate(platform, gamma_deg, d) -> pd.DataFrame:
     })
 
 
-def _simulate_angle(platform, envelope, offset_model, gamma, n, seed) -> tuple[pd.DataFrame, dict]:
+def _simulate_angle(platform, envelope, offset_model, gamma, n, seed, water=None) -> tuple[pd.DataFrame, dict]:
     """One crossing angle (one chunk of the study): its samples and its acceptance row."""
     n_blocks = -(-n // BLOCK_SIZE)
     blocks = [b for first in range(0, n_blocks, BATCH_BLOCKS) for b in draw_blocks(
         platform, envelope, offset_model, gamma, seed, range(first, min(first + BATCH_BLOCKS, n_blocks)))]
     d = {k: np.concatenate([b[0][k] for b in blocks])[:n] for k in blocks[0][0]}
     rej, accepted = sum(b[1] for b in blocks), sum(b[2] for b in blocks)
-    return _evaluate(platform, gamma, d), {
+    return _evaluate(platform, gamma, d, water), {
         "crossing_angle_deg": float(gamma), "n_tried": int(accepted + rej.sum()),
         "n_accepted": int(accepted), "acceptance": accepted / float(accepted + rej.sum()),
         **{f"rejected_{r}": int(c) for r, c in zip(REJECTION_REASONS, rej)}}
 
 
 def simulate_passes(platform: Platform, envelope: SurveyEnvelope, offset_model: OffsetModel,
-                    crossing_angles_deg, n_per_angle: int, seed: int
-                    ) -> tuple[pd.DataFrame, pd.DataFrame]:
+                    crossing_angles_deg, n_per_angle: int, seed: int, *,
+                    water: WaterColumn | None = None) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Monte Carlo pairs of straight passes over one feature, per crossing angle.
 
     Parameters
@@ -230,6 +241,9 @@ def simulate_passes(platform: Platform, envelope: SurveyEnvelope, offset_model: 
         Accepted pass pairs per angle.
     seed : int
         Non-negative; the result depends only on the arguments.
+    water : WaterColumn or None
+        Also crop every locus to the water column (step 6 above); ``None`` (default): the
+        paper's locus. The samples and the acceptance table do not depend on it.
 
     Returns
     -------
@@ -248,7 +262,11 @@ def simulate_passes(platform: Platform, envelope: SurveyEnvelope, offset_model: 
     if not isinstance(envelope, SurveyEnvelope) or not isinstance(offset_model, OffsetModel):
         raise ValueError("envelope must be a SurveyEnvelope and offset_model an OffsetModel")
     check_envelope(platform, envelope)
-    chunks = map_chunks(_simulate_angle, [(platform, envelope, offset_model, float(g), n, seed)
+    if water is not None:
+        if not isinstance(water, WaterColumn):
+            raise ValueError(f"water must be a WaterColumn or None; got {type(water).__name__}")
+        water.depth_for(platform)
+    chunks = map_chunks(_simulate_angle, [(platform, envelope, offset_model, float(g), n, seed, water)
                                           for g in angles])
     frames, acc = [c[0] for c in chunks], [c[1] for c in chunks]
     return pd.concat(frames, ignore_index=True)[list(COLUMNS)], pd.DataFrame(acc)

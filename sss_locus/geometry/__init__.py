@@ -8,6 +8,8 @@ Entry points
 ------------
 :func:`two_view_locus`
     Circle, visible arcs and locus length for two range measurements with known relative pose.
+:func:`sea_surface_half_space`, :func:`max_depth_half_space`
+    Physical constraints (the water column) as half-spaces for ``two_view_locus``.
 :func:`relative_pose`
     Sensor 1 in sensor 2's frame from two sensor poses in one world frame.
 :func:`elevation_misalignment`
@@ -17,6 +19,7 @@ Entry points
 """
 
 from .aperture import Aperture
+from .halfspaces import max_depth_half_space, sea_surface_half_space
 from .locus import MAX_ARCS, LocusResult, LocusStatus, two_view_locus
 from .misalignment import ElevationMisalignment, elevation_misalignment
 from .poses import relative_pose
@@ -31,7 +34,9 @@ __all__ = [
     "ThreeViewResult",
     "ThreeViewStatus",
     "elevation_misalignment",
+    "max_depth_half_space",
     "relative_pose",
+    "sea_surface_half_space",
     "three_view_points",
     "two_view_locus",
 ]

@@ -19,6 +19,7 @@ from .locus_result import MAX_ARCS, LocusResult, LocusStatus
 from .aperture import Aperture
 from .fastpath import cross_rows, rotate_rows, transpose_into
 from .arcs import crop_circle
+from .halfspaces import as_half_spaces
 from .tolerances import COINCIDENT_ORIGINS_RTOL, TANGENT_RTOL
 
 _CHUNK = 4096
@@ -79,8 +80,12 @@ def _apply_normals(normals: np.ndarray, vectors: np.ndarray, out: np.ndarray) ->
                 (np.subtract if neg else np.add)(acc, p, out=acc)
 
 
-def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
+def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict, half=None) -> None:
     """Compute one chunk of rows into ``out`` (this chunk's slices of the result arrays).
+
+    ``half`` is None or ``(normals (n, K, 3), offsets (n, K))``: extra half-spaces
+    ``n . p1 <= d`` (validated by :func:`~sss_locus.geometry.halfspaces.as_half_spaces`, offsets
+    at the chunk's scale), intersected with the apertures as conditions ``8 .. 8 + K - 1``.
 
     ``out["in_range"]`` is filled in already. Every length (``t``, ``r1``, ``r2``) may carry a
     per-row power-of-two scale: the chunk is homogeneous in them (angles, statuses and arcs do
@@ -144,25 +149,31 @@ def _locus_chunk(R, t, r1, r2, ap1: Aperture, ap2: Aperture, out: dict) -> None:
     # p2 = R p1 + t. Each bound's normal a gives a . e1, a . e2 and a . c at once.
     normals1, s1, union1 = _bounds(ap1)
     normals2, s2, union2 = _bounds(ap2)
-    coef = np.empty((3, 8, n))
+    K = 0 if half is None else half[1].shape[1]
+    coef = np.empty((3, 8 + K, n))
     frame1 = np.stack([e1, e2, center])  # (3 vectors, 3 components, n)
     frame2 = rotate_rows(Rc, frame1)
     frame2[2] += tc
     _apply_normals(normals1, frame1, coef[:, :4])
-    _apply_normals(normals2, frame2, coef[:, 4:])
+    _apply_normals(normals2, frame2, coef[:, 4:8])
+    for k in range(K):  # n . p1 <= d as (-n) . p1 + d >= 0: A, B from -n . e1, -n . e2
+        hn = half[0][:, k, :]
+        for j in range(3):
+            coef[j, 8 + k] = -(hn[:, 0] * frame1[j, 0] + hn[:, 1] * frame1[j, 1] + hn[:, 2] * frame1[j, 2])
+        coef[2, 8 + k] += half[1][:, k]
     coef[:2] *= radius  # A = rho a . e1, B = rho a . e2
     coef[2, 0:2] += s1 * r1  # elevation bounds: a . p + s r with |p| = r on the circle
     coef[2, 4:6] += s2 * r2
     if union1 or union2:  # a wedge wider than 180 deg is a union of its two half-planes
         groups = [
-            ([0, 1, 4, 5], "all"),
+            ([0, 1, 4, 5] + list(range(8, 8 + K)), "all"),
             ([2, 3], "any" if union1 else "all"),
             ([6, 7], "any" if union2 else "all"),
         ]
     else:
-        groups = [(list(range(8)), "all")]
+        groups = [(list(range(8 + K)), "all")]
     start, end = out["arc_start"], out["arc_end"]
-    angle, n_arcs, _, _ = crop_circle(coef[0], coef[1], coef[2], groups, MAX_ARCS, out=(start, end))
+    angle, n_arcs, _, _ = crop_circle(coef[0], coef[1], coef[2], groups, MAX_ARCS + K, out=(start, end))
 
     in_range = out["in_range"]  # filled by the caller, from the unscaled ranges
     observable = exists & in_range
@@ -204,7 +215,8 @@ _VECTORS = ("u", "center", "normal", "basis1", "basis2", "arc_start", "arc_end")
 
 
 def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture, *,
-                   outputs: str = "all") -> LocusResult:
+                   outputs: str = "all", half_space_normals=None,
+                   half_space_offsets=None) -> LocusResult:
     """Ambiguity locus of a feature seen by two sidescan sensors with known relative pose.
 
     Parameters
@@ -224,8 +236,21 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture, *,
         ``"lengths"`` leaves out the per-row vectors and arcs (``u``, ``center``, ``normal``,
         ``basis1``, ``basis2``, ``arc_start``, ``arc_end`` are ``None``): the same lengths,
         counts and statuses with 4x less result memory.
+    half_space_normals : array_like, shape (..., K, 3), optional
+        Normals ``n`` of ``K`` extra half-spaces ``n . p1 <= d`` in sensor 1's frame (any
+        length, dimensionless): physical constraints such as the sea surface and the seafloor
+        (:func:`~sss_locus.geometry.halfspaces.sea_surface_half_space`,
+        :func:`~sss_locus.geometry.halfspaces.max_depth_half_space`). The locus is the part of
+        the circle inside both apertures AND every half-space. Given together with
+        ``half_space_offsets``; ``K = 0`` (or both ``None``, the default) means none, and gives
+        the same result bit for bit. At most 32. Degenerate half-spaces (``n = 0``, a plane
+        tangent to or missing the circle) are defined in :mod:`sss_locus.geometry.halfspaces`.
+    half_space_offsets : array_like, shape (..., K), optional
+        Offsets ``d`` (m times ``|n|``; metres for a unit normal), each in [-1e150, 1e150]. A
+        trailing axis of 1 broadcasts over the ``K`` normals (and vice versa).
 
-    The batch shapes of ``R``, ``t``, ``r1`` and ``r2`` broadcast together to ``S`` (which may
+    The batch shapes of ``R``, ``t``, ``r1``, ``r2`` (and of the half-space arguments, without
+    their trailing ``(K, 3)`` and ``(K,)``) broadcast together to ``S`` (which may
     be empty, e.g. ``(0,)`` or ``(2, 0)``). Numeric arguments must be real numbers: Python or
     NumPy ints and floats, or arrays of them.
 
@@ -233,6 +258,8 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture, *,
     -------
     LocusResult
         Circle geometry, status flags, locus length, arc count and arcs, batch shape ``S``.
+        With ``K`` half-spaces the arc arrays are ``MAX_ARCS + K`` wide (each condition can
+        start at most one arc).
 
     Raises
     ------
@@ -244,7 +271,10 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture, *,
     ValueError
         Naming the argument: ``R`` is not a proper rotation (orthonormal with determinant +1, to
         1e-9), an input is NaN or infinite or has the wrong trailing shape, a range is not
-        positive, a length is outside the range above, or the batch shapes do not broadcast.
+        positive, a length is outside the range above, or the batch shapes do not broadcast;
+        only one of ``half_space_normals`` and ``half_space_offsets`` is given, or they have
+        the wrong trailing shapes or different ``K`` (see
+        :func:`~sss_locus.geometry.halfspaces.as_half_spaces`).
 
     Notes
     -----
@@ -272,7 +302,16 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture, *,
     check_max_abs(t, "t")
     r1 = as_positive_array(r1, "r1", bounded=True)
     r2 = as_positive_array(r2, "r2", bounded=True)
-    shape = broadcast_leading({"R": R.shape[:-2], "t": t.shape[:-1], "r1": r1.shape, "r2": r2.shape})
+    if (half_space_normals is None) != (half_space_offsets is None):
+        raise ValueError("half_space_normals and half_space_offsets must be given together "
+                         f"(got only {'half_space_normals' if half_space_offsets is None else 'half_space_offsets'})")
+    shapes = {"R": R.shape[:-2], "t": t.shape[:-1], "r1": r1.shape, "r2": r2.shape}
+    K = 0
+    if half_space_normals is not None:
+        hn, hd = as_half_spaces(half_space_normals, half_space_offsets)
+        K = max(hn.shape[-2], hd.shape[-1])
+        shapes.update(half_space_normals=hn.shape[:-2], half_space_offsets=hd.shape[:-1])
+    shape = broadcast_leading(shapes)
     n = int(np.prod(shape, dtype=np.int64))
     Rf = np.broadcast_to(R, shape + (3, 3)).reshape(n, 3, 3)
     tf = np.broadcast_to(t, shape + (3,)).reshape(n, 3)
@@ -281,20 +320,30 @@ def two_view_locus(R, t, r1, r2, aperture1: Aperture, aperture2: Aperture, *,
 
     # Chunks of _CHUNK rows keep every temporary in cache; each chunk writes its rows of the
     # result arrays directly. Outputs left out go to one chunk-sized scratch area instead.
-    kept = _FIELDS if outputs == "all" else {k: f for k, f in _FIELDS.items() if k not in _VECTORS}
+    fields = dict(_FIELDS)
+    if K:
+        fields.update(arc_start=((MAX_ARCS + K,), np.float64), arc_end=((MAX_ARCS + K,), np.float64))
+    kept = fields if outputs == "all" else {k: f for k, f in fields.items() if k not in _VECTORS}
     results = {k: np.empty((n,) + tail, dtype=dtype) for k, (tail, dtype) in kept.items()}
-    scratch = {k: np.empty((min(n, _CHUNK),) + _FIELDS[k][0]) for k in _FIELDS if k not in kept}
+    scratch = {k: np.empty((min(n, _CHUNK),) + fields[k][0]) for k in fields if k not in kept}
     np.logical_and(aperture1.range_ok(r1f), aperture2.range_ok(r2f), out=results["in_range"])
     # Lengths far from 1 m: each configuration is computed at a power-of-two scale (exact) where
     # no square or fourth power overflows or underflows, and its lengths are scaled back.
     e = row_exponents(r1f, r2f, tf[:, 0], tf[:, 1], tf[:, 2])
     ts, r1s, r2s = (tf, r1f, r2f) if e is None else (
         np.ldexp(tf, -e[:, None]), np.ldexp(r1f, -e), np.ldexp(r2f, -e))
+    if K:
+        hn = np.broadcast_to(hn, shape + (K, 3)).reshape(n, K, 3)
+        hd = np.broadcast_to(hd, shape + (K,)).reshape(n, K)
+        if e is not None:
+            with np.errstate(over="ignore"):  # an infinite offset stays all or nothing
+                hd = np.ldexp(hd, -e[:, None])
     for i in range(0, n, _CHUNK):
         rows = slice(i, min(i + _CHUNK, n))
         out = {k: v[rows] for k, v in results.items()}
         out.update({k: v[:rows.stop - i] for k, v in scratch.items()})
-        _locus_chunk(Rf[rows], ts[rows], r1s[rows], r2s[rows], aperture1, aperture2, out)
+        _locus_chunk(Rf[rows], ts[rows], r1s[rows], r2s[rows], aperture1, aperture2, out,
+                     (hn[rows], hd[rows]) if K else None)
     if e is not None:
         for k in ("u", "center"):
             if k in results:

@@ -18,7 +18,8 @@ class LocusStatus(enum.IntEnum):
     """What the two range spheres and the apertures give for one configuration."""
 
     CIRCLE = 0
-    """The spheres meet in a circle; ``length`` is the part of it inside both apertures."""
+    """The spheres meet in a circle; ``length`` is the part of it inside both apertures (and
+    inside any extra half-spaces given; it may be 0)."""
     TANGENT = 1
     """The spheres touch in one point (``center``); ``length`` is 0, ``n_arcs`` is 1 if the
     point is inside both apertures (its arc has ``arc_start == arc_end == 0``), else 0."""
@@ -61,9 +62,10 @@ class LocusResult:
     n_arcs : ndarray of int, shape S
         Number of disjoint arcs; ``> 1`` means the locus is fragmented. A circle wholly inside
         both apertures is one arc.
-    arc_start, arc_end : ndarray, shape S + (MAX_ARCS,)
+    arc_start, arc_end : ndarray, shape S + (W,)
         Arc end points in ``alpha``: ``arc_start`` in [-pi, pi), ``arc_start < arc_end <=
-        arc_start + 2 pi``; NaN-padded beyond ``n_arcs``.
+        arc_start + 2 pi``; NaN-padded beyond ``n_arcs``. ``W`` is ``MAX_ARCS``, or
+        ``MAX_ARCS + K`` when ``K`` extra half-spaces were given.
     """
 
     u: np.ndarray
@@ -132,7 +134,7 @@ class LocusResult:
 
         Returns
         -------
-        ndarray, shape S + (MAX_ARCS, n_per_arc, 3)
+        ndarray, shape S + (W, n_per_arc, 3)
             Evenly spaced in ``alpha`` from each arc's start to its end, in sensor ``frame``'s
             coordinates (m); NaN for arcs beyond ``n_arcs``. Empty for an empty batch.
         """
@@ -143,8 +145,9 @@ class LocusResult:
         n = int(n_per_arc)
         s = np.linspace(0.0, 1.0, n)
         alpha = self.arc_start[..., None] + (self.arc_end - self.arc_start)[..., None] * s
-        flat = alpha.reshape(self.shape + (MAX_ARCS * n,))
-        return self.point_at(flat, frame).reshape(self.shape + (MAX_ARCS, n, 3))
+        width = self.arc_start.shape[-1]
+        flat = alpha.reshape(self.shape + (width * n,))
+        return self.point_at(flat, frame).reshape(self.shape + (width, n, 3))
 
     def angle_of(self, p1) -> np.ndarray:
         """Circle angle ``alpha`` (rad) of points ``p1`` by projection onto the circle's plane.

@@ -203,4 +203,4 @@ def check_row(run: str, metrics: Mapping[str, float | str]) -> dict:
             "hotspot theta1, theta2 (deg)": (round(metrics["azimuth_peak_theta1_deg"]),
                                              round(metrics["azimuth_peak_theta2_deg"])),
             "yaw 0 / peak": metrics["yaw_near0_over_peak_ratio"],
-            "fragmented": metrics["multi_arc_fraction"]}
+            "fragmented (port-port)": metrics["multi_arc_fraction"]}

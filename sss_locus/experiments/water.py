@@ -1,0 +1,169 @@
+"""The water column as a constraint on the locus: the sea surface and, optionally, the seafloor.
+
+The paper crops the two range spheres' circle only to the sonars' apertures, so a locus may run
+above the sea surface, where no feature can be. :class:`WaterColumn` is the named, off-by-default
+option of the pose-space and survey-pass studies (``PoseSpaceSpec(water=...)``,
+``simulate_passes(..., water=...)``) that also crops each locus to the water, exactly, through
+the kernel's half-spaces (:mod:`sss_locus.geometry.halfspaces`). The samples are the same with
+and without it (the same seed draws the same configurations): only the locus changes, so the
+two tables compare row by row (:func:`crop_effect`).
+
+Frames: world ``z`` up (:mod:`sss_locus.experiments.platforms`). The sea surface is level; a
+feature must have ``z_world <= z_surface`` and, with ``max_water_depth_m``,
+``z_world >= z_surface - max_water_depth_m``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from ..geometry import max_depth_half_space, sea_surface_half_space
+from .inputs import check_range
+from .platforms import Platform
+
+
+@dataclass(frozen=True)
+class WaterColumn:
+    """Where the water is, for cropping loci to it.
+
+    Parameters
+    ----------
+    vehicle_depth_m : float or None
+        Depth (m) of vehicle 1's reference point below the sea surface, within the platform's
+        ``[depth_min_m, depth_max_m]``. ``None`` takes the fixed depth of a surface vessel
+        (the boat's reference point is at the waterline); a platform whose depth varies (the
+        AUV) needs a value.
+    max_water_depth_m : float or None
+        Greatest depth (m) below the surface a feature can have (a known water depth, the
+        seafloor); ``None``: no seafloor bound. Must exceed the sensors' depth.
+    """
+
+    vehicle_depth_m: float | None = None
+    max_water_depth_m: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("vehicle_depth_m", "max_water_depth_m"):
+            v = getattr(self, name)
+            if v is not None:
+                object.__setattr__(self, name, check_range(float(v), f"WaterColumn.{name}", 0.0, 11_000.0))
+
+    def depth_for(self, platform: Platform) -> float:
+        """Vehicle 1's reference depth (m) for ``platform``; ``ValueError`` if it is unknown or
+        outside the platform's depth range."""
+        if self.vehicle_depth_m is None:
+            if not platform.fixed_depth:
+                raise ValueError(
+                    f"WaterColumn.vehicle_depth_m is required for platform {platform.key!r}, whose "
+                    f"depth varies in [{platform.depth_min_m:g}, {platform.depth_max_m:g}] m")
+            return platform.depth_min_m
+        if not platform.depth_min_m <= self.vehicle_depth_m <= platform.depth_max_m:
+            raise ValueError(
+                f"WaterColumn.vehicle_depth_m must lie in platform {platform.key!r}'s depth range "
+                f"[{platform.depth_min_m:g}, {platform.depth_max_m:g}] m; got {self.vehicle_depth_m:g}")
+        return self.vehicle_depth_m
+
+    def half_spaces(self, rotation1, origin1_z, surface_z) -> tuple[np.ndarray, np.ndarray]:
+        """Half-spaces of sensor 1's frame for ``two_view_locus(half_space_normals=,
+        half_space_offsets=)``.
+
+        Parameters
+        ----------
+        rotation1 : ndarray, shape (n, 3, 3)
+            Sensor 1's sensor-to-world rotations (world ``z`` up).
+        origin1_z : ndarray, shape (n,)
+            World ``z`` (m) of sensor 1's origin.
+        surface_z : float or ndarray, shape (n,)
+            World ``z`` (m) of the sea surface.
+
+        Returns
+        -------
+        normals : ndarray, shape (n, K, 3); offsets : ndarray, shape (n, K)
+            ``K`` = 1 (surface) or 2 (surface and seafloor).
+        """
+        depth1 = np.asarray(surface_z, float) - np.asarray(origin1_z, float)
+        normals, offsets = sea_surface_half_space(depth1, rotation1)
+        if self.max_water_depth_m is not None:
+            n2, d2 = max_depth_half_space(self.max_water_depth_m, depth1, rotation1)
+            normals, offsets = np.concatenate([normals, n2], -2), np.concatenate([offsets, d2], -1)
+        return normals, offsets
+
+    def key(self) -> dict:
+        """Plain-data description (for figure manifests)."""
+        return {"vehicle_depth_m": self.vehicle_depth_m, "max_water_depth_m": self.max_water_depth_m}
+
+
+def crop_effect(uncropped: pd.DataFrame, cropped: pd.DataFrame, *, n_resamples: int = 200,
+                seed: int = 0, confidence_level: float = 0.95) -> pd.DataFrame:
+    """How the water crop changes the loci of the same samples, with paired bootstrap intervals.
+
+    Parameters
+    ----------
+    uncropped, cropped : pandas.DataFrame
+        The same configurations row by row (same sampler, spec and seed), without and with a
+        :class:`WaterColumn`; columns ``locus_length_m`` (m) and ``n_arcs``.
+    n_resamples : int
+        Bootstrap resamples of the rows (the pairs are resampled together), >= 1.
+    seed : int
+        Seed of the resampling.
+    confidence_level : float
+        In (0, 1).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per statistic, columns ``statistic, estimate, ci_low, ci_high, n``:
+
+        - ``length_ratio``: total cropped length over total uncropped length (ratio of means);
+        - ``shortened_share``: share of samples whose locus the crop shortens;
+        - ``emptied_share``: share of non-empty loci the crop removes entirely;
+        - ``multi_arc_share_uncropped`` / ``multi_arc_share_cropped``: share of samples whose
+          locus has more than one arc (``n_arcs > 1``), without and with the crop;
+        - ``extra_arcs_share``: share of fragmented loci (uncropped) whose every extra arc
+          the crop removes (``n_arcs`` drops to <= 1), over all samples.
+    """
+    if len(uncropped) != len(cropped) or len(cropped) == 0:
+        raise ValueError(f"uncropped and cropped must be the same non-empty samples; got "
+                         f"{len(uncropped)} and {len(cropped)} rows")
+    if isinstance(n_resamples, bool) or not isinstance(n_resamples, (int, np.integer)) or n_resamples < 1:
+        raise ValueError(f"n_resamples must be an integer >= 1; got {n_resamples!r}")
+    if not 0.0 < confidence_level < 1.0:
+        raise ValueError(f"confidence_level must be in (0, 1); got {confidence_level!r}")
+    a = uncropped["locus_length_m"].to_numpy(float)
+    b = cropped["locus_length_m"].to_numpy(float)
+    if np.any(b > a * (1.0 + 1e-9) + 1e-12):
+        raise ValueError("cropped lengths exceed uncropped ones: the two tables are not the same samples")
+    na, nb = uncropped["n_arcs"].to_numpy(), cropped["n_arcs"].to_numpy()
+    cols = {
+        "length_a": a, "length_b": b,
+        "shortened_share": (b < a * (1.0 - 1e-9)).astype(float),
+        "emptied": ((a > 0) & (b == 0)).astype(float), "nonempty": (a > 0).astype(float),
+        "multi_arc_share_uncropped": (na > 1).astype(float),
+        "multi_arc_share_cropped": (nb > 1).astype(float),
+        "extra_arcs_share": ((na > 1) & (nb <= 1)).astype(float),
+    }
+    names = list(cols)
+    M = np.stack([cols[k] for k in names], axis=1)
+    rng = np.random.default_rng(seed)
+    boot = np.stack([M[rng.integers(0, len(M), len(M))].mean(axis=0) for _ in range(int(n_resamples))])
+    full = M.mean(axis=0)
+
+    def stats(v):  # (..., columns) of means -> the reported statistics
+        col = {k: v[..., i] for i, k in enumerate(names)}
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return {
+                "length_ratio": col["length_b"] / col["length_a"],
+                "shortened_share": col["shortened_share"],
+                "emptied_share": col["emptied"] / col["nonempty"],
+                "multi_arc_share_uncropped": col["multi_arc_share_uncropped"],
+                "multi_arc_share_cropped": col["multi_arc_share_cropped"],
+                "extra_arcs_share": col["extra_arcs_share"],
+            }
+
+    est, bs = stats(full), stats(boot)
+    alpha = (1.0 - confidence_level) / 2.0
+    return pd.DataFrame([
+        {"statistic": k, "estimate": float(est[k]), "ci_low": float(np.nanquantile(bs[k], alpha)),
+         "ci_high": float(np.nanquantile(bs[k], 1.0 - alpha)), "n": len(M)} for k in est])

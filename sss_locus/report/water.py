@@ -1,0 +1,70 @@
+"""Figure and glued texts of the water chapter (``notebooks/water.ipynb``).
+
+Input: the long table of :func:`sss_locus.experiments.water_study.crop_effects`.
+"""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+PAPER_COLOR, WATER_COLOR = "tab:gray", "tab:blue"
+
+
+def _pct(row) -> str:
+    return f"{100 * row.estimate:.1f} % (95 % CI {100 * row.ci_low:.1f} to {100 * row.ci_high:.1f} %)"
+
+
+def effect_texts(effects: pd.DataFrame) -> dict[str, str]:
+    """Glue texts ``<condition>-<subset>-<statistic>`` (e.g. ``boat-pose-tilt15-all-length_ratio``):
+    percentages with their 95 % bootstrap interval, plus ``<condition>-<subset>-n`` (sample count)."""
+    out = {}
+    for row in effects.itertuples():
+        base = f"{row.condition}-{row.subset}"
+        out[f"{base}-{row.statistic}"] = _pct(row)
+        out[f"{base}-{row.statistic}-pct"] = f"{100 * row.estimate:.1f} %"
+        out[f"{base}-n"] = f"{row.n:,}"
+    return out
+
+
+def effect_table(effects: pd.DataFrame) -> pd.DataFrame:
+    """One row per condition and subset, the statistics as percentages with intervals."""
+    wide = effects.assign(text=[_pct(r) for r in effects.itertuples()])
+    return wide.pivot_table(index=["label", "subset", "n"], columns="statistic", values="text",
+                            aggfunc="first", sort=False).reset_index()
+
+
+def plot_crop_effects(effects: pd.DataFrame):
+    """(a) Share of fragmented loci without and with the crop; (b) share of the total locus
+    length the crop keeps; one row per condition (all samples), 95 % bootstrap intervals."""
+    allrows = effects[effects["subset"] == "all"].set_index(["label", "statistic"])
+    labels = list(dict.fromkeys(effects.loc[effects["subset"] == "all", "label"]))
+    y = np.arange(len(labels))[::-1]
+    fig, axs = plt.subplots(1, 2, figsize=(7.2, 0.55 * len(labels) + 1.6), sharey=True,
+                            gridspec_kw={"width_ratios": [1.2, 1]}, layout="constrained")
+
+    def bars(ax, stat, offset, color, label):
+        est = np.array([allrows.loc[(lab, stat), "estimate"] for lab in labels]) * 100
+        lo = np.array([allrows.loc[(lab, stat), "ci_low"] for lab in labels]) * 100
+        hi = np.array([allrows.loc[(lab, stat), "ci_high"] for lab in labels]) * 100
+        bar = ax.barh(y + offset, est, height=0.38, color=color, label=label,
+                      xerr=[est - lo, hi - est], error_kw={"lw": 1, "capsize": 2})
+        ax.bar_label(bar, labels=[f"{v:.1f}" for v in est], fontsize=9, padding=4)
+        return hi.max()
+
+    top = max(bars(axs[0], "multi_arc_share_uncropped", 0.2, PAPER_COLOR, "paper's locus (apertures only)"),
+              bars(axs[0], "multi_arc_share_cropped", -0.2, WATER_COLOR, "cropped to the water"))
+    axs[0].set_xlim(0, 1.3 * max(top, 1.0))
+    axs[0].set_xlabel("fragmented loci (% of samples)", fontsize=10)
+    axs[0].set_title("(a) loci with more than one arc", fontsize=10, loc="left")
+    axs[0].legend(fontsize=9, loc="upper right")
+    bars(axs[1], "length_ratio", 0.0, WATER_COLOR, None)
+    axs[1].set_xlim(0, 125)
+    axs[1].set_xlabel("total locus length kept (%)", fontsize=10)
+    axs[1].set_title("(b) length below the surface", fontsize=10, loc="left")
+    axs[0].set_yticks(y, [lab.replace(", tilt", ",\ntilt") for lab in labels], fontsize=9)
+    for ax in axs:
+        ax.tick_params(labelsize=9)
+        ax.grid(axis="x", alpha=0.3)
+    return fig
