@@ -27,7 +27,7 @@ from sss_locus.pipeline.registry import load_registry  # noqa: E402
 pytestmark = pytest.mark.book  # deselect with `pytest -m "not book"` for a fast run
 
 REGISTRY = load_registry()
-TIMEOUT_S = 480
+TIMEOUT_S = 900  # a hang guard, not a speed test: a loaded 2-core machine needs ~8 min for the quick book
 
 
 @pytest.fixture(scope="module")
