@@ -174,7 +174,8 @@ def _solve_azimuth(rng, a_row, r2, phi2, depth_target, half_az):
 
 
 def _draw_candidates(spec: PoseSpaceSpec, rng, m: int) -> dict[str, np.ndarray]:
-    """``m`` candidate configurations and a boolean ``accept`` mask (the constraints)."""
+    """``m`` candidate configurations and a boolean ``accept`` mask (the constraints); the
+    sensors' world rotations ``R1``, ``R2`` (:func:`draw_block` turns them into ``R``, ``t``)."""
     pf = spec.platform
     ap = pf.sonar.aperture()
     port1 = _draw_sides(rng, m, spec.side1)
