@@ -7,6 +7,7 @@ time (the documented stream definition) for the samplers that draw many blocks t
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
 from scipy.spatial.transform import Rotation
 
@@ -70,3 +71,66 @@ def test_bootstrap_median_nan_and_signed_zeros_like_numpy(x):
     ref_rng, ours = np.random.default_rng(2), bootstrap_median(x, 30, np.random.default_rng(2))
     ref = np.median(x[ref_rng.integers(0, x.size, (30, x.size))], axis=1)
     assert ours.tobytes() == ref.tobytes()
+
+
+@pytest.mark.parametrize("ties", [False, True])
+def test_spearman_interval_is_the_correlation_of_explicitly_resampled_ranks(ties):
+    # reference: each resample drawn as rows (rng.integers, the documented draws), the
+    # full-sample average ranks of those rows correlated with np.corrcoef
+    from scipy import stats
+
+    from sss_locus.experiments.pose_stats import spearman_table
+
+    rng = np.random.default_rng(11)
+    n, n_resamples = 700, 150
+    x = rng.normal(size=n)
+    df = pd.DataFrame({"a": np.round(x, 1) if ties else x, "b": rng.exponential(size=n),
+                       "y": x + rng.normal(size=n), "z": rng.normal(size=n)})
+    tab = spearman_table(df, ["a", "b"], ["y", "z"], n_resamples=n_resamples, seed=3,
+                         confidence_level=0.9)
+    ranks = {c: stats.rankdata(df[c]) for c in df}
+    draws = np.random.default_rng(3)
+    boots = {}
+    for _ in range(n_resamples):
+        idx = draws.integers(0, n, n)
+        for q in ("a", "b"):
+            for tg in ("y", "z"):
+                boots.setdefault((q, tg), []).append(np.corrcoef(ranks[q][idx], ranks[tg][idx])[0, 1])
+    for row in tab.itertuples():
+        lo, hi = np.quantile(boots[(row.quantity, row.target)], [0.05, 0.95])
+        assert row.rho == pytest.approx(stats.spearmanr(df[row.quantity], df[row.target]).statistic,
+                                        abs=1e-13)
+        assert (row.ci_low, row.ci_high) == pytest.approx((lo, hi), abs=1e-13)
+
+
+def test_weighted_correlations_against_repeated_rows():
+    from sss_locus.experiments.rowstats import bootstrap_draw_counts, weighted_correlations
+
+    rng = np.random.default_rng(5)
+    X, Y = rng.normal(size=(1000, 3)), rng.normal(size=(1000, 2)) + 0.3
+    counts = bootstrap_draw_counts(np.random.default_rng(8), 1000, 7)
+    ref_rng = np.random.default_rng(8)
+    ours = weighted_correlations(X, Y, counts, rows_per_chunk=96)  # chunks not dividing n
+    for b in range(7):
+        c = np.bincount(ref_rng.integers(0, 1000, 1000), minlength=1000)
+        assert np.array_equal(counts[b], c)
+        Xr, Yr = np.repeat(X, c, axis=0), np.repeat(Y, c, axis=0)
+        ref = np.corrcoef(Xr.T, Yr.T)[:3, 3:]
+        np.testing.assert_allclose(ours[b], ref, rtol=0, atol=1e-13)
+    with pytest.raises(ValueError, match="share n"):
+        weighted_correlations(X, Y, counts[:, :-1])
+
+
+def test_bootstrap_draw_counts_widen_for_large_counts():
+    from sss_locus.experiments.rowstats import bootstrap_draw_counts
+
+    class Skewed:  # draws row 0 every time from the second resample on
+        calls = 0
+
+        def integers(self, low, high, size):
+            Skewed.calls += 1
+            return np.arange(size) % high if Skewed.calls == 1 else np.zeros(size, int)
+
+    counts = bootstrap_draw_counts(Skewed(), 300, 3)
+    assert counts.dtype == np.uint16
+    assert np.array_equal(counts[0], np.ones(300)) and counts[1, 0] == counts[2, 0] == 300

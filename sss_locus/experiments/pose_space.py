@@ -191,7 +191,8 @@ def _solve_azimuth(rng, a_row, r2, phi2, depth_target, half_az):
 
 
 def _draw_candidates(spec: PoseSpaceSpec, rng, m: int) -> dict[str, np.ndarray]:
-    """``m`` candidate configurations and a boolean ``accept`` mask (the constraints)."""
+    """``m`` candidate configurations and a boolean ``accept`` mask (the constraints); the
+    sensors' world rotations ``R1``, ``R2`` (:func:`draw_block` turns them into ``R``, ``t``)."""
     pf = spec.platform
     ap = pf.sonar.aperture()
     port1 = _draw_sides(rng, m, spec.side1)
@@ -225,8 +226,7 @@ def _draw_candidates(spec: PoseSpaceSpec, rng, m: int) -> dict[str, np.ndarray]:
         accept &= (f[:, 2] < o1[:, 2]) & (f[:, 2] < o2[:, 2])
         if not pf.fixed_depth and spec.depth_envelope:
             accept &= np.abs(v2_z) <= pf.depth_max_m - pf.depth_min_m
-    R, t = relative_pose(R1, o1, R2, o2)
-    return dict(accept=accept, R=R, t=t, r1=r1, r2=r2, th1=th1, th2=th2, ph1=ph1, ph2=ph2,
+    return dict(accept=accept, R1=R1, R2=R2, r1=r1, r2=r2, th1=th1, th2=th2, ph1=ph1, ph2=ph2,
                 yaw=yaw, pitch=pitch, roll=roll, port1=port1, port2=port2, v2_z=v2_z,
                 f=f, o1=o1, o2=o2)
 
@@ -246,7 +246,10 @@ def draw_block(spec: PoseSpaceSpec, seed: int, block: int) -> dict[str, np.ndarr
             raise ValueError(
                 f"the constraints of platform {spec.platform.key!r} accept only {have} of {tried} "
                 "draws: check its mounting, attitude limits and depth envelope")
-    return {k: np.concatenate([p[k] for p in parts])[:BLOCK_SIZE] for k in parts[0]}
+    out = {k: np.concatenate([p[k] for p in parts])[:BLOCK_SIZE] for k in parts[0]}
+    # row by row, so the same numbers as for every candidate, computed for the accepted ones only
+    R, t = relative_pose(out.pop("R1"), out["o1"], out.pop("R2"), out["o2"])
+    return {"R": R, "t": t, **out}
 
 
 def _evaluate(spec: PoseSpaceSpec, g: dict[str, np.ndarray]) -> pd.DataFrame:

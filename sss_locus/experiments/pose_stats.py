@@ -12,6 +12,8 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
+from .rowstats import bootstrap_draw_counts, weighted_correlations
+
 TARGETS = ("locus_length_m", "locus_length_normalized")
 """Raw and range-normalised locus length (``locus_length_m / mean_range_m``)."""
 
@@ -24,6 +26,10 @@ CANDIDATES = (
 """Candidate drivers ranked by Spearman rho. ``abs_*`` are magnitudes added by
 :func:`with_derived` (signed yaw, elevation and psi are symmetric about 0, so their rank
 correlation with length is ~0 by construction and says nothing)."""
+
+_RESAMPLES_PER_PASS = 64
+"""Bootstrap resamples whose correlations are computed in one pass over the table."""
+
 
 def with_derived(df: pd.DataFrame) -> pd.DataFrame:
     """A copy of ``df`` with the magnitude columns used in :data:`CANDIDATES`."""
@@ -50,7 +56,9 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     average ranks). The interval resamples rows with replacement ``n_resamples`` times and
     recomputes the correlation of the full-sample ranks on each resample (weights = how often a
     row is drawn); ranks are not recomputed per resample, which differs from re-ranking by
-    O(1/n) and lets one pass cost O(n * candidates). Percentile interval at
+    O(1/n) and lets one pass cost O(n * candidates). The correlations of 64 resamples at a
+    time come from one pass over the table
+    (:func:`~sss_locus.experiments.rowstats.weighted_correlations`). Percentile interval at
     ``confidence_level``. A constant column (e.g. the boat's pitch, always 0) has no rank
     correlation: with ``drop_constant`` it is left out (listed in ``out.attrs["dropped"]``),
     otherwise it raises ``ValueError``.
@@ -74,26 +82,17 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
         r = np.column_stack([stats.rankdata(df[c].to_numpy()) for c in cols])
         return (r - (n + 1) / 2.0) / n  # centred and scaled: well-conditioned sums
 
-    constant = [c for c in list(candidates) + list(targets) if df[c].nunique() < 2]
+    constant = [c for c in list(candidates) + list(targets) if _is_constant(df[c])]
     if constant and (not drop_constant or set(constant) & set(targets)):
         raise ValueError(f"columns {constant} are constant: their rank correlation is undefined")
     candidates = [c for c in candidates if c not in constant]
     X, Y = centred_ranks(candidates), centred_ranks(targets)
-    XX, YY = X * X, Y * Y  # formed once, not per resample (the same products)
-
-    def weighted_corr(w):
-        sw = w.sum()
-        mx, my = w @ X / sw, w @ Y / sw
-        vx = w @ XX / sw - mx ** 2
-        vy = w @ YY / sw - my ** 2
-        cxy = X.T @ (w[:, None] * Y) / sw - np.outer(mx, my)
-        return cxy / np.sqrt(np.outer(vx, vy))
-
-    rho = weighted_corr(np.ones(n))
+    rho = weighted_correlations(X, Y, np.ones((1, n), np.uint8))[0]
     rng = np.random.default_rng(seed)
     boots = np.empty((int(n_resamples),) + rho.shape)
-    for b in range(int(n_resamples)):
-        boots[b] = weighted_corr(np.bincount(rng.integers(0, n, n), minlength=n).astype(float))
+    for b in range(0, len(boots), _RESAMPLES_PER_PASS):
+        counts = bootstrap_draw_counts(rng, n, min(_RESAMPLES_PER_PASS, len(boots) - b))
+        boots[b:b + len(counts)] = weighted_correlations(X, Y, counts)
     alpha = (1.0 - confidence_level) / 2.0
     lo, hi = np.quantile(boots, [alpha, 1.0 - alpha], axis=0)
     rows = [dict(target=tg, quantity=c, rho=rho[i, j], ci_low=lo[i, j], ci_high=hi[i, j], n=n)
@@ -104,6 +103,13 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     out = out.reset_index(drop=True)
     out.attrs["dropped"] = constant
     return out
+
+
+def _is_constant(column: pd.Series) -> bool:
+    """Fewer than two distinct non-NaN values (``nunique() < 2``, without hashing the column)."""
+    v = column.to_numpy(float)
+    v = v[~np.isnan(v)]
+    return v.size == 0 or bool(v.min() == v.max())
 
 
 def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m", *,

@@ -34,3 +34,53 @@ def nanquantile_rows(x, q) -> np.ndarray:
     value = np.where(gamma >= 0.5, b - diff * (1 - gamma), value)
     out[ok] = value
     return out
+
+
+def weighted_correlations(X, Y, weights, *, rows_per_chunk: int = 8192) -> np.ndarray:
+    """Weighted Pearson correlation of every column of ``X`` with every column of ``Y``, for
+    each row of ``weights``.
+
+    ``X`` is ``(n, p)``, ``Y`` ``(n, q)``, ``weights`` ``(k, n)`` (non-negative; e.g. how often
+    each row is drawn in a bootstrap resample, any integer or float dtype). Returns ``(k, p, q)``
+    with ``corr = (S_xy / s - m_x m_y) / sqrt((S_xx / s - m_x^2) (S_yy / s - m_y^2))``, where
+    ``s`` is the weights' sum and ``S``, ``m`` are weighted sums and means. All ``k`` rows of
+    weights are handled by one matrix product per chunk of ``rows_per_chunk`` table rows (the
+    products ``x^2``, ``y^2``, ``x y`` are formed per chunk, in cache), so the table is read
+    once for all of them. Centre and scale the columns beforehand (e.g. ranks ``(r - (n+1)/2)
+    / n``) for well-conditioned sums.
+    """
+    X, Y = np.asarray(X, float), np.asarray(Y, float)
+    W = np.asarray(weights)
+    n, p = X.shape
+    q = Y.shape[1]
+    if Y.shape[0] != n or W.ndim != 2 or W.shape[1] != n:
+        raise ValueError(f"X (n, p), Y (n, q) and weights (k, n) must share n; got shapes "
+                         f"{X.shape}, {Y.shape}, {W.shape}")
+    sums = np.zeros((W.shape[0], 2 * (p + q) + p * q))
+    for a in range(0, n, rows_per_chunk):
+        x, y = X[a:a + rows_per_chunk], Y[a:a + rows_per_chunk]
+        xy = (x[:, :, None] * y[:, None, :]).reshape(len(x), p * q)
+        sums += W[:, a:a + rows_per_chunk].astype(float) @ np.hstack([x, y, x * x, y * y, xy])
+    s = W.sum(axis=1, dtype=float)[:, None]
+    mx, my = sums[:, :p] / s, sums[:, p:p + q] / s
+    vx = sums[:, p + q:2 * p + q] / s - mx ** 2
+    vy = sums[:, 2 * p + q:2 * (p + q)] / s - my ** 2
+    cxy = sums[:, 2 * (p + q):].reshape(-1, p, q) / s[:, :, None] - mx[:, :, None] * my[:, None, :]
+    return cxy / np.sqrt(vx[:, :, None] * vy[:, None, :])
+
+
+def bootstrap_draw_counts(rng, n: int, n_resamples: int):
+    """How often each of ``n`` rows is drawn in each of ``n_resamples`` bootstrap resamples
+    (rows drawn with replacement), shape ``(n_resamples, n)``, in the smallest unsigned dtype.
+
+    Resample ``b`` is ``rng.integers(0, n, n)``, drawn one resample after another (the same
+    draws as a loop calling it ``n_resamples`` times), then counted.
+    """
+    out = np.empty((int(n_resamples), n), np.uint8)
+    for b in range(out.shape[0]):
+        c = np.bincount(rng.integers(0, n, n), minlength=n)
+        top = int(c.max()) if n else 0
+        if top > np.iinfo(out.dtype).max:
+            out = out.astype(np.min_scalar_type(top))
+        out[b] = c
+    return out
