@@ -123,6 +123,8 @@ def test_near_end_check_finds_a_spike_next_to_an_end():
     assert flat["all_preferred"].all()
     with pytest.raises(ValueError, match="window_deg"):
         near_end_check(_curve(g, m), window_deg=0)
+    coarse = near_end_check(_curve([0, 45, 90, 135, 180], [1, 5, 4, 3, 1]), window_deg=10)
+    assert (coarse["n_angles"] == 0).all() and coarse["worst_median"].isna().all()
 
 
 def test_peak_agreement_and_advice_verdict():

@@ -78,8 +78,11 @@ def near_end_check(curve: pd.DataFrame, value: str = "locus_length_m", *, window
     for end in ENDS_DEG:
         end_median = _at(g, m, end)
         near = (np.abs(g - end) > 1e-9) & (np.abs(g - end) <= window_deg + 1e-9)
-        if not near.any():
-            raise ValueError(f"no grid angle within {window_deg} deg of {end} deg")
+        if not near.any():  # a coarse grid: nothing to test near this end (NaN, n_angles 0)
+            rows.append({"end_deg": end, "end_median": end_median, "worst_angle_deg": float("nan"),
+                         "worst_median": float("nan"), "ratio": float("nan"), "n_angles": 0,
+                         "all_preferred": bool(preferred[np.isclose(g, end)].all())})
+            continue
         i = np.flatnonzero(near)[np.argmax(m[near])]
         rows.append({"end_deg": end, "end_median": end_median, "worst_angle_deg": float(g[i]),
                      "worst_median": float(m[i]),

@@ -274,7 +274,10 @@ def near_end_texts(checks: Mapping[str, pd.DataFrame]) -> dict[str, str]:
         rows = {lab: c[c["end_deg"] == end].iloc[0] for lab, c in checks.items()}
         held = sum(bool(r.all_preferred) for r in rows.values())
         out[f"sp-near-{end:.0f}-held"] = f"{held} of {len(rows)}"
-        lab, r = max(rows.items(), key=lambda kv: kv[1].ratio)
+        lab, r = max(rows.items(), key=lambda kv: -1.0 if np.isnan(kv[1].ratio) else kv[1].ratio)
+        if np.isnan(r.ratio):
+            out[f"sp-near-{end:.0f}-worst"] = "no grid angle near this end"
+            continue
         out[f"sp-near-{end:.0f}-worst"] = (f"{lab}: {fmt_sig(r.worst_median, 2)} m at {r.worst_angle_deg:.0f}° "
                                            f"against {fmt_sig(r.end_median, 2)} m at {end:.0f}°")
     return out
