@@ -114,14 +114,14 @@ def advice_verdict(curve: pd.DataFrame, value: str = "locus_length_m", *,
     dict
         ``ends`` (the larger median of 0 and 180 deg), ``oblique`` (median of the medians at the
         grid angles in ``oblique_band_deg``, inclusive), ``perpendicular`` (median at 90 deg)
-        and ``holds`` (``ends <= oblique`` and ``ends <= perpendicular``).
+        and ``holds`` (``ends <= oblique`` and ``ends <= perpendicular``; False when no grid
+        angle lies in the band, ``oblique`` then NaN).
     """
     g, m = _column(curve, value)
     lo, hi = oblique_band_deg
     band = (g >= lo - 1e-9) & (g <= hi + 1e-9)
-    if not band.any():
-        raise ValueError(f"no grid angle in oblique_band_deg {oblique_band_deg}")
     ends = max(_at(g, m, 0.0), _at(g, m, 180.0))
-    oblique, perp = float(np.median(m[band])), _at(g, m, 90.0)
+    # a grid with no angle in the band (a coarse user grid) leaves the test undecided: NaN, not held
+    oblique, perp = (float(np.median(m[band])) if band.any() else float("nan")), _at(g, m, 90.0)
     return {"ends": ends, "oblique": oblique, "perpendicular": perp,
             "holds": bool(ends <= oblique and ends <= perp)}
