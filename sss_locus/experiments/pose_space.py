@@ -17,7 +17,10 @@ Method (Norman & Mangelson, Sec. IV-A, with every choice the paper leaves open n
    (``p2 = R p1 + t``, the kernel's convention).
 4. **Physical plausibility** (``profile="platform"``):
    - the feature lies strictly below both sensors (a draw with the feature at or above either
-     sensor is redrawn);
+     sensor is redrawn; ``feature_below=False`` lifts this rule, to measure what it does). For
+     a transducer tilted down by ``tilt`` this keeps only azimuths ``theta > -tilt`` (to first
+     order in the narrow elevation), so part of a fan wider than ``2 tilt`` is never sampled
+     (:func:`sss_locus.experiments.choices.fan_share_removed` measures that part);
    - a platform whose depth is fixed (a surface vessel, ``depth_min_m == depth_max_m``) keeps
      both vehicles' reference points at that depth **exactly**: sensor 2's range and elevation
      are drawn as above and its azimuth is then *solved* so that sensor 2 sits at the right
@@ -38,6 +41,13 @@ Method (Norman & Mangelson, Sec. IV-A, with every choice the paper leaves open n
    surface (vehicle 1's reference point ``water.vehicle_depth_m`` below it; the boat's at the
    waterline) and, optionally, above a maximum water depth. The samples do not change, only the
    locus: the tables with and without ``water`` compare row by row.
+
+Targeted sampling: ``azimuth1_window_deg`` / ``azimuth2_window_deg`` draw ``theta1`` /
+``theta2`` uniformly inside a window instead of the whole fan (for a fixed-depth platform, whose
+``theta2`` is solved, the window of ``theta2`` rejects draws outside it). As every other draw is
+independent of these angles before the joint rejection, the accepted rows follow the default
+sampler's distribution conditioned on the angles lying in the windows: a cheap way to put many
+more samples in one sparse heatmap bin.
 
 Reproducibility: samples are produced in blocks of :data:`BLOCK_SIZE` rows; block ``k`` uses its
 own generator seeded by ``SeedSequence(seed, spawn_key=(k,))``. The table for ``(seed, n)`` is
@@ -97,6 +107,12 @@ class PoseSpaceSpec:
     water : WaterColumn or None
         Crop every locus to the water column as well (see step 5 of the module docstring);
         ``None`` (default): the paper's locus, cropped to the apertures only.
+    feature_below : bool
+        Redraw configurations whose feature is not strictly below both sensors (the default;
+        ``profile="platform"`` only).
+    azimuth1_window_deg, azimuth2_window_deg : (float, float) or None
+        Draw sensor 1's (sensor 2's) azimuth only inside this window, degrees, within the
+        aperture (targeted sampling, module docstring); ``None`` samples the whole fan.
     """
 
     platform: Platform
@@ -109,6 +125,9 @@ class PoseSpaceSpec:
     depth_envelope: bool = True
     tilt_deg: float | None = None
     water: WaterColumn | None = None
+    feature_below: bool = True
+    azimuth1_window_deg: tuple[float, float] | None = None
+    azimuth2_window_deg: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         for name, choices in (("profile", PROFILES), ("feature_distribution", FEATURE_DISTRIBUTIONS),
@@ -126,6 +145,15 @@ class PoseSpaceSpec:
                 raise ValueError(f"water must be a WaterColumn or None; got {type(self.water).__name__}")
             self.water.depth_for(limited)  # a depth the platform can have
         object.__setattr__(self, "platform", limited)
+        half = limited.sonar.azimuth_deg / 2
+        for name in ("azimuth1_window_deg", "azimuth2_window_deg"):
+            w = getattr(self, name)
+            if w is None:
+                continue
+            if (len(w) != 2 or not all(math.isfinite(float(v)) for v in w) or not -half <= w[0] < w[1] <= half):
+                raise ValueError(f"{name} must be (lo, hi) degrees with -{half:g} <= lo < hi <= {half:g} "
+                                 f"(the azimuth aperture); got {w!r}")
+            object.__setattr__(self, name, (float(w[0]), float(w[1])))
         object.__setattr__(self, "pitch_max_deg", limited.pitch_max_deg)
         object.__setattr__(self, "roll_max_deg", limited.roll_max_deg)
 
@@ -147,7 +175,7 @@ def spherical_to_cartesian(r, theta, phi) -> np.ndarray:
     return np.stack([r * np.cos(theta) * cp, r * np.sin(theta) * cp, r * np.sin(phi)], axis=-1)
 
 
-def _draw_range_angles(rng, n, ap, distribution):
+def _draw_range_angles(rng, n, ap, distribution, window_deg=None):
     lo, hi = ap.min_range, ap.max_range
     u = 1.0 - rng.random((3, n))  # in (0, 1]: r never hits min_range = 0 exactly
     if distribution == "angles":
@@ -156,7 +184,11 @@ def _draw_range_angles(rng, n, ap, distribution):
     else:
         r = np.cbrt(lo ** 3 + (hi ** 3 - lo ** 3) * u[0])
         phi = np.arcsin((2.0 * u[2] - 1.0) * math.sin(ap.half_elevation_rad))
-    theta = (2.0 * u[1] - 1.0) * ap.half_azimuth_rad
+    if window_deg is None:
+        theta = (2.0 * u[1] - 1.0) * ap.half_azimuth_rad
+    else:
+        a, b = np.radians(window_deg)
+        theta = a + (b - a) * (1.0 - u[1])
     return r, theta, phi
 
 
@@ -197,11 +229,13 @@ def _draw_candidates(spec: PoseSpaceSpec, rng, m: int) -> dict[str, np.ndarray]:
     ap = pf.sonar.aperture()
     port1 = _draw_sides(rng, m, spec.side1)
     R1, o1 = transducer_stack(pf, port1)  # vehicle 1 = world
-    r1, th1, ph1 = _draw_range_angles(rng, m, ap, spec.feature_distribution)
+    r1, th1, ph1 = _draw_range_angles(rng, m, ap, spec.feature_distribution, spec.azimuth1_window_deg)
     f = np.einsum("nij,nj->ni", R1, spherical_to_cartesian(r1, th1, ph1)) + o1
     port2 = _draw_sides(rng, m, spec.side2)
     M2, m2 = transducer_stack(pf, port2)
-    r2, th2, ph2 = _draw_range_angles(rng, m, ap, spec.feature_distribution)
+    solved = spec.profile == "platform" and pf.fixed_depth
+    r2, th2, ph2 = _draw_range_angles(rng, m, ap, spec.feature_distribution,
+                                      None if solved else spec.azimuth2_window_deg)
     if spec.profile == "unconstrained":
         R2 = Rotation.random(m, rng=rng).as_matrix()
         Rv2 = np.einsum("nij,nkj->nik", R2, M2)  # R2 M2^T
@@ -220,10 +254,14 @@ def _draw_candidates(spec: PoseSpaceSpec, rng, m: int) -> dict[str, np.ndarray]:
         th2 = _solve_azimuth(rng, R2[:, 2, :], r2, ph2, f[:, 2] - mount2[:, 2], ap.half_azimuth_rad)
         accept &= np.isfinite(th2)
         th2 = np.where(accept, th2, 0.0)
+        if spec.azimuth2_window_deg is not None:
+            lo2, hi2 = np.radians(spec.azimuth2_window_deg)
+            accept &= (th2 >= lo2) & (th2 <= hi2)
     o2 = f - np.einsum("nij,nj->ni", R2, spherical_to_cartesian(r2, th2, ph2))
     v2_z = o2[:, 2] - mount2[:, 2]
     if spec.profile == "platform":
-        accept &= (f[:, 2] < o1[:, 2]) & (f[:, 2] < o2[:, 2])
+        if spec.feature_below:
+            accept &= (f[:, 2] < o1[:, 2]) & (f[:, 2] < o2[:, 2])
         if not pf.fixed_depth and spec.depth_envelope:
             accept &= np.abs(v2_z) <= pf.depth_max_m - pf.depth_min_m
     return dict(accept=accept, R1=R1, R2=R2, r1=r1, r2=r2, th1=th1, th2=th2, ph1=ph1, ph2=ph2,

@@ -31,12 +31,28 @@ _RESAMPLES_PER_PASS = 64
 """Bootstrap resamples whose correlations are computed in one pass over the table."""
 
 
-def with_derived(df: pd.DataFrame) -> pd.DataFrame:
-    """A copy of ``df`` with the magnitude columns used in :data:`CANDIDATES`."""
+MISALIGNMENT_READINGS = ("magnitude", "signed")
+"""Readings of the paper's ``max(psi1, psi2)`` (Sec. IV-B): ``"magnitude"`` (the default,
+``max(|psi1|, |psi2|)``: a line through both origins has no sign) or ``"signed"`` (the formula
+as printed, ``max(psi1, psi2)`` of the signed elevations)."""
+
+
+def with_derived(df: pd.DataFrame, misalignment: str = "magnitude") -> pd.DataFrame:
+    """A copy of ``df`` with the magnitude columns used in :data:`CANDIDATES`, and with
+    ``elevation_misalignment_deg`` recomputed from ``psi1_deg`` and ``psi2_deg`` under the
+    reading ``misalignment`` (:data:`MISALIGNMENT_READINGS`; ``"magnitude"`` reproduces the
+    kernel's column)."""
+    if misalignment not in MISALIGNMENT_READINGS:
+        raise ValueError(f"misalignment must be one of {list(MISALIGNMENT_READINGS)}; got {misalignment!r}")
     out = df.copy()
     for src in ("psi1_deg", "psi2_deg", "elevation1_deg", "elevation2_deg", "yaw2_deg", "pitch2_deg"):
         if src in out:
             out["abs_" + src] = out[src].abs()
+    if "psi1_deg" in out and "psi2_deg" in out:
+        a, b = out["psi1_deg"].to_numpy(float), out["psi2_deg"].to_numpy(float)
+        if misalignment == "magnitude":
+            a, b = np.abs(a), np.abs(b)
+        out["elevation_misalignment_deg"] = np.maximum(a, b)
     return out
 
 
@@ -272,6 +288,9 @@ def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFr
     # (b) azimuth x azimuth: where the largest bin median is
     pk = _peak(maps["b"])
     m["azimuth_peak_theta1_deg"], m["azimuth_peak_theta2_deg"] = float(pk.x_mid), float(pk.y_mid)
+    m["azimuth_peak_count"] = float(pk["count"])  # samples behind the peak bin's median
+    m["norm_azimuth_max_rho2_fraction"] = max(  # share of rank variance the azimuths explain
+        m.get(f"norm_{q}_rho", 0.0) ** 2 for q in ("azimuth1_deg", "azimuth2_deg"))
     # (c) elevation x elevation: median with both |phi| in the inner third of the half-aperture
     # over the median with both in the outer third (from the samples)
     third = maps["c"]["x_hi"].max() / 3
@@ -291,6 +310,7 @@ def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFr
     m["yaw_near0_over_peak_ratio"] = float(shown[shown.mid.abs() < yaw_bin_deg]["median"].mean() / peak)
     m["yaw_near180_over_peak_ratio"] = float(
         shown[shown.mid.abs() > 180 - yaw_bin_deg]["median"].mean() / peak)
+    m["yaw_peak_over_near0_ratio"] = 1.0 / m["yaw_near0_over_peak_ratio"]  # the yaw contrast
     m["yaw_peak_asymmetry_ratio"] = float(neg["median"].max() / pos["median"].max())
     e = maps["e"]
     for half, sel in (("neg", e.x_mid < 0), ("pos", e.x_mid > 0)):

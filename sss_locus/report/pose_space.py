@@ -9,7 +9,7 @@ out as tables (:func:`seed_stability_table`, :func:`check_row`) and writes them 
 from __future__ import annotations
 
 import textwrap
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -128,8 +128,8 @@ def fmt_metric(name: str, v) -> str:
     """
     if isinstance(v, str):
         return plain_label(v)
-    if name.endswith("_rank"):
-        return f"{v:.0f}"
+    if name.endswith(("_rank", "_count")):
+        return f"{v:,.0f}"
     if name.endswith("_rho"):
         return fmt_sig(v, 2)
     if name.endswith("_fraction"):
@@ -175,7 +175,7 @@ def seed_stability_table(runs: Mapping[str, tuple[Mapping, Mapping]], seeds: tup
                          "note": f"|rho| < {small_rho:g}" if small else ""})
         for name, x in a["metrics"].items():
             if (isinstance(x, str) or name.endswith("_rank") or name.startswith(("raw_", "norm_"))
-                    or name == "n_heatmap_samples"):
+                    or name == "n_heatmap_samples" or name.endswith("_count")):
                 continue
             y = b["metrics"][name]
             rows.append({"platform": key, "quantity": name, sa: x, sb: y,
@@ -204,3 +204,44 @@ def check_row(run: str, metrics: Mapping[str, float | str]) -> dict:
                                              round(metrics["azimuth_peak_theta2_deg"])),
             "yaw 0 / peak": metrics["yaw_near0_over_peak_ratio"],
             "fragmented (port-port)": metrics["multi_arc_fraction"]}
+
+
+def reading_texts(prefix: str, effect: pd.DataFrame) -> dict[str, str]:
+    """Glue texts of :func:`~sss_locus.experiments.choices.reading_effect`:
+    ``<prefix>-<reading>-<raw|norm>-mis-rho``, ``-mis-rank`` and ``-top`` for each reading."""
+    out = {}
+    for r in effect.itertuples():
+        p = f"{prefix}-{r.reading}-{r.target}"
+        out[f"{p}-mis-rho"] = fmt_sig(r.rho, 2)
+        out[f"{p}-mis-rank"] = f"{r.rank:d}"
+        out[f"{p}-top"] = plain_label(r.top)
+    return out
+
+
+def hotspot_texts(prefix: str, check: Mapping[str, float]) -> dict[str, str]:
+    """Glue texts of :func:`~sss_locus.experiments.choices.hotspot_check`, keyed
+    ``<prefix>-hotspot-...``: the peak bin, its count and median, the targeted re-measurement
+    with its interval, the runner-up bin and whether the peak survives (``yes``/``no``)."""
+    p = f"{prefix}-hotspot"
+    return {
+        f"{p}-bin": f"({check['x_mid']:.0f}°, {check['y_mid']:.0f}°)",
+        f"{p}-count": f"{check['count']:,.0f}", f"{p}-median": fmt_sig(check["median"], 2),
+        f"{p}-target-count": f"{check['target_count']:,.0f}",
+        f"{p}-target-median": (f"{fmt_sig(check['target_median'], 2)} m (95 % CI "
+                               f"{fmt_sig(check['target_ci_low'], 3)}–{fmt_sig(check['target_ci_high'], 3)} m)"),
+        f"{p}-runner-up": (f"{fmt_sig(check['runner_up_median'], 2)} m at "
+                           f"({check['runner_up_x_mid']:.0f}°, {check['runner_up_y_mid']:.0f}°), "
+                           f"{check['runner_up_count']:,.0f} samples"),
+        f"{p}-still-peak": "yes" if check["still_peak"] else "no",
+    }
+
+
+def fan_texts(prefix: str, level: Mapping[str, float], pitched: Sequence[Mapping[str, float]]) -> dict[str, str]:
+    """Glue texts of :func:`~sss_locus.experiments.choices.fan_share_removed` for a level sensor
+    (``level``) and the same sensor at other pitches (``pitched``): ``<prefix>-fan-removed``,
+    ``-fan-removed-pitched`` (the largest over ``pitched``, or the level share if empty) and
+    ``-fan-theta-min`` (degrees)."""
+    worst = max([level["share"]] + [p["share"] for p in pitched])
+    return {f"{prefix}-fan-removed": f"{100 * level['share']:.0f} %",
+            f"{prefix}-fan-removed-pitched": f"{100 * worst:.0f} %",
+            f"{prefix}-fan-theta-min": f"{level['theta_min_deg']:.1f}"}

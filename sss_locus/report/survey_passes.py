@@ -297,3 +297,30 @@ def plot_pitch_depth(pitch: pd.DataFrame, depth: pd.DataFrame, band_deg: tuple[f
     ax.legend(fontsize=SMALL_FONT_PT)
     ax.grid(alpha=0.3)
     return fig
+
+
+def near_end_texts(checks: Mapping[str, pd.DataFrame]) -> dict[str, str]:
+    """Glue texts of :func:`~sss_locus.experiments.verdicts.near_end_check` over several curves
+    (``checks`` keyed by a label such as ``"AUV, matched ±10 m, same side"``):
+    ``sp-near-<0|180>-held`` ("k of n curves"), ``sp-near-<0|180>-worst`` (the worst curve, with
+    the median at the end and at its worst nearby angle)."""
+    out = {}
+    for end in (0.0, 180.0):
+        rows = {lab: c[c["end_deg"] == end].iloc[0] for lab, c in checks.items()}
+        held = sum(bool(r.all_preferred) for r in rows.values())
+        out[f"sp-near-{end:.0f}-held"] = f"{held} of {len(rows)}"
+        lab, r = max(rows.items(), key=lambda kv: -1.0 if np.isnan(kv[1].ratio) else kv[1].ratio)
+        if np.isnan(r.ratio):
+            out[f"sp-near-{end:.0f}-worst"] = "no grid angle near this end"
+            continue
+        out[f"sp-near-{end:.0f}-worst"] = (f"{lab}: {fmt_sig(r.worst_median, 2)} m at {r.worst_angle_deg:.0f}° "
+                                           f"against {fmt_sig(r.end_median, 2)} m at {end:.0f}°")
+    return out
+
+
+def peak_agreement_texts(prefix: str, agreement: Mapping[str, float | bool]) -> dict[str, str]:
+    """Glue texts ``<prefix>-peak-gap`` (degrees, misalignment minus length) and
+    ``<prefix>-peaks-overlap`` ("overlap"/"do not overlap") of
+    :func:`~sss_locus.experiments.verdicts.peak_agreement`."""
+    return {f"{prefix}-peak-gap": f"{agreement['gap_deg']:+.0f}",
+            f"{prefix}-peaks-overlap": "overlap" if agreement["intervals_overlap"] else "do not overlap"}
