@@ -48,3 +48,46 @@ def build_area(tmp_path, monkeypatch):
     monkeypatch.setenv("SSS_LOCUS_CACHE_DIR", str(tmp_path / "cache"))
     monkeypatch.delenv("SSS_LOCUS_FIGURES_DIR", raising=False)
     return area
+
+
+# -- the shared quick book, built while the other tests run (see book_support) ----------------------
+
+_QUICK_BOOK = pytest.StashKey[object]()
+
+
+def _uses_quick_book(item) -> bool:
+    return "quick_book" in getattr(item, "fixturenames", ())
+
+
+def pytest_collection_modifyitems(config, items):
+    """Tests of the built book run last (the order is otherwise kept), so the background build
+    started by ``_background_quick_book`` overlaps everything else."""
+    items.sort(key=_uses_quick_book)
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _background_quick_book(request, tmp_path_factory):
+    build = None
+    if any(_uses_quick_book(item) for item in request.session.items):
+        from book_support import QuickBook
+
+        build = QuickBook(tmp_path_factory.mktemp("quick-book"))
+        request.config.stash[_QUICK_BOOK] = build
+    yield
+    if build is not None:
+        build.stop()
+
+
+@pytest.fixture(scope="session")
+def quick_book(request, tmp_path_factory):
+    """The whole book built from the ``quick`` profile into a temporary build area and its own cache
+    (started in the background at the session's start): ``{"area", "html", "stdout", "env"}``."""
+    build = request.config.stash.get(_QUICK_BOOK, None)
+    if build is None:  # e.g. a test selected by keyword that reaches the fixture indirectly
+        from book_support import QuickBook
+
+        build = request.config.stash[_QUICK_BOOK] = QuickBook(tmp_path_factory.mktemp("quick-book"))
+    try:
+        return build.result()
+    except RuntimeError as error:
+        pytest.fail(str(error))

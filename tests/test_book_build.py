@@ -1,14 +1,14 @@
 """The whole book from the `quick` profile: every registered notebook runs through papermill,
 the site builds with warnings as errors, and the built HTML has no broken references.
 
-The build goes to a temporary build area (``SSS_LOCUS_BUILD_DIR``), so the `book`-profile outputs
+The quick book is built in the background while the other tests run (``conftest.py``,
+``book_support.py``); it goes to a temporary build area (``SSS_LOCUS_BUILD_DIR``), so the `book`-profile outputs
 of ``make book`` in ``_build/`` are never overwritten.
 """
 
 from __future__ import annotations
 
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -19,6 +19,7 @@ import pytest
 
 pytest.importorskip("jupyter_book")
 
+from book_support import TIMEOUT_S  # noqa: E402  (the quick_book fixture is in conftest.py)
 from sss_locus import paths  # noqa: E402
 from sss_locus.pipeline import bookbuild
 from sss_locus.pipeline.export import load_manifests  # noqa: E402
@@ -27,25 +28,6 @@ from sss_locus.pipeline.registry import load_registry  # noqa: E402
 pytestmark = pytest.mark.book  # deselect with `pytest -m "not book"` for a fast run
 
 REGISTRY = load_registry()
-TIMEOUT_S = 900  # a hang guard, not a speed test: a loaded 2-core machine needs ~8 min for the quick book
-
-
-@pytest.fixture(scope="module")
-def quick_book(tmp_path_factory):
-    area = tmp_path_factory.mktemp("quick-book")
-    default_index = paths.REPO_ROOT / "_build" / "html" / "index.html"
-    before = default_index.stat().st_mtime_ns if default_index.exists() else None
-    env = {**os.environ, paths.BUILD_DIR_ENV: str(area)}
-    result = subprocess.run(
-        [sys.executable, "-m", "sss_locus.pipeline.cli", "book", "--profile", "quick"],
-        env=env, capture_output=True, text=True, timeout=TIMEOUT_S, stdin=subprocess.DEVNULL,
-    )
-    if result.returncode != 0:
-        pytest.fail(f"sss-locus book --profile quick failed:\n{result.stdout[-6000:]}\n{result.stderr[-6000:]}")
-    after = default_index.stat().st_mtime_ns if default_index.exists() else None
-    assert before == after, "the test build touched the default build area"
-    html = area / "html"
-    return {"area": area, "html": html, "stdout": result.stdout}
 
 
 def test_build_prints_the_index_path(quick_book):
@@ -244,7 +226,7 @@ EXAMPLE = paths.REPO_ROOT / "data" / "examples" / "my_auv.toml"
 
 @pytest.fixture(scope="module")
 def user_book(quick_book, tmp_path_factory):
-    """The quick book again, in a copy of ``quick_book``'s build area (its cache included, so the
+    """The quick book again, in a copy of ``quick_book``'s build area and with its cache (so the
     shipped platforms' studies are cache hits), with the example file's ``my_auv`` beside the
     paper's AUV and without the boat: a user platform added and a paper platform replaced."""
     work = tmp_path_factory.mktemp("user-book")
@@ -252,7 +234,7 @@ def user_book(quick_book, tmp_path_factory):
     shutil.copytree(quick_book["area"], area, ignore=shutil.ignore_patterns("html", "jupyter-book"))
     user = work / "my_auv.toml"
     shutil.copy(EXAMPLE, user)
-    env = {**os.environ, paths.BUILD_DIR_ENV: str(area)}
+    env = {**quick_book["env"], paths.BUILD_DIR_ENV: str(area)}
     result = subprocess.run(
         [sys.executable, "-m", "sss_locus.pipeline.cli", "book", "--profile", "quick", "--data", str(user),
          "-p", "platforms", '["my_auv", "auv"]'],

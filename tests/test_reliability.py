@@ -4,7 +4,8 @@ Each test drives the pipeline the way a user or a parallel build does: a run tha
 killed (exception, SIGINT, SIGTERM) must leave the last good results byte for byte and nothing
 behind; side runs never touch the build area; ``book --no-run`` names every unusable executed
 copy in one message; concurrent runs and cache users neither crash nor corrupt each other; bad
-cache entries of any shape are recomputed; bad values and registries are refused up front.
+cache entries of any shape are recomputed; bad values and registries are refused up front; a
+kernel that dies before its first cell (a port race of parallel starts) is started again.
 """
 
 from __future__ import annotations
@@ -430,3 +431,49 @@ def test_every_temporary_name_is_unique(tmp_path, monkeypatch):
         export_figure(fig, "fig-same", _frame(), caption="C.", parameters={}, out_dir=tmp_path)
     plt.close(fig)
     assert len(used) >= 2 * 6 and len(set(used)) == len(used)
+
+
+# -- 6. kernels that never start -------------------------------------------------------------------
+
+def _flaky_child(counter: Path, failures: int) -> str:
+    """A papermill child whose first ``failures`` starts die as a kernel lost to a port race."""
+    from sss_locus.pipeline import runner
+
+    return (f"import pathlib, sys\nc = pathlib.Path({str(counter)!r})\nn = int(c.read_text()) if c.exists() else 0\n"
+            f"c.write_text(str(n + 1))\nif n < {failures}:\n"
+            "    sys.exit('RuntimeError: Kernel died before replying to kernel_info')\n" + runner._CHILD)
+
+
+@pytest.mark.parametrize("failures", [1, 2])
+def test_a_kernel_that_dies_before_any_cell_is_started_again(area, entry, tmp_path, monkeypatch, failures):
+    from sss_locus.pipeline import runner
+
+    counter = tmp_path / "starts"
+    monkeypatch.setattr(runner, "_CHILD", _flaky_child(counter, failures))
+    run_notebook(entry, "book", {"n": 6}, log=quiet)
+    assert int(counter.read_text()) == failures + 1
+    manifest = json.loads((area / "source" / "_extra" / "figures" / "fig-tiny-reliable.json").read_text())
+    assert manifest["parameters"]["n"] == 6 and leftovers(area) == []
+
+
+def test_kernel_start_retries_are_bounded_and_keep_the_last_good_results(area, entry, tmp_path, monkeypatch):
+    from sss_locus.pipeline import runner
+
+    run_notebook(entry, "book", {"n": 4}, log=quiet)
+    good = snapshot(area)
+    counter = tmp_path / "starts"
+    monkeypatch.setattr(runner, "_CHILD", _flaky_child(counter, 99))
+    with pytest.raises(NotebookFailed, match="did not run: RuntimeError: Kernel died before replying"):
+        run_notebook(entry, "book", {"n": 9}, log=quiet)
+    assert int(counter.read_text()) == runner.KERNEL_START_ATTEMPTS
+    assert snapshot(area) == good and leftovers(area) == []
+
+
+def test_a_failing_cell_is_never_rerun(area, entry, tmp_path, monkeypatch):
+    from sss_locus.pipeline import runner
+
+    counter = tmp_path / "starts"
+    monkeypatch.setattr(runner, "_CHILD", _flaky_child(counter, 0))
+    with pytest.raises(NotebookFailed, match="ValueError"):
+        run_notebook(entry, "book", {"fail": True}, log=quiet)
+    assert int(counter.read_text()) == 1

@@ -175,20 +175,45 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
 _CHILD = "import json, sys, papermill; papermill.execute_notebook(**json.load(open(sys.argv[1])))"
 
 
+#: Errors of a kernel that never started (no cell ran): jupyter_client picks free ports and
+#: releases them before the kernel binds them, so kernels started at the same moment can collide
+#: (papermill issue #511). Such a run is retried; a failure inside a cell never is.
+KERNEL_START_ERRORS = ("Kernel died before replying to kernel_info", "Kernel didn't respond in")
+KERNEL_START_ATTEMPTS = 3
+
+
 def _execute(entry: NotebookEntry, staging: Path, notebook: Path, cwd: Path,
              parameters: dict[str, Any]) -> None:
-    """Run papermill in a child process (own session) into ``notebook``; kill it if we stop."""
+    """Run papermill in a child process (own session) into ``notebook``; kill it if we stop.
+    A kernel that dies before running any cell is started again, at most
+    :data:`KERNEL_START_ATTEMPTS` times in all."""
     args = staging / "papermill-args.json"
     args.write_text(json.dumps({
         "input_path": str(entry.source), "output_path": str(notebook), "parameters": parameters,
         "kernel_name": KERNEL_NAME, "cwd": str(cwd), "progress_bar": False, "log_output": False,
     }, default=provenance.json_default), encoding="utf-8")
     log_file = staging / "papermill.log"
+    for _attempt in range(KERNEL_START_ATTEMPTS):
+        code = _papermill_child(args, log_file)
+        log = log_file.read_text(encoding="utf-8", errors="replace")
+        if code == 0 or not any(e in log for e in KERNEL_START_ERRORS) or _cells_ran(notebook):
+            break
+    if code != 0:
+        nb = outputs.read_notebook(notebook) if notebook.is_file() else None
+        error = outputs.notebook_error(nb) if nb else None
+        if error:
+            raise NotebookFailed(f"notebook {entry.name!r} failed in {error[0]}", error[1])
+        tail = log.strip().splitlines()[-1:] or ["?"]
+        raise NotebookFailed(f"notebook {entry.name!r} did not run: {tail[0]}", log)
+
+
+def _papermill_child(args: Path, log_file: Path) -> int:
+    """One papermill process for ``args``, its output in ``log_file``; its exit code."""
     with open(log_file, "wb") as log_fh:
         child = subprocess.Popen([sys.executable, "-c", _CHILD, str(args)], stdout=log_fh,
                                  stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True)
         try:
-            code = child.wait()
+            return child.wait()
         finally:
             if child.poll() is None:  # we were interrupted: stop papermill (the kernel follows)
                 os.killpg(child.pid, signal.SIGTERM)
@@ -197,14 +222,14 @@ def _execute(entry: NotebookEntry, staging: Path, notebook: Path, cwd: Path,
                 except subprocess.TimeoutExpired:
                     os.killpg(child.pid, signal.SIGKILL)
                     child.wait()
-    if code != 0:
-        nb = outputs.read_notebook(notebook) if notebook.is_file() else None
-        error = outputs.notebook_error(nb) if nb else None
-        if error:
-            raise NotebookFailed(f"notebook {entry.name!r} failed in {error[0]}", error[1])
-        tail = log_file.read_text(encoding="utf-8", errors="replace").strip().splitlines()[-1:] or ["?"]
-        raise NotebookFailed(f"notebook {entry.name!r} did not run: {tail[0]}",
-                             log_file.read_text(encoding="utf-8", errors="replace"))
+
+
+def _cells_ran(notebook: Path) -> bool:
+    """Whether papermill's output ``notebook`` shows an executed code cell (belt and braces: the
+    kernel-start errors occur before the first cell)."""
+    nb = outputs.read_notebook(notebook) if notebook.is_file() else None
+    return bool(nb) and any(c.get("cell_type") == "code" and c.get("execution_count")
+                            for c in nb.get("cells", []))
 
 
 def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[str, Any] | None = None,
