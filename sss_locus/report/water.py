@@ -30,11 +30,24 @@ def effect_texts(effects: pd.DataFrame) -> dict[str, str]:
     return out
 
 
+TABLE_COLUMNS = {"length_ratio": "length kept", "shortened_share": "loci shortened",
+                 "multi_arc_share_uncropped": "fragmented, paper",
+                 "multi_arc_share_cropped": "fragmented, cropped"}
+"""Statistics of :func:`effect_table` and their column headings (all in %)."""
+
+
 def effect_table(effects: pd.DataFrame) -> pd.DataFrame:
-    """One row per condition and subset, the statistics as percentages with intervals."""
-    wide = effects.assign(text=[_pct(r) for r in effects.itertuples()])
-    return wide.pivot_table(index=["label", "subset", "n"], columns="statistic", values="text",
-                            aggfunc="first", sort=False).reset_index()
+    """One row per condition and subset: sample count and the statistics of
+    :data:`TABLE_COLUMNS` in percent, ``"estimate (low–high)"`` with the 95 % interval (compact,
+    for the book's column; every statistic is in the figure's data)."""
+    sel = effects[effects["statistic"].isin(list(TABLE_COLUMNS))]
+    text = [f"{100 * r.estimate:.1f} ({100 * r.ci_low:.1f}–{100 * r.ci_high:.1f})" for r in sel.itertuples()]
+    wide = sel.assign(text=text).pivot_table(index=["label", "subset", "n"], columns="statistic",
+                                             values="text", aggfunc="first", sort=False)
+    wide = wide[list(TABLE_COLUMNS)].rename(columns={k: f"{v} (%)" for k, v in TABLE_COLUMNS.items()})
+    out = wide.reset_index().rename(columns={"label": "condition", "subset": "samples"})
+    out.columns.name = None
+    return out
 
 
 CROP_TEXT = {"surface": ("cropped to the water", "(b) length below the surface"),
