@@ -16,8 +16,8 @@ from sss_locus.experiments.envelopes import OffsetModel, load_envelope
 from sss_locus.experiments.platforms import load_platform
 from sss_locus.experiments.pose_space import PoseSpaceSpec, sample_pose_space
 from sss_locus.experiments.survey_passes import simulate_passes
-from sss_locus.experiments.water import WaterColumn, crop_effect
-from sss_locus.experiments.water_study import crop_effects, default_conditions
+from sss_locus.experiments.water import WaterColumn, crop_effect, deepest_feature_m
+from sss_locus.experiments.water_study import crop_effects, default_conditions, pass2_above_surface_share
 
 
 def test_off_by_default_keeps_the_spec_key():
@@ -91,3 +91,59 @@ def test_crop_effects_table_covers_conditions_and_subsets():
     assert set(out["subset"]) == {"all", "port-port"} and (out["n"] > 0).all()
     with pytest.raises(ValueError, match="none of submerged_depths_m"):
         default_conditions(pfs, submerged_depths_m=[500.0])
+
+
+# --- the seafloor (a known water depth) ---------------------------------------------------------
+def test_seafloor_options_are_exclusive_and_need_the_feature():
+    with pytest.raises(ValueError, match="not both"):
+        WaterColumn(max_water_depth_m=50.0, seafloor_below_feature_m=1.0)
+    with pytest.raises(ValueError, match="seafloor_below_feature_m"):
+        WaterColumn(seafloor_below_feature_m=-1.0)
+    with pytest.raises(ValueError, match="needs feature_z"):
+        WaterColumn(seafloor_below_feature_m=1.0).half_spaces(np.eye(3)[None], np.zeros(1), 0.0)
+    assert "seafloor_below_feature_m" not in WaterColumn().key()  # earlier keys unchanged
+    assert WaterColumn(seafloor_below_feature_m=1.0).key()["seafloor_below_feature_m"] == 1.0
+
+
+def test_fixed_water_depth_above_sampled_features_is_refused():
+    # the boat's fan reaches deepest_feature_m below the surface; a 5 m deep floor is above most features
+    spec = PoseSpaceSpec(load_platform("boat"), water=WaterColumn(max_water_depth_m=5.0))
+    with pytest.raises(ValueError, match="sampled features lie below WaterColumn.max_water_depth_m"):
+        sample_pose_space(spec, 4096, 1)
+
+
+def test_deepest_feature_is_the_fan_edge_at_full_range():
+    pf = load_platform("boat")  # 25 deg tilt + 25 deg half fan: 50 deg down at 150 m, transducer 0.10 m deep
+    assert deepest_feature_m(pf) == pytest.approx(0.10 + 150.0 * np.sin(np.radians(50.0)))
+    assert deepest_feature_m(load_platform("auv")) == pytest.approx(2.0 + 150.0)  # fan reaches nadir
+
+
+@pytest.mark.parametrize("key, depth", [("boat", None), ("auv", 2.0)])
+def test_seafloor_crop_is_monotone_and_keeps_the_feature(key, depth):
+    """Invariants, not values: the same samples; a floor further below the feature keeps at least
+    as much (each crop contains the tighter one); a floor far below changes nothing beyond the
+    surface crop; with a positive margin the feature lies strictly inside the water column, so
+    no non-empty locus is emptied."""
+    pf = load_platform(key)
+    run = lambda **w: sample_pose_space(PoseSpaceSpec(pf, water=WaterColumn(depth, **w)), 4096, 5)
+    paper = sample_pose_space(PoseSpaceSpec(pf), 4096, 5)
+    surface, near, far, huge = run(), run(seafloor_below_feature_m=1.0), run(seafloor_below_feature_m=10.0), \
+        run(seafloor_below_feature_m=5000.0)
+    tol = 1e-9 * paper.locus_length_m.max()
+    assert np.all(near.locus_length_m <= far.locus_length_m + tol)
+    assert np.all(far.locus_length_m <= surface.locus_length_m + tol)
+    np.testing.assert_allclose(huge.locus_length_m, surface.locus_length_m, rtol=1e-12, atol=tol)
+    assert (near.locus_length_m < surface.locus_length_m - 1e-6).any()  # the floor does crop
+    assert not ((paper.locus_length_m > 0) & (near.locus_length_m == 0)).any()
+    np.testing.assert_array_equal(near.r1_m, paper.r1_m)
+
+
+def test_survey_seafloor_and_pass2_above_surface():
+    pf, env, m = load_platform("auv"), load_envelope("auv"), OffsetModel.parse("independent")
+    a, _ = simulate_passes(pf, env, m, [0.0, 90.0], 300, 2, water=WaterColumn(2.0))
+    b, _ = simulate_passes(pf, env, m, [0.0, 90.0], 300, 2, water=WaterColumn(2.0, seafloor_below_feature_m=1.0))
+    assert np.all(b.locus_length_m <= a.locus_length_m * (1 + 1e-12))
+    assert not ((a.locus_length_m > 0) & (b.locus_length_m == 0)).any()
+    # brute force: count pass pairs whose pass 2 flies more than 2 m above pass 1
+    expected = sum(r.altitude2_m - r.altitude1_m > 2.0 for r in a.itertuples()) / len(a)
+    assert pass2_above_surface_share(a, pf, WaterColumn(2.0)) == pytest.approx(expected)

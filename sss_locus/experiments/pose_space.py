@@ -39,7 +39,8 @@ Method (Norman & Mangelson, Sec. IV-A, with every choice the paper leaves open n
    ``water`` (a :class:`~sss_locus.experiments.water.WaterColumn`; off by default, so the
    paper is reproduced as written) it is also cropped exactly to the water: below the sea
    surface (vehicle 1's reference point ``water.vehicle_depth_m`` below it; the boat's at the
-   waterline) and, optionally, above a maximum water depth. The samples do not change, only the
+   waterline) and, optionally, above a seafloor (``water.seafloor_below_feature_m`` below each
+   feature; a fixed ``max_water_depth_m`` is refused where sampled features lie below it). The samples do not change, only the
    locus: the tables with and without ``water`` compare row by row.
 
 Targeted sampling: ``azimuth1_window_deg`` / ``azimuth2_window_deg`` draw ``theta1`` /
@@ -295,7 +296,8 @@ def _evaluate(spec: PoseSpaceSpec, g: dict[str, np.ndarray]) -> pd.DataFrame:
     crop = {}
     if spec.water is not None:  # vehicle 1 is the world frame; its reference point at z = 0
         R1, o1 = transducer_stack(spec.platform, g["port1"])
-        normals, offsets = spec.water.half_spaces(R1, o1[:, 2], spec.water.depth_for(spec.platform))
+        normals, offsets = spec.water.half_spaces(R1, o1[:, 2], spec.water.depth_for(spec.platform),
+                                                  feature_z=g["f"][:, 2])
         crop = dict(half_space_normals=normals, half_space_offsets=offsets)
     res = two_view_locus(g["R"], g["t"], g["r1"], g["r2"], ap, ap, **crop)
     mis = elevation_misalignment(g["R"], g["t"])

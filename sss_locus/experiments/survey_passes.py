@@ -25,8 +25,8 @@ For each crossing angle, configurations are drawn until ``n_per_angle`` are acce
 6. **Water** (``water``, off by default so the paper is reproduced as written): each locus is
    also cropped exactly to the water (:class:`~sss_locus.experiments.water.WaterColumn`): the
    sea surface lies ``altitude1_m + water.vehicle_depth_m`` above the feature (the boat's
-   reference point is at the waterline, so its altitude is the water depth at the feature).
-   The samples are the same with and without it.
+   reference point is at the waterline, so its altitude is the water depth at the feature);
+   a seafloor is ``water.seafloor_below_feature_m`` below the feature. The samples are the same with and without it.
 
 Symmetries (exact for mirror-image transducers; tested in ``tests/test_survey.py``)
 -------------------------------------------------------------------------------
@@ -188,7 +188,8 @@ def _evaluate(platform, gamma_deg, d, water=None) -> pd.DataFrame:
     crop = {}
     if water is not None:  # world origin at the feature: the surface is above vehicle 1
         normals, offsets = water.half_spaces(d["W1"], d["origin1"][:, 2],
-                                             d["alt1"] + water.depth_for(platform))
+                                             d["alt1"] + water.depth_for(platform),
+                                             feature_z=np.zeros(len(d["alt1"])))
         crop = dict(half_space_normals=normals, half_space_offsets=offsets)
     res = two_view_locus(R, t, r1, r2, ap, ap, **crop)
     mis = elevation_misalignment(R, t)

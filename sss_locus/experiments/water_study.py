@@ -12,7 +12,7 @@ sensor 1 (its heatmap subset, ``heatmap_side2 = "port"``).
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pandas as pd
@@ -59,7 +59,15 @@ class Condition:
             parts.append(f"tilt{self.tilt_deg:g}".replace(".", "p"))
         if self.water.vehicle_depth_m is not None:
             parts.append(f"depth{self.water.vehicle_depth_m:g}m".replace(".", "p"))
+        if self.water.seafloor_below_feature_m is not None:
+            parts.append(f"floor{self.water.seafloor_below_feature_m:g}m".replace(".", "p"))
         return "-".join(parts)
+
+    @property
+    def crop(self) -> str:
+        """``"surface"`` or ``"surface + seafloor"``: what the water crop bounds."""
+        w = self.water
+        return "surface" if w.max_water_depth_m is None and w.seafloor_below_feature_m is None else "surface + seafloor"
 
     @property
     def label(self) -> str:
@@ -68,15 +76,21 @@ class Condition:
         tilt = pf.transducers["port"].tilt_deg if self.tilt_deg is None else self.tilt_deg
         depth = self.water.depth_for(pf)
         where = "at the surface" if pf.fixed_depth else f"{depth:g} m deep"
-        return f"{pf.key}, {where}, tilt {tilt:g}°, {self.study}"
+        floor = self.water.seafloor_below_feature_m
+        floor = "" if floor is None else f", floor {floor:g} m below feature"
+        return f"{pf.key}, {where}, tilt {tilt:g}°{floor}, {self.study}"
 
 
 def default_conditions(platforms: Sequence[Platform], *, surface_tilts_deg=(), submerged_depths_m=(),
-                       envelopes=None, offset_model: OffsetModel | None = None) -> list[Condition]:
+                       envelopes=None, offset_model: OffsetModel | None = None,
+                       seafloor_margins_m=()) -> list[Condition]:
     """The chapter's conditions: each surface vessel (fixed depth) at its own tilt and at each of
     ``surface_tilts_deg``; each submerged platform at each of ``submerged_depths_m`` inside its
     depth range (pose space). With ``envelopes`` (platform key -> envelope) also each platform's
-    survey passes at its own tilt (submerged platforms at the shallowest depth given)."""
+    survey passes at its own tilt (submerged platforms at the shallowest depth given). Then, for
+    each of ``seafloor_margins_m`` (m, >= 0), the first water column of each platform with a
+    seafloor that far below each feature (``WaterColumn.seafloor_below_feature_m``), in the pose
+    space and, with ``envelopes``, in the survey passes."""
     out = []
     for pf in platforms:
         if pf.fixed_depth:
@@ -90,6 +104,13 @@ def default_conditions(platforms: Sequence[Platform], *, surface_tilts_deg=(), s
         out += [Condition(pf, "pose space", w, t) for w in waters for t in tilts]
         if envelopes is not None:
             out.append(Condition(pf, "survey passes", waters[0], None, envelopes[pf.key], offset_model))
+    for pf in platforms:
+        first = next(c.water for c in out if c.platform is pf)
+        for margin in seafloor_margins_m:
+            w = replace(first, seafloor_below_feature_m=float(margin))
+            out.append(Condition(pf, "pose space", w))
+            if envelopes is not None:
+                out.append(Condition(pf, "survey passes", w, None, envelopes[pf.key], offset_model))
     return out
 
 
@@ -129,7 +150,8 @@ def crop_effects(conditions: Sequence[Condition], *, n_samples: int, n_per_angle
     Returns
     -------
     pandas.DataFrame
-        Columns ``condition`` (slug), ``label``, ``platform``, ``study``, ``subset`` (``"all"``
+        Columns ``condition`` (slug), ``label``, ``platform``, ``study``, ``crop``
+        (:attr:`Condition.crop`), ``subset`` (``"all"``
         or ``"port-port"``: sensor 2 on the port side too, pose space only), then the columns of
         :func:`~sss_locus.experiments.water.crop_effect`.
     """
@@ -145,7 +167,30 @@ def crop_effects(conditions: Sequence[Condition], *, n_samples: int, n_per_angle
         for name, keep in subsets.items():
             eff = crop_effect(paper[keep], water[keep], n_resamples=n_resamples, seed=seed)
             rows.append(eff.assign(condition=cond.slug, label=cond.label, platform=cond.platform.key,
-                                   study=cond.study, subset=name))
+                                   study=cond.study, crop=cond.crop, subset=name))
     out = pd.concat(rows, ignore_index=True)
-    first = ["condition", "label", "platform", "study", "subset"]
+    first = ["condition", "label", "platform", "study", "crop", "subset"]
     return out[first + [c for c in out.columns if c not in first]]
+
+
+def pass2_above_surface_share(samples: pd.DataFrame, platform: Platform, water: WaterColumn) -> float:
+    """Share of survey pass pairs whose pass 2 would run above the sea surface.
+
+    The survey sampler draws each pass's altitude above the feature independently (for a
+    platform without ``same_altitude``) and does not know the water depth, so with vehicle 1
+    ``water.depth_for(platform)`` below the surface, pass 2's reference point is at depth
+    ``depth1 + altitude1_m - altitude2_m``, negative when pass 2 flies more than ``depth1`` higher.
+
+    Parameters
+    ----------
+    samples : pandas.DataFrame
+        :func:`~sss_locus.experiments.survey_passes.simulate_passes` samples (columns
+        ``altitude1_m``, ``altitude2_m``), non-empty.
+    platform : Platform
+    water : WaterColumn
+    """
+    if len(samples) == 0:
+        raise ValueError("samples must be a non-empty survey-pass table")
+    depth2 = water.depth_for(platform) + samples["altitude1_m"].to_numpy(float) - samples["altitude2_m"].to_numpy(float)
+    return float(np.mean(depth2 < 0.0))
+

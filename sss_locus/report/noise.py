@@ -58,14 +58,16 @@ def _title(platform, what: str, width: int = 34) -> str:
     return f"{platform_title(platform, width)}:\n{what}"
 
 
-def _angle_axis(ax, ncol: int = 1) -> None:
-    """Crossing-angle axis, grid, and the legend below the panel (never over the bands)."""
+def _angle_axis(ax, ncol: int = 1, legend: bool = True) -> None:
+    """Crossing-angle axis, grid, and (``legend``) the legend below the panel (never over the
+    bands; the panels of one column share it, drawn under the bottom one)."""
     ax.set_xlim(0, 180)
     ax.set_xticks(np.arange(0, 181, 30))
     ax.set_xlabel(r"crossing angle $\gamma$ (deg)")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=SMALL_FONT_PT, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=ncol,
-              frameon=False)
+    if legend:
+        ax.legend(fontsize=SMALL_FONT_PT, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=ncol,
+                  frameon=False)
 
 
 def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.DataFrame]],
@@ -79,9 +81,9 @@ def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.
     ``"range only"`` and ``"attitude only"``.
     """
     head = level_label(noise_scales[0])
-    fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 5.6 * len(platforms)),
+    fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 3.9 * len(platforms) + 1.2),
                             constrained_layout=True, squeeze=False)
-    for (ax, ax2), pf in zip(axs, platforms):
+    for row, ((ax, ax2), pf) in enumerate(zip(axs, platforms)):
         by_label = curves[pf.key]
         c0 = by_label[head]
         g = c0["crossing_angle_deg"]
@@ -100,10 +102,10 @@ def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.
         ax.set_ylabel("median over pass pairs (m)")
         ax.set_title(_title(pf, "size of the uncertainty"), fontsize=10)
         ax2.set_ylim(0, 1)
-        ax2.set_ylabel("median share of noisy draws with an empty locus")
+        ax2.set_ylabel("share of draws with an empty locus\n(median over pass pairs)")
         ax2.set_title(_title(pf, "crop fails"), fontsize=10)
-        _angle_axis(ax)
-        _angle_axis(ax2)
+        _angle_axis(ax, legend=row == len(platforms) - 1)
+        _angle_axis(ax2, legend=row == len(platforms) - 1)
     return fig
 
 
@@ -112,9 +114,14 @@ def plot_breakdown(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.Dat
     """Band width against crossing angle by error group (all errors at level ``head``; sensor
     position only; range only; median and interquartile range, log scale) with the noise-free
     locus length, one panel per platform; returns the figure."""
-    fig, axs = plt.subplots(len(platforms), 1, figsize=(PAGE_WIDTH_IN, 4.6 * len(platforms)),
-                            constrained_layout=True, squeeze=False)
-    for ax, pf in zip(axs[:, 0], platforms):
+    ncols = min(len(platforms), 2)  # side by side: one row per two platforms, one legend
+    nrows = -(-len(platforms) // ncols)
+    fig, axs = plt.subplots(nrows, ncols, figsize=(PAGE_WIDTH_IN, 3.6 * nrows + 1.0),
+                            constrained_layout=True, squeeze=False, sharey=True)
+    fig.get_layout_engine().set(wspace=0.08)  # the 180 and 0 tick labels of neighbours apart
+    for ax in axs.flat[len(platforms):]:
+        ax.set_visible(False)
+    for ax, pf in zip(axs.flat, platforms):
         by_label = curves[pf.key]
         for lab, col in ((head, "tab:red"), *BREAKDOWN_COLORS.items()):
             c = by_label[lab]
@@ -126,9 +133,12 @@ def plot_breakdown(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.Dat
         ax.plot(c["crossing_angle_deg"], c["locus_length_m_median"], color="k", lw=1.5,
                 label="locus length, no noise")
         ax.set_yscale("log")
-        ax.set_ylabel("band width (m): median, IQR shaded")
-        ax.set_title(platform_title(pf, 60), fontsize=10)
-        _angle_axis(ax, ncol=3)
+        if ax in axs[:, 0]:
+            ax.set_ylabel("band width (m): median, IQR shaded")
+        ax.set_title(platform_title(pf, 34), fontsize=10)
+        _angle_axis(ax, legend=False)
+    handles, labels = axs.flat[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=4, fontsize=SMALL_FONT_PT, frameon=False)
     return fig
 
 
@@ -140,7 +150,7 @@ def plot_check(check: pd.DataFrame, platforms: Sequence, scales: Sequence[float]
     three-view point error, bottom row), ``scale``, ``monte_carlo_m`` and ``first_order_m``.
     """
     colors = platform_colors(platforms)
-    fig, axs = plt.subplots(2, len(scales), figsize=(PAGE_WIDTH_IN, 8.8), constrained_layout=True,
+    fig, axs = plt.subplots(2, len(scales), figsize=(PAGE_WIDTH_IN, 7.4), constrained_layout=True,
                             squeeze=False)
     for row, kind, what in zip(axs, ("two", "three"), ("distance to the circle", "three-view point error")):
         for ax, scale in zip(row, scales):
@@ -148,7 +158,7 @@ def plot_check(check: pd.DataFrame, platforms: Sequence, scales: Sequence[float]
             for pf in platforms:
                 dk = d[d.platform == pf.key]
                 ax.scatter(dk.monte_carlo_m, dk.first_order_m, s=12, color=colors[pf.key],
-                           label=platform_title(pf, 40))
+                           label=platform_title(pf, 60))
             both = d[["monte_carlo_m", "first_order_m"]]
             lo, hi = both.min().min(), both.max().max()
             ax.plot([lo, hi], [lo, hi], color="k", lw=0.8, label="equal")
@@ -156,8 +166,10 @@ def plot_check(check: pd.DataFrame, platforms: Sequence, scales: Sequence[float]
             ax.set_yscale("log")
             ax.xaxis.set_minor_formatter(NullFormatter())  # crowded minor labels on a short decade
             ax.set_xlabel(f"Monte Carlo 95 % {what} (m)")
-            ax.set_ylabel(f"first-order 95 % {what} (m)")
+            ax.set_ylabel("first-order estimate (m)")
             ax.set_title(f"{'two views' if kind == 'two' else 'three views'}, noise ×{scale:g}", fontsize=10)
             ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=SMALL_FONT_PT)
+    # one legend for the four panels, below them (a legend in a panel covers points)
+    handles, labels = axs[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=1, fontsize=SMALL_FONT_PT, frameon=False)
     return fig

@@ -78,7 +78,7 @@ def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""
     ax.set_xlabel("elevation misalignment (deg)")
     ax.set_ylabel("locus length / mean range")
     ax.set_title("(c) normalised length vs misalignment")
-    ax.legend(loc="lower right", fontsize=SMALL_FONT_PT, markerscale=2)
+    ax.legend(loc="best", fontsize=SMALL_FONT_PT, markerscale=2)  # where it covers fewest points
     ax.grid(alpha=0.3)
     fig.suptitle(textwrap.fill(title, 75))
     return fig
@@ -97,8 +97,8 @@ def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
             ax.hlines(z[0], xe[:-1], xe[1:], color="tab:blue", lw=2)  # sparse (masked) bins: no line
             ax.set_xlabel(PANEL_AXIS_LABELS[x])
             ax.set_ylabel("median locus length (m)")
-            ax.set_title(f"{PANEL_TITLES[panel]}\n({PANEL_AXIS_LABELS[y].split(' (')[0]} "
-                         f"always {0.5 * (ye[0] + ye[1]):g}: by yaw only)")
+            ax.set_title(f"{PANEL_TITLES[panel].split(' vs ')[0]}\n({PANEL_AXIS_LABELS[y].split(' (')[0]} "
+                         f"always {0.5 * (ye[0] + ye[1]):g})")
             ax.set_ylim(bottom=0)
             ax.grid(alpha=0.3)
             continue

@@ -11,6 +11,8 @@ data (:mod:`sss_locus.report.style`).
 
 from __future__ import annotations
 
+import textwrap
+
 from collections.abc import Mapping, Sequence
 
 import matplotlib.pyplot as plt
@@ -78,7 +80,7 @@ def plot_fig5(curves: Mapping[str, CrossingAngleCurve]):
     """The paper's Fig. 5: (a) locus length and (b) elevation misalignment against crossing
     angle, median line and interquartile band per platform. Returns the figure."""
     colors = platform_colors([cur.platform for cur in curves.values()])
-    fig, axs = plt.subplots(2, 1, figsize=(PAGE_WIDTH_IN, 7.5), sharex=True, constrained_layout=True)
+    fig, axs = plt.subplots(2, 1, figsize=(PAGE_WIDTH_IN, 6.8), sharex=True, constrained_layout=True)
     for ax, v, tag in zip(axs, VALUES, "ab"):
         for k, cur in curves.items():
             c = cur.curve
@@ -90,7 +92,8 @@ def plot_fig5(curves: Mapping[str, CrossingAngleCurve]):
         ax.set_title(f"({tag}) {AXIS_LABELS[v].split(' (')[0]} against crossing angle")
         ax.set_ylim(bottom=0)
         ax.grid(alpha=0.3)
-    axs[0].legend(fontsize=SMALL_FONT_PT, loc="upper left")
+    handles, labels = axs[0].get_legend_handles_labels()  # below the panels: never over a band
+    fig.legend(handles, labels, loc="outside lower center", ncol=1, fontsize=SMALL_FONT_PT, frameon=False)
     axs[1].set_xlabel(r"crossing angle $\gamma$ between the passes (deg)")
     axs[1].set_xticks(np.arange(0, 181, 20))
     axs[1].set_xlim(0, 180)
@@ -272,17 +275,20 @@ def plot_pitch_depth(pitch: pd.DataFrame, depth: pd.DataFrame, band_deg: tuple[f
     :data:`VARIANT_COLORS`); (b) median length and length per unit range at each altitude of
     ``depth`` relative to the first. ``band_deg`` is the crossing-angle band both were run in.
     Returns the figure."""
-    fig, axs = plt.subplots(2, 1, figsize=(PAGE_WIDTH_IN, 8), constrained_layout=True)
+    # side by side: (a)'s long row labels are wrapped, (b) takes the rest of the width
+    fig, axs = plt.subplots(1, 2, figsize=(PAGE_WIDTH_IN, 4.2), constrained_layout=True,
+                            gridspec_kw={"width_ratios": [1, 1.1]})
     ax = axs[0]
     y = np.arange(len(pitch))[::-1]
     colors = ["k"] * n_both + [VARIANT_COLORS[i % 2] for i in range(len(pitch) - n_both)]
     for yi, (_, r), c in zip(y, pitch.iterrows(), colors):
         ax.errorbar(r["ratio"], yi, xerr=[[r["ratio"] - r["ratio_ci_low"]], [r["ratio_ci_high"] - r["ratio"]]],
                     fmt="o", color=c, capsize=3)
-    ax.set_yticks(y, pitch["comparison"])
+    ax.set_yticks(y, [textwrap.fill(c, 22) for c in pitch["comparison"]], fontsize=SMALL_FONT_PT)
+    ax.set_ylim(y.min() - 0.5, y.max() + 0.5)
     ax.axvline(1, color="k", lw=0.8)
-    ax.set_xlabel("median locus length, nose-up / nose-down")
-    ax.set_title(f"(a) pitch sign, γ in the worst band {band_deg[0]:.0f}–{band_deg[1]:.0f}°", fontsize=10)
+    ax.set_xlabel("median locus length,\nnose-up / nose-down")
+    ax.set_title(f"(a) pitch sign, γ in {band_deg[0]:.0f}–{band_deg[1]:.0f}°", fontsize=10)
     ax.grid(alpha=0.3)
     ax = axs[1]
     h = depth["altitude (m)"]
@@ -293,7 +299,7 @@ def plot_pitch_depth(pitch: pd.DataFrame, depth: pd.DataFrame, band_deg: tuple[f
     ax.axhline(1, color="k", lw=0.8)
     ax.set_xlabel("altitude of both passes above the feature (m)")
     ax.set_ylabel(f"median relative to {h.iloc[0]:g} m")
-    ax.set_title("(b) operating altitude, same band", fontsize=10)
+    ax.set_title("(b) altitude, same band", fontsize=10)
     ax.legend(fontsize=SMALL_FONT_PT)
     ax.grid(alpha=0.3)
     return fig

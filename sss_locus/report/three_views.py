@@ -36,41 +36,45 @@ def pattern_label(name: str) -> str:
 
 def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.DataFrame]],
                   range_sigma_m: float):
-    """Three panels per platform (one row each); returns the figure.
+    """Three panels per platform (one column each); returns the figure.
 
     (a) share of configurations with one, two or no valid candidate; (b) angle between the two
     planes (box: quartiles, whiskers: 5-95 %, log scale); (c) first-order 95 % point error for a
     ``range_sigma_m`` range error (``point_error_q95_m``, log scale).
-    ``tables[platform.key][pattern]`` is a three-view table.
+    ``tables[platform.key][pattern]`` is a three-view table. Rows (a), (b), (c); columns the
+    platforms; the pattern names label the rows of the left column only (shared).
     """
-    # one panel per row (three per platform): the pattern names label every panel's rows
-    fig, axs = plt.subplots(3 * len(platforms), 1, figsize=(PAGE_WIDTH_IN, 2.4 * 3 * len(platforms)),
-                            constrained_layout=True, squeeze=False)
-    axs = axs.reshape(len(platforms), 3)
-    for row, pf in zip(axs, platforms):
+    n = len(platforms)
+    fig, axs = plt.subplots(3, n, figsize=(PAGE_WIDTH_IN, 6.4), constrained_layout=True,
+                            squeeze=False, sharey=True)
+    for col, pf in zip(axs.T, platforms):
         by_pattern = tables[pf.key]
-        short = [pattern_label(n) for n in by_pattern]
+        short = [pattern_label(name) for name in by_pattern]
         fr = np.array([[(t.n_valid == v).mean() for _, v, _ in OUTCOMES] for t in by_pattern.values()])
-        left = np.zeros(len(short))
-        for j, (lab, _, col) in enumerate(OUTCOMES):
-            row[0].barh(short, fr[:, j], left=left, color=col, label=lab)
+        left, pos = np.zeros(len(short)), np.arange(1, len(short) + 1)  # the boxplots' positions
+        for j, (lab, _, color) in enumerate(OUTCOMES):
+            col[0].barh(pos, fr[:, j], left=left, color=color, label=lab)
             left += fr[:, j]
-        row[0].set_xlim(0, 1)
-        row[0].set_xlabel("fraction of configurations")
-        row[0].set_title(platform_title(pf, 45, prefix="(a) "), fontsize=10)
-        row[0].legend(fontsize=SMALL_FONT_PT, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+        col[0].set_yticks(pos, short)
+        col[0].set_ylim(0.4, len(short) + 0.6)
+        col[0].set_xlim(0, 1)
+        col[0].set_xlabel("fraction of configurations")
+        col[0].set_title(platform_title(pf, 36) + "\n(a) outcome", fontsize=10)
         for ax, column, xlabel in (
-                (row[1], "plane_angle_deg", "angle between the two planes (deg)"),
-                (row[2], "point_error_q95_m", f"95 % point error for {100 * range_sigma_m:g} cm range error (m)")):
+                (col[1], "plane_angle_deg", "angle between the two planes (deg)"),
+                (col[2], "point_error_q95_m", f"95 % point error per {100 * range_sigma_m:g} cm\nrange error (m)")):
             ax.boxplot([t[column].to_numpy() for t in by_pattern.values()], orientation="horizontal",
                        tick_labels=short, whis=(5, 95), showfliers=False)
             ax.set_xscale("log")
             ax.xaxis.set_minor_formatter(NullFormatter())
             ax.set_xlabel(xlabel)
-        row[1].set_title("(b) plane angle (box: quartiles; whiskers: 5–95 %)", fontsize=10)
-        row[2].set_title("(c) conditioning, first order", fontsize=10)
-        for ax in row:
+        col[1].set_title("(b) plane angle", fontsize=10)
+        col[2].set_title("(c) conditioning, first order", fontsize=10)
+        for ax in col:
             ax.grid(alpha=0.3, axis="x")
+    handles, labels = axs[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=len(OUTCOMES), fontsize=SMALL_FONT_PT,
+               frameon=False)
     return fig
 
 
@@ -95,21 +99,22 @@ def plot_heading_sweep(platforms: Sequence, sweeps: Mapping[str, pd.DataFrame], 
     """Median plane angle (left) and median first-order 95 % point error for a ``range_sigma_m``
     range error (right, log colour scale) against the headings of passes 2 and 3, one row per
     platform; returns the figure. ``sweeps[platform.key]`` is a heading sweep with noise."""
-    fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 4.4 * len(platforms)), constrained_layout=True,
+    fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 3.5 * len(platforms)), constrained_layout=True,
                             squeeze=False)
     for row, pf in zip(axs, platforms):
         sweep = sweeps[pf.key]
         e, z = sym_grid(sweep, "plane_angle_median_deg")
         m = row[0].pcolormesh(e, e, z, cmap="viridis", shading="flat")
-        fig.colorbar(m, ax=row[0], label="median plane angle (deg)")
+        fig.colorbar(m, ax=row[0], label="plane angle (deg)", shrink=0.8)
         e, z = sym_grid(sweep, "point_error_q95_median_m")
         m = row[1].pcolormesh(e, e, z, cmap="magma_r", norm=LogNorm(), shading="flat")
-        fig.colorbar(m, ax=row[1], label=f"median 95 % point error per {100 * range_sigma_m:g} cm range error (m)")
+        fig.colorbar(m, ax=row[1], label="95 % point error (m)", shrink=0.8)
         ticks = np.unique(sweep.heading2_deg)
         ticks = ticks if ticks.size <= 7 else ticks[::2]
-        for ax, t in zip(row, ("plane angle", "conditioning")):
+        for ax, t in zip(row, ("median plane angle", f"median error per {100 * range_sigma_m:g} cm range error")):
             ax.set_xlabel("heading of pass 2, $h_2$ (deg)")
-            ax.set_ylabel("heading of pass 3, $h_3$ (deg)")
+            if ax is row[0]:
+                ax.set_ylabel("heading of pass 3, $h_3$ (deg)")
             ax.set_title(f"{platform_title(pf, 32)}:\n{t}", fontsize=10)
             ax.set_aspect("equal")
             ax.set_xticks(ticks)

@@ -5,6 +5,8 @@ Input: the long table of :func:`sss_locus.experiments.water_study.crop_effects`.
 
 from __future__ import annotations
 
+import textwrap
+
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
@@ -28,20 +30,44 @@ def effect_texts(effects: pd.DataFrame) -> dict[str, str]:
     return out
 
 
+TABLE_COLUMNS = {"length_ratio": "length kept", "shortened_share": "loci shortened",
+                 "multi_arc_share_uncropped": "fragmented, paper",
+                 "multi_arc_share_cropped": "fragmented, cropped"}
+"""Statistics of :func:`effect_table` and their column headings (all in %)."""
+
+
 def effect_table(effects: pd.DataFrame) -> pd.DataFrame:
-    """One row per condition and subset, the statistics as percentages with intervals."""
-    wide = effects.assign(text=[_pct(r) for r in effects.itertuples()])
-    return wide.pivot_table(index=["label", "subset", "n"], columns="statistic", values="text",
-                            aggfunc="first", sort=False).reset_index()
+    """One row per condition and subset: sample count and the statistics of
+    :data:`TABLE_COLUMNS` in percent, ``"estimate (low–high)"`` with the 95 % interval (compact,
+    for the book's column; every statistic is in the figure's data)."""
+    sel = effects[effects["statistic"].isin(list(TABLE_COLUMNS))]
+    text = [f"{100 * r.estimate:.1f} ({100 * r.ci_low:.1f}–{100 * r.ci_high:.1f})" for r in sel.itertuples()]
+    wide = sel.assign(text=text).pivot_table(index=["label", "subset", "n"], columns="statistic",
+                                             values="text", aggfunc="first", sort=False)
+    wide = wide[list(TABLE_COLUMNS)].rename(columns={k: f"{v} (%)" for k, v in TABLE_COLUMNS.items()})
+    out = wide.reset_index().rename(columns={"label": "condition", "subset": "samples"})
+    out.columns.name = None
+    return out
 
 
-def plot_crop_effects(effects: pd.DataFrame):
+CROP_TEXT = {"surface": ("cropped to the water", "(b) length below the surface"),
+             "surface + seafloor": ("cropped to surface and seafloor", "(b) length in the water column")}
+"""Legend entry and panel (b) title of :func:`plot_crop_effects` for each ``crop``."""
+
+
+def plot_crop_effects(effects: pd.DataFrame, crop: str = "surface"):
     """(a) Share of fragmented loci without and with the crop; (b) share of the total locus
-    length the crop keeps; one row per condition (all samples), 95 % bootstrap intervals."""
-    allrows = effects[effects["subset"] == "all"].set_index(["label", "statistic"])
-    labels = list(dict.fromkeys(effects.loc[effects["subset"] == "all", "label"]))
+    length the crop keeps; one row per condition whose ``crop`` column is ``crop`` (all
+    samples), 95 % bootstrap intervals. Returns the figure."""
+    if crop not in CROP_TEXT:
+        raise ValueError(f"crop must be one of {list(CROP_TEXT)}; got {crop!r}")
+    sel = effects[(effects["subset"] == "all") & (effects["crop"] == crop)]
+    if sel.empty:
+        raise ValueError(f"effects has no condition with crop {crop!r}")
+    allrows = sel.set_index(["label", "statistic"])
+    labels = list(dict.fromkeys(sel["label"]))
     y = np.arange(len(labels))[::-1]
-    fig, axs = plt.subplots(1, 2, figsize=(7.2, 0.55 * len(labels) + 1.6), sharey=True,
+    fig, axs = plt.subplots(1, 2, figsize=(7.2, 0.55 * len(labels) + 1.9), sharey=True,
                             gridspec_kw={"width_ratios": [1.2, 1]}, layout="constrained")
 
     def bars(ax, stat, offset, color, label):
@@ -53,18 +79,20 @@ def plot_crop_effects(effects: pd.DataFrame):
         ax.bar_label(bar, labels=[f"{v:.1f}" for v in est], fontsize=9, padding=4)
         return hi.max()
 
+    cropped, title_b = CROP_TEXT[crop]
     top = max(bars(axs[0], "multi_arc_share_uncropped", 0.2, PAPER_COLOR, "paper's locus (apertures only)"),
-              bars(axs[0], "multi_arc_share_cropped", -0.2, WATER_COLOR, "cropped to the water"))
+              bars(axs[0], "multi_arc_share_cropped", -0.2, WATER_COLOR, cropped))
     axs[0].set_xlim(0, 1.3 * max(top, 1.0))
     axs[0].set_xlabel("fragmented loci (% of samples)", fontsize=10)
     axs[0].set_title("(a) loci with more than one arc", fontsize=10, loc="left")
-    axs[0].legend(fontsize=9, loc="upper right")
     bars(axs[1], "length_ratio", 0.0, WATER_COLOR, None)
     axs[1].set_xlim(0, 125)
     axs[1].set_xlabel("total locus length kept (%)", fontsize=10)
-    axs[1].set_title("(b) length below the surface", fontsize=10, loc="left")
-    axs[0].set_yticks(y, [lab.replace(", tilt", ",\ntilt") for lab in labels], fontsize=9)
+    axs[1].set_title(title_b, fontsize=10, loc="left")
+    axs[0].set_yticks(y, [textwrap.fill(lab, 28) for lab in labels], fontsize=9)
     for ax in axs:
         ax.tick_params(labelsize=9)
         ax.grid(axis="x", alpha=0.3)
+    handles, names = axs[0].get_legend_handles_labels()  # below the panels: never over a bar
+    fig.legend(handles, names, loc="outside lower center", ncol=2, fontsize=9, frameon=False)
     return fig
