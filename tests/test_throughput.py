@@ -134,3 +134,31 @@ def test_bootstrap_draw_counts_widen_for_large_counts():
     counts = bootstrap_draw_counts(Skewed(), 300, 3)
     assert counts.dtype == np.uint16
     assert np.array_equal(counts[0], np.ones(300)) and counts[1, 0] == counts[2, 0] == 300
+
+
+@pytest.mark.parametrize("values", [
+    np.array([3.0, 1.0, 2.0, 1.0, 3.0, 3.0, -0.0, 0.0]),  # ties, signed zeros
+    np.random.default_rng(3).integers(0, 50, 2000).astype(float),  # many ties
+    np.random.default_rng(4).standard_normal(1001),
+    np.array([1.0, np.nan, 2.0]), np.array([5.0]), np.array([], float),
+    np.random.default_rng(5).integers(-5, 5, 300),  # integers
+])
+def test_average_ranks_are_scipy_rankdata_bit_for_bit(values):
+    from scipy import stats
+
+    from sss_locus.experiments.rowstats import average_ranks
+
+    ours, ref = average_ranks(values), stats.rankdata(values)
+    assert ours.tobytes() == np.asarray(ref, float).tobytes()
+
+
+def test_weighted_correlation_sets_equal_separate_calls_bit_for_bit():
+    from sss_locus.experiments.rowstats import (bootstrap_draw_counts, weighted_correlation_sets,
+                                                weighted_correlations)
+
+    rng = np.random.default_rng(9)
+    X, Y = rng.standard_normal((5000, 4)), rng.standard_normal((5000, 2))
+    sets = [np.ones((1, 5000), np.uint8)] + [bootstrap_draw_counts(rng, 5000, k) for k in (64, 3)]
+    together = weighted_correlation_sets(X, Y, sets, rows_per_chunk=700)
+    for W, got in zip(sets, together):
+        assert got.tobytes() == weighted_correlations(X, Y, W, rows_per_chunk=700).tobytes()
