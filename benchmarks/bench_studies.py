@@ -25,6 +25,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import importlib
 import json
 import os
 import subprocess
@@ -127,7 +128,9 @@ def measure_dask(quick: bool) -> dict:
     serial = sample_pose_space(spec, n, 3)
     t_serial = time.perf_counter() - start
     os.environ[scale.SCHEDULER_ENV] = "local:2"
-    sample_pose_space(spec, 2 * 65536, 4)  # start the cluster and import on the workers
+    # start the cluster, import the studies on EVERY worker (a task may not reach both) and warm up
+    scale.client("local:2").run(importlib.import_module, "sss_locus.experiments.pose_space")
+    sample_pose_space(spec, 4 * 65536, 4)
     start = time.perf_counter()
     parallel = sample_pose_space(spec, n, 3)
     t_par = time.perf_counter() - start
