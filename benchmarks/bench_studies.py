@@ -1,13 +1,16 @@
 """Benchmark: end-to-end throughput of the Monte Carlo studies, against the kernel and a git ref.
 
 For the pose-space study (sampling + kernel + Spearman bootstrap + heatmaps), the survey-pass
-simulation (sampling + kernel + crossing-angle curve with bootstrap) and the noise Monte Carlo,
-prints samples per second end to end and the share of that time spent in the exact kernel
-(``two_view_locus``, timed by wrapping it where each study calls it; the end-to-end rate over
-the kernel-only rate on the same configurations equals that share). Then the book profile's
+simulation alone (``survey_simulation``: sampling + kernel) and with its crossing-angle curve
+(``survey_passes``: + bootstrap of the medians) and the noise Monte Carlo, prints samples per
+second end to end and the share of that time spent in the exact kernel (``two_view_locus``,
+timed by wrapping it where each study calls it; the end-to-end rate over the kernel-only rate on
+the same configurations equals that share). Then (not with ``--quick``) the book profile's
 compute time per notebook (``sss-locus run NAME --profile book`` into a scratch folder with an
-empty cache), and the speed-up of the pose-space sampler with a local Dask cluster of 2
-worker processes over in-process.
+empty cache; the trees take turns notebook by notebook), the speed-up of the pose-space sampler
+with a local Dask cluster of 2 worker processes over in-process (with ``--quick`` on 200,000
+samples instead of 1,000,000), the load average at start and end, and each target of issue 14
+with the measured value.
 
 ``--baseline REF`` runs the same measurements (not the Dask one) on a ``git worktree`` of
 ``REF`` with ``PYTHONPATH`` pointing there, in the same run, and prints both side by side.
@@ -15,13 +18,14 @@ This is a benchmark, not a test: nothing is asserted.
 
 Usage::
 
-    python benchmarks/bench_studies.py --baseline 71ed8ba          # everything (~15 min)
-    python benchmarks/bench_studies.py --quick --baseline 71ed8ba  # studies only, small sizes
+    python benchmarks/bench_studies.py --baseline 71ed8ba          # everything (see README)
+    python benchmarks/bench_studies.py --quick --baseline 71ed8ba  # small sizes, no notebooks
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import json
 import os
 import subprocess
@@ -63,6 +67,8 @@ def measure_studies(quick: bool) -> dict:
     out = {}
     n = 100_000 if quick else 600_000
     spec = pose_space.PoseSpaceSpec(load_platform("auv"))
+    # warm-up (one-off imports and caches, the same in both trees), not timed
+    spearman_table(with_derived(pose_space.sample_pose_space(spec, 2000, 9)), n_resamples=10, seed=9)
     spent[0], start = 0.0, time.perf_counter()
     table = with_derived(pose_space.sample_pose_space(spec, n, 1))
     rho = spearman_table(table, n_resamples=200, seed=1)
@@ -73,6 +79,10 @@ def measure_studies(quick: bool) -> dict:
     pf, env = load_platform("auv"), load_envelope("auv")
     grid = planning.crossing_angle_grid(2.0 if quick else 1.0, 40.0, 10.0 if quick else 5.0)
     per_angle = 500 if quick else 4000
+    spent[0], start = 0.0, time.perf_counter()
+    survey_passes.simulate_passes(pf, env, OffsetModel.parse("independent"), grid, per_angle, 1)
+    out["survey_simulation"] = dict(n=per_angle * len(grid), seconds=time.perf_counter() - start,
+                                    kernel=spent[0])
     spent[0], start = 0.0, time.perf_counter()
     planning.crossing_angle_curve(pf, env, OffsetModel.parse("independent"), crossing_angles_deg=grid,
                                   n_per_angle=per_angle, seed=1, n_resamples=200)
@@ -87,19 +97,23 @@ def measure_studies(quick: bool) -> dict:
     return out
 
 
-def measure_notebooks(tree: Path, names) -> dict:
-    """Wall seconds of each notebook's book profile, run from ``tree`` with an empty cache."""
-    times = {}
+def measure_notebooks(trees: dict, names) -> dict:
+    """Wall seconds of each notebook's book profile per tree, each run with an empty cache.
+
+    The trees take turns notebook by notebook (baseline, then this tree), so a change of the
+    machine's load during the run falls on both alike."""
+    times = {label: {} for label in trees}
     with tempfile.TemporaryDirectory() as tmp:
-        env = dict(os.environ, PYTHONPATH=str(tree), SSS_LOCUS_BUILD_DIR=f"{tmp}/build",
-                   SSS_LOCUS_CACHE_DIR=f"{tmp}/cache")
-        env.pop("SSS_LOCUS_SCHEDULER", None)
         for name in names:
-            start = time.perf_counter()
-            subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli", "run", name, "--profile", "book",
-                            "--output", f"{tmp}/{name}.ipynb"], cwd=tree, env=env, check=True,
-                           capture_output=True)
-            times[name] = time.perf_counter() - start
+            for i, (label, tree) in enumerate(trees.items()):
+                env = dict(os.environ, PYTHONPATH=str(tree), SSS_LOCUS_BUILD_DIR=f"{tmp}/build{i}",
+                           SSS_LOCUS_CACHE_DIR=f"{tmp}/cache{i}")
+                env.pop("SSS_LOCUS_SCHEDULER", None)
+                start = time.perf_counter()
+                subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli", "run", name, "--profile",
+                                "book", "--output", f"{tmp}/{name}-{i}.ipynb"], cwd=tree, env=env,
+                               check=True, capture_output=True)
+                times[label][name] = time.perf_counter() - start
     return times
 
 
@@ -114,7 +128,9 @@ def measure_dask(quick: bool) -> dict:
     serial = sample_pose_space(spec, n, 3)
     t_serial = time.perf_counter() - start
     os.environ[scale.SCHEDULER_ENV] = "local:2"
-    sample_pose_space(spec, 2 * 65536, 4)  # start the cluster and import on the workers
+    # start the cluster, import the studies on EVERY worker (a task may not reach both) and warm up
+    scale.client("local:2").run(importlib.import_module, "sss_locus.experiments.pose_space")
+    sample_pose_space(spec, 4 * 65536, 4)
     start = time.perf_counter()
     parallel = sample_pose_space(spec, n, 3)
     t_par = time.perf_counter() - start
@@ -125,16 +141,13 @@ def measure_dask(quick: bool) -> dict:
 
 
 def measure_tree(tree: Path, args) -> dict:
-    """Run the measurements in a child process importing ``sss_locus`` from ``tree``."""
+    """Run the study measurements in a child process importing ``sss_locus`` from ``tree``."""
     cmd = [sys.executable, str(Path(__file__).resolve()), "--child"] + (["--quick"] if args.quick else [])
     env = dict(os.environ, PYTHONPATH=str(tree))
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
         env.pop(var, None)  # the studies as the book runs them
     result = subprocess.run(cmd, cwd=tree, env=env, check=True, capture_output=True, text=True)
-    data = json.loads(result.stdout.strip().splitlines()[-1])
-    if not args.quick:
-        data["notebooks"] = measure_notebooks(tree, args.notebooks)
-    return data
+    return json.loads(result.stdout.strip().splitlines()[-1])
 
 
 def _rows(label: str, data: dict) -> list[str]:
@@ -145,16 +158,36 @@ def _rows(label: str, data: dict) -> list[str]:
     return rows
 
 
+def _targets(results: dict, dask: dict) -> list[str]:
+    """The issue's targets, each with the measured value (the last tree is this tree)."""
+    labels = list(results)
+    here = results[labels[-1]]
+    lines = []
+    for study in ("pose_space", "survey_simulation", "survey_passes"):
+        d = here["studies"][study]
+        share = 100 * d["kernel"] / d["seconds"]
+        lines.append(f"- {study}: end-to-end {share:.0f} % of the kernel-only rate (target >= 40 %): "
+                     f"{'met' if share >= 40 else 'NOT met'}")
+    if len(labels) > 1 and "notebooks" in here:
+        base, now = (sum(results[lb]["notebooks"].values()) for lb in (labels[0], labels[-1]))
+        lines.append(f"- book profile compute: {now:.0f} s = {100 * now / base:.0f} % of {labels[0]}'s "
+                     f"{base:.0f} s (target <= 40 %): {'met' if now <= 0.4 * base else 'NOT met'}")
+    lines.append(f"- Dask, 2 local workers: {dask['speedup']:.2f}x (target >= 1.7x): "
+                 f"{'met' if dask['speedup'] >= 1.7 else 'NOT met'}; bit-identical: {dask['identical']}")
+    return lines
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--baseline", metavar="REF", help="also measure this git ref, side by side")
-    parser.add_argument("--quick", action="store_true", help="small sizes, no notebooks, no Dask")
+    parser.add_argument("--quick", action="store_true", help="small sizes, no notebooks, a small Dask run")
     parser.add_argument("--notebooks", nargs="*", default=list(NOTEBOOKS))
     parser.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child:
         print(json.dumps({"studies": measure_studies(args.quick)}))
         return 0
+    started, load_start = time.perf_counter(), os.getloadavg()
     trees = {"this tree": REPO}
     tmp = None
     if args.baseline:
@@ -164,10 +197,19 @@ def main() -> int:
         trees = {f"baseline {args.baseline}": Path(tmp), **trees}
     try:
         results = {label: measure_tree(tree, args) for label, tree in trees.items()}
+        if not args.quick:
+            for label, times in measure_notebooks(trees, args.notebooks).items():
+                results[label]["notebooks"] = times
     finally:
         if tmp:
             subprocess.run(["git", "worktree", "remove", "--force", tmp], cwd=REPO, check=False)
-    print(f"load average at end: {os.getloadavg()[0]:.2f}; {os.cpu_count()} CPUs\n")
+    sys.path.insert(0, str(REPO))
+    dask = measure_dask(args.quick)
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPO, capture_output=True,
+                            text=True).stdout.strip()
+    print(f"this tree: {commit}; {os.cpu_count()} CPUs; load average (1, 5, 15 min) at start "
+          f"{', '.join(f'{x:.2f}' for x in load_start)}, at end "
+          f"{', '.join(f'{x:.2f}' for x in os.getloadavg())}; run took {time.perf_counter() - started:.0f} s\n")
     print("| Tree | Study | Samples | End-to-end samples/s | Kernel-only samples/s | Share in kernel |")
     print("|---|---|---:|---:|---:|---:|")
     for label, data in results.items():
@@ -179,11 +221,10 @@ def main() -> int:
             print(f"| {name} | " + " | ".join(f"{d['notebooks'][name]:.0f}" for d in results.values()) + " |")
         print("| **total** | " + " | ".join(f"**{sum(d['notebooks'].values()):.0f}**"
                                          for d in results.values()) + " |")
-        sys.path.insert(0, str(REPO))
-        dask = measure_dask(args.quick)
-        print(f"\nDask, pose-space sampler, {dask['n']:,} samples: in-process {dask['serial']:.1f} s, "
-              f"2 local worker processes {dask['workers2']:.1f} s, speed-up {dask['speedup']:.2f}x, "
-              f"bit-identical: {dask['identical']}")
+    print(f"\nDask, pose-space sampler, {dask['n']:,} samples: in-process {dask['serial']:.1f} s, "
+          f"2 local worker processes {dask['workers2']:.1f} s, speed-up {dask['speedup']:.2f}x, "
+          f"bit-identical: {dask['identical']}")
+    print("\nTargets (issue 14), this tree:\n" + "\n".join(_targets(results, dask)))
     return 0
 
 

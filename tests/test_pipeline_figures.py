@@ -150,3 +150,40 @@ def test_manifest_vanishing_mid_scan_is_skipped(tmp_path, fig, monkeypatch):
                         lambda self, pattern: [*real_glob(self, pattern), ghost])
     assert [m["label"] for m in load_manifests(tmp_path)] == ["fig-demo-kept"]
     assert remove_figures_of("no-such-notebook", tmp_path) == []
+
+
+def _laid_out_figure():
+    figure, axs = plt.subplots(1, 2, figsize=(5, 2.5), constrained_layout=True)
+    image = axs[0].imshow(np.arange(12.0).reshape(3, 4))
+    figure.colorbar(image, ax=axs[0], label="value (m)")
+    axs[1].plot(DATA["alpha_rad"], DATA["z_m"], label="z")
+    axs[1].set_xlabel("alpha (rad)")
+    axs[1].legend()
+    figure.suptitle("one layout")
+    return figure
+
+
+def test_one_layout_gives_matplotlibs_png_and_the_same_box_for_every_format(tmp_path):
+    """The PNG is byte for byte what a plain ``savefig(bbox_inches="tight")`` writes (reference:
+    matplotlib itself, on an identical figure); the SVG, PDF and the shown picture are drawn with
+    the same layout and tight box (the same size in inches), and the layout engine is kept."""
+    import io
+    import re
+
+    reference, figure = _laid_out_figure(), _laid_out_figure()
+    buffer = io.BytesIO()
+    reference.savefig(buffer, format="png", dpi=300, bbox_inches="tight")
+    engine = figure.get_layout_engine()
+    shown = []
+    export_figure(figure, "fig-demo", DATA, caption="C.", parameters={}, out_dir=tmp_path, shown=shown)
+    assert figure.get_layout_engine() is engine
+    plt.close(reference)
+    plt.close(figure)
+    assert (tmp_path / "fig-demo.png").read_bytes() == buffer.getvalue()
+    with Image.open(tmp_path / "fig-demo.png") as png, Image.open(io.BytesIO(shown[0])) as small:
+        width_in = png.size[0] / 300
+        assert small.size[0] == pytest.approx(width_in * figure.dpi, abs=1)
+    svg_pt = float(re.search(rb'<svg[^>]*width="([0-9.]+)pt"', (tmp_path / "fig-demo.svg").read_bytes()).group(1))
+    pdf_box = re.search(rb"/MediaBox \[\s*0 0 ([0-9.]+) ", (tmp_path / "fig-demo.pdf").read_bytes())
+    assert svg_pt / 72 == pytest.approx(width_in, abs=1 / 300 + 1e-3)
+    assert float(pdf_box.group(1)) / 72 == pytest.approx(width_in, abs=1 / 300 + 1e-3)

@@ -102,6 +102,52 @@ def test_lengths_only_kernel_matches_the_full_result():
     assert full.length.sum() > 0
 
 
+def _kernel_rows(n):
+    """Feature-seeded rows plus every degenerate kind, with two random half-spaces per row."""
+    rng = np.random.default_rng(11)
+    c = feature_seeded_configs(rng, n, EDGETECH, EDGETECH)
+    R, t, r1, r2 = (np.array(c[k]) for k in ("R", "t", "r1", "r2"))
+    b = np.linalg.norm(t, axis=-1)
+    t[0:50] = 0.0  # coincident origins
+    r2[50:100] = r1[50:100] + b[50:100]  # tangent spheres
+    r2[100:150] = r1[100:150] + 2 * b[100:150] + 1.0  # no intersection
+    r1[150:200] = 1e3  # out of the 150 m range
+    normals = rng.standard_normal((n, 2, 3))
+    normals[200:250, 0] = 0.0  # zero normal: vacuous or empty by the offset's sign
+    offsets = rng.uniform(-60.0, 60.0, (n, 2))
+    return R, t, r1, r2, dict(half_space_normals=normals, half_space_offsets=offsets)
+
+
+@pytest.mark.parametrize("outputs", ["all", "lengths"])
+def test_one_large_call_equals_small_calls_bit_for_bit(outputs):
+    """The kernel streams a batch through cache-sized chunks: a row's result must not depend on
+    the batch it came in (reference: the same rows in calls of 1, 7 and 1000 rows)."""
+    ap = Aperture(*EDGETECH[:3])
+    R, t, r1, r2, half = _kernel_rows(9_001)  # more than two internal chunks, not a multiple
+    big = two_view_locus(R, t, r1, r2, ap, ap, outputs=outputs, **half)
+    names = ["length", "n_arcs", "status", "radius", "C", "exists", "in_range"]
+    names += ["arc_start", "arc_end", "center", "normal", "basis1", "basis2", "u"] if outputs == "all" else []
+    for size in (1, 7, 1000):
+        rows = np.arange(9_001) if size == 1000 else np.arange(0, 9_001, 97)  # size 1, 7: a sample
+        for start in range(0, len(rows), size):
+            i = rows[start:start + size]
+            part = two_view_locus(R[i], t[i], r1[i], r2[i], ap, ap, outputs=outputs,
+                                  **{k: v[i] for k, v in half.items()})
+            for name in names:
+                np.testing.assert_array_equal(getattr(part, name), getattr(big, name)[i], err_msg=name)
+    statuses = set(np.unique(big.status))
+    assert len(statuses) >= 4 and (big.n_arcs > 0).sum() > 1000  # every kind is exercised
+
+
+def test_lengths_only_with_half_spaces_matches_the_full_result():
+    ap = Aperture(*EDGETECH[:3])
+    R, t, r1, r2, half = _kernel_rows(5_000)
+    full = two_view_locus(R, t, r1, r2, ap, ap, **half)
+    lean = two_view_locus(R, t, r1, r2, ap, ap, outputs="lengths", **half)
+    for name in ("length", "n_arcs", "status", "radius", "C", "exists", "in_range"):
+        assert np.array_equal(getattr(full, name), getattr(lean, name)), name
+
+
 def test_kernel_outputs_argument_is_checked():
     ap = Aperture(*EDGETECH[:3])
     with pytest.raises(ValueError, match="outputs must be 'all' or 'lengths'"):

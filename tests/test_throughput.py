@@ -134,3 +134,55 @@ def test_bootstrap_draw_counts_widen_for_large_counts():
     counts = bootstrap_draw_counts(Skewed(), 300, 3)
     assert counts.dtype == np.uint16
     assert np.array_equal(counts[0], np.ones(300)) and counts[1, 0] == counts[2, 0] == 300
+
+
+@pytest.mark.parametrize("values", [
+    np.array([3.0, 1.0, 2.0, 1.0, 3.0, 3.0, -0.0, 0.0]),  # ties, signed zeros
+    np.random.default_rng(3).integers(0, 50, 2000).astype(float),  # many ties
+    np.random.default_rng(4).standard_normal(1001),
+    np.array([1.0, np.nan, 2.0]), np.array([5.0]), np.array([], float),
+    np.random.default_rng(5).integers(-5, 5, 300),  # integers
+])
+def test_average_ranks_are_scipy_rankdata_bit_for_bit(values):
+    from scipy import stats
+
+    from sss_locus.experiments.rowstats import average_ranks
+
+    ours, ref = average_ranks(values), stats.rankdata(values)
+    assert ours.tobytes() == np.asarray(ref, float).tobytes()
+
+
+def test_weighted_correlation_sets_equal_separate_calls_bit_for_bit():
+    from sss_locus.experiments.rowstats import (bootstrap_draw_counts, weighted_correlation_sets,
+                                                weighted_correlations)
+
+    rng = np.random.default_rng(9)
+    X, Y = rng.standard_normal((5000, 4)), rng.standard_normal((5000, 2))
+    sets = [np.ones((1, 5000), np.uint8)] + [bootstrap_draw_counts(rng, 5000, k) for k in (64, 3)]
+    together = weighted_correlation_sets(X, Y, sets, rows_per_chunk=700)
+    for W, got in zip(sets, together):
+        assert got.tobytes() == weighted_correlations(X, Y, W, rows_per_chunk=700).tobytes()
+
+
+@pytest.mark.parametrize("q", [0.0, 0.025, 0.5, 0.95, 0.975, 1.0])
+@pytest.mark.parametrize("n", [1, 2, 7, 1000])
+def test_sqrt_quantile_rows_is_numpy_quantile_of_the_roots_bit_for_bit(q, n):
+    from sss_locus.experiments.rowstats import sqrt_quantile_rows
+
+    rng = np.random.default_rng(n)
+    x = rng.exponential(size=(300, n))
+    x[:5] = np.round(x[:5], 1)  # ties
+    x[5] = 0.0
+    ref = np.quantile(np.sqrt(x), q, axis=-1)
+    assert sqrt_quantile_rows(x, q, rows_per_chunk=64).tobytes() == ref.tobytes()
+    assert sqrt_quantile_rows(x.reshape(3, 100, n), q).tobytes() == ref.reshape(3, 100).tobytes()
+
+
+def test_gaussian_norm_quantile_of_a_batch_equals_one_at_a_time():
+    from sss_locus.experiments.noise import gaussian_norm_quantile
+
+    A = np.random.default_rng(6).standard_normal((300, 3, 3))
+    cov = A @ A.transpose(0, 2, 1)
+    batch = gaussian_norm_quantile(cov, 0.95, n_points=1 << 10)
+    alone = np.array([gaussian_norm_quantile(c, 0.95, n_points=1 << 10) for c in cov[::37]])
+    assert batch[::37].tobytes() == alone.tobytes()

@@ -299,7 +299,7 @@ def _evaluate(spec: PoseSpaceSpec, g: dict[str, np.ndarray]) -> pd.DataFrame:
         normals, offsets = spec.water.half_spaces(R1, o1[:, 2], spec.water.depth_for(spec.platform),
                                                   feature_z=g["f"][:, 2])
         crop = dict(half_space_normals=normals, half_space_offsets=offsets)
-    res = two_view_locus(g["R"], g["t"], g["r1"], g["r2"], ap, ap, **crop)
+    res = two_view_locus(g["R"], g["t"], g["r1"], g["r2"], ap, ap, outputs="lengths", **crop)
     mis = elevation_misalignment(g["R"], g["t"])
     mean_range = 0.5 * (g["r1"] + g["r2"])
     side = lambda port: pd.Categorical.from_codes(  # = Categorical of the names, without strings

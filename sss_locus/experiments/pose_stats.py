@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
-from .rowstats import bootstrap_draw_counts, weighted_correlations
+from .rowstats import average_ranks, bootstrap_draw_counts, weighted_correlation_sets
 
 TARGETS = ("locus_length_m", "locus_length_normalized")
 """Raw and range-normalised locus length (``locus_length_m / mean_range_m``)."""
@@ -28,6 +28,7 @@ CANDIDATES = (
 correlation with length is ~0 by construction and says nothing)."""
 
 _RESAMPLES_PER_PASS = 64
+_PASSES_PER_READ = 4  # matrices of resample counts multiplied per read of the table
 """Bootstrap resamples whose correlations are computed in one pass over the table."""
 
 
@@ -73,8 +74,8 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     recomputes the correlation of the full-sample ranks on each resample (weights = how often a
     row is drawn); ranks are not recomputed per resample, which differs from re-ranking by
     O(1/n) and lets one pass cost O(n * candidates). The correlations of 64 resamples at a
-    time come from one pass over the table
-    (:func:`~sss_locus.experiments.rowstats.weighted_correlations`). Percentile interval at
+    time come from one matrix product per chunk of the table, and up to four such products share
+    one read of it (:func:`~sss_locus.experiments.rowstats.weighted_correlation_sets`). Percentile interval at
     ``confidence_level``. A constant column (e.g. the boat's pitch, always 0) has no rank
     correlation: with ``drop_constant`` it is left out (listed in ``out.attrs["dropped"]``),
     otherwise it raises ``ValueError``.
@@ -95,7 +96,7 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
         raise ValueError(f"need at least 3 rows for a rank correlation; got {n}")
 
     def centred_ranks(cols):
-        r = np.column_stack([stats.rankdata(df[c].to_numpy()) for c in cols])
+        r = np.column_stack([average_ranks(df[c].to_numpy()) for c in cols])  # = stats.rankdata
         return (r - (n + 1) / 2.0) / n  # centred and scaled: well-conditioned sums
 
     constant = [c for c in list(candidates) + list(targets) if _is_constant(df[c])]
@@ -103,12 +104,15 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
         raise ValueError(f"columns {constant} are constant: their rank correlation is undefined")
     candidates = [c for c in candidates if c not in constant]
     X, Y = centred_ranks(candidates), centred_ranks(targets)
-    rho = weighted_correlations(X, Y, np.ones((1, n), np.uint8))[0]
     rng = np.random.default_rng(seed)
-    boots = np.empty((int(n_resamples),) + rho.shape)
-    for b in range(0, len(boots), _RESAMPLES_PER_PASS):
-        counts = bootstrap_draw_counts(rng, n, min(_RESAMPLES_PER_PASS, len(boots) - b))
-        boots[b:b + len(counts)] = weighted_correlations(X, Y, counts)
+    sizes = [min(_RESAMPLES_PER_PASS, int(n_resamples) - b) for b in range(0, int(n_resamples), _RESAMPLES_PER_PASS)]
+    sets, results = [np.ones((1, n), np.uint8)], []  # the point estimate rides along the first read
+    for i, size in enumerate(sizes):
+        sets.append(bootstrap_draw_counts(rng, n, size))  # the same draws, in order
+        if len(sets) >= _PASSES_PER_READ or i == len(sizes) - 1:  # bounded memory: n bytes a resample
+            results += weighted_correlation_sets(X, Y, sets)
+            sets = []
+    rho, boots = results[0][0], np.concatenate(results[1:])
     alpha = (1.0 - confidence_level) / 2.0
     lo, hi = np.quantile(boots, [alpha, 1.0 - alpha], axis=0)
     rows = [dict(target=tg, quantity=c, rho=rho[i, j], ci_low=lo[i, j], ci_high=hi[i, j], n=n)

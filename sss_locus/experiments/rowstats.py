@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 
@@ -28,12 +30,37 @@ def nanquantile_rows(x, q) -> np.ndarray:
     i_next = np.where(above, k - 1, prev + 1).astype(np.intp)
     gamma = virtual - np.where(above, -1.0, prev)
     rows = np.arange(len(k))
-    a, b = s[rows, i_prev], s[rows, i_next]
-    diff = b - a
-    value = a + diff * gamma
-    value = np.where(gamma >= 0.5, b - diff * (1 - gamma), value)
-    out[ok] = value
+    out[ok] = _lerp(s[rows, i_prev], s[rows, i_next], gamma)
     return out
+
+
+def _lerp(a, b, gamma):
+    """numpy's quantile interpolation between neighbours ``a <= b``, operation for operation."""
+    diff = b - a
+    return np.where(gamma >= 0.5, b - diff * (1 - gamma), a + diff * gamma)
+
+
+def sqrt_quantile_rows(squares, q: float, *, rows_per_chunk: int = 256) -> np.ndarray:
+    """``np.quantile(np.sqrt(squares), q, axis=-1)`` for a scalar ``q`` in [0, 1], the same
+    numbers with fewer operations: the two neighbouring order statistics are found by one
+    partition of the squares (``sqrt`` keeps their order), and only those two get a square root
+    (then numpy's "linear" interpolation). Rows are handled ``rows_per_chunk`` at a time, so
+    the work array stays small. ``squares`` (..., N) non-negative, no NaN; returns shape (...).
+    """
+    x = np.asarray(squares, float)
+    n = x.shape[-1]
+    if n == 0 or not 0.0 <= q <= 1.0:
+        raise ValueError(f"need a non-empty last axis and q in [0, 1]; got {x.shape}, {q!r}")
+    virtual = (n - 1) * float(q)
+    prev = math.floor(virtual)
+    i_prev, i_next = (n - 1, n - 1) if virtual >= n - 1 else (prev, prev + 1)
+    gamma = virtual - (-1.0 if virtual >= n - 1 else prev)
+    flat = x.reshape(-1, n)
+    out = np.empty(flat.shape[0])
+    for a in range(0, flat.shape[0], rows_per_chunk):
+        part = np.partition(flat[a:a + rows_per_chunk], [i_prev, i_next], axis=-1)
+        out[a:a + rows_per_chunk] = _lerp(np.sqrt(part[:, i_prev]), np.sqrt(part[:, i_next]), gamma)
+    return out.reshape(x.shape[:-1])
 
 
 def weighted_correlations(X, Y, weights, *, rows_per_chunk: int = 8192) -> np.ndarray:
@@ -47,26 +74,65 @@ def weighted_correlations(X, Y, weights, *, rows_per_chunk: int = 8192) -> np.nd
     weights are handled by one matrix product per chunk of ``rows_per_chunk`` table rows (the
     products ``x^2``, ``y^2``, ``x y`` are formed per chunk, in cache), so the table is read
     once for all of them. Centre and scale the columns beforehand (e.g. ranks ``(r - (n+1)/2)
-    / n``) for well-conditioned sums.
+    / n``) for well-conditioned sums. Several weight matrices: :func:`weighted_correlation_sets`.
     """
+    return weighted_correlation_sets(X, Y, [weights], rows_per_chunk=rows_per_chunk)[0]
+
+
+def weighted_correlation_sets(X, Y, weight_sets, *, rows_per_chunk: int = 8192) -> list[np.ndarray]:
+    """:func:`weighted_correlations` for each matrix of ``weight_sets`` (a list of ``(k_i, n)``
+    arrays), with one pass over the table: the products of each chunk of rows are formed once
+    and multiplied by every matrix. Each result is the same, bit for bit, as a separate call
+    (the same matrix products, accumulated in the same order)."""
     X, Y = np.asarray(X, float), np.asarray(Y, float)
-    W = np.asarray(weights)
+    sets = [np.asarray(W) for W in weight_sets]
     n, p = X.shape
     q = Y.shape[1]
-    if Y.shape[0] != n or W.ndim != 2 or W.shape[1] != n:
-        raise ValueError(f"X (n, p), Y (n, q) and weights (k, n) must share n; got shapes "
-                         f"{X.shape}, {Y.shape}, {W.shape}")
-    sums = np.zeros((W.shape[0], 2 * (p + q) + p * q))
+    for W in sets:
+        if Y.shape[0] != n or W.ndim != 2 or W.shape[1] != n:
+            raise ValueError(f"X (n, p), Y (n, q) and weights (k, n) must share n; got shapes "
+                             f"{X.shape}, {Y.shape}, {W.shape}")
+    sums = [np.zeros((W.shape[0], 2 * (p + q) + p * q)) for W in sets]
     for a in range(0, n, rows_per_chunk):
         x, y = X[a:a + rows_per_chunk], Y[a:a + rows_per_chunk]
         xy = (x[:, :, None] * y[:, None, :]).reshape(len(x), p * q)
-        sums += W[:, a:a + rows_per_chunk].astype(float) @ np.hstack([x, y, x * x, y * y, xy])
-    s = W.sum(axis=1, dtype=float)[:, None]
-    mx, my = sums[:, :p] / s, sums[:, p:p + q] / s
-    vx = sums[:, p + q:2 * p + q] / s - mx ** 2
-    vy = sums[:, 2 * p + q:2 * (p + q)] / s - my ** 2
-    cxy = sums[:, 2 * (p + q):].reshape(-1, p, q) / s[:, :, None] - mx[:, :, None] * my[:, None, :]
-    return cxy / np.sqrt(vx[:, :, None] * vy[:, None, :])
+        products = np.hstack([x, y, x * x, y * y, xy])
+        for W, total in zip(sets, sums):
+            total += W[:, a:a + rows_per_chunk].astype(float) @ products
+    out = []
+    for W, total in zip(sets, sums):
+        s = W.sum(axis=1, dtype=float)[:, None]
+        mx, my = total[:, :p] / s, total[:, p:p + q] / s
+        vx = total[:, p + q:2 * p + q] / s - mx ** 2
+        vy = total[:, 2 * p + q:2 * (p + q)] / s - my ** 2
+        cxy = total[:, 2 * (p + q):].reshape(-1, p, q) / s[:, :, None] - mx[:, :, None] * my[:, None, :]
+        out.append(cxy / np.sqrt(vx[:, :, None] * vy[:, None, :]))
+    return out
+
+
+def average_ranks(v) -> np.ndarray:
+    """Ranks 1..n of a 1-D array, ties given their average rank; all NaN if any value is NaN.
+
+    The numbers of :func:`scipy.stats.rankdata` (``method="average"``, ``nan_policy=
+    "propagate"``), by the same formula ``(first + last) / 2`` over each run of equal sorted
+    values (ranks and half-ranks are exact in float64), without importing ``scipy.stats``.
+    """
+    v = np.asarray(v)
+    if v.ndim != 1:
+        raise ValueError(f"average_ranks takes a 1-D array; got shape {v.shape}")
+    n = v.size
+    if v.dtype.kind == "f" and np.isnan(v).any():
+        return np.full(n, np.nan)
+    order = np.argsort(v, kind="stable")
+    s = v[order]
+    new = np.empty(n, bool)
+    new[:1] = True
+    np.not_equal(s[1:], s[:-1], out=new[1:])
+    group = np.cumsum(new)  # 1-based run of each sorted position
+    bounds = np.append(np.flatnonzero(new), n)  # first position of each run, then n
+    ranks = np.empty(n)
+    ranks[order] = 0.5 * (bounds[group] + bounds[group - 1] + 1)
+    return ranks
 
 
 def bootstrap_draw_counts(rng, n: int, n_resamples: int):

@@ -191,7 +191,7 @@ def _evaluate(platform, gamma_deg, d, water=None) -> pd.DataFrame:
                                              d["alt1"] + water.depth_for(platform),
                                              feature_z=np.zeros(len(d["alt1"])))
         crop = dict(half_space_normals=normals, half_space_offsets=offsets)
-    res = two_view_locus(R, t, r1, r2, ap, ap, **crop)
+    res = two_view_locus(R, t, r1, r2, ap, ap, outputs="lengths", **crop)
     mis = elevation_misalignment(R, t)
     side = lambda port: pd.Categorical.from_codes(  # = Categorical of the names, without strings
         np.where(port, SIDES.index("port"), SIDES.index("starboard")).astype(np.int8), categories=list(SIDES))

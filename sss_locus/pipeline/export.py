@@ -35,6 +35,7 @@ renamed, so two writers of one label never share a temporary file. The files:
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import re
@@ -143,6 +144,7 @@ def export_figure(
     cell: int | None = None,
     dpi: int = 300,
     out_dir: Path | None = None,
+    shown: list[bytes] | None = None,
 ) -> dict[str, Any]:
     """Export one figure with its data, manifest and BibTeX entry; return the manifest.
 
@@ -173,6 +175,9 @@ def export_figure(
     out_dir : pathlib.Path, optional
         Output folder; defaults to :func:`default_out_dir` (never the build area outside the
         runner).
+    shown : list, optional
+        If given, the picture a chapter shows is appended to it: PNG bytes at the figure's own
+        ``dpi``, from the same layout and tight box as the files (see :func:`_save_images`).
 
     Returns
     -------
@@ -203,14 +208,8 @@ def export_figure(
     written: list[Path] = []
     # A fixed salt makes SVG element ids (random by default) reproducible.
     with matplotlib.rc_context({"svg.hashsalt": label}):
-        for fmt in IMAGE_FORMATS:
-            target = out / f"{label}.{fmt}"
-            with readability.recording_text() as drawn:  # the PNG is drawn by Agg
-                _save_atomic(target, lambda tmp, fmt=fmt: fig.savefig(
-                    tmp, format=fmt, dpi=int(dpi), bbox_inches="tight", metadata=_SAVE_METADATA.get(fmt)))
-            if fmt == "png":
-                text = readability.text_record(drawn, _png_width_px(target) / int(dpi), fig.dpi)
-            written.append(target)
+        images, text = _save_images(fig, out, label, int(dpi), shown)
+    written.extend(images)
     for name, frame in frames.items():
         index = not isinstance(frame.index, pd.RangeIndex)
         _save_atomic(out / name, lambda tmp, frame=frame, index=index: frame.to_csv(tmp, index=index))
@@ -242,6 +241,58 @@ def export_figure(
     }
     _write_atomic(manifest_path, json.dumps(manifest, indent=2, sort_keys=True) + "\n")
     return manifest
+
+
+def _save_images(fig: Any, out: Path, label: str, dpi: int,
+                 shown: list[bytes] | None) -> tuple[list[Path], dict[str, Any]]:
+    """Write ``<label>.png``, ``.svg`` and ``.pdf`` from ONE layout; return the paths and the
+    readability record (:func:`readability.text_record`) of the PNG's draw.
+
+    The PNG is saved exactly as ``fig.savefig(..., bbox_inches="tight")`` saves it (layout
+    engine run, dry draw, tight box, draw), and the tight box it computed is kept. The layout is
+    then frozen and the vector files (and ``shown``'s picture at the figure's dpi) are drawn
+    with that box: one draw each instead of a layout, a dry draw, a tight-box search and a draw.
+    They therefore share the PNG's layout (text extents measured by Agg at ``dpi``) to the
+    digit, where separate saves would each lay the figure out again with their own renderer's
+    text metrics (differences well below a pixel).
+    """
+    import matplotlib
+
+    boxes: list[Any] = []
+    measure = fig.get_tightbbox
+
+    def recording_box(*args, **kwargs):  # called by savefig("tight") once, after the layout
+        boxes.append(measure(*args, **kwargs))
+        return boxes[-1]
+
+    png = out / f"{label}.png"
+    fig.get_tightbbox = recording_box
+    try:
+        with readability.recording_text() as drawn:  # the PNG is drawn by Agg
+            _save_atomic(png, lambda tmp: fig.savefig(tmp, format="png", dpi=dpi, bbox_inches="tight"))
+    finally:
+        del fig.get_tightbbox
+    text = readability.text_record(drawn, _png_width_px(png) / dpi, fig.dpi)
+    box = boxes[-1].padded(matplotlib.rcParams["savefig.pad_inches"])
+    written = [png]
+    engine = fig.get_layout_engine()
+    if engine is not None:  # no engine at all (not even "none"): savefig then skips its dry draw
+        with matplotlib.rc_context({"figure.autolayout": False, "figure.constrained_layout.use": False}):
+            fig.set_layout_engine(None)  # the positions the PNG was drawn with stay
+    try:
+        for fmt in ("svg", "pdf"):
+            target = out / f"{label}.{fmt}"
+            _save_atomic(target, lambda tmp, fmt=fmt: fig.savefig(
+                tmp, format=fmt, dpi=dpi, bbox_inches=box, metadata=_SAVE_METADATA[fmt]))
+            written.append(target)
+        if shown is not None:
+            buffer = io.BytesIO()
+            fig.savefig(buffer, format="png", dpi=fig.dpi, bbox_inches=box)
+            shown.append(buffer.getvalue())
+    finally:
+        if engine is not None:
+            fig.set_layout_engine(engine)
+    return written, text
 
 
 def _png_width_px(path: Path) -> int:

@@ -84,13 +84,15 @@ def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame
     from myst_nb import glue
 
     from IPython import get_ipython
-    from IPython.display import HTML, display
+    from IPython.display import HTML, Image, display
 
     shell = get_ipython()
     cell = getattr(shell, "execution_count", None) if shell is not None else None
-    export.export_figure(fig, label, data, caption=caption, parameters=run_parameters(), cell=cell)
+    shown: list[bytes] = []  # the chapter's picture, drawn from the exported files' layout
+    export.export_figure(fig, label, data, caption=caption, parameters=run_parameters(), cell=cell,
+                         shown=shown)
     display(HTML(f'<span id="{label}-source" class="figure-source-anchor"></span>'))
-    glue(label, fig, display=False)
+    glue(label, Image(data=shown[0], format="png"), display=False)
     glue(f"{label}-caption", Markdown(caption), display=False)
     plt.close(fig)
 

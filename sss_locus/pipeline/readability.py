@@ -2,8 +2,9 @@
 
 The book shows each figure as an ``<img>`` that is never wider than the content column
 (sphinx-book-theme: ``max-width: 100%``) and never wider than its natural size. The image a
-chapter shows is the glued notebook output, drawn at the figure's own ``dpi`` with
-``bbox_inches="tight"`` (the exported PNG is the same picture at 300 dpi), so a figure whose
+chapter shows is the glued notebook output, drawn at the figure's own ``dpi`` in the tight box
+of the exported PNG (the same layout and box at 300 dpi; see
+:func:`sss_locus.pipeline.export.export_figure`), so a figure whose
 saved picture is ``width_in`` inches wide is shown ``min(column_px, width_in * dpi)`` CSS px wide,
 and text of ``size_pt`` points appears
 
