@@ -175,3 +175,14 @@ def test_vectorised_nan_quantile_equals_numpy_nanquantile():
             ref = np.full(shape[0], np.nan)
             ref[ok] = np.nanquantile(x[ok], q, axis=1)
             assert np.array_equal(nanquantile_rows(x, q), ref, equal_nan=True), (shape, q)
+
+
+def test_local_workers_keep_freed_memory_instead_of_trimming_it():
+    """``--workers N`` clusters start without Dask's MALLOC_TRIM_THRESHOLD_=65536 (which made the
+    kernel's large arrays page-fault back in on every chunk), and say so in the workers' env."""
+    pytest.importorskip("distributed")
+    try:
+        env = scale.client("local:1").run(lambda: __import__("os").environ.get("MALLOC_TRIM_THRESHOLD_"))
+    finally:
+        scale.close_clients()
+    assert list(env.values()) == [str(scale.LOCAL_MALLOC_TRIM_THRESHOLD)]

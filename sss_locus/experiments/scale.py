@@ -47,6 +47,12 @@ def parse_scheduler(value: str | None) -> tuple[str, int | str] | None:
     return ("address", text)
 
 
+#: Bytes of freed memory a local worker keeps before returning it to the OS (glibc's
+#: ``MALLOC_TRIM_THRESHOLD_``; Dask's default for workers is 65536).
+LOCAL_MALLOC_TRIM_THRESHOLD = 256 * 2**20
+_TRIM = "MALLOC_TRIM_THRESHOLD_"
+
+
 def client(value: str):
     """The Dask client for a scheduler setting (created once per process and setting)."""
     kind, arg = parse_scheduler(value)
@@ -57,8 +63,25 @@ def client(value: str):
             raise RuntimeError(f"{SCHEDULER_ENV}={value!r} needs Dask: install the extra "
                                "`sss-locus[scale]` (dask[distributed])") from exc
         if kind == "local":
-            cluster = LocalCluster(n_workers=arg, threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
+            import dask
+
+            # Dask starts workers with MALLOC_TRIM_THRESHOLD_=65536, so glibc hands every large
+            # array back to the OS and the next chunk page-faults it in again: the kernel's CPU
+            # time per chunk rose by ~70 % (benchmarks/bench_studies.py). Local workers keep
+            # freed memory up to LOCAL_MALLOC_TRIM_THRESHOLD instead.
+            # (Dask reads the variable from os.environ first, and a cluster started earlier in
+            # this process leaves its own value there: set both, restore the variable after.)
+            before = os.environ.get(_TRIM)
+            os.environ[_TRIM] = str(LOCAL_MALLOC_TRIM_THRESHOLD)
+            try:
+                with dask.config.set({f"distributed.nanny.pre-spawn-environ.{_TRIM}": LOCAL_MALLOC_TRIM_THRESHOLD}):
+                    cluster = LocalCluster(n_workers=arg, threads_per_worker=1, processes=True,
+                                           dashboard_address=None)
+            finally:
+                if before is None:
+                    os.environ.pop(_TRIM, None)
+                else:
+                    os.environ[_TRIM] = before
             _CLIENTS[value] = Client(cluster)
         else:
             _CLIENTS[value] = Client(arg)
