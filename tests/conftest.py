@@ -52,9 +52,6 @@ def build_area(tmp_path, monkeypatch):
 
 # -- the shared quick book, built while the other tests run (see book_support) ----------------------
 
-_QUICK_BOOK = pytest.StashKey[object]()
-
-
 def _uses_quick_book(item) -> bool:
     return "quick_book" in getattr(item, "fixturenames", ())
 
@@ -67,27 +64,22 @@ def pytest_collection_modifyitems(config, items):
 
 @pytest.fixture(scope="session", autouse=True)
 def _background_quick_book(request, tmp_path_factory):
+    """Starts the quick book at the session's first test if any collected test uses it."""
     build = None
     if any(_uses_quick_book(item) for item in request.session.items):
         from book_support import QuickBook
 
         build = QuickBook(tmp_path_factory.mktemp("quick-book"))
-        request.config.stash[_QUICK_BOOK] = build
-    yield
+    yield build
     if build is not None:
         build.stop()
 
 
 @pytest.fixture(scope="session")
-def quick_book(request, tmp_path_factory):
+def quick_book(_background_quick_book):
     """The whole book built from the ``quick`` profile into a temporary build area and its own cache
     (started in the background at the session's start): ``{"area", "html", "stdout", "env"}``."""
-    build = request.config.stash.get(_QUICK_BOOK, None)
-    if build is None:  # e.g. a test selected by keyword that reaches the fixture indirectly
-        from book_support import QuickBook
-
-        build = request.config.stash[_QUICK_BOOK] = QuickBook(tmp_path_factory.mktemp("quick-book"))
     try:
-        return build.result()
+        return _background_quick_book.result()
     except RuntimeError as error:
         pytest.fail(str(error))

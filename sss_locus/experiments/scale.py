@@ -63,20 +63,17 @@ def client(value: str):
             raise RuntimeError(f"{SCHEDULER_ENV}={value!r} needs Dask: install the extra "
                                "`sss-locus[scale]` (dask[distributed])") from exc
         if kind == "local":
-            import dask
-
             # Dask starts workers with MALLOC_TRIM_THRESHOLD_=65536, so glibc hands every large
             # array back to the OS and the next chunk page-faults it in again: the kernel's CPU
             # time per chunk rose by ~70 % (benchmarks/bench_studies.py). Local workers keep
-            # freed memory up to LOCAL_MALLOC_TRIM_THRESHOLD instead.
-            # (Dask reads the variable from os.environ first, and a cluster started earlier in
-            # this process leaves its own value there: set both, restore the variable after.)
+            # freed memory up to LOCAL_MALLOC_TRIM_THRESHOLD instead. Dask's nannies take the
+            # variable from os.environ before their config (distributed.nanny.pre-spawn-environ)
+            # and leave it set there: set it for the start of the cluster, then restore it.
             before = os.environ.get(_TRIM)
             os.environ[_TRIM] = str(LOCAL_MALLOC_TRIM_THRESHOLD)
             try:
-                with dask.config.set({f"distributed.nanny.pre-spawn-environ.{_TRIM}": LOCAL_MALLOC_TRIM_THRESHOLD}):
-                    cluster = LocalCluster(n_workers=arg, threads_per_worker=1, processes=True,
-                                           dashboard_address=None)
+                cluster = LocalCluster(n_workers=arg, threads_per_worker=1, processes=True,
+                                       dashboard_address=None)
             finally:
                 if before is None:
                     os.environ.pop(_TRIM, None)
