@@ -123,7 +123,7 @@ def average_ranks(v) -> np.ndarray:
     n = v.size
     if v.dtype.kind == "f" and np.isnan(v).any():
         return np.full(n, np.nan)
-    order = np.argsort(v, kind="stable")
+    order = np.argsort(v)  # any order within a run of ties gives the same ranks: no stable sort
     s = v[order]
     new = np.empty(n, bool)
     new[:1] = True
