@@ -70,13 +70,6 @@ def test_monte_carlo_agrees_with_first_order_for_small_noise(auv, pattern, kind,
     np.testing.assert_allclose(lin2, 200 * lin, rtol=1e-3)
 
 
-def test_gaussian_norm_quantile_reference():
-    # 1-D: the 95 % quantile of |N(0, s^2)| is 1.95996 s; 3-D isotropic: chi with 3 dof
-    assert gaussian_norm_quantile(np.array([[4.0]]), 0.95) == pytest.approx(2 * 1.959964, rel=2e-3)
-    from scipy.stats import chi
-    assert gaussian_norm_quantile(np.eye(3) * 9.0, 0.95) == pytest.approx(3 * chi.ppf(0.95, 3), rel=2e-3)
-
-
 def test_without_noise_nothing_moves(pattern):
     views = pattern.select(0, 1)
     mc = monte_carlo(views, load_noise_model("auv").scaled(0.0), Aperture(130.0, 0.27, 150.0),

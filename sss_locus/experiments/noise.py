@@ -36,12 +36,12 @@ First-order estimate (:func:`first_order`)
 The offset vector (true feature -> nearest perturbed circle point, or -> three-view point) is a
 smooth function of the ``7 k`` standardised errors; its Jacobian by central differences gives
 the covariance ``J J^T`` and from it the 95 % quantile of the offset's length
-(:func:`gaussian_norm_quantile`), to compare with the Monte Carlo percentile.
+(:func:`~sss_locus.experiments.gaussian_norm.gaussian_norm_quantile`, exact to about 1e-7), to
+compare with the Monte Carlo percentile.
 """
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
@@ -55,7 +55,8 @@ from ..geometry.validation import as_float_array
 from ..paths import DATA_DIR
 from . import datadoc
 from .inputs import platform_table, read_toml, sourced
-from .rowstats import nanquantile_rows, sqrt_quantile_rows
+from .gaussian_norm import gaussian_norm_quantile  # noqa: F401 (part of this module's interface)
+from .rowstats import nanquantile_rows
 from .view_sets import Views, views_from_survey
 
 NOISE_FILE: Path = DATA_DIR / "noise.toml"
@@ -331,37 +332,6 @@ def first_order(views: Views, noise: NoiseModel, aperture: Aperture, *, kind: st
     off = _offsets(kind, views, sig, e, aperture, **kw)[key]  # (n, 2m, 3)
     J = (off[:, 0::2] - off[:, 1::2]) / (2 * step)  # (n, m, 3)
     return np.einsum("nmi,nmj->nij", J, J)
-
-
-def gaussian_norm_quantile(cov, quantile: float = 0.95, n_points: int = 1 << 15) -> np.ndarray:
-    """Quantile of ``|x|`` for ``x ~ N(0, cov)``, ``cov`` of shape (..., d, d).
-
-    Deterministic: the norms of a fixed (scrambled with seed 1) Sobol sample of ``n_points``
-    standard normal points, scaled by the square roots of the eigenvalues of ``cov``; relative
-    accuracy about 1e-3.
-    """
-    cov = as_float_array(cov, "cov")
-    if cov.ndim < 2 or cov.shape[-1] != cov.shape[-2]:
-        raise ValueError(f"cov must have shape (..., d, d); got {cov.shape}")
-    lam = np.clip(np.linalg.eigvalsh(cov), 0.0, None)
-    z2 = _sobol_normal_squares(cov.shape[-1], int(math.log2(n_points)))  # (N, d)
-    if np.ndim(quantile) == 0 and 0.0 <= quantile <= 1.0:  # = np.quantile(sqrt(...)), 256 rows at a time
-        rows = lam.reshape(-1, lam.shape[-1])
-        out = [sqrt_quantile_rows(np.einsum("md,nd->mn", rows[a:a + 256], z2), float(quantile))
-               for a in range(0, len(rows), 256)]
-        return np.concatenate(out).reshape(lam.shape[:-1]) if out else np.empty(lam.shape[:-1])
-    return np.quantile(np.sqrt(np.einsum("...d,nd->...n", lam, z2)), quantile, axis=-1)
-
-
-@functools.lru_cache(maxsize=8)
-def _sobol_normal_squares(d: int, log2_n: int) -> np.ndarray:
-    """Squares of a fixed (scrambled, seed 1) Sobol sample of ``2**log2_n`` standard normal
-    points in ``d`` dimensions, shape (N, d); read-only, computed once per process."""
-    from scipy.stats import norm, qmc
-
-    z2 = norm.ppf(qmc.Sobol(d, scramble=True, seed=1).random_base2(log2_n)) ** 2
-    z2.flags.writeable = False
-    return z2
 
 
 def survey_noise_table(platform, samples: pd.DataFrame, noise_models: dict, *, n_draws: int,

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 
@@ -38,29 +36,6 @@ def _lerp(a, b, gamma):
     """numpy's quantile interpolation between neighbours ``a <= b``, operation for operation."""
     diff = b - a
     return np.where(gamma >= 0.5, b - diff * (1 - gamma), a + diff * gamma)
-
-
-def sqrt_quantile_rows(squares, q: float, *, rows_per_chunk: int = 256) -> np.ndarray:
-    """``np.quantile(np.sqrt(squares), q, axis=-1)`` for a scalar ``q`` in [0, 1], the same
-    numbers with fewer operations: the two neighbouring order statistics are found by one
-    partition of the squares (``sqrt`` keeps their order), and only those two get a square root
-    (then numpy's "linear" interpolation). Rows are handled ``rows_per_chunk`` at a time, so
-    the work array stays small. ``squares`` (..., N) non-negative, no NaN; returns shape (...).
-    """
-    x = np.asarray(squares, float)
-    n = x.shape[-1]
-    if n == 0 or not 0.0 <= q <= 1.0:
-        raise ValueError(f"need a non-empty last axis and q in [0, 1]; got {x.shape}, {q!r}")
-    virtual = (n - 1) * float(q)
-    prev = math.floor(virtual)
-    i_prev, i_next = (n - 1, n - 1) if virtual >= n - 1 else (prev, prev + 1)
-    gamma = virtual - (-1.0 if virtual >= n - 1 else prev)
-    flat = x.reshape(-1, n)
-    out = np.empty(flat.shape[0])
-    for a in range(0, flat.shape[0], rows_per_chunk):
-        part = np.partition(flat[a:a + rows_per_chunk], [i_prev, i_next], axis=-1)
-        out[a:a + rows_per_chunk] = _lerp(np.sqrt(part[:, i_prev]), np.sqrt(part[:, i_next]), gamma)
-    return out.reshape(x.shape[:-1])
 
 
 def weighted_correlations(X, Y, weights, *, rows_per_chunk: int = 8192) -> np.ndarray:
