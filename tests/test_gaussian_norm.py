@@ -83,7 +83,7 @@ def test_rotation_and_scaling_invariance():
 @pytest.mark.parametrize("cov, q, match", [
     (np.eye(4), 0.95, "d in 1..3"), (np.ones(3), 0.95, "shape"), (np.eye(3) * np.nan, 0.95, "finite"),
     (np.eye(3), 1.0, "open interval"), (np.eye(3), 0.0, "open interval"), (np.eye(3), True, "open interval"),
-    (np.eye(3), "0.9", "open interval")])
+    (np.eye(3), "0.9", "open interval"), (np.array([["1"]]), 0.95, "cov")])
 def test_bad_input_is_refused(cov, q, match):
-    with pytest.raises(ValueError, match=match):
+    with pytest.raises((ValueError, TypeError), match=match):
         gaussian_norm_quantile(cov, q)

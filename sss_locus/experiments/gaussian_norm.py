@@ -38,6 +38,8 @@ import functools
 
 import numpy as np
 
+from ..geometry.validation import as_float_array
+
 GRID_SIZE = 33  # nodes per ratio axis of the interpolation table
 _S_LEVELS, _S_PER_PANEL, _P_NODES = 6, 8, 24  # quadrature in s (panels, Gauss-Legendre) and p (midpoint)
 _NEWTON_STEPS = 60  # at most; stops when every node has converged to 1e-13 relative
@@ -129,11 +131,9 @@ def gaussian_norm_quantile(cov, quantile: float = 0.95) -> np.ndarray:
         The quantile, in the units of ``sqrt(cov)``; 0 for a zero covariance. Relative accuracy
         about 1e-7 at ``q`` = 0.95 (the module docstring says how it is made and measured).
     """
-    cov = np.asarray(cov, float)
+    cov = as_float_array(cov, "cov")  # real numbers, finite
     if cov.ndim < 2 or cov.shape[-1] != cov.shape[-2] or not 1 <= cov.shape[-1] <= 3:
         raise ValueError(f"cov must have shape (..., d, d) with d in 1..3; got {cov.shape}")
-    if not np.all(np.isfinite(cov)):
-        raise ValueError("cov must be finite (no NaN or inf)")
     q = _check_quantile(quantile)
     lam = np.clip(np.linalg.eigvalsh(cov), 0.0, None)  # ascending
     lam = np.concatenate([np.zeros(lam.shape[:-1] + (3 - lam.shape[-1],)), lam], axis=-1)

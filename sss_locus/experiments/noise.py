@@ -51,7 +51,6 @@ import pandas as pd
 from scipy.spatial.transform import Rotation
 
 from ..geometry import Aperture, relative_pose, three_view_points, two_view_locus
-from ..geometry.validation import as_float_array
 from ..paths import DATA_DIR
 from . import datadoc
 from .inputs import platform_table, read_toml, sourced
