@@ -123,9 +123,13 @@ def test_interrupted_run_leaves_nothing_and_keeps_the_last_good_results(area, en
     run_notebook(entry, "book", {"n": 4}, log=quiet)
     good = snapshot(area)
     marker = tmp_path / "kernel.pid"
+    # Ctrl-C as a terminal delivers it: a command started in the background of a non-interactive
+    # shell (`make test &`, nohup) inherits SIGINT *ignored* and Python then keeps ignoring it,
+    # which is what the user asked for there; give the driver the default disposition back
     child = subprocess.Popen(
         [sys.executable, "-c", DRIVER, str(entry.source), json.dumps({"sleep_s": 120, "marker": str(marker), "n": 9})],
-        env=os.environ.copy(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        env=os.environ.copy(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         end = time.monotonic() + 240
         while not marker.exists() and child.poll() is None and time.monotonic() < end:
