@@ -19,6 +19,7 @@ def test_closed_forms(q):
     assert gaussian_norm_quantile(np.diag([0.0, 4.0, 4.0]), q) == pytest.approx(2 * chi.ppf(q, 2), rel=1e-9)
     assert gaussian_norm_quantile(np.eye(3) * 9.0, q) == pytest.approx(3 * chi.ppf(q, 3), rel=1e-9)
     assert gaussian_norm_quantile(np.zeros((3, 3)), q) == 0.0
+    assert gaussian_norm_quantile(np.diag([-1e-12, 1.0, 1.0]), q) == pytest.approx(chi.ppf(q, 2), rel=1e-9)
 
 
 def test_small_quantiles_are_less_accurate_as_documented():
@@ -83,7 +84,8 @@ def test_rotation_and_scaling_invariance():
 @pytest.mark.parametrize("cov, q, match", [
     (np.eye(4), 0.95, "d in 1..3"), (np.ones(3), 0.95, "shape"), (np.eye(3) * np.nan, 0.95, "finite"),
     (np.eye(3), 1.0, "open interval"), (np.eye(3), 0.0, "open interval"), (np.eye(3), True, "open interval"),
-    (np.eye(3), "0.9", "open interval"), (np.array([["1"]]), 0.95, "cov")])
+    (np.eye(3), "0.9", "open interval"), (np.array([["1"]]), 0.95, "cov"),
+    (np.array([[1.0, 2.0], [2.0, 1.0]]), 0.95, "positive semi-definite")])
 def test_bad_input_is_refused(cov, q, match):
     with pytest.raises((ValueError, TypeError), match=match):
         gaussian_norm_quantile(cov, q)

@@ -120,8 +120,9 @@ def gaussian_norm_quantile(cov, quantile: float = 0.95) -> np.ndarray:
     Parameters
     ----------
     cov : array_like, shape (..., d, d), d in {1, 2, 3}
-        Covariance matrices (symmetric, finite; units squared, e.g. m^2). Tiny negative
-        eigenvalues from rounding are treated as 0.
+        Covariance matrices (symmetric positive semi-definite, finite; units squared, e.g.
+        m^2). Negative eigenvalues from rounding (within 1e-9 of the largest) count as 0; larger
+        ones are refused.
     quantile : float
         In the open interval (0, 1).
 
@@ -135,7 +136,11 @@ def gaussian_norm_quantile(cov, quantile: float = 0.95) -> np.ndarray:
     if cov.ndim < 2 or cov.shape[-1] != cov.shape[-2] or not 1 <= cov.shape[-1] <= 3:
         raise ValueError(f"cov must have shape (..., d, d) with d in 1..3; got {cov.shape}")
     q = _check_quantile(quantile)
-    lam = np.clip(np.linalg.eigvalsh(cov), 0.0, None)  # ascending
+    lam = np.linalg.eigvalsh(cov)  # ascending
+    if lam.size and np.any(lam[..., 0] < -1e-9 * np.abs(lam).max(axis=-1)):
+        raise ValueError("cov must be positive semi-definite (a covariance); found a negative eigenvalue "
+                         "beyond rounding (< -1e-9 of the largest)")
+    lam = np.clip(lam, 0.0, None)
     lam = np.concatenate([np.zeros(lam.shape[:-1] + (3 - lam.shape[-1],)), lam], axis=-1)
     top = lam[..., 2]
     with np.errstate(divide="ignore", invalid="ignore"):
