@@ -70,9 +70,20 @@ def test_set_override_is_recorded_as_a_user_override():
 def test_bad_user_files_name_the_key_path(tmp_path, text, match):
     user = tmp_path / "bad.toml"
     user.write_text(text)
-    with pytest.raises(ValueError, match=match):
+    with pytest.raises(ValueError, match=match) as info:
         userdata.use([user])
     assert userdata.active().is_default  # a rejected file never becomes active
+    assert str(user) in str(info.value)  # and the file that holds it
+
+
+def test_the_message_names_which_of_several_inputs_holds_the_bad_entry(tmp_path):
+    good, bad = tmp_path / "good.toml", tmp_path / "bad.toml"
+    good.write_text('[platforms.auv.transducers.port]\ntilt_deg = { value = 12.0, source = "x" }\n')
+    bad.write_text('[platforms.boat.transducers.port]\ntilt_deg = { value = 120.0, source = "x" }\n')
+    with pytest.raises(ValueError, match=f"\\(from data file {bad}\\)$"):
+        userdata.use([bad, good])
+    with pytest.raises(ValueError, match=r"\(set by --set platforms\.auv\.transducers\.port\.tilt_deg=95\)$"):
+        userdata.use([good], ["platforms.auv.transducers.port.tilt_deg=95"])
 
 
 def test_cli_rejects_bad_data_before_any_notebook(tmp_path, monkeypatch, capsys):

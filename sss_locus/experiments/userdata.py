@@ -44,14 +44,44 @@ def validate(inputs: DataInputs) -> dict[str, Any]:
     for path in inputs.files:
         if not Path(path).is_file():
             raise ValueError(f"data file {path} does not exist")
-    doc = document(inputs)
-    parse_platforms(doc)
-    for key in doc.get("envelopes", {}):
-        parse_envelope(doc, key)
-    for key in doc.get("noise", {}):
-        parse_noise_model(doc, key)
-    default_offset_model("matched", doc=doc)
+    try:
+        doc = document(inputs)
+        parse_platforms(doc)
+        for key in doc.get("envelopes", {}):
+            parse_envelope(doc, key)
+        for key in doc.get("noise", {}):
+            parse_noise_model(doc, key)
+        default_offset_model("matched", doc=doc)
+    except ValueError as exc:
+        origin = _origin(str(exc), inputs)
+        if origin:
+            raise ValueError(f"{exc} ({origin})") from None
+        raise
     return doc
+
+
+def _origin(message: str, inputs: DataInputs) -> str:
+    """Where the entry a validation ``message`` names came from: the last ``--set`` or user
+    file that defines its key path (at least table and key, e.g. ``platforms.my_auv``); ``""``
+    if none does (the entry is shipped data, or the message names no key path)."""
+    words = message.split(" ", 1)[0].rstrip(":").split(".")
+    if len(words) < 2:
+        return ""
+    full = ".".join(words)
+    for item in reversed(inputs.sets):
+        key = item.split("=", 1)[0]
+        if full == key or full.startswith(key + ".") or key.startswith(full + "."):
+            return f"set by --set {item}"
+    for path in reversed(inputs.files):
+        try:
+            node: Any = datadoc.read_toml(path)
+        except (OSError, ValueError):
+            continue
+        for part in words[:2]:
+            node = node.get(part) if isinstance(node, dict) else None
+        if node is not None:
+            return f"from data file {path}"
+    return ""
 
 
 def use(data_files: Iterable[str | Path] = (), data_set: Iterable[str] = ()) -> DataInputs:
