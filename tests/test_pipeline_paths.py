@@ -60,3 +60,16 @@ def test_missing_toc_files_are_reported(tmp_path):
     (tmp_path / "book" / "intro.md").write_text("# I\n")
     (tmp_path / "book" / "here.md").write_text("# H\n")
     assert bookbuild.missing_toc_files(tmp_path) == ["executed/absent"]
+
+
+def test_book_output_drops_only_jupyter_books_staging_path_lines():
+    from sss_locus.pipeline.bookbuild import _StagingPathFilter
+
+    tail = ["\x1b[01mbuild succeeded.\x1b[39;49;00m\n", "\n", "The HTML pages are in ../jupyter-book/_build/html.\n",
+            "\n", "\x1b[92m=====\x1b[0m\n", "\n", "Finished generating HTML for book.\n",
+            "Your book's HTML pages are here:\n", "    ../jupyter-book/_build/html/\n",
+            "    file:///x/_build/jupyter-book/_build/html/index.html\n", "\n", "\x1b[92m=====\x1b[0m\n",
+            "WARNING: something after the banner\n"]
+    shown = _StagingPathFilter()
+    kept = [line for line in tail if shown.keep(line)]
+    assert kept == [tail[0], "\n", "\n", tail[4], "\n", tail[-1]]
