@@ -48,3 +48,28 @@ def test_heading_sweep_grid_and_bad_input():
         draw_pattern(pf, load_envelope("boat"), [[0.0, 1.0]], 5, seed=1)
     with pytest.raises(ValueError, match="n must"):
         draw_pattern(pf, load_envelope("boat"), (0.0,), 0, seed=1)
+
+
+@pytest.mark.parametrize("count, n", [(0, 4000), (4, 4000), (24, 4000), (3, 10), (10, 10)])
+def test_share_upper_bound_is_the_one_sided_clopper_pearson_bound(count, n):
+    from scipy.stats import binomtest
+
+    from sss_locus.experiments.three_view_patterns import share_upper_bound
+
+    upper = share_upper_bound(count, n, 0.95)
+    ref = binomtest(count, n, alternative="less").proportion_ci(0.95, method="exact").high
+    assert upper == pytest.approx(ref, rel=1e-9, abs=1e-12)
+    if count < n:  # the defining property: seeing <= count is just 5 % likely at the bound
+        from scipy.stats import binom
+        assert binom.cdf(count, n, upper) == pytest.approx(0.05, rel=1e-6)
+    if count == 0:
+        assert upper == pytest.approx(1 - 0.05 ** (1 / n), rel=1e-9)  # the "rule of three" form
+
+
+@pytest.mark.parametrize("count, n, level", [(-1, 10, 0.95), (11, 10, 0.95), (1, 0, 0.95), (1, 10, 1.0),
+                                             (1.5, 10, 0.95), (True, 10, 0.95)])
+def test_share_upper_bound_refuses_bad_input(count, n, level):
+    from sss_locus.experiments.three_view_patterns import share_upper_bound
+
+    with pytest.raises(ValueError):
+        share_upper_bound(count, n, level)

@@ -84,3 +84,24 @@ def heading_sweep(platform, envelope, headings2_deg, headings3_deg, n: int, seed
                          "tangency_margin_median": float(tab.tangency_margin.median()), "n": n})
             i += 1
     return pd.DataFrame(rows)
+
+
+def share_upper_bound(count: int, n: int, confidence_level: float = 0.95) -> float:
+    """One-sided exact (Clopper-Pearson) upper confidence bound of a share ``count / n``.
+
+    The largest true share ``p`` with ``P(Binomial(n, p) <= count) >= 1 - confidence_level``:
+    ``betaincinv(count + 1, n - count, confidence_level)``; 1 when ``count == n``. For a share
+    seen in few of ``n`` configurations (e.g. the two-fold ambiguities), it says how large the
+    share could be.
+    """
+    from scipy.special import betaincinv
+
+    for name, v in (("count", count), ("n", n)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+            raise ValueError(f"{name} must be an integer; got {v!r}")
+    if not 0 <= count <= n or n < 1:
+        raise ValueError(f"need 0 <= count <= n and n >= 1; got count={count}, n={n}")
+    if not 0.0 < confidence_level < 1.0:
+        raise ValueError(f"confidence_level must be in (0, 1); got {confidence_level!r}")
+    return 1.0 if count == n else float(betaincinv(count + 1, n - count, confidence_level))
+
