@@ -73,13 +73,17 @@ def test_bootstrap_median_nan_and_signed_zeros_like_numpy(x):
     assert ours.tobytes() == ref.tobytes()
 
 
-@pytest.mark.parametrize("ties", [False, True])
-def test_spearman_interval_is_the_correlation_of_explicitly_resampled_ranks(ties):
+@pytest.mark.parametrize("ties, per_read", [(False, 200), (True, 200), (False, 40)])
+def test_spearman_interval_is_the_correlation_of_explicitly_resampled_ranks(ties, per_read, monkeypatch):
     # reference: each resample drawn as rows (rng.integers, the documented draws), the
-    # full-sample average ranks of those rows correlated with np.corrcoef
+    # full-sample average ranks of those rows correlated with np.corrcoef; per_read < 150:
+    # the resamples are spread over several reads of the table
     from scipy import stats
 
+    from sss_locus.experiments import pose_stats
     from sss_locus.experiments.pose_stats import spearman_table
+
+    monkeypatch.setattr(pose_stats, "_RESAMPLES_PER_READ", per_read)
 
     rng = np.random.default_rng(11)
     n, n_resamples = 700, 150
@@ -127,9 +131,9 @@ def test_bootstrap_draw_counts_widen_for_large_counts():
     class Skewed:  # draws row 0 every time from the second resample on
         calls = 0
 
-        def integers(self, low, high, size):
+        def integers(self, low, high, size, dtype=np.int64):
             Skewed.calls += 1
-            return np.arange(size) % high if Skewed.calls == 1 else np.zeros(size, int)
+            return (np.arange(size) % high if Skewed.calls == 1 else np.zeros(size, int)).astype(dtype)
 
     counts = bootstrap_draw_counts(Skewed(), 300, 3)
     assert counts.dtype == np.uint16
@@ -142,6 +146,10 @@ def test_bootstrap_draw_counts_widen_for_large_counts():
     np.random.default_rng(4).standard_normal(1001),
     np.array([1.0, np.nan, 2.0]), np.array([5.0]), np.array([], float),
     np.random.default_rng(5).integers(-5, 5, 300),  # integers
+    np.array([np.inf, -np.inf, 0.0, -0.0, 5e-324, -5e-324, 1e308, -1e308, -0.0, np.inf, -2.5]),
+    np.random.default_rng(6).standard_normal(3000) * 10.0 ** np.random.default_rng(7).integers(-300, 300, 3000),
+    np.array([-0.0, -0.0, 0.0]), np.array([2.0, 1.0]), np.array([-1.0, -1.0]),
+    np.random.default_rng(8).standard_normal(500).astype(np.float32),  # float32: plain argsort
 ])
 def test_average_ranks_are_scipy_rankdata_bit_for_bit(values):
     from scipy import stats
@@ -172,3 +180,81 @@ def test_gaussian_norm_quantile_of_a_batch_equals_one_at_a_time():
     batch = gaussian_norm_quantile(cov, 0.95)
     alone = np.array([gaussian_norm_quantile(c, 0.95) for c in cov[::37]])
     assert batch[::37].tobytes() == alone.tobytes()
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 7, 1000, 600_000, 2 ** 31 + 11, 3 * 2 ** 30, 2 ** 32 - 1, 2 ** 32])
+def test_uint32_bootstrap_draws_are_the_int64_draws(n):
+    # bootstrap_draw_counts asks for uint32 indices; they must be the documented int64 draws
+    for seed in (0, 1, 2):
+        ref = np.random.default_rng(seed).integers(0, n, 4099)
+        assert np.array_equal(np.random.default_rng(seed).integers(0, n, 4099, dtype=np.uint32), ref)
+    a, b = np.random.default_rng(3), np.random.default_rng(3)  # and call after call
+    for size in (5, 6, 1000):
+        assert np.array_equal(a.integers(0, n, size, dtype=np.uint32), b.integers(0, n, size))
+
+
+def test_column_ranks_remembered_are_the_ranks(monkeypatch):
+    from sss_locus.experiments import pose_stats
+    from sss_locus.experiments.rowstats import average_ranks
+
+    monkeypatch.setattr(pose_stats, "_rank_memo", type(pose_stats._rank_memo)())
+    monkeypatch.setattr(pose_stats, "_RANK_MEMO_BYTES", 3 * 4 * 1000)  # three columns of 1000
+    rng = np.random.default_rng(12)
+    cols = [rng.standard_normal(1000), np.round(rng.standard_normal(1000), 1),
+            rng.integers(0, 9, 1000), rng.standard_normal(1000), rng.standard_normal(1000) > 0]
+    for _ in range(2):  # computed, then remembered (or recomputed after eviction)
+        for c in cols:
+            assert pose_stats.column_ranks(c).tobytes() == average_ranks(c).tobytes()
+            assert pose_stats.column_ranks(c.copy()).tobytes() == average_ranks(c).tobytes()
+    assert sum(a.nbytes for a in pose_stats._rank_memo.values()) <= 3 * 4 * 1000
+    changed = cols[0].copy()
+    changed[[3, 700]] = changed[[700, 3]]  # same values, another order: other ranks
+    assert pose_stats.column_ranks(changed).tobytes() == average_ranks(changed).tobytes()
+    with_nan = cols[3].copy()
+    with_nan[5] = np.nan
+    assert np.isnan(pose_stats.column_ranks(with_nan)).all()
+    assert pose_stats.column_ranks(np.array(["b", "a", "b"], object)).tolist() == [2.5, 1.0, 2.5]
+
+
+@pytest.mark.parametrize("key, options", [
+    ("auv", {}), ("boat", {}), ("auv", {"profile": "unconstrained"}), ("boat", {"feature_below": False}),
+    ("boat", {"tilt_deg": 35.0, "side2": "port"}), ("auv", {"side1": "either", "feature_distribution": "volume"}),
+    ("boat", {"azimuth1_window_deg": (-10.0, -5.0), "azimuth2_window_deg": (0.0, 4.0)}),
+])
+def test_pose_space_block_is_the_plain_rejection_sampler(key, options):
+    # reference: every candidate's arrays filtered by the acceptance mask, round by round,
+    # concatenated and cut to the block (the sampler's definition, without shortcuts)
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.pose_space import BLOCK_SIZE, PoseSpaceSpec, _draw_candidates, draw_block
+    from sss_locus.geometry import relative_pose
+
+    spec = PoseSpaceSpec(load_platform(key), **options)
+    for block in (0, 3):
+        rng = np.random.default_rng(np.random.SeedSequence(5, spawn_key=(block,)))
+        parts, have = [], 0
+        while have < BLOCK_SIZE:
+            cand = _draw_candidates(spec, rng, max(BLOCK_SIZE, 2 * (BLOCK_SIZE - have)))
+            keep = cand.pop("accept")
+            parts.append({k: v[keep] for k, v in cand.items()})
+            have += int(keep.sum())
+        ref = {k: np.concatenate([p[k] for p in parts])[:BLOCK_SIZE] for k in parts[0]}
+        ref["R"], ref["t"] = relative_pose(ref.pop("R1"), ref["o1"], ref.pop("R2"), ref["o2"])
+        ours = draw_block(spec, 5, block)
+        assert ours.keys() == ref.keys()
+        for k in ref:
+            assert ours[k].dtype == ref[k].dtype and ours[k].tobytes() == ref[k].tobytes(), k
+
+
+@pytest.mark.parametrize("key", ["auv", "boat"])
+def test_transducer_stack_rows_are_the_mountings(key):
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.straight_pass import transducer_stack
+
+    pf = load_platform(key)
+    is_port = np.random.default_rng(1).random(50) < 0.5
+    mats, pos = transducer_stack(pf, is_port)
+    for i, port in enumerate(is_port):
+        tr = pf.transducers["port" if port else "starboard"]
+        assert mats[i].tobytes() == tr.rotation.as_matrix().tobytes()
+        assert pos[i].tobytes() == np.asarray(tr.position_m, float).tobytes()
+    assert mats.shape == (50, 3, 3) and pos.shape == (50, 3) and mats.flags.writeable

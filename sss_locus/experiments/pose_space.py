@@ -273,19 +273,19 @@ def _draw_candidates(spec: PoseSpaceSpec, rng, m: int) -> dict[str, np.ndarray]:
 def draw_block(spec: PoseSpaceSpec, seed: int, block: int) -> dict[str, np.ndarray]:
     """Block ``block`` (:data:`BLOCK_SIZE` accepted configurations) of the stream for ``seed``."""
     rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(block,)))
-    parts, have, tried = [], 0, 0
+    parts, have, tried = [], 0, 0  # parts: (candidates, the rows of them kept)
     while have < BLOCK_SIZE:
         m = max(BLOCK_SIZE, 2 * (BLOCK_SIZE - have))
         cand = _draw_candidates(spec, rng, m)
-        keep = cand.pop("accept")
+        rows = np.flatnonzero(cand.pop("accept"))
         tried += m
-        parts.append({k: v[keep] for k, v in cand.items()})
-        have += int(keep.sum())
+        parts.append((cand, rows[:BLOCK_SIZE - have]))  # accepted rows beyond the block: unused
+        have += rows.size
         if tried >= 20 * BLOCK_SIZE and have < MIN_ACCEPTANCE * tried:
             raise ValueError(
                 f"the constraints of platform {spec.platform.key!r} accept only {have} of {tried} "
                 "draws: check its mounting, attitude limits and depth envelope")
-    out = {k: np.concatenate([p[k] for p in parts])[:BLOCK_SIZE] for k in parts[0]}
+    out = {k: np.concatenate([c[k][rows] for c, rows in parts]) for k in parts[0][0]}
     # row by row, so the same numbers as for every candidate, computed for the accepted ones only
     R, t = relative_pose(out.pop("R1"), out["o1"], out.pop("R2"), out["o2"])
     return {"R": R, "t": t, **out}

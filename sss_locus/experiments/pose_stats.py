@@ -6,6 +6,8 @@ columns). Angles in degrees, lengths in metres.
 
 from __future__ import annotations
 
+import hashlib
+from collections import OrderedDict
 from collections.abc import Sequence
 
 import numpy as np
@@ -26,9 +28,13 @@ CANDIDATES = (
 :func:`with_derived` (signed yaw, elevation and psi are symmetric about 0, so their rank
 correlation with length is ~0 by construction and says nothing)."""
 
-_RESAMPLES_PER_PASS = 64
-_PASSES_PER_READ = 4  # matrices of resample counts multiplied per read of the table
-"""Bootstrap resamples whose correlations are computed in one pass over the table."""
+_RESAMPLES_PER_READ = 200
+"""Bootstrap resamples whose correlations are computed in one read of the table (one matrix of
+draw counts, ``n`` bytes a resample; the book's 200 resamples take one read)."""
+
+_RANK_MEMO_BYTES = 256 * 2 ** 20
+"""Bound of the memo of column ranks (:func:`column_ranks`), bytes."""
+_rank_memo: OrderedDict[tuple, np.ndarray] = OrderedDict()
 
 
 MISALIGNMENT_READINGS = ("magnitude", "signed")
@@ -72,9 +78,10 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     average ranks). The interval resamples rows with replacement ``n_resamples`` times and
     recomputes the correlation of the full-sample ranks on each resample (weights = how often a
     row is drawn); ranks are not recomputed per resample, which differs from re-ranking by
-    O(1/n) and lets one pass cost O(n * candidates). The correlations of 64 resamples at a
-    time come from one matrix product per chunk of the table, and up to four such products share
-    one read of it (:func:`~sss_locus.experiments.rowstats.weighted_correlation_sets`). Percentile interval at
+    O(1/n) and lets one pass cost O(n * candidates). The correlations of up to
+    :data:`_RESAMPLES_PER_READ` resamples at a time come from one matrix product per chunk of the
+    table (:func:`~sss_locus.experiments.rowstats.weighted_correlation_sets`); the columns'
+    ranks are remembered between calls (:func:`column_ranks`). Percentile interval at
     ``confidence_level``. A constant column (e.g. the boat's pitch, always 0) has no rank
     correlation: with ``drop_constant`` it is left out (listed in ``out.attrs["dropped"]``),
     otherwise it raises ``ValueError``.
@@ -95,7 +102,7 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
         raise ValueError(f"need at least 3 rows for a rank correlation; got {n}")
 
     def centred_ranks(cols):
-        r = np.column_stack([average_ranks(df[c].to_numpy()) for c in cols])  # = stats.rankdata
+        r = np.column_stack([column_ranks(df[c].to_numpy()) for c in cols])  # = stats.rankdata
         return (r - (n + 1) / 2.0) / n  # centred and scaled: well-conditioned sums
 
     constant = [c for c in list(candidates) + list(targets) if _is_constant(df[c])]
@@ -104,13 +111,11 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     candidates = [c for c in candidates if c not in constant]
     X, Y = centred_ranks(candidates), centred_ranks(targets)
     rng = np.random.default_rng(seed)
-    sizes = [min(_RESAMPLES_PER_PASS, int(n_resamples) - b) for b in range(0, int(n_resamples), _RESAMPLES_PER_PASS)]
     sets, results = [np.ones((1, n), np.uint8)], []  # the point estimate rides along the first read
-    for i, size in enumerate(sizes):
-        sets.append(bootstrap_draw_counts(rng, n, size))  # the same draws, in order
-        if len(sets) >= _PASSES_PER_READ or i == len(sizes) - 1:  # bounded memory: n bytes a resample
-            results += weighted_correlation_sets(X, Y, sets)
-            sets = []
+    for start in range(0, int(n_resamples), _RESAMPLES_PER_READ):  # bounded memory: n bytes a resample
+        sets.append(bootstrap_draw_counts(rng, n, min(_RESAMPLES_PER_READ, int(n_resamples) - start)))
+        results += weighted_correlation_sets(X, Y, sets)
+        sets = []
     rho, boots = results[0][0], np.concatenate(results[1:])
     alpha = (1.0 - confidence_level) / 2.0
     lo, hi = np.quantile(boots, [alpha, 1.0 - alpha], axis=0)
@@ -122,6 +127,32 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     out = out.reset_index(drop=True)
     out.attrs["dropped"] = constant
     return out
+
+
+def column_ranks(values: np.ndarray) -> np.ndarray:
+    """:func:`~sss_locus.experiments.rowstats.average_ranks` of one column, remembered by its
+    content.
+
+    A chapter ranks the same columns of a table more than once (the readings of the
+    misalignment share all other columns); ranking costs a sort, recognising a column one
+    SHA-256 of its bytes. Numeric columns without NaN are remembered (least recently used
+    first out, at most :data:`_RANK_MEMO_BYTES`), as twice their ranks in ``uint32`` (exact:
+    ranks are half-integers up to ``n``); the ranks returned are the same numbers either way.
+    """
+    v = np.ascontiguousarray(values)
+    if v.ndim != 1 or v.dtype.kind not in "fiub" or not 0 < 2 * v.size < 2 ** 32:
+        return average_ranks(v)
+    key = (v.dtype.str, v.size, hashlib.sha256(v.view(np.uint8)).digest())
+    if key in _rank_memo:
+        _rank_memo.move_to_end(key)
+        return _rank_memo[key] * 0.5
+    ranks = average_ranks(v)
+    if np.isnan(ranks[0]):
+        return ranks
+    _rank_memo[key] = (2.0 * ranks).astype(np.uint32)
+    while sum(a.nbytes for a in _rank_memo.values()) > _RANK_MEMO_BYTES:
+        _rank_memo.popitem(last=False)
+    return ranks
 
 
 def _is_constant(column: pd.Series) -> bool:

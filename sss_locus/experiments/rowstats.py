@@ -91,6 +91,9 @@ def average_ranks(v) -> np.ndarray:
     The numbers of :func:`scipy.stats.rankdata` (``method="average"``, ``nan_policy=
     "propagate"``), by the same formula ``(first + last) / 2`` over each run of equal sorted
     values (ranks and half-ranks are exact in float64), without importing ``scipy.stats``.
+    Float64 values are put in order by sorting integer keys that order like them
+    (:func:`_float_order`, faster than sorting the floats); when no two values are equal the
+    ranks are written directly (the formula gives ``first = last``).
     """
     v = np.asarray(v)
     if v.ndim != 1:
@@ -98,16 +101,29 @@ def average_ranks(v) -> np.ndarray:
     n = v.size
     if v.dtype.kind == "f" and np.isnan(v).any():
         return np.full(n, np.nan)
-    order = np.argsort(v)  # any order within a run of ties gives the same ranks: no stable sort
+    order = _float_order(v) if v.dtype == np.float64 else np.argsort(v)
+    # any order within a run of ties gives the same ranks: no stable sort needed
     s = v[order]
     new = np.empty(n, bool)
     new[:1] = True
     np.not_equal(s[1:], s[:-1], out=new[1:])
+    ranks = np.empty(n)
+    if new.all():  # no ties: position i of the sorted values has rank i + 1
+        ranks[order] = np.arange(1.0, n + 1.0)
+        return ranks
     group = np.cumsum(new)  # 1-based run of each sorted position
     bounds = np.append(np.flatnonzero(new), n)  # first position of each run, then n
-    ranks = np.empty(n)
     ranks[order] = 0.5 * (bounds[group] + bounds[group - 1] + 1)
     return ranks
+
+
+def _float_order(v: np.ndarray) -> np.ndarray:
+    """An ``argsort`` of float64 values without NaN: the order of int64 keys of their bits
+    (sign-magnitude turned into two's complement order: negative values get their magnitude
+    bits flipped). Equal values stay next to each other: ``-0.0`` (key -1) sorts just before
+    ``+0.0`` (key 0), and equal bits give equal keys."""
+    bits = np.ascontiguousarray(v).view(np.int64)
+    return np.argsort(np.where(bits < 0, bits ^ np.int64(0x7FFFFFFFFFFFFFFF), bits))
 
 
 def bootstrap_draw_counts(rng, n: int, n_resamples: int):
@@ -115,11 +131,16 @@ def bootstrap_draw_counts(rng, n: int, n_resamples: int):
     (rows drawn with replacement), shape ``(n_resamples, n)``, in the smallest unsigned dtype.
 
     Resample ``b`` is ``rng.integers(0, n, n)``, drawn one resample after another (the same
-    draws as a loop calling it ``n_resamples`` times), then counted.
+    draws as a loop calling it ``n_resamples`` times), then counted. The draws are asked for
+    as ``uint32`` when ``n <= 2**32``: numpy's ``Generator`` draws a range that fits in 32 bits
+    with the same 32-bit bounded generator for every integer dtype (one fresh buffer per call),
+    so the values are the same (``tests/test_throughput.py`` checks this), and counting
+    32-bit indices is faster.
     """
     out = np.empty((int(n_resamples), n), np.uint8)
+    small = {"dtype": np.uint32} if n <= 2 ** 32 else {}
     for b in range(out.shape[0]):
-        c = np.bincount(rng.integers(0, n, n), minlength=n)
+        c = np.bincount(rng.integers(0, n, n, **small), minlength=n)
         top = int(c.max()) if n else 0
         if top > np.iinfo(out.dtype).max:
             out = out.astype(np.min_scalar_type(top))

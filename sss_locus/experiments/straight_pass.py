@@ -101,12 +101,11 @@ def _mount(transducer) -> tuple[np.ndarray, np.ndarray]:
 
 
 def transducer_stack(platform, is_port):
-    """Stacked transducer rotations (matrices) and positions for a boolean port mask."""
-    mats = {s: _mount(platform.transducers[s])[0] for s in SIDES}
-    pos = {s: _mount(platform.transducers[s])[1] for s in SIDES}
-    m = np.where(is_port[:, None, None], mats["port"], mats["starboard"])
-    p = np.where(is_port[:, None], pos["port"], pos["starboard"])
-    return m, p
+    """Stacked transducer rotations (matrices) and positions for a boolean port mask: row ``i``
+    is a copy of the port transducer's where ``is_port[i]``, else of the starboard one's."""
+    mounts = [_mount(platform.transducers[s]) for s in ("starboard", "port")]  # index 0, 1
+    pick = np.asarray(is_port, bool).astype(np.intp)
+    return np.stack([m[0] for m in mounts])[pick], np.stack([m[1] for m in mounts])[pick]
 
 
 def swath_m(platform: Platform, is_port, altitude_m) -> tuple[np.ndarray, np.ndarray]:
