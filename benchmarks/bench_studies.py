@@ -190,7 +190,7 @@ def measure_tree(tree: Path, args) -> dict:
     cmd = [sys.executable, str(Path(__file__).resolve()), "--child"] + (["--quick"] if args.quick else [])
     env = dict(os.environ, PYTHONPATH=str(tree))
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-        env.pop(var, None)  # the studies as the book runs them
+        env[var] = "1"  # both trees as the book's kernels now run them (runner.KERNEL_BLAS_THREADS)
     result = subprocess.run(cmd, cwd=tree, env=env, check=True, capture_output=True, text=True)
     return json.loads(result.stdout.strip().splitlines()[-1])
 

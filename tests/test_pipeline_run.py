@@ -38,7 +38,8 @@ fig2, ax2 = plt.subplots()
 ax2.plot(frame["i"], -frame["y_m"])
 publish(fig2, "fig-tiny-published", frame, caption=f"The same line mirrored, {n} points.")
 print(json.dumps({"n": n, "scale": scale, "cwd": os.getcwd(), "python": sys.executable,
-                  "ipythondir": os.environ.get("IPYTHONDIR"), "mpl": os.environ.get("MPLCONFIGDIR")}))
+                  "ipythondir": os.environ.get("IPYTHONDIR"), "mpl": os.environ.get("MPLCONFIGDIR"),
+                  "blas": [os.environ.get(v) for v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")]}))
 """
 
 
@@ -61,7 +62,8 @@ def _printed(executed: Path) -> dict:
     raise AssertionError("no stdout in the executed notebook")
 
 
-def test_run_with_profile_and_override(build_area, entry):
+def test_run_with_profile_and_override(build_area, entry, monkeypatch):
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "8")  # the user's setting does not reach the kernel
     executed = run_notebook(entry, "quick", {"scale": "2"}, from_text=True, log=lambda *_: None)
     assert executed == build_area / "source" / "executed" / "tiny.ipynb"
     printed = _printed(executed)
@@ -73,6 +75,7 @@ def test_run_with_profile_and_override(build_area, entry):
     assert nb["metadata"]["papermill"]["parameters"] == {"n": 2, "scale": 2.0, "fail": False}
     assert nb["metadata"]["sss_locus"]["profile"] == "quick"
     assert printed["python"] == sys.executable  # the project's kernel, not one from the home folder
+    assert printed["blas"] == ["1", "1", "1"]  # numbers independent of the core count (runner.KERNEL_BLAS_THREADS)
     assert (build_area / "jupyter" / "data" / "kernels" / KERNEL_NAME / "kernel.json").is_file()
     injected = [c for c in nb["cells"] if "injected-parameters" in c["metadata"].get("tags", [])]
     assert len(injected) == 1

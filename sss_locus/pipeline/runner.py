@@ -47,10 +47,20 @@ from sss_locus.pipeline.registry import NotebookEntry
 KERNEL_NAME = "sss-locus"
 
 
+#: Threads of the BLAS/OpenMP libraries in a notebook's kernel. One: OpenBLAS splits a matrix
+#: product by its thread count, so the last bits of e.g. a Spearman rho (2.8e-17 measured) would
+#: depend on the machine's cores and on how many notebooks run at once; and two notebooks run side
+#: by side (``sss-locus book --jobs 2``) with two BLAS threads each made the bootstrap's matrix
+#: products 10-20x slower on 2 cores. Dask's workers run with one thread too.
+KERNEL_BLAS_THREADS = "1"
+
+
 def hermetic_env() -> dict[str, str]:
-    """Environment variables that keep kernels' state inside the build area."""
+    """Environment variables that keep kernels' state inside the build area and their numbers
+    independent of the machine's core count (:data:`KERNEL_BLAS_THREADS`)."""
     root = paths.jupyter_dir()
     env = {
+        **{var: KERNEL_BLAS_THREADS for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")},
         "IPYTHONDIR": str(root / "ipython"),
         "JUPYTER_DATA_DIR": str(root / "data"),
         "JUPYTER_RUNTIME_DIR": str(root / "runtime"),
