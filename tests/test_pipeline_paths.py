@@ -63,13 +63,13 @@ def test_missing_toc_files_are_reported(tmp_path):
 
 
 def test_book_output_drops_only_jupyter_books_staging_path_lines():
-    from sss_locus.pipeline.bookbuild import _StagingPathFilter
+    from sss_locus.pipeline.buildlog import StagingPathFilter
 
     tail = ["\x1b[01mbuild succeeded.\x1b[39;49;00m\n", "\n", "The HTML pages are in ../jupyter-book/_build/html.\n",
             "\n", "\x1b[92m=====\x1b[0m\n", "\n", "Finished generating HTML for book.\n",
             "Your book's HTML pages are here:\n", "    ../jupyter-book/_build/html/\n",
             "    file:///x/_build/jupyter-book/_build/html/index.html\n", "\n", "\x1b[92m=====\x1b[0m\n",
             "WARNING: something after the banner\n"]
-    shown = _StagingPathFilter()
+    shown = StagingPathFilter()
     kept = [line for line in tail if shown.keep(line)]
     assert kept == [tail[0], "\n", "\n", tail[4], "\n", tail[-1]]

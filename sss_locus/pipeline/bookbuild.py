@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -26,30 +25,9 @@ from urllib.parse import unquote, urlsplit
 
 from sss_locus import paths
 from sss_locus.pipeline import citation, export, outputs, paperinputs, provenance
+from sss_locus.pipeline.buildlog import ANSI, StagingPathFilter
 from sss_locus.pipeline.runner import hermetic_env
 
-_ANSI = re.compile(r"\x1b\[[0-9;]*m")
-
-
-class _StagingPathFilter:
-    """Drops jupyter-book's closing lines that point at its staging site
-    (``<build>/jupyter-book/_build/html``, moved to ``<build>/html`` afterwards): "The HTML pages
-    are in ...", and the banner from "Finished generating HTML for book." to its closing rule.
-    Every other line passes unchanged (the build prints where the book really is)."""
-
-    def __init__(self) -> None:
-        self.in_banner = False
-
-    def keep(self, line: str) -> bool:
-        text = _ANSI.sub("", line).strip()
-        if self.in_banner:
-            if text.startswith("====="):
-                self.in_banner = False
-            return False
-        if text == "Finished generating HTML for book.":
-            self.in_banner = True
-            return False
-        return not text.startswith("The HTML pages are in ")
 FIGURES_PAGE = "figures.md"
 CLAIMS_PAGE = "claims.md"
 FIGURES_MARKER = "<!-- FIGURES-INDEX -->"
@@ -376,12 +354,12 @@ def _build(log) -> Path:
     with subprocess.Popen(cmd, env=env, cwd=root, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           text=True, errors="replace") as proc:
         assert proc.stdout is not None
-        shown = _StagingPathFilter()
+        shown = StagingPathFilter()
         for line in proc.stdout:
             if shown.keep(line):
                 sys.stdout.write(line)
             if "WARNING" in line or "ERROR" in line or "CRITICAL" in line:
-                problems.append(_ANSI.sub("", line).strip())
+                problems.append(ANSI.sub("", line).strip())
     if proc.returncode != 0:
         listing = "\n  ".join(problems) or "(no WARNING/ERROR lines; see the output above)"
         raise RuntimeError(f"jupyter-book build failed (exit {proc.returncode}):\n  {listing}")
