@@ -65,11 +65,12 @@ def test_missing_toc_files_are_reported(tmp_path):
 def test_book_output_drops_only_jupyter_books_staging_path_lines():
     from sss_locus.pipeline.buildlog import StagingPathFilter
 
+    rule = "\x1b[92m=====\x1b[0m\n"
     tail = ["\x1b[01mbuild succeeded.\x1b[39;49;00m\n", "\n", "The HTML pages are in ../jupyter-book/_build/html.\n",
-            "\n", "\x1b[92m=====\x1b[0m\n", "\n", "Finished generating HTML for book.\n",
+            "\n", rule, "\n", "Finished generating HTML for book.\n",
             "Your book's HTML pages are here:\n", "    ../jupyter-book/_build/html/\n",
-            "    file:///x/_build/jupyter-book/_build/html/index.html\n", "\n", "\x1b[92m=====\x1b[0m\n",
-            "WARNING: something after the banner\n"]
+            "    file:///x/_build/jupyter-book/_build/html/index.html\n", "\n", rule,
+            "WARNING: something after the banner\n", rule, "a rule that opens no banner stays\n", rule]
     shown = StagingPathFilter()
-    kept = [line for line in tail if shown.keep(line)]
-    assert kept == [tail[0], "\n", "\n", tail[4], "\n", tail[-1]]
+    kept = [out for line in tail for out in shown.feed(line)] + shown.flush()
+    assert kept == [tail[0], "\n", "\n", tail[12], rule, tail[14], rule]

@@ -356,10 +356,10 @@ def _build(log) -> Path:
         assert proc.stdout is not None
         shown = StagingPathFilter()
         for line in proc.stdout:
-            if shown.keep(line):
-                sys.stdout.write(line)
+            sys.stdout.writelines(shown.feed(line))
             if "WARNING" in line or "ERROR" in line or "CRITICAL" in line:
                 problems.append(ANSI.sub("", line).strip())
+        sys.stdout.writelines(shown.flush())
     if proc.returncode != 0:
         listing = "\n  ".join(problems) or "(no WARNING/ERROR lines; see the output above)"
         raise RuntimeError(f"jupyter-book build failed (exit {proc.returncode}):\n  {listing}")
