@@ -59,7 +59,7 @@ def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.Data
         col[0].set_ylim(0.4, len(short) + 0.6)
         col[0].set_xlim(0, 1)
         col[0].set_xlabel("fraction of configurations")
-        col[0].set_title(platform_title(pf, 36) + "\n(a) outcome", fontsize=10)
+        col[0].set_title(platform_title(pf, 72 // n) + "\n(a) outcome", fontsize=10)  # 36 a column for two
         for ax, column, xlabel in (
                 (col[1], "plane_angle_deg", "angle between the two planes (deg)"),
                 (col[2], "point_error_q95_m", f"95 % point error per {100 * range_sigma_m:g} cm\nrange error (m)")):
