@@ -113,13 +113,14 @@ def _parameter_args(values: dict) -> list[str]:
     return args
 
 
-def measure_notebooks(trees: dict, names) -> dict:
+def measure_notebooks(trees: dict, names) -> tuple[dict, dict]:
     """Wall seconds of each notebook's book profile per tree, each run with an empty cache.
 
     The trees take turns notebook by notebook (baseline, then this tree), so a change of the
     machine's load during the run falls on both alike. With a baseline, a notebook whose book
     profile differs between the trees (e.g. raised sample counts) is also run on this tree with
     the baseline's values (``-p``), labelled ``<tree> at baseline values``: the like-for-like time.
+    Returns the times by label and notebook, and the differing values by notebook.
     """
     times = {label: {} for label in trees}
     labels = list(trees)
@@ -130,18 +131,14 @@ def measure_notebooks(trees: dict, names) -> dict:
         differ = {n: {k: v for k, v in base[n].items() if k in now[n] and now[n][k] != v} for n in names}
         differ = {n: d for n, d in differ.items() if d}
         if differ:
-            times[f"{here} at baseline values"] = {}
+            times[f"{here} at baseline values"] = {}  # filled for every notebook
+    like = f"{here} at baseline values"
     with tempfile.TemporaryDirectory() as tmp:
         for name in names:
             runs = [(label, tree, []) for label, tree in trees.items()]
-            if len(labels) > 1:
-                at_base = _parameter_args(differ.get(name, {}))
-                if differ:
-                    runs.append((f"{here} at baseline values", trees[here], at_base))
+            if name in differ:
+                runs.append((like, trees[here], _parameter_args(differ[name])))
             for i, (label, tree, extra) in enumerate(runs):
-                if extra == [] and label.endswith("at baseline values"):
-                    times[label][name] = times[here][name]  # the same values: the same run
-                    continue
                 env = dict(os.environ, PYTHONPATH=str(tree), SSS_LOCUS_BUILD_DIR=f"{tmp}/build{i}",
                            SSS_LOCUS_CACHE_DIR=f"{tmp}/cache{i}")
                 env.pop("SSS_LOCUS_SCHEDULER", None)
@@ -150,6 +147,8 @@ def measure_notebooks(trees: dict, names) -> dict:
                                 "book", *extra, "--output", f"{tmp}/{name}-{i}.ipynb"], cwd=tree, env=env,
                                check=True, capture_output=True)
                 times[label][name] = time.perf_counter() - start
+            if differ and name not in differ:
+                times[like][name] = times[here][name]  # the same values: the same run
     return times, differ
 
 

@@ -24,12 +24,11 @@ ratios ``a = l_mid / l_max``, ``b = l_min / l_max`` in ``[0, 1]``. The ``q`` qua
   (``g_q`` is symmetric, so half of it is computed), built once per process and quantile
   (about 0.2 s).
 
-Accuracy (relative, measured by the tests): about 1e-7 for ``q`` = 0.95, 1e-6 for ``q`` = 0.5;
-it degrades for small quantiles (about 1e-4 at ``q`` = 0.05), whose CDF rises steeply from 0
-where the quadrature is coarse.
-  ``tests/test_gaussian_norm.py`` checks it against the exact value at random ratios, the
-  closed forms (``a = b = 0``: normal; ``a = 1, b = 0``: Rayleigh; ``a = b = 1``: chi with 3
-  degrees of freedom) and brute-force Monte Carlo.
+Accuracy (relative, measured by ``tests/test_gaussian_norm.py`` against the exact value at
+random ratios, the closed forms ``a = b = 0``: normal, ``a = 1, b = 0``: Rayleigh, ``a = b =
+1``: chi with 3 degrees of freedom, and brute-force Monte Carlo): about 1e-7 for ``q`` = 0.95,
+1e-6 for ``q`` = 0.5; it degrades for small quantiles (about 1e-4 at ``q`` = 0.05), whose CDF
+rises steeply from 0 where the quadrature is coarse.
 """
 
 from __future__ import annotations

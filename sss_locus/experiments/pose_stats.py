@@ -111,11 +111,11 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     candidates = [c for c in candidates if c not in constant]
     X, Y = centred_ranks(candidates), centred_ranks(targets)
     rng = np.random.default_rng(seed)
-    sets, results = [np.ones((1, n), np.uint8)], []  # the point estimate rides along the first read
+    results = []
     for start in range(0, int(n_resamples), _RESAMPLES_PER_READ):  # bounded memory: n bytes a resample
-        sets.append(bootstrap_draw_counts(rng, n, min(_RESAMPLES_PER_READ, int(n_resamples) - start)))
-        results += weighted_correlation_sets(X, Y, sets)
-        sets = []
+        counts = bootstrap_draw_counts(rng, n, min(_RESAMPLES_PER_READ, int(n_resamples) - start))
+        point = [np.ones((1, n), np.uint8)] if start == 0 else []  # rides along the first read
+        results += weighted_correlation_sets(X, Y, point + [counts])
     rho, boots = results[0][0], np.concatenate(results[1:])
     alpha = (1.0 - confidence_level) / 2.0
     lo, hi = np.quantile(boots, [alpha, 1.0 - alpha], axis=0)

@@ -104,4 +104,3 @@ def share_upper_bound(count: int, n: int, confidence_level: float = 0.95) -> flo
     if not 0.0 < confidence_level < 1.0:
         raise ValueError(f"confidence_level must be in (0, 1); got {confidence_level!r}")
     return 1.0 if count == n else float(betaincinv(count + 1, n - count, confidence_level))
-
