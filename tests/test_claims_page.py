@@ -1,0 +1,87 @@
+"""The claims page cannot put a platform's number under another platform's heading.
+
+The page states one platform order ("Platforms are always listed **AUV / boat**") and heads its
+per-platform columns with it ("Measured here (AUV / boat)"). Wherever two glued numbers of
+different platforms stand side by side as ``a / b`` (nothing but a slash, units and brackets
+between them), ``a`` must belong to the platform listed first. Read from the page's source, so
+it runs without building the book.
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+
+from sss_locus.paths import REPO_ROOT
+
+CLAIMS = REPO_ROOT / "book" / "claims.md"
+GLUE = re.compile(r"\{glue:text\}`(?:/executed/(?P<nb>[\w.]+)::)?(?P<key>[^`:]+)(?::[^`]*)?`")
+PAIR = re.compile(r"^[^A-Za-z]*/[^A-Za-z]*(?:\bm\b[^A-Za-z]*)?$|^[^A-Za-z]*\bm\b[^A-Za-z]*/[^A-Za-z]*$")
+"""Text between two glued values that pairs them ``a / b``: a slash, units (°, %, m), brackets."""
+ORDER = re.compile(r"\((?:\*\*)?([A-Za-z]+) / ([A-Za-z]+)(?:\*\*)?\)|listed \*\*([A-Za-z]+) / ([A-Za-z]+)\*\*")
+
+with open(REPO_ROOT / "data" / "platforms.toml", "rb") as _f:
+    PLATFORM_KEYS = set(tomllib.load(_f)["platforms"])
+
+
+def _platform(key: str) -> str | None:
+    """The platform a glue key is about: the dash-separated token that is a platform key."""
+    hits = [t for t in key.split("-") if t in PLATFORM_KEYS]
+    return hits[0] if len(hits) == 1 else None
+
+
+def _pairs(line: str):
+    """Consecutive glued values of one line that stand as ``a / b``: (key_a, key_b, between)."""
+    hits = list(GLUE.finditer(line))
+    for a, b in zip(hits, hits[1:]):
+        between = line[a.end():b.start()]
+        if PAIR.match(between):
+            yield a["key"], b["key"], between
+
+
+def order_errors(page: str) -> list[str]:
+    """Every ``a / b`` pair of glued values on ``page`` whose platforms are in the wrong order:
+    the order of the enclosing table's header if it names one, else the page's."""
+    page_order = None
+    errors, table_order = [], None
+    for n, line in enumerate(page.splitlines(), 1):
+        m = ORDER.search(line)
+        if m and "listed" in m.group(0):
+            page_order = [m[3].lower(), m[4].lower()]
+        if not line.startswith("|"):
+            table_order = None
+            continue
+        if table_order is None:  # the header row of a table
+            table_order = [m[1].lower(), m[2].lower()] if m and "listed" not in m.group(0) else page_order
+            continue
+        for ka, kb, between in _pairs(line):
+            pa, pb = _platform(ka), _platform(kb)
+            if pa and pb and pa != pb and table_order.index(pa) > table_order.index(pb):
+                errors.append(f"line {n}: {ka} / {kb} (separated by {between!r}) is {pa} / {pb}, "
+                              f"the table lists {' / '.join(table_order)}")
+    return errors
+
+
+def test_claims_page_lists_platforms_in_its_stated_order():
+    page = CLAIMS.read_text(encoding="utf-8")
+    assert "Platforms are always listed **AUV / boat**" in page
+    assert order_errors(page) == []
+
+
+def test_order_check_finds_a_swapped_pair_and_accepts_the_right_one():
+    head = "Platforms are always listed **AUV / boat**.\n\n| Claim | Measured here (AUV / boat) | V |\n|---|---|---|\n"
+    good = ("| c | peak at {glue:text}`/executed/s.ipynb::sp-auv-len-peak-deg:s`° "
+            "({glue:text}`/executed/s.ipynb::sp-auv-len-peak-ci:s`°) / "
+            "{glue:text}`/executed/s.ipynb::sp-boat-len-peak-deg:s`° (x) | **R** |\n")
+    swapped = good.replace("sp-auv-len-peak-deg", "X").replace("sp-boat-len-peak-deg", "sp-auv-len-peak-deg") \
+        .replace("sp-auv-len-peak-ci", "sp-boat-len-peak-ci").replace("X", "sp-boat-len-peak-deg")
+    assert order_errors(head + good) == []
+    errors = order_errors(head + swapped)
+    assert len(errors) == 1 and "boat / auv" in errors[0]
+    # words between two values ("m (AUV), then") are not an a / b pair
+    prose = ("| c | {glue:text}`/executed/n.ipynb::nz-boat-extent-0:s` m (boat); at 90°: "
+             "{glue:text}`/executed/n.ipynb::nz-auv-extent-90:s` | v |\n")
+    assert order_errors(head + prose) == []
+    # a table headed the other way round is checked against its own header
+    boat_first = head.replace("(AUV / boat)", "(boat / AUV)")
+    assert order_errors(boat_first + swapped) == [] and len(order_errors(boat_first + good)) == 1
