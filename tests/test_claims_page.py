@@ -85,3 +85,68 @@ def test_order_check_finds_a_swapped_pair_and_accepts_the_right_one():
     # a table headed the other way round is checked against its own header
     boat_first = head.replace("(AUV / boat)", "(boat / AUV)")
     assert order_errors(boat_first + swapped) == [] and len(order_errors(boat_first + good)) == 1
+
+
+# --- verdicts generated from computed flags (sss_locus.report.findings) ----------------------
+
+NOTEBOOKS = REPO_ROOT / "notebooks"
+TYPED_VERDICT = re.compile(r"\*\*(?:reproduced|partly|not reproduced)\b", re.IGNORECASE)
+
+
+def _markdown_keys(notebook) -> set[str]:
+    import json
+
+    cells = json.loads(notebook.read_text(encoding="utf-8"))["cells"]
+    text = "\n".join("".join(c["source"]) for c in cells if c["cell_type"] == "markdown")
+    return {m["key"] for m in GLUE.finditer(text)}
+
+
+def test_every_generated_finding_and_its_claims_row_read_one_flag():
+    """A chapter's ``X-finding`` sentence and the claims page's verdict ``X-finding-verdict`` are
+    written by one call from the same flags (report.findings); the page must glue that verdict,
+    from the same notebook, and type no verdict of its own in that row."""
+    page = CLAIMS.read_text(encoding="utf-8")
+    page_verdicts = {(m["nb"], m["key"]) for m in GLUE.finditer(page) if m["key"].endswith("-finding-verdict")}
+    findings = {(nb.stem + ".ipynb", k) for nb in sorted(NOTEBOOKS.glob("*.ipynb"))
+                for k in _markdown_keys(nb) if k.endswith("-finding")}
+    assert findings, "no chapter prints a generated finding"
+    assert {(nb, k + "-verdict") for nb, k in findings} == page_verdicts
+    for line in page.splitlines():
+        if "-finding-verdict" in line:
+            assert not TYPED_VERDICT.search(line), f"typed verdict beside a generated one: {line[:120]}"
+
+
+def _check(all_preferred_0: bool, all_preferred_180: bool):
+    import pandas as pd
+
+    return pd.DataFrame({"end_deg": [0.0, 180.0], "end_median": [0.5, 0.4],
+                         "worst_angle_deg": [10.0, 170.0], "worst_median": [8.0, 0.45], "ratio": [16.0, 1.1],
+                         "n_angles": [1, 1], "all_preferred": [all_preferred_0, all_preferred_180]})
+
+
+def _bands():
+    import pandas as pd
+
+    return pd.DataFrame({"kind": ["prefer", "avoid", "prefer"], "lo_deg": [0.0, 9.0, 100.0],
+                         "hi_deg": [4.0, 40.0, 180.0]})
+
+
+def test_near_end_finding_and_verdict_agree_for_every_pattern_of_flags():
+    from sss_locus.report.findings import near_end_findings
+
+    labels = {"independent": "independent", "matched:10:same": "matched ±10 m, same side"}
+    for flags, word in (((True, True, True, True), "Reproduced"), ((True, True, False, True), "Partly"),
+                        ((False, True, False, False), "Not reproduced")):
+        checks = {("my_auv", "independent"): _check(*flags[:2]), ("boat", "matched:10:same"): _check(*flags[2:])}
+        out = near_end_findings("pl", checks, {k: _bands() for k in checks}, labels, 10.0)
+        sentence = out["pl-near-ends-finding"]
+        assert out["pl-near-ends-finding-verdict"] == word
+        assert ("not preferred everywhere" in sentence) == (word != "Reproduced")
+        assert ("Every angle near both ends is preferred for" in sentence) == (word == "Partly")
+        for (key, spec), check in checks.items():
+            text = out[f"pl-{key.replace('_', '-')}-{spec.replace(':', '-')}-near-ends"]
+            assert ("is preferred" in text and "only" not in text) == bool(check["all_preferred"].all())
+            if not check["all_preferred"].all():
+                assert f"{key}, {labels[spec]}" in sentence  # the failing curve is named
+        if word == "Partly":  # the numbers of the failing end: 0-4 deg preferred, 8 m at 10 deg
+            assert "only 0–4° is preferred (median locus length 8.00 m at 10° against 0.500 m at 0°)" in sentence
