@@ -150,3 +150,43 @@ def test_near_end_finding_and_verdict_agree_for_every_pattern_of_flags():
                 assert f"{key}, {labels[spec]}" in sentence  # the failing curve is named
         if word == "Partly":  # the numbers of the failing end: 0-4 deg preferred, 8 m at 10 deg
             assert "only 0–4° is preferred (median locus length 8.00 m at 10° against 0.500 m at 0°)" in sentence
+
+
+def test_noise_advice_finding_states_its_conditions_and_agrees_with_its_flags():
+    from sss_locus.report.findings import NOISE_WORDS, noise_advice_findings
+
+    labels = {"independent": "independent", "matched:10:same": "matched ±10 m, same side"}
+    cases = [(k, spec, s) for k in ("auv", "boat") for spec in labels for s in (1.0, 0.1)]
+    for holding, word in ((set(cases), NOISE_WORDS[0]), ({("boat", "matched:10:same", 0.1)}, NOISE_WORDS[1]),
+                          (set(), NOISE_WORDS[2])):
+        verdicts = {c: {"holds": c in holding} for c in cases}
+        out = noise_advice_findings("nz", verdicts, labels, {"auv": 0.93, "boat": 0.5})
+        sentence = out["nz-advice-finding"]
+        assert out["nz-advice-finding-verdict"] == word
+        assert f"holds in {len(holding)} of {len(cases)} cases" in sentence
+        for needed in ("independent between the two passes", "every standard deviation",
+                       "noise-free locus length", "93 % (auv) / 50 % (boat)"):
+            assert needed in sentence
+        if word == NOISE_WORDS[1]:  # the one holding case is named as such, the others as failing
+            assert ("offsets matched ±10 m, same side, every standard deviation ×0.1: holds for boat, "
+                    "fails for auv") in sentence
+
+
+def test_noise_advice_texts_keep_the_headline_keys_and_name_every_level():
+    from sss_locus.experiments.noise import NoiseModel
+    from sss_locus.report.noise import advice_texts, scale_text
+
+    v = {"holds": False, "ends": 3.0, "oblique": 2.0, "perpendicular": 1.0}
+    out = advice_texts("nz", {("auv", "independent", 1.0): v, ("auv", "independent", 0.1): v,
+                              ("auv", "matched:10:same", 1.0): {**v, "holds": True},
+                              ("auv", "matched:10:same", 0.1): v}, 1.0)
+    assert out["nz-auv-x1-verdict"] == out["nz-auv-x0p1-verdict"] == "fails"
+    assert out["nz-auv-matched-10-same-verdict"] == out["nz-auv-matched-10-same-x1-verdict"] == "holds"
+    assert out["nz-auv-matched-10-same-x0p1-verdict"] == "fails"
+    assert out["nz-auv-matched-10-same-ends-extent"] == "3.0"
+    m = NoiseModel(range_resolution_m=0.0125, sound_speed_relative_sigma=0.001, horizontal_sigma_m=2.0,
+                   vertical_sigma_m=0.1, roll_sigma_deg=0.1, pitch_sigma_deg=0.1, heading_sigma_deg=1.0)
+    text = scale_text({"auv": m}, 0.1)  # a tenth of every value, the range cell too
+    assert text.startswith("×0.1: every standard deviation")
+    for part in ("range 1.25 mm", "0.010 % of the range", "position 0.20 m", "0.010 m vertical", "heading 0.10°"):
+        assert part in text

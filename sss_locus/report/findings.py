@@ -30,8 +30,9 @@ VERDICT_WORDS = ("Reproduced", "Partly", "Not reproduced")
 """The claims page's verdict words, for a test that holds everywhere, somewhere, nowhere."""
 
 
-def verdict_word(flags: Iterable[bool]) -> str:
-    """``"Reproduced"`` if every flag holds, ``"Not reproduced"`` if none does, else ``"Partly"``.
+def verdict_word(flags: Iterable[bool], words: tuple[str, str, str] = VERDICT_WORDS) -> str:
+    """``"Reproduced"`` if every flag holds, ``"Not reproduced"`` if none does, else ``"Partly"``
+    (``words``: the three words to use instead, in that order).
 
     >>> verdict_word([True, True]), verdict_word([True, False]), verdict_word([False])
     ('Reproduced', 'Partly', 'Not reproduced')
@@ -39,7 +40,7 @@ def verdict_word(flags: Iterable[bool]) -> str:
     flags = [bool(f) for f in flags]
     if not flags:
         raise ValueError("verdict_word needs at least one flag")
-    return VERDICT_WORDS[0] if all(flags) else VERDICT_WORDS[2] if not any(flags) else VERDICT_WORDS[1]
+    return words[0] if all(flags) else words[2] if not any(flags) else words[1]
 
 
 def preferred_span(bands: pd.DataFrame, angle_deg: float) -> str:
@@ -118,4 +119,54 @@ def near_end_findings(prefix: str, checks: Mapping[tuple[str, str], pd.DataFrame
     if held:
         sentence += " Every angle near both ends is preferred for " + "; ".join(lab for lab, _ in held) + "."
     out[f"{prefix}-near-ends-finding"] = sentence
+    return out
+
+
+NOISE_WORDS = ("Survives", "Survives in part", "Does not survive")
+"""Verdict words of the paper's advice with noise (beyond the paper: it has no noise claim)."""
+
+
+def noise_advice_findings(prefix: str, verdicts: Mapping[tuple[str, str, float], Mapping[str, float]],
+                          model_labels: Mapping[str, str], empty_share: Mapping[str, float],
+                          oblique_band_deg: tuple[float, float] = (10.0, 40.0)) -> dict[str, str]:
+    """The paper's crossing-angle advice with measurement noise, from computed flags, with the
+    conditions under which it was tested.
+
+    Parameters
+    ----------
+    verdicts : mapping (platform key, offset-model spec, noise scale) -> dict
+        :func:`~sss_locus.experiments.verdicts.advice_verdict` on the median extent (its
+        ``holds`` flag decides).
+    model_labels : mapping spec -> str
+        Display label of each offset model.
+    empty_share : mapping platform key -> float
+        Mean share of noisy draws with an empty computed locus at the headline level.
+
+    Returns
+    -------
+    dict of str
+        ``<prefix>-advice-finding`` (the sentence) and ``<prefix>-advice-finding-verdict``
+        (:data:`NOISE_WORDS` of the same flags).
+    """
+    if not verdicts:
+        raise ValueError("noise_advice_findings needs at least one verdict")
+    groups: dict[tuple[str, float], dict[bool, list[str]]] = {}
+    for (key, spec, scale), v in verdicts.items():
+        groups.setdefault((spec, scale), {True: [], False: []})[bool(v["holds"])].append(key)
+    clauses = []
+    for (spec, scale), by in groups.items():
+        said = [f"{word} for {' and '.join(by[flag])}" for flag, word in ((True, "holds"), (False, "fails")) if by[flag]]
+        clauses.append(f"offsets {model_labels[spec]}, every standard deviation ×{scale:g}: {', '.join(said)}")
+    flags = [bool(v["holds"]) for v in verdicts.values()]
+    lo, hi = oblique_band_deg
+    empty = " / ".join(f"{100 * e:.0f} % ({k})" for k, e in empty_share.items())
+    out = {f"{prefix}-advice-finding-verdict": verdict_word(flags, NOISE_WORDS)}
+    out[f"{prefix}-advice-finding"] = (
+        f"Tested on the median extent (the worse end, 0° or 180°, no worse than the median over {lo:g}°–{hi:g}° "
+        f"and than 90°), the advice holds in {sum(flags)} of {len(flags)} cases: {'; '.join(clauses)}. "
+        f"Conditions: errors independent between the two passes (errors common "
+        f"to both would cancel and are left out); each level multiplies every standard deviation of "
+        f"`data/noise.toml` at once, the range error as well as position and attitude; and the extent "
+        f"combines the band width with the noise-free locus length, while the locus computed from the noisy "
+        f"measurements is empty in {empty} of the draws at the headline level.")
     return out
