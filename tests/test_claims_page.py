@@ -190,3 +190,45 @@ def test_noise_advice_texts_keep_the_headline_keys_and_name_every_level():
     assert text.startswith("×0.1: every standard deviation")
     for part in ("range 1.25 mm", "0.010 % of the range", "position 0.20 m", "0.010 m vertical", "heading 0.10°"):
         assert part in text
+
+
+# --- the count of verdicts and the index at the top of the staged page (pipeline.claimsindex) --
+
+def _fake_read(values: dict[str, str]):
+    def read(notebook):
+        return {"cells": [{"outputs": [{"metadata": {"scrapbook": {"name": k}},
+                                        "data": {"application/papermill.record/text/plain": repr(v)}}]}
+                          for k, v in values.items()]}
+    return read
+
+
+def test_claims_index_counts_typed_glued_mixed_and_beyond_rows():
+    from sss_locus.pipeline.claimsindex import claims_index
+
+    page = ("# Claims\n\n## Part A\n\n| Claim (paper) | Measured | Verdict |\n|---|---|---|\n"
+            "| a | x | **Reproduced.** |\n| b | x | **Partly** (test). |\n"
+            "| c | x | **Not reproduced for the AUV**; **Reproduced for the boat**. |\n"
+            "| d | x | **{glue:text}`/executed/planning.ipynb::pl-near-ends-finding-verdict:s`** (test) |\n\n"
+            "## Open choices\n\n| Choice | This book | Alternative | Effect |\n|---|---|---|---|\n"
+            "| e | f | g | **Reproduced** |\n\n"
+            "## Beyond the paper: noise\n\n| Claim (paper) | Measured | Verdict |\n|---|---|---|\n"
+            "| h | x | **Only without noise.** |\n")
+    text, block = claims_index(page, _fake_read({"pl-near-ends-finding-verdict": "Not reproduced"}))
+    assert ("1 reproduced, 2 partly, 1 not reproduced, 1 beyond the paper (5 claims" in block)
+    assert text.count('<span id="claim-') == 5 and '| <span id="claim-5"></span>h |' in text
+    assert "| e | f | g |" in text  # the open-choices table is not a claim
+    for i, mark in ((1, "✓"), (2, "◐"), (3, "◐"), (4, "✗"), (5, "+")):
+        assert f'href="#claim-{i}"' in block and f"{i}&nbsp;{mark}" in block
+
+
+def test_every_claim_row_of_the_page_has_a_verdict_the_index_can_read():
+    """The page's own rows all classify once their glued verdicts have values."""
+    from sss_locus.pipeline.claimsindex import claims_index
+
+    page = CLAIMS.read_text(encoding="utf-8")
+    glued = {m["key"]: "Partly" for m in GLUE.finditer(page) if m["key"].endswith("-finding-verdict")}
+    tables = [t.strip().splitlines() for t in page.split("\n\n") if t.strip().startswith("| Claim (paper)")]
+    n_rows = sum(len(t) - 2 for t in tables)  # minus the header and the separator
+    assert n_rows > 20
+    _, block = claims_index(page, _fake_read(glued))
+    assert f"({n_rows} claims" in block
