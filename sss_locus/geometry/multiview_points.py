@@ -8,10 +8,13 @@ For each feature (batched, no per-feature loop):
    miss sphere 1, and the point of the line nearest it, pushed onto the sphere, is used; where
    the three origins are collinear or coincide there is no candidate and ``prior`` is used);
 2. each candidate is refined by Levenberg-Marquardt on the range residuals of *all* its views
-   (:func:`~sss_locus.geometry.multiview.solve_ranges`);
+   (:func:`~sss_locus.geometry.multiview.solve_ranges`) (the second only where it starts
+   inside the widened apertures), and where neither becomes admissible (3.), ``prior`` is
+   refined too;
 3. a refined candidate is *admissible* if it converged, is determined (``J^T J`` non-singular),
-   has a cost (sum of squared residuals in units of sigma) at most ``cost_limit``, and lies
-   inside every view's aperture widened by ``aperture_margin_deg`` (in azimuth and elevation;
+   has a cost (sum of squared residuals in units of sigma) at most ``cost_limit``, lies no
+   higher than ``ceiling_m`` (optional), and lies inside every view's aperture widened by
+   ``aperture_margin_deg`` (in azimuth and elevation;
    the margin absorbs attitude errors: with an attitude error larger than the beam, the true
    feature lies outside the *estimated* beam).
 
@@ -82,7 +85,7 @@ class MultiViewResult:
     plane_angle_deg : ndarray, shape (n,)
         Angle between the two planes of the start's three views (0 where none).
     n_iter : ndarray of int, shape (n,)
-        Largest number of iterations over the two candidates.
+        Largest number of iterations over the candidates.
     """
 
     point: np.ndarray
@@ -101,10 +104,10 @@ class MultiViewResult:
         return self.status <= MultiViewStatus.AMBIGUOUS
 
 
-def inside_apertures(W, origin, mask, points, aperture: Aperture, margin_deg: float = 0.0) -> np.ndarray:
+def inside_apertures(W, origin, mask, points, aperture: Aperture, margin_deg=0.0) -> np.ndarray:
     """Whether ``points`` (n, 3) lie inside the aperture of every masked view, each widened by
-    ``margin_deg`` in azimuth and elevation (``W`` (n, k, 3, 3), ``origin`` (n, k, 3), ``mask``
-    (n, k)); range limits as given. Returns (n,) bool."""
+    ``margin_deg`` (scalar or (n, k)) in azimuth and elevation (``W`` (n, k, 3, 3), ``origin``
+    (n, k, 3), ``mask`` (n, k)); range limits as given. Returns (n,) bool."""
     p = np.einsum("nkji,nkj->nki", W, points[:, None, :] - origin)
     r = np.linalg.norm(p, axis=-1)
     m = np.radians(margin_deg)
@@ -141,7 +144,7 @@ def _starts(W, o, r, mask, prior):
 
 
 def multiview_points(W, origin, ranges, sigmas, mask, aperture: Aperture, *, prior=None,
-                     cost_limit=np.inf, aperture_margin_deg: float = 0.0,
+                     cost_limit=np.inf, aperture_margin_deg=0.0, ceiling_m=np.inf,
                      max_iter: int = 50) -> MultiViewResult:
     """Position of each feature from all its views (see the module docstring).
 
@@ -163,8 +166,11 @@ def multiview_points(W, origin, ranges, sigmas, mask, aperture: Aperture, *, pri
     cost_limit : float or array_like, shape (n,)
         Largest admissible cost (e.g. a chi-square quantile with ``n_views - 3`` degrees of
         freedom); default no limit.
-    aperture_margin_deg : float, >= 0
-        Widening of every aperture in the admissibility test, degrees.
+    aperture_margin_deg : float or array_like, shape (n, k), >= 0
+        Widening of the apertures (per view) in the admissibility test, degrees.
+    ceiling_m : float or array_like, shape (n,)
+        Largest admissible world ``z`` of the feature, metres (e.g. the height of the lowest
+        sensor that saw it, when features are known to lie below the sensors); default none.
     max_iter : int
         Levenberg-Marquardt iterations.
     """
@@ -181,9 +187,18 @@ def multiview_points(W, origin, ranges, sigmas, mask, aperture: Aperture, *, pri
     s = as_float_array(sigmas, "sigmas")
     if r.shape != (n, k) or s.shape != (n, k):
         raise ValueError(f"ranges and sigmas must have shape {(n, k)}; got {r.shape}, {s.shape}")
-    if not (np.isfinite(aperture_margin_deg) and aperture_margin_deg >= 0):
-        raise ValueError(f"aperture_margin_deg must be a finite number >= 0; got {aperture_margin_deg!r}")
+    margin = np.asarray(aperture_margin_deg, float)
+    if not (np.all(np.isfinite(margin)) and np.all(margin >= 0)):
+        raise ValueError(f"aperture_margin_deg must be finite numbers >= 0; got {aperture_margin_deg!r}")
+    try:
+        margin = np.broadcast_to(margin, (n, k))
+    except ValueError:
+        raise ValueError(f"aperture_margin_deg must be a number or broadcast to {(n, k)}; "
+                         f"got shape {margin.shape}") from None
     limit = np.broadcast_to(np.asarray(cost_limit, float), (n,))
+    ceiling = np.broadcast_to(np.asarray(ceiling_m, float), (n,))
+    if np.any(np.isnan(ceiling)) or np.any(np.isnan(limit)):
+        raise ValueError("cost_limit and ceiling_m must not be NaN")
     counts = mask.sum(axis=1)
     if prior is None:
         c = np.einsum("nki,nk->ni", o, mask) / np.maximum(counts, 1)[:, None]
@@ -199,42 +214,50 @@ def multiview_points(W, origin, ranges, sigmas, mask, aperture: Aperture, *, pri
     Wi, oi, ri, mi = W[idx], o[idx], r[idx], mask[idx]
     si = np.where(mi, s[idx], 1.0)
     s0, s1, has1, tv_status, angle = _starts(Wi, oi, ri, mi, prior[idx])
+    mg, lim, ceil = margin[idx], limit[idx], ceiling[idx]
+    P = np.zeros((m, 3, 3))
+    C = np.full((m, 3), np.inf)
+    A = np.zeros((m, 3), bool)
+    D = np.ones((m, 3), bool)
+    S = np.full((m, 3, 3, 3), np.inf)
+    it = np.zeros((m, 3), np.int64)
+
+    def refine(slot, rows, start):
+        sol = solve_ranges(oi[rows], ri[rows], si[rows], mi[rows], start, max_iter=max_iter)
+        P[rows, slot], C[rows, slot], D[rows, slot] = sol.point, sol.cost, sol.degenerate
+        S[rows, slot], it[rows, slot] = sol.covariance, sol.n_iter
+        A[rows, slot] = (sol.converged & ~sol.degenerate & (sol.cost <= lim[rows])
+                         & (sol.point[:, 2] <= ceil[rows])
+                         & inside_apertures(Wi[rows], oi[rows], mi[rows], sol.point, aperture, mg[rows]))
+
+    refine(0, np.arange(m), s0)
     # the second candidate is refined only where it starts inside the widened apertures (a
     # mirror image outside them is rejected by the apertures before any refinement)
-    two = np.flatnonzero(has1 & inside_apertures(Wi, oi, mi, s1, aperture, aperture_margin_deg))
-    rows = np.concatenate([np.arange(m), two])
-    sol = solve_ranges(oi[rows], ri[rows], si[rows], mi[rows], np.concatenate([s0, s1[two]]),
-                       max_iter=max_iter)
-    inside = inside_apertures(Wi[rows], oi[rows], mi[rows], sol.point, aperture, aperture_margin_deg)
-    adm = sol.converged & ~sol.degenerate & (sol.cost <= limit[idx][rows]) & inside
-
-    def second(a, fill):  # candidate 2's values on all m rows (``fill`` where not refined)
-        out = np.full((m,) + a.shape[1:], fill, dtype=a.dtype)
-        out[two] = a[m:]
-        return out
-
-    a0, a1 = adm[:m], second(adm, False)
-    p0, p1 = sol.point[:m], second(sol.point, 0.0)
-    cost0, cost1 = sol.cost[:m], second(sol.cost, np.inf)
+    two = np.flatnonzero(has1 & inside_apertures(Wi, oi, mi, s1, aperture, mg))
+    refine(1, two, s1[two])
+    # fallback: from the prior, where neither closed-form candidate became admissible
+    rest = np.flatnonzero(~A[:, 0] & ~A[:, 1])
+    refine(2, rest, prior[idx][rest])
+    # the reported candidate: the admissible one with the lowest cost, else the lowest cost
+    best = np.argmin(np.where(A, C, np.inf), axis=1)
+    best = np.where(A.any(axis=1), best, np.argmin(np.where(np.isfinite(C), C, np.inf), axis=1))
+    take = lambda a: np.take_along_axis(a, best.reshape((m, 1) + (1,) * (a.ndim - 2)), axis=1)[:, 0]  # noqa: E731
+    pb = take(P)
     scale = np.max(np.where(mi, ri, 0.0), axis=1)
-    distinct = np.linalg.norm(p0 - p1, axis=-1) > DISTINCT_RTOL * scale
-    n_adm = a0.astype(np.int64) + (a1 & (distinct | ~a0))
-    # the reported candidate: the admissible one with the lower cost, else the lower cost
-    pick1 = np.where(n_adm > 0, np.where(a1, cost1, np.inf) < np.where(a0, cost0, np.inf), cost1 < cost0)
-    both = lambda a0_, a1_: np.where(pick1.reshape((m,) + (1,) * (a0_.ndim - 1)), a1_, a0_)  # noqa: E731
-    degenerate = both(sol.degenerate[:m], second(sol.degenerate, True))
+    distinct = np.linalg.norm(P - pb[:, None, :], axis=-1) > DISTINCT_RTOL * scale[:, None]
+    n_adm = A.any(axis=1).astype(np.int64) + np.any(A & distinct, axis=1)
     st = np.where(n_adm == 2, MultiViewStatus.AMBIGUOUS,
                   np.where(n_adm == 1, MultiViewStatus.RESOLVED,
-                           np.where(degenerate, MultiViewStatus.DEGENERATE, MultiViewStatus.DIVERGED)))
+                           np.where(take(D), MultiViewStatus.DEGENERATE, MultiViewStatus.DIVERGED)))
 
     point = prior.copy()
-    point[idx] = both(p0, p1)
+    point[idx] = pb
     status = np.full(n, MultiViewStatus.TOO_FEW_VIEWS, np.int8)
     status[idx] = st
     cov = np.full((n, 3, 3), np.inf)
-    cov[idx] = both(sol.covariance[:m], second(sol.covariance, np.inf))
+    cov[idx] = take(S)
     cost = np.zeros(n)
-    cost[idx] = both(cost0, cost1)
+    cost[idx] = take(C)
     out_tv = np.full(n, -1, np.int8)
     out_tv[idx] = tv_status
     out_angle = np.zeros(n)
@@ -242,7 +265,7 @@ def multiview_points(W, origin, ranges, sigmas, mask, aperture: Aperture, *, pri
     n_adm_all = np.zeros(n, np.int64)
     n_adm_all[idx] = n_adm
     iters = np.zeros(n, np.int64)
-    iters[idx] = np.maximum(sol.n_iter[:m], second(sol.n_iter, 0))
+    iters[idx] = it.max(axis=1)
     return MultiViewResult(point=point, status=status, covariance=cov, cost=cost, n_views=counts,
                            n_admissible=n_adm_all, three_view_status=out_tv, plane_angle_deg=out_angle,
                            n_iter=iters)
