@@ -102,3 +102,31 @@ def test_statuses_are_never_silent_nan():
     assert np.array_equal(nan, ~tab.estimated)
     one = tab[tab.feature == 1].set_index("estimator").status
     assert one["flat"] == "unseen" and one["two"] == "too few views" and one["all"] == "too few views"
+
+
+def test_paired_comparison_and_verdict_against_constructed_tables():
+    import pandas as pd
+
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.reconstruction_study import paired_comparison
+    from sss_locus.report.reconstruction import verdict_sentence
+
+    rng = np.random.default_rng(0)
+    rows = []
+    for relief, shift in ((0.0, 0.5), (1.0, -0.01), (2.0, -0.5)):
+        base = rng.random(200) + 1.0
+        for est, err in (("flat", base), ("all", base + shift + 0.05 * rng.normal(size=200))):
+            rows.append(pd.DataFrame(dict(feature=np.arange(200), estimator=est, estimated=True, error_3d_m=err,
+                                          noise_scale=1.0, rms_relief_m=relief)))
+    t = pd.concat(rows, ignore_index=True)
+    c = paired_comparison(t, "all", "flat", by=("noise_scale", "rms_relief_m"))
+    assert list(c.n_pairs) == [200, 200, 200]
+    assert c.p_value.iloc[0] > 0.5 and c.p_value.iloc[2] < 1e-10
+    assert c.share_closer.iloc[2] == 1.0 and c.median_difference_m.iloc[2] == pytest.approx(-0.5, abs=0.02)
+    text = verdict_sentence(load_platform("auv"), c, alpha=0.01)
+    # relief 1 m: a shift of -1 cm against 5 cm noise over 200 pairs; whichever way the test
+    # goes, the verdict names the smallest relief from which every larger one wins
+    expected = "1.0 m" if c.p_value.iloc[1] < 0.01 else "2.0 m"
+    assert f"from {expected} RMS relief on" in text
+    c.loc[2, "p_value"] = 0.5
+    assert "at no relief up to 2.0 m" in verdict_sentence(load_platform("auv"), c, alpha=0.01)
