@@ -13,8 +13,8 @@ first-order covariance of ``p`` is ``(J^T J)^-1`` (weighted Jacobian), i.e.
 ``sigma^2 (J^T J)^-1`` for equal ``sigma``.
 
 :func:`solve_ranges` runs Levenberg-Marquardt (Marquardt's diagonal scaling; a step is taken
-only if it lowers the cost, and the damping is divided by 10 after a success, multiplied by 10
-after a failure) on every feature at once: each iteration is a handful of array operations on
+only if it lowers the cost; the damping follows Nielsen's gain-ratio rule, as in Madsen, Nielsen
+& Tingleff, *Methods for non-linear least squares problems*, 2004, Sec. 3.2) on every feature at once: each iteration is a handful of array operations on
 the features still running (no per-feature Python loop). Rows are solved relative to the mean
 of their sensor origins, so a scene far from the world origin loses no digits.
 
@@ -37,7 +37,10 @@ from .validation import as_float_array
 XTOL_REL = 1e-10
 """A row has converged when its step is shorter than ``XTOL_REL`` times its largest range ..."""
 FTOL_REL = 1e-12
-"""... or when an accepted step lowers its cost by at most ``FTOL_REL`` of the cost."""
+"""... or when an accepted step lowers its cost by at most ``FTOL_REL`` of the cost ..."""
+GTOL = 1e-10
+"""... or when the gradient is orthogonal to the residuals to ``GTOL``: ``max_i |(J^T e)_i| /
+(|J_i| |e|) <= GTOL`` (MINPACK's test; ``J_i`` the i-th column)."""
 
 
 @dataclass(frozen=True)
@@ -51,7 +54,8 @@ class RangeSolution:
     cost : ndarray, shape (n,)
         ``sum_k e_k^2`` at ``point`` (dimensionless: residuals in units of ``sigma``).
     converged : ndarray of bool, shape (n,)
-        The step fell below ``XTOL_REL`` (relative) within ``max_iter`` iterations.
+        The step fell below ``XTOL_REL`` (relative), the cost stopped decreasing
+        (``FTOL_REL``) or the gradient vanished (``GTOL``) within ``max_iter`` iterations.
     degenerate : ndarray of bool, shape (n,)
         ``J^T J`` at ``point`` is rank-deficient (e.g. collinear sensor origins, fewer than
         three views).
@@ -131,7 +135,7 @@ def _solve_sym3(A, b):
     return x, det
 
 
-def solve_ranges(origins, ranges, sigmas, mask, start, *, max_iter: int = 50,
+def solve_ranges(origins, ranges, sigmas, mask, start, *, max_iter: int = 100,
                  damping: float = 1e-3) -> RangeSolution:
     """Batched Levenberg-Marquardt on the range residuals (see the module docstring).
 
@@ -193,6 +197,7 @@ def solve_ranges(origins, ranges, sigmas, mask, start, *, max_iter: int = 50,
     scale = np.maximum(np.max(rho, axis=1), 1e-300)
     e, J, cost = _residuals_cm(pc, oc, rho, w)
     lam = np.full(n, float(damping))
+    nu = np.full(n, 2.0)
     converged = np.zeros(n, bool)
     n_iter = np.zeros(n, np.int64)
     active = np.flatnonzero(counts > 0)
@@ -201,6 +206,8 @@ def solve_ranges(origins, ranges, sigmas, mask, start, *, max_iter: int = 50,
             break
         A, g = _normal_cm(J[:, active], e[active])
         diag = A[:3]
+        enorm = np.sqrt(cost[active])
+        flat_gradient = np.max(np.abs(g) / np.maximum(np.sqrt(diag) * enorm, 1e-300), axis=0) <= GTOL
         D = diag + RANGE_JACOBIAN_RANK_RTOL * diag.sum(axis=0) + 1e-300
         M = A.copy()
         M[:3] += lam[active] * D
@@ -211,12 +218,20 @@ def solve_ranges(origins, ranges, sigmas, mask, start, *, max_iter: int = 50,
         ok = cost_t < old
         small = np.sqrt(np.sum(step * step, axis=0)) <= XTOL_REL * scale[active]
         flat = ok & (old - cost_t <= FTOL_REL * old)
+        # gain ratio of the actual to the predicted decrease (Nielsen's damping update)
+        xx, yy, zz, xy, xz, yz = A
+        sAs = (xx * step[0] ** 2 + yy * step[1] ** 2 + zz * step[2] ** 2
+               + 2 * (xy * step[0] * step[1] + xz * step[0] * step[2] + yz * step[1] * step[2]))
+        pred = -(2 * np.sum(g * step, axis=0) + sAs)
+        gain = (old - cost_t) / np.where(pred > 0, pred, np.inf)
         acc = active[ok]
         pc[:, acc], e[acc], J[:, acc], cost[acc] = trial[:, ok], e_t[ok], J_t[:, ok], cost_t[ok]
-        lam[active] = np.where(ok, lam[active] / 10.0, lam[active] * 10.0)
+        nu_a = nu[active]
+        lam[active] = np.where(ok, lam[active] * np.maximum(1 / 3, 1 - (2 * gain - 1) ** 3), lam[active] * nu_a)
+        nu[active] = np.where(ok, 2.0, 2.0 * nu_a)
         n_iter[active] += 1
         # done: a tiny step (accepted or not), a negligible decrease of the cost, an exact fit
-        good = small | flat | (cost[active] == 0.0)
+        good = small | flat | flat_gradient | (cost[active] == 0.0)
         converged[active[good]] = True
         active = active[~(good | (lam[active] > 1e16))]
     A, _ = _normal_cm(J, e)

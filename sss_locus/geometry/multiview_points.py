@@ -145,7 +145,7 @@ def _starts(W, o, r, mask, prior):
 
 def multiview_points(W, origin, ranges, sigmas, mask, aperture: Aperture, *, prior=None,
                      cost_limit=np.inf, aperture_margin_deg=0.0, ceiling_m=np.inf,
-                     max_iter: int = 50) -> MultiViewResult:
+                     max_iter: int = 100) -> MultiViewResult:
     """Position of each feature from all its views (see the module docstring).
 
     Parameters

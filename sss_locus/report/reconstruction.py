@@ -100,27 +100,39 @@ def plot_views(platforms: Sequence, tables: Mapping[str, pd.DataFrame], rms_reli
     return fig
 
 
+def verdict_relief(comparison: pd.DataFrame, alpha: float):
+    """The smallest RMS relief from which on (at it and at every larger relief of ``comparison``,
+    one noise scale of :func:`~sss_locus.experiments.reconstruction_study.paired_comparison`)
+    the p-value is below ``alpha``; None if the largest relief fails."""
+    c = comparison.sort_values("rms_relief_m")
+    from_ = None
+    for r, p in zip(c.rms_relief_m[::-1], c.p_value[::-1]):
+        if not p < alpha:
+            break
+        from_ = float(r)
+    return from_
+
+
+def verdict_text(comparison: pd.DataFrame, alpha: float) -> str:
+    """``"from 0.50 m RMS relief on"`` or ``"at no relief up to 4.0 m"`` for one noise scale."""
+    r = verdict_relief(comparison, alpha)
+    if r is None:
+        return f"at no relief up to {fmt_sig(comparison.rms_relief_m.max(), 2)} m"
+    return f"from {fmt_sig(r, 2)} m RMS relief on"
+
+
 def verdict_sentence(platform, comparison: pd.DataFrame, alpha: float) -> str:
-    """One Markdown sentence per noise scale: the smallest RMS relief at which all views beat the
-    flat-seafloor mosaic (one-sided paired Wilcoxon p < ``alpha``), or that they never do.
-    ``comparison`` is :func:`~sss_locus.experiments.reconstruction_study.paired_comparison` of
-    ``"all"`` against ``"flat"`` by noise scale and relief."""
+    """One Markdown sentence: for each noise scale, the smallest RMS relief from which on all
+    views beat the flat-seafloor mosaic (one-sided paired Wilcoxon p < ``alpha``), or that they
+    never do. ``comparison`` is :func:`~sss_locus.experiments.reconstruction_study.paired_comparison`
+    of ``"all"`` against ``"flat"`` by noise scale and relief."""
     parts = []
     for k, c in comparison.groupby("noise_scale", sort=True):
-        c = c.sort_values("rms_relief_m")
-        win = c[c.p_value < alpha]
-        # the relief from which on every larger relief wins too
-        from_ = None
-        for r in c.rms_relief_m[::-1]:
-            if r in set(win.rms_relief_m):
-                from_ = r
-            else:
-                break
-        if from_ is None:
-            parts.append(f"{noise_label(k)}: at no relief up to {fmt_sig(c.rms_relief_m.max(), 2)} m")
-        else:
-            row = c[c.rms_relief_m == from_].iloc[0]
-            parts.append(f"{noise_label(k)}: from {fmt_sig(from_, 2)} m RMS relief on (there, closer for "
-                         f"{fmt_percent(row.share_closer)} of the features, median difference "
-                         f"{fmt_sig(row.median_difference_m, 2)} m)")
+        r = verdict_relief(c, alpha)
+        text = f"{noise_label(k)}: {verdict_text(c, alpha)}"
+        if r is not None:
+            row = c[c.rms_relief_m == r].iloc[0]
+            text += (f" (there, closer for {fmt_percent(row.share_closer)} of the features, median "
+                     f"difference {fmt_sig(row.median_difference_m, 2)} m)")
+        parts.append(text)
     return f"**{platform.name}**: " + "; ".join(parts) + "."
