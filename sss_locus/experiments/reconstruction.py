@@ -141,20 +141,28 @@ def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture
     att = max(noise.roll_sigma_deg, noise.pitch_sigma_deg, noise.heading_sigma_deg)
     pos = np.degrees(np.hypot(noise.horizontal_sigma_m, noise.vertical_sigma_m) / np.maximum(r_hat, 1e-9))
     margin = margin_sigmas * np.hypot(att, pos)
-    for k in [*sorted({int(x) for x in n_views}), None]:
+    # every N-view variant in one batch (one solver call: its per-iteration overhead is shared)
+    ks = [*sorted({int(x) for x in n_views}), None]
+    uses = []
+    for k in ks:
         use = mask & (np.arange(L)[None, :] < (k if k is not None else L))
-        if k is not None:
-            use &= (n_seen >= k)[:, None]
-        used = use.sum(axis=1)
-        limit = np.where(used > 3, chi2.ppf(CHI2_LEVEL, np.maximum(used - 3, 1)), np.inf)
-        res = multiview_points(W_hat, o_hat, np.where(use, r_hat, 1.0), sig_eff, use, aperture,
-                               prior=mean_flat, cost_limit=limit, aperture_margin_deg=margin,
-                               ceiling_m=np.min(np.where(use, o_hat[..., 2], np.inf), axis=1)
-                               if below_sensors else np.inf)
-        status = np.array([STATUS_NAMES[int(s)] for s in range(len(STATUS_NAMES))])[res.status]
-        pred = np.sqrt(np.where(res.estimated, np.trace(np.where(res.estimated[:, None, None],
-                                                                 res.covariance, 0.0), axis1=1, axis2=2), np.nan))
-        add("all" if k is None else f"n{k}", res.point, res.estimated, status, used, predicted_3d_m=pred)
+        uses.append(use & (n_seen >= k)[:, None] if k is not None else use)
+    use = np.concatenate(uses)
+    tile = lambda a: np.concatenate([a] * len(ks))  # noqa: E731
+    used = use.sum(axis=1)
+    limit = np.where(used > 3, chi2.ppf(CHI2_LEVEL, np.maximum(used - 3, 1)), np.inf)
+    o_all = tile(o_hat)
+    res = multiview_points(tile(W_hat), o_all, np.where(use, tile(r_hat), 1.0), tile(sig_eff), use, aperture,
+                           prior=tile(mean_flat), cost_limit=limit, aperture_margin_deg=tile(margin),
+                           ceiling_m=np.min(np.where(use, o_all[..., 2], np.inf), axis=1)
+                           if below_sensors else np.inf)
+    names = np.array([STATUS_NAMES[int(s)] for s in range(len(STATUS_NAMES))])
+    tr = np.trace(np.where(res.estimated[:, None, None], res.covariance, 0.0), axis1=1, axis2=2)
+    pred = np.sqrt(np.where(res.estimated, tr, np.nan))
+    for i, k in enumerate(ks):
+        part = slice(i * n, (i + 1) * n)
+        add("all" if k is None else f"n{k}", res.point[part], res.estimated[part], names[res.status[part]],
+            used[part], predicted_3d_m=pred[part])
     return pd.concat(rows, ignore_index=True)
 
 
