@@ -102,6 +102,23 @@ def range_residuals(points, origins, ranges, sigmas, mask) -> tuple[np.ndarray, 
     return e, J
 
 
+def check_views(mask, ranges, sigmas, shape: tuple[int, int]):
+    """``mask`` (bool), ``ranges`` and ``sigmas`` (float) of shape ``shape`` = (n, k), ranges
+    and sigmas finite and > 0 wherever ``mask``; a ``ValueError`` naming the argument otherwise."""
+    mask = np.asarray(mask)
+    if mask.dtype != bool or mask.shape != shape:
+        raise ValueError(f"mask must be a boolean array of shape {shape}; got {mask.dtype} {mask.shape}")
+    out = []
+    for name, value in (("ranges", ranges), ("sigmas", sigmas)):
+        a = as_float_array(value, name)
+        if a.shape != shape:
+            raise ValueError(f"{name} must have shape {shape}; got {a.shape}")
+        if np.any(mask & ~(a > 0)):
+            raise ValueError(f"{name} must be > 0 for every view in mask")
+        out.append(a)
+    return mask, out[0], out[1]
+
+
 def _residuals_cm(p, o, rho, w):
     """Component-major residuals: ``p`` (3, n), ``o`` (3, n, k), ``rho``, ``w`` (n, k) (``w`` = 1/sigma,
     0 outside the mask). Returns ``e`` (n, k), ``J`` (3, n, k) and the cost (n,)."""
@@ -169,16 +186,7 @@ def solve_ranges(origins, ranges, sigmas, mask, start, *, max_iter: int = 100,
     if o.ndim != 3:
         raise ValueError(f"origins must have shape (n, k, 3); got {o.shape}")
     n, k = o.shape[:2]
-    mask = np.asarray(mask)
-    if mask.dtype != bool or mask.shape != (n, k):
-        raise ValueError(f"mask must be a boolean array of shape {(n, k)}; got {mask.dtype} {mask.shape}")
-    rho = as_float_array(ranges, "ranges")
-    sig = as_float_array(sigmas, "sigmas")
-    for name, a in (("ranges", rho), ("sigmas", sig)):
-        if a.shape != (n, k):
-            raise ValueError(f"{name} must have shape {(n, k)}; got {a.shape}")
-        if np.any(mask & ~(a > 0)):
-            raise ValueError(f"{name} must be > 0 for every view in mask")
+    mask, rho, sig = check_views(mask, ranges, sigmas, (n, k))
     p = as_float_array(start, "start", tail=(3,))
     if p.shape != (n, 3):
         raise ValueError(f"start must have shape {(n, 3)}; got {p.shape}")

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .aperture import Aperture
-from .multiview import solve_ranges
+from .multiview import check_views, solve_ranges
 from .poses import relative_pose
 from .three_view_points import ThreeViewStatus, three_view_points
 from .validation import as_float_array, check_aperture
@@ -180,13 +180,7 @@ def multiview_points(W, origin, ranges, sigmas, mask, aperture: Aperture, *, pri
     if W.ndim != 4 or o.shape != W.shape[:2] + (3,):
         raise ValueError(f"W must have shape (n, k, 3, 3) and origin (n, k, 3); got {W.shape}, {o.shape}")
     n, k = o.shape[:2]
-    mask = np.asarray(mask)
-    if mask.dtype != bool or mask.shape != (n, k):
-        raise ValueError(f"mask must be a boolean array of shape {(n, k)}; got {mask.dtype} {mask.shape}")
-    r = as_float_array(ranges, "ranges")
-    s = as_float_array(sigmas, "sigmas")
-    if r.shape != (n, k) or s.shape != (n, k):
-        raise ValueError(f"ranges and sigmas must have shape {(n, k)}; got {r.shape}, {s.shape}")
+    mask, r, s = check_views(mask, ranges, sigmas, (n, k))
     margin = np.asarray(aperture_margin_deg, float)
     if not (np.all(np.isfinite(margin)) and np.all(margin >= 0)):
         raise ValueError(f"aperture_margin_deg must be finite numbers >= 0; got {aperture_margin_deg!r}")
