@@ -135,6 +135,35 @@ def _normal_cm(J, e):
     return A, np.sum(J * e, axis=2)
 
 
+def _sym3_extreme_eigenvalues(A):
+    """Smallest and largest eigenvalues of symmetric 3x3 matrices given as six entries (6, n),
+    in closed form (the trigonometric solution of the characteristic cubic; absolute error of
+    order ``eps`` times the largest eigenvalue, enough for the rank test)."""
+    xx, yy, zz, xy, xz, yz = A
+    q = (xx + yy + zz) / 3.0
+    p1 = xy * xy + xz * xz + yz * yz
+    p2 = (xx - q) ** 2 + (yy - q) ** 2 + (zz - q) ** 2 + 2.0 * p1
+    p = np.sqrt(p2 / 6.0)
+    safe = np.where(p > 0, p, 1.0)
+    b00, b11, b22 = (xx - q) / safe, (yy - q) / safe, (zz - q) / safe
+    b01, b02, b12 = xy / safe, xz / safe, yz / safe
+    r = 0.5 * (b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02))
+    phi = np.arccos(np.clip(r, -1.0, 1.0)) / 3.0
+    hi = q + 2.0 * p * np.cos(phi)
+    lo = q + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
+    return np.where(p > 0, lo, q), np.where(p > 0, hi, q)
+
+
+def _sym3_inverse(A):
+    """Inverses (n, 3, 3) of symmetric 3x3 matrices given as six entries (6, n), by cofactors."""
+    xx, yy, zz, xy, xz, yz = A
+    c = [yy * zz - yz * yz, xz * yz - xy * zz, xy * yz - xz * yy, xx * zz - xz * xz,
+         xy * xz - xx * yz, xx * yy - xy * xy]
+    det = xx * c[0] + xy * c[1] + xz * c[2]
+    inv = np.stack([c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5]], axis=-1) / det[:, None]
+    return inv.reshape(-1, 3, 3)
+
+
 def _solve_sym3(A, b):
     """Solve the symmetric 3x3 systems ``A x = b`` (``A`` as six entries (6, n), ``b`` (3, n)) by
     cofactors; also return the determinant. Rows with a zero determinant give zeros."""
@@ -204,27 +233,32 @@ def solve_ranges(origins, ranges, sigmas, mask, start, *, max_iter: int = 100,
     rho = np.where(mask, rho, 0.0)
     scale = np.maximum(np.max(rho, axis=1), 1e-300)
     e, J, cost = _residuals_cm(pc, oc, rho, w)
-    lam = np.full(n, float(damping))
-    nu = np.full(n, 2.0)
     converged = np.zeros(n, bool)
     n_iter = np.zeros(n, np.int64)
-    active = np.flatnonzero(counts > 0)
-    for _ in range(int(max_iter)):
-        if active.size == 0:
+    # the rows still running, compacted (no gather or scatter per iteration, only when rows stop)
+    idx = np.flatnonzero(counts > 0)
+    P, O, RHO, WT, E, JJ, COST, SC = (pc[:, idx], oc[:, idx], rho[idx], w[idx], e[idx], J[:, idx],
+                                       cost[idx], scale[idx])
+    LAM, NU, IT = np.full(idx.size, float(damping)), np.full(idx.size, 2.0), np.zeros(idx.size, np.int64)
+    for it in range(int(max_iter) + 1):
+        if idx.size == 0:
             break
-        A, g = _normal_cm(J[:, active], e[active])
+        if it == int(max_iter):  # out of iterations: not converged
+            pc[:, idx], e[idx], J[:, idx], cost[idx], n_iter[idx] = P, E, JJ, COST, IT
+            break
+        A, g = _normal_cm(JJ, E)
         diag = A[:3]
-        enorm = np.sqrt(cost[active])
+        enorm = np.sqrt(COST)
         flat_gradient = np.max(np.abs(g) / np.maximum(np.sqrt(diag) * enorm, 1e-300), axis=0) <= GTOL
         D = diag + RANGE_JACOBIAN_RANK_RTOL * diag.sum(axis=0) + 1e-300
         M = A.copy()
-        M[:3] += lam[active] * D
+        M[:3] += LAM * D
         step, _ = _solve_sym3(M, -g)
-        trial = pc[:, active] + step
-        e_t, J_t, cost_t = _residuals_cm(trial, oc[:, active], rho[active], w[active])
-        old = cost[active]
+        trial = P + step
+        e_t, J_t, cost_t = _residuals_cm(trial, O, RHO, WT)
+        old = COST
         ok = cost_t < old
-        small = np.sqrt(np.sum(step * step, axis=0)) <= XTOL_REL * scale[active]
+        small = np.sqrt(np.sum(step * step, axis=0)) <= XTOL_REL * SC
         flat = ok & (old - cost_t <= FTOL_REL * old)
         # gain ratio of the actual to the predicted decrease (Nielsen's damping update)
         xx, yy, zz, xy, xz, yz = A
@@ -232,22 +266,29 @@ def solve_ranges(origins, ranges, sigmas, mask, start, *, max_iter: int = 100,
                + 2 * (xy * step[0] * step[1] + xz * step[0] * step[2] + yz * step[1] * step[2]))
         pred = -(2 * np.sum(g * step, axis=0) + sAs)
         gain = (old - cost_t) / np.where(pred > 0, pred, np.inf)
-        acc = active[ok]
-        pc[:, acc], e[acc], J[:, acc], cost[acc] = trial[:, ok], e_t[ok], J_t[:, ok], cost_t[ok]
-        nu_a = nu[active]
-        lam[active] = np.where(ok, lam[active] * np.maximum(1 / 3, 1 - (2 * gain - 1) ** 3), lam[active] * nu_a)
-        nu[active] = np.where(ok, 2.0, 2.0 * nu_a)
-        n_iter[active] += 1
-        # done: a tiny step (accepted or not), a negligible decrease of the cost, an exact fit
-        good = small | flat | flat_gradient | (cost[active] == 0.0)
-        converged[active[good]] = True
-        active = active[~(good | (lam[active] > 1e16))]
+        P = np.where(ok, trial, P)
+        E = np.where(ok[:, None], e_t, E)
+        JJ = np.where(ok[:, None], J_t, JJ)
+        COST = np.where(ok, cost_t, COST)
+        LAM = np.where(ok, LAM * np.maximum(1 / 3, 1 - (2 * gain - 1) ** 3), LAM * NU)
+        NU = np.where(ok, 2.0, 2.0 * NU)
+        IT += 1
+        # done: a tiny step (accepted or not), a negligible decrease of the cost, a vanishing
+        # gradient, an exact fit; or the damping ran away (not converged)
+        good = small | flat | flat_gradient | (COST == 0.0)
+        stop = good | (LAM > 1e16)
+        if stop.any():
+            out = idx[stop]
+            pc[:, out], e[out], J[:, out], cost[out], n_iter[out] = P[:, stop], E[stop], JJ[:, stop], COST[stop], IT[stop]
+            converged[out] = good[stop]
+            keep = ~stop
+            idx, P, O, RHO, WT, E, JJ, COST, SC, LAM, NU, IT = (
+                idx[keep], P[:, keep], O[:, keep], RHO[keep], WT[keep], E[keep], JJ[:, keep], COST[keep],
+                SC[keep], LAM[keep], NU[keep], IT[keep])
     A, _ = _normal_cm(J, e)
-    Af = np.stack([A[0], A[3], A[4], A[3], A[1], A[5], A[4], A[5], A[2]], axis=-1).reshape(n, 3, 3)
-    ev = np.linalg.eigvalsh(Af)
-    degenerate = (counts < 3) | (ev[:, 0] <= RANGE_JACOBIAN_RANK_RTOL * np.maximum(ev[:, 2], 1e-300))
-    eye = np.eye(3)
-    cov = np.where(degenerate[:, None, None], np.inf,
-                   np.linalg.inv(np.where(degenerate[:, None, None], eye, Af)))
+    lo, hi = _sym3_extreme_eigenvalues(A)
+    degenerate = (counts < 3) | (lo <= RANGE_JACOBIAN_RANK_RTOL * np.maximum(hi, 1e-300))
+    cov = _sym3_inverse(np.where(degenerate, 0.0, A) + np.where(degenerate, 1.0, 0.0) * np.array([1, 1, 1, 0, 0, 0.0])[:, None])
+    cov = np.where(degenerate[:, None, None], np.inf, cov)
     return RangeSolution(point=pc.T + centre, cost=cost, converged=converged, degenerate=degenerate,
                          covariance=cov, n_iter=n_iter)
