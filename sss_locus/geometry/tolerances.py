@@ -26,3 +26,9 @@ COINCIDENT_PLANES_RTOL = 1e-9
 LINE_TANGENT_RTOL = 1e-13
 """Three-view: a line with ``|r1**2 - |p0|**2| <= LINE_TANGENT_RTOL * r1**2`` (half-chord below
 about 3.2e-7 r1) touches sphere 1 in one point."""
+
+RANGE_JACOBIAN_RANK_RTOL = 1e-10
+"""N views (:mod:`sss_locus.geometry.multiview`): ``J^T J`` of the range residuals whose
+smallest eigenvalue is at most ``RANGE_JACOBIAN_RANK_RTOL`` times its largest is singular (the
+feature is not determined: collinear sensor origins, fewer than three views); status
+``DEGENERATE``. Also the floor of the Marquardt damping's diagonal, relative to its trace."""

@@ -1,0 +1,182 @@
+"""Reconstruction of seafloor features from a noisy survey: flat-seafloor slant-range
+correction against two views + a prior and N >= 3 views + least squares.
+
+Per feature, the views that saw it (:func:`~sss_locus.experiments.terrain_survey.
+observe_features`) are put in a random order (seeded; data association known), and the
+estimates are computed from *estimated* poses and ranges (the noise chapter's model,
+:func:`~sss_locus.experiments.noise.perturb`):
+
+``flat``
+    slant-range correction of every view on a flat seafloor at the transducer's measured
+    altitude (:func:`~sss_locus.geometry.slant_range.flat_seafloor_points`; the altimeter is
+    taken as exact, which favours the baseline), averaged over the feature's views (a mosaic
+    that stacks every line);
+``flat1``
+    the same from the feature's first view alone;
+``two``
+    views 1 and 2: the point of their locus nearest the mean of their two flat-seafloor
+    estimates (the stated prior), :func:`~sss_locus.geometry.slant_range.nearest_locus_points`;
+``n<N>``
+    views 1..N (N >= 3), :func:`~sss_locus.geometry.multiview_points.multiview_points` with the
+    flat estimate as prior, the cost limit the 99.9 % chi-square quantile with ``N - 3`` degrees
+    of freedom (none for N = 3), and each view's aperture widened by ``margin_sigmas`` times
+    the standard deviation of the feature's direction in that view (the largest attitude
+    sigma and the position sigma over the range, in quadrature); with ``below_sensors`` (the
+    default, an open choice) only points below the lowest sensor of the views are admitted,
+    which rejects the mirror image of the feature above the (nearly coplanar) sensors; Range sigmas are effective: the range error plus the
+    sensor-position error along the line of sight (attitude errors do not change a range);
+``all``
+    every view of the feature, as ``n<N>``.
+
+Errors are those of the estimate against the true feature: 3-D, horizontal and vertical
+(estimate minus truth, m). Estimators without an estimate for a feature (status other than
+resolved or ambiguous; fewer views than N) have NaN errors in the table, and their status
+tells why: the table is meant for statistics, its NaN are never silent.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ..geometry import Aperture, relative_pose, two_view_locus
+from ..geometry.multiview_points import MultiViewStatus, multiview_points
+from ..geometry.slant_range import flat_seafloor_points, nearest_locus_points
+from .noise import NoiseModel, noise_sigmas, perturb
+from .view_sets import Views
+
+CHI2_LEVEL = 0.999
+STATUS_NAMES = {int(s): s.name.lower().replace("_", " ") for s in MultiViewStatus}
+
+
+def _gather(a, order):
+    return np.take_along_axis(a, order.reshape(order.shape + (1,) * (a.ndim - 2)), axis=1)
+
+
+def _errors(est, truth, ok):
+    d = np.where(ok[:, None], est - truth, np.nan)
+    return dict(error_3d_m=np.linalg.norm(d, axis=1), error_h_m=np.hypot(d[:, 0], d[:, 1]),
+                error_v_m=d[:, 2])
+
+
+def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture: Aperture, *,
+                n_views=(3, 4, 6), seed: int = 0, margin_sigmas: float = 5.0,
+                below_sensors: bool = True) -> pd.DataFrame:
+    """Every estimator on every feature (see the module docstring).
+
+    Parameters
+    ----------
+    views : Views
+        True poses, shapes (n, L, ...), and the true features.
+    seen : array_like of bool, shape (n, L)
+    sensor_height_m : array_like, shape (n, L)
+        The transducer's height above the seafloor below it (altimeter), m.
+    noise : NoiseModel
+    aperture : Aperture
+    n_views : sequence of int
+        The N of the ``n<N>`` estimators, each >= 3.
+    seed : int
+        Seed of the view order and the noise draws.
+    margin_sigmas : float
+        Aperture widening in standard deviations of the feature's direction (default 5: up to
+        nine views with two angles each are tested, and the estimate's own error adds to the
+        direction error, so 3 would reject a few per cent of correct estimates).
+    below_sensors : bool
+        Admit only N-view points below the lowest (estimated) sensor of the feature's views
+        (features lie on the seafloor under the survey; an open choice).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per feature and estimator: ``feature``, ``estimator``, ``n_views`` (views used),
+        ``n_seen``, ``status`` (``"estimated"``/``"resolved"``/...), ``estimated`` (bool),
+        ``error_3d_m``, ``error_h_m``, ``error_v_m``, ``locus_length_m`` (``two`` only),
+        ``predicted_3d_m`` (``sqrt(trace(covariance))``, N-view only).
+    """
+    seen = np.asarray(seen, bool)
+    n, L = seen.shape
+    if any(int(k) < 3 for k in n_views):
+        raise ValueError(f"n_views must be integers >= 3; got {list(n_views)}")
+    from scipy.stats import chi2
+
+    rng = np.random.default_rng(seed)
+    order = np.argsort(np.where(seen, rng.random((n, L)), 2.0), axis=1, kind="stable")
+    n_seen = seen.sum(axis=1)
+    sig = noise_sigmas(views, noise)
+    W_hat, o_hat, r_hat = perturb(views, sig, rng.standard_normal((n, L, 7)))
+    W_hat, o_hat, r_hat = (_gather(a, order) for a in (W_hat, o_hat, r_hat))
+    sig, mask = _gather(sig, order), _gather(seen, order)
+    H = _gather(np.asarray(sensor_height_m, float), order)
+    f = views.feature
+    flat = flat_seafloor_points(W_hat, o_hat, r_hat, np.maximum(H, 0.0))["point"]
+    los = flat - o_hat
+    los /= np.maximum(np.linalg.norm(los, axis=-1, keepdims=True), 1e-12)
+    sig_eff = np.sqrt(sig[..., 0] ** 2 + (sig[..., 1] * los[..., 0]) ** 2 + (sig[..., 2] * los[..., 1]) ** 2
+                      + (sig[..., 3] * los[..., 2]) ** 2)
+    sig_eff = np.where(sig_eff > 0, sig_eff, 1e-6)
+    rows = []
+
+    def add(name, est, ok, status, used, **extra):
+        rows.append(pd.DataFrame(dict(feature=np.arange(n), estimator=name, n_views=used, n_seen=n_seen,
+                                      status=status, estimated=ok, **_errors(est, f, ok), **extra)))
+
+    any_seen = n_seen >= 1
+    mean_flat = np.einsum("nki,nk->ni", flat, mask) / np.maximum(n_seen, 1)[:, None]
+    add("flat", mean_flat, any_seen, np.where(any_seen, "estimated", "unseen"), n_seen)
+    add("flat1", flat[:, 0], any_seen, np.where(any_seen, "estimated", "unseen"), np.minimum(n_seen, 1))
+
+    # two views and the prior: the locus point nearest the mean of their flat estimates
+    R, t = relative_pose(W_hat[:, 0], o_hat[:, 0], W_hat[:, 1], o_hat[:, 1])
+    has2 = n_seen >= 2
+    r1, r2 = np.where(has2, r_hat[:, 0], 1.0), np.where(has2, r_hat[:, 1], 1.0)
+    loc = two_view_locus(R, t, r1, r2, aperture, aperture)
+    prior1 = np.einsum("nji,nj->ni", W_hat[:, 0], 0.5 * (flat[:, 0] + flat[:, 1]) - o_hat[:, 0])
+    near = nearest_locus_points(loc, prior1, r1)
+    two = np.einsum("nij,nj->ni", W_hat[:, 0], near["point"]) + o_hat[:, 0]
+    names = np.array(["locus", "circle", "sphere"])
+    add("two", two, has2, np.where(has2, names[near["status"]], "too few views"), np.minimum(n_seen, 2),
+        locus_length_m=np.where(has2, near["length_m"], np.nan))
+
+    # angular error of the feature's direction in a view: attitude, and position across the ray
+    att = max(noise.roll_sigma_deg, noise.pitch_sigma_deg, noise.heading_sigma_deg)
+    pos = np.degrees(np.hypot(noise.horizontal_sigma_m, noise.vertical_sigma_m) / np.maximum(r_hat, 1e-9))
+    margin = margin_sigmas * np.hypot(att, pos)
+    # every N-view variant in one batch (one solver call: its per-iteration overhead is shared)
+    ks = [*sorted({int(x) for x in n_views}), None]
+    uses = []
+    for k in ks:
+        use = mask & (np.arange(L)[None, :] < (k if k is not None else L))
+        uses.append(use & (n_seen >= k)[:, None] if k is not None else use)
+    use = np.concatenate(uses)
+    tile = lambda a: np.concatenate([a] * len(ks))  # noqa: E731
+    used = use.sum(axis=1)
+    limit = np.where(used > 3, chi2.ppf(CHI2_LEVEL, np.maximum(used - 3, 1)), np.inf)
+    o_all = tile(o_hat)
+    res = multiview_points(tile(W_hat), o_all, np.where(use, tile(r_hat), 1.0), tile(sig_eff), use, aperture,
+                           prior=tile(mean_flat), cost_limit=limit, aperture_margin_deg=tile(margin),
+                           ceiling_m=np.min(np.where(use, o_all[..., 2], np.inf), axis=1)
+                           if below_sensors else np.inf)
+    names = np.array([STATUS_NAMES[int(s)] for s in range(len(STATUS_NAMES))])
+    tr = np.trace(np.where(res.estimated[:, None, None], res.covariance, 0.0), axis1=1, axis2=2)
+    pred = np.sqrt(np.where(res.estimated, tr, np.nan))
+    for i, k in enumerate(ks):
+        part = slice(i * n, (i + 1) * n)
+        add("all" if k is None else f"n{k}", res.point[part], res.estimated[part], names[res.status[part]],
+            used[part], predicted_3d_m=pred[part])
+    return pd.concat(rows, ignore_index=True)
+
+
+def summarise(table: pd.DataFrame, by=("estimator",)) -> pd.DataFrame:
+    """Median and 90th percentile of the 3-D, horizontal and |vertical| errors over estimated
+    features, and the share estimated / resolved / ambiguous, per group."""
+    t = table.assign(abs_error_v_m=table.error_v_m.abs(),
+                     resolved=table.status.isin(["resolved", "estimated", "locus"]),
+                     ambiguous=table.status == "ambiguous")
+    g = t.groupby(list(by), sort=False)
+    out = g.agg(n=("feature", "size"), estimated=("estimated", "mean"), resolved=("resolved", "mean"),
+                ambiguous=("ambiguous", "mean"), n_views_median=("n_views", "median"),
+                error_3d_median_m=("error_3d_m", "median"), error_h_median_m=("error_h_m", "median"),
+                error_v_median_m=("abs_error_v_m", "median"),
+                error_3d_q90_m=("error_3d_m", lambda x: x.quantile(0.9)),
+                locus_length_median_m=("locus_length_m", "median"))
+    return out.reset_index()

@@ -1,0 +1,97 @@
+"""The reconstruction chapter's study: estimators against terrain relief, terrain shape, noise
+level and the open choices, for one platform; and the paired test that decides the verdict.
+
+One *case* is a terrain, a noise level and the open choices: features are placed on the
+terrain (:func:`~sss_locus.experiments.terrain.place_features`), the survey of
+:mod:`~sss_locus.experiments.terrain_survey` observes them, and every estimator of
+:mod:`~sss_locus.experiments.reconstruction` runs on the same noisy views. The relief sweep
+scales one seeded random field (the same shape at every RMS relief; RMS 0 is the flat
+seafloor), so the features keep their horizontal positions across the sweep.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from .reconstruction import reconstruct
+from .terrain import Terrain, place_features, random_terrain, terrain_from_config
+from .terrain_survey import SurveyLayout, observe_features
+
+
+def _extent(layout: SurveyLayout, platform) -> float:
+    return layout.area_m + 2.0 * (platform.sonar.max_range_m + layout.margin_m) + 10.0
+
+
+def run_case(platform, envelope, noise, terrain, layout: SurveyLayout, *, n_features: int,
+             noise_scale: float, seed: int, shadowing: str = "off", below_sensors: bool = True,
+             margin_sigmas: float = 5.0, n_views=(3, 4, 6)) -> pd.DataFrame:
+    """One case: the per-feature table of :func:`~sss_locus.experiments.reconstruction.reconstruct`
+    with ``noise_scale`` (the noise model scaled; 0 is noise-free), and per feature the number
+    of views lost to shadowing (``n_shadowed``). The vehicle flies at the middle of the
+    envelope's altitude range (above the mean seafloor for a fixed-height platform, above the
+    local seafloor otherwise)."""
+    altitude = 0.5 * (envelope.altitude_min_m + envelope.altitude_max_m)
+    f = place_features(terrain, n_features, layout.area_m, seed)
+    views, seen, info = observe_features(platform, terrain, f, layout, altitude, envelope.same_altitude,
+                                         seed + 1, shadowing)
+    tab = reconstruct(views, seen, info["sensor_height_m"], noise.scaled(noise_scale),
+                      platform.sonar.aperture(), n_views=n_views, seed=seed + 2,
+                      margin_sigmas=margin_sigmas, below_sensors=below_sensors)
+    lost = info["shadowed"].sum(axis=1)
+    return tab.assign(n_shadowed=lost[tab.feature.to_numpy()])
+
+
+def relief_sweep(platform, envelope, noise, config: dict, rms_values, noise_scales, *,
+                 n_features: int, seed: int, **choices) -> pd.DataFrame:
+    """:func:`run_case` on the random terrain of ``config`` scaled to each RMS relief in
+    ``rms_values`` (m), for each noise scale; columns ``rms_relief_m``, ``noise_scale`` added."""
+    layout = SurveyLayout(**config["survey"])
+    rc = config["random"]
+    base = random_terrain(1.0, rc["correlation_length_m"], _extent(layout, platform),
+                          rc["grid_spacing_m"], seed)
+    out = []
+    for rms in rms_values:
+        x0, y0, dx, h = base.grid
+        ter = Terrain("random", {**base.params, "rms_relief_m": float(rms)}, grid=(x0, y0, dx, h * rms))
+        for k in noise_scales:
+            t = run_case(platform, envelope, noise, ter, layout, n_features=n_features, noise_scale=k,
+                         seed=seed + 10, **choices)
+            out.append(t.assign(rms_relief_m=float(rms), noise_scale=float(k)))
+    return pd.concat(out, ignore_index=True)
+
+
+def shape_cases(platform, envelope, noise, config: dict, noise_scales, *, n_features: int, seed: int,
+                **choices) -> pd.DataFrame:
+    """:func:`run_case` on the analytic terrains of ``config`` (flat, slope, mound, step) and on
+    its random terrain, for each noise scale; column ``terrain`` added."""
+    layout = SurveyLayout(**config["survey"])
+    out = []
+    for kind in ("flat", "slope", "mound", "step", "random"):
+        ter = terrain_from_config(kind, config, extent_m=_extent(layout, platform), seed=seed)
+        for k in noise_scales:
+            t = run_case(platform, envelope, noise, ter, layout, n_features=n_features, noise_scale=k,
+                         seed=seed + 10, **choices)
+            out.append(t.assign(terrain=kind, noise_scale=float(k)))
+    return pd.concat(out, ignore_index=True)
+
+
+def paired_comparison(table: pd.DataFrame, a: str, b: str, by=()) -> pd.DataFrame:
+    """``a`` against ``b`` on the features both estimated, per group of ``by``: the number of
+    pairs, the median of ``error_3d(a) - error_3d(b)`` (m), the share where ``a`` is closer,
+    and the one-sided Wilcoxon signed-rank p-value for "``a`` is closer" (``scipy.stats``)."""
+    from scipy.stats import wilcoxon
+
+    rows = []
+    groups = table.groupby(list(by), sort=False) if by else [((), table)]
+    for key, t in groups:
+        ea = t[t.estimator == a].set_index("feature")
+        eb = t[t.estimator == b].set_index("feature")
+        both = ea.estimated & eb.reindex(ea.index).estimated.fillna(False).astype(bool)
+        d = (ea.error_3d_m - eb.error_3d_m.reindex(ea.index))[both].to_numpy()
+        p = wilcoxon(d, alternative="less").pvalue if d.size >= 10 and np.any(d != 0) else np.nan
+        key = key if isinstance(key, tuple) else (key,)
+        rows.append(dict(zip(by, key), n_pairs=int(d.size),
+                         median_difference_m=float(np.median(d)) if d.size else np.nan,
+                         share_closer=float(np.mean(d < 0)) if d.size else np.nan, p_value=float(p)))
+    return pd.DataFrame(rows)

@@ -1,0 +1,138 @@
+"""Figures and verdict sentences of the reconstruction chapter (``notebooks/reconstruction.ipynb``).
+
+Tables are the per-feature tables of :func:`sss_locus.experiments.reconstruction_study.relief_sweep`
+(one per platform key), summarised by :func:`sss_locus.experiments.reconstruction.summarise`.
+Platforms are :class:`~sss_locus.experiments.platforms.Platform` objects; their names come from
+the data.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from ..experiments.reconstruction import summarise
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
+from .text import fmt_percent, fmt_sig
+
+ESTIMATORS = {"flat1": ("flat seafloor, one view", "tab:gray", ":"),
+              "flat": ("flat seafloor, all views averaged", "black", "--"),
+              "two": ("two views + prior", "tab:orange", "-"),
+              "n3": ("3 views", "tab:blue", "-"),
+              "all": ("all views", "tab:green", "-")}
+"""Estimators drawn against relief: display name, colour, line style."""
+
+VIEW_STEPS = (("flat1", "1\n(flat)"), ("two", "2\n(+prior)"), ("n3", "3"), ("n4", "4"), ("n6", "6"),
+              ("all", "all"))
+"""The x axis of the number-of-views figure: estimator and tick label."""
+
+FLOOR_M = 1e-3
+"""Errors below this are drawn at it (noise-free N-view errors are at rounding level)."""
+
+
+def noise_label(scale: float) -> str:
+    """``"noise-free"``, ``"noise model x 0.1"``, ``"noise model"``."""
+    if scale == 0:
+        return "noise-free"
+    return "noise model" if scale == 1 else f"noise model × {scale:g}"
+
+
+def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
+    """Median 3-D error (log scale) against RMS relief, one column per platform and one row per
+    noise scale, one line per estimator of :data:`ESTIMATORS`; returns the figure."""
+    scales = sorted(next(iter(tables.values())).noise_scale.unique())
+    fig, axs = plt.subplots(len(scales), len(platforms), figsize=(PAGE_WIDTH_IN, 2.3 * len(scales) + 0.9),
+                            constrained_layout=True, squeeze=False, sharex=True, sharey=True)
+    for j, pf in enumerate(platforms):
+        s = summarise(tables[pf.key], by=("noise_scale", "rms_relief_m", "estimator"))
+        for i, k in enumerate(scales):
+            ax = axs[i, j]
+            for est, (label, color, ls) in ESTIMATORS.items():
+                d = s[(s.noise_scale == k) & (s.estimator == est)].sort_values("rms_relief_m")
+                ax.plot(d.rms_relief_m, np.maximum(d.error_3d_median_m, FLOOR_M), ls, color=color,
+                        marker="o", ms=3, label=label)
+            ax.set_yscale("log")
+            ax.grid(alpha=0.3, which="both")
+            ax.set_title(f"{platform_title(pf, 72 // len(platforms))}\n{noise_label(k)}" if i == 0
+                         else noise_label(k), fontsize=10)
+            if j == 0:
+                ax.set_ylabel("median 3-D error (m)")
+            if i == len(scales) - 1:
+                ax.set_xlabel("RMS seafloor relief (m)")
+    handles, labels = axs[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=SMALL_FONT_PT, frameon=False)
+    return fig
+
+
+def plot_views(platforms: Sequence, tables: Mapping[str, pd.DataFrame], rms_relief_m: float):
+    """At one RMS relief: (a) median 3-D error and (b) share of features with an estimate
+    (resolved or ambiguous) among those seen by at least the views used, against the number of
+    views used, one line per noise scale, one column per platform; returns the figure."""
+    fig, axs = plt.subplots(2, len(platforms), figsize=(PAGE_WIDTH_IN, 5.6), constrained_layout=True,
+                            squeeze=False, sharex=True)
+    x = np.arange(len(VIEW_STEPS))
+    for j, pf in enumerate(platforms):
+        t = tables[pf.key]
+        t = t[np.isclose(t.rms_relief_m, rms_relief_m) & ~t.status.isin(["too few views", "unseen"])]
+        s = summarise(t, by=("noise_scale", "estimator"))
+        for k, color in zip(sorted(s.noise_scale.unique()), ("tab:green", "tab:blue", "tab:red", "tab:purple")):
+            d = s[s.noise_scale == k].set_index("estimator").reindex([e for e, _ in VIEW_STEPS])
+            axs[0, j].plot(x, np.maximum(d.error_3d_median_m, FLOOR_M), "-o", color=color, ms=4,
+                           label=noise_label(k))
+            axs[1, j].plot(x, d.estimated, "-o", color=color, ms=4, label=noise_label(k))
+            axs[1, j].plot(x, d.ambiguous, ":", color=color, lw=1)
+        axs[0, j].set_yscale("log")
+        axs[0, j].set_title(f"{platform_title(pf, 72 // len(platforms))}\n(a) median 3-D error", fontsize=10)
+        axs[1, j].set_title("(b) share estimated (dotted: ambiguous)", fontsize=10)
+        axs[1, j].set_ylim(-0.02, 1.02)
+        axs[1, j].set_xticks(x, [lab for _, lab in VIEW_STEPS])
+        axs[1, j].set_xlabel("views used")
+        for ax in axs[:, j]:
+            ax.grid(alpha=0.3, which="both")
+    axs[0, 0].set_ylabel("median 3-D error (m)")
+    axs[1, 0].set_ylabel("share of features")
+    handles, labels = axs[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize=SMALL_FONT_PT,
+               frameon=False)
+    return fig
+
+
+def verdict_relief(comparison: pd.DataFrame, alpha: float):
+    """The smallest RMS relief from which on (at it and at every larger relief of ``comparison``,
+    one noise scale of :func:`~sss_locus.experiments.reconstruction_study.paired_comparison`)
+    the p-value is below ``alpha``; None if the largest relief fails."""
+    c = comparison.sort_values("rms_relief_m")
+    from_ = None
+    for r, p in zip(c.rms_relief_m[::-1], c.p_value[::-1]):
+        if not p < alpha:
+            break
+        from_ = float(r)
+    return from_
+
+
+def verdict_text(comparison: pd.DataFrame, alpha: float) -> str:
+    """``"from 0.50 m RMS relief on"`` or ``"at no relief up to 4.0 m"`` for one noise scale."""
+    r = verdict_relief(comparison, alpha)
+    if r is None:
+        return f"at no relief up to {fmt_sig(comparison.rms_relief_m.max(), 2)} m"
+    return f"from {fmt_sig(r, 2)} m RMS relief on"
+
+
+def verdict_sentence(platform, comparison: pd.DataFrame, alpha: float) -> str:
+    """One Markdown sentence: for each noise scale, the smallest RMS relief from which on all
+    views beat the flat-seafloor mosaic (one-sided paired Wilcoxon p < ``alpha``), or that they
+    never do. ``comparison`` is :func:`~sss_locus.experiments.reconstruction_study.paired_comparison`
+    of ``"all"`` against ``"flat"`` by noise scale and relief."""
+    parts = []
+    for k, c in comparison.groupby("noise_scale", sort=True):
+        r = verdict_relief(c, alpha)
+        text = f"{noise_label(k)}: {verdict_text(c, alpha)}"
+        if r is not None:
+            row = c[c.rms_relief_m == r].iloc[0]
+            text += (f" (there, closer for {fmt_percent(row.share_closer)} of the features, median "
+                     f"difference {fmt_sig(row.median_difference_m, 2)} m)")
+        parts.append(text)
+    return f"**{platform.name}**: " + "; ".join(parts) + "."

@@ -1,0 +1,132 @@
+"""The survey over a non-flat seafloor and the estimators on it, against independent checks."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from sss_locus.experiments.envelopes import load_envelope
+from sss_locus.experiments.noise import load_noise_model
+from sss_locus.experiments.platforms import load_platform
+from sss_locus.experiments.reconstruction import reconstruct, summarise
+from sss_locus.experiments.terrain import (flat_terrain, place_features, random_terrain, slope_terrain,
+                                           step_terrain)
+from sss_locus.experiments.terrain_survey import SurveyLayout, observe_features, ray_blocked
+
+LAYOUT = SurveyLayout(area_m=200.0, line_spacing_m=60.0, cross_line_spacing_m=100.0, margin_m=50.0)
+
+
+def test_layout_lines():
+    h, c = LAYOUT.lines()
+    assert list(h) == [0.0, 180.0, 0.0, 180.0, 90.0, 270.0, 90.0]
+    assert np.allclose(c[:4, 1], [-90, -30, 30, 90]) and np.allclose(c[4:, 0], [-100, 0, 100])
+    with pytest.raises(ValueError, match="line_spacing_m"):
+        SurveyLayout(100.0, 0.0, 10.0)
+
+
+@pytest.mark.parametrize("key", ["auv", "boat"])
+def test_seen_features_are_inside_the_true_aperture(key):
+    pf, env = load_platform(key), load_envelope(key)
+    ter = random_terrain(2.0, 25.0, 800.0, 2.5, seed=1)
+    f = place_features(ter, 300, LAYOUT.area_m, seed=2)
+    views, seen, info = observe_features(pf, ter, f, LAYOUT, 15.0, env.same_altitude, seed=3)
+    assert seen.any(axis=1).mean() > 0.9
+    p = np.einsum("nkji,nkj->nki", views.W, f[:, None, :] - views.origin)
+    inside = pf.sonar.aperture().contains(p)
+    # the ping's elevation is inside the beam by construction; rounding at the beam edge aside
+    assert np.all(inside[seen] | (np.abs(np.arcsin(p[seen][:, 2] / np.linalg.norm(p[seen], axis=1)))
+                                  > math.radians(pf.sonar.elevation_deg / 2) * (1 - 1e-9)))
+    assert not np.any(pf.sonar.aperture().contains(p)[~seen] & (info["reason"][~seen] == 2))
+    # altitude: the transducer above the seafloor under it (terrain following for the AUV)
+    h = info["sensor_height_m"][seen]
+    if env.same_altitude:
+        assert np.allclose(views.origin[..., 2][seen], 15.0 - 0.10, atol=1e-9)  # boat draft 0.10 m
+    else:
+        assert np.all(np.abs(h - 15.0) < 1.0)  # level vehicle, terrain within a beam's reach
+
+
+def test_shadowing_by_a_ridge():
+    ridge = step_terrain(-40.0, 6.0, 0.0)  # a 40 m high wall along the x axis
+    blocked = ray_blocked(ridge, np.array([[0.0, -30.0, 20.0], [0.0, 30.0, 20.0]]),
+                          np.array([[0.0, 40.0, 0.0], [0.0, 40.0, 0.0]]))
+    assert list(blocked) == [True, False]
+    pf, env = load_platform("auv"), load_envelope("auv")
+    f = np.array([[0.0, 45.0, 0.0], [0.0, -45.0, 0.0]])
+    v_off, s_off, _ = observe_features(pf, ridge, f, LAYOUT, 15.0, True, seed=1, shadowing="off")
+    v_on, s_on, info = observe_features(pf, ridge, f, LAYOUT, 15.0, True, seed=1, shadowing="on")
+    assert s_on.sum() < s_off.sum() and np.all(s_on <= s_off)
+    assert np.array_equal(info["shadowed"], s_off & ~s_on)
+
+
+@pytest.mark.parametrize("terrain", [flat_terrain(), slope_terrain(4.0), random_terrain(2.0, 25.0, 800.0, 2.5, 5)],
+                         ids=["flat", "slope", "rough"])
+def test_noise_free_estimates(terrain):
+    pf, env, noise = load_platform("auv"), load_envelope("auv"), load_noise_model("auv").scaled(0.0)
+    f = place_features(terrain, 300, LAYOUT.area_m, seed=6)
+    views, seen, info = observe_features(pf, terrain, f, LAYOUT, 15.0, env.same_altitude, seed=7)
+    tab = reconstruct(views, seen, info["sensor_height_m"], noise, pf.sonar.aperture(), seed=8)
+    by = {k: t.set_index("feature") for k, t in tab.groupby("estimator")}
+    r = np.linalg.norm(f[:, None, :] - views.origin, axis=-1)
+    rmax = np.where(seen, r, 0).max(axis=1)
+    # N >= 3 views without noise: the true feature, on any terrain
+    allv = by["all"]
+    est = allv.estimated.to_numpy()
+    assert est[allv.n_views >= 3].mean() > 0.95
+    assert np.nanmax(allv.error_3d_m[est] / rmax[est]) < 1e-9
+    # flat seafloor: slant-range correction is exact up to the in-beam elevation (along-track)
+    flat1 = by["flat1"].error_3d_m.to_numpy()
+    beam = r.max(axis=1) * math.sin(math.radians(pf.sonar.elevation_deg / 2))
+    if terrain.kind == "flat":
+        assert np.all(flat1[seen.any(1)] <= beam[seen.any(1)] * 1.01 + 1e-9)
+    else:  # a non-flat seafloor moves it by more than the beam, somewhere
+        assert np.nanmax(flat1 - beam) > 0.1
+    s = summarise(tab)
+    assert set(s.estimator) == {"flat", "flat1", "two", "n3", "n4", "n6", "all"}
+
+
+def test_statuses_are_never_silent_nan():
+    pf, env, noise = load_platform("boat"), load_envelope("boat"), load_noise_model("boat")
+    ter = random_terrain(1.0, 25.0, 800.0, 2.5, seed=9)
+    f = np.vstack([place_features(ter, 100, LAYOUT.area_m, seed=10), [[2000.0, 0.0, 0.0]]])
+    with pytest.raises(ValueError, match="outside the random terrain"):
+        observe_features(pf, ter, f, LAYOUT, 15.0, env.same_altitude, seed=11)
+    f = f[:-1]
+    f[0] = [0.0, -90.0 + 0.0, ter.height_m(0.0, -90.0)]  # under a line, near nadir of one
+    views, seen, info = observe_features(pf, ter, f, LAYOUT, 15.0, env.same_altitude, seed=11)
+    seen[1, :] = False  # a feature no pass saw
+    tab = reconstruct(views, seen, info["sensor_height_m"], noise, pf.sonar.aperture(), seed=12)
+    assert not tab.status.isna().any()
+    nan = tab.error_3d_m.isna()
+    assert np.array_equal(nan, ~tab.estimated)
+    one = tab[tab.feature == 1].set_index("estimator").status
+    assert one["flat"] == "unseen" and one["two"] == "too few views" and one["all"] == "too few views"
+
+
+def test_paired_comparison_and_verdict_against_constructed_tables():
+    import pandas as pd
+
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.reconstruction_study import paired_comparison
+    from sss_locus.report.reconstruction import verdict_sentence
+
+    rng = np.random.default_rng(0)
+    rows = []
+    for relief, shift in ((0.0, 0.5), (1.0, -0.01), (2.0, -0.5)):
+        base = rng.random(200) + 1.0
+        for est, err in (("flat", base), ("all", base + shift + 0.05 * rng.normal(size=200))):
+            rows.append(pd.DataFrame(dict(feature=np.arange(200), estimator=est, estimated=True, error_3d_m=err,
+                                          noise_scale=1.0, rms_relief_m=relief)))
+    t = pd.concat(rows, ignore_index=True)
+    c = paired_comparison(t, "all", "flat", by=("noise_scale", "rms_relief_m"))
+    assert list(c.n_pairs) == [200, 200, 200]
+    assert c.p_value.iloc[0] > 0.5 and c.p_value.iloc[2] < 1e-10
+    assert c.share_closer.iloc[2] == 1.0 and c.median_difference_m.iloc[2] == pytest.approx(-0.5, abs=0.02)
+    text = verdict_sentence(load_platform("auv"), c, alpha=0.01)
+    # relief 1 m: a shift of -1 cm against 5 cm noise over 200 pairs; whichever way the test
+    # goes, the verdict names the smallest relief from which every larger one wins
+    expected = "1.0 m" if c.p_value.iloc[1] < 0.01 else "2.0 m"
+    assert f"from {expected} RMS relief on" in text
+    c.loc[2, "p_value"] = 0.5
+    assert "at no relief up to 2.0 m" in verdict_sentence(load_platform("auv"), c, alpha=0.01)
