@@ -94,7 +94,8 @@ def _run(args: argparse.Namespace) -> int:
     entry = get_entry(args.notebook)
     overrides = _overrides(args.parameter)
     run_notebook(entry, args.profile, overrides, from_text=True, output=args.output, data=data)
-    print("Rebuild the site from the executed copies with: sss-locus book --no-run")
+    if not args.output:  # a side run leaves the book as it was
+        print("Rebuild the site from the executed copies with: sss-locus book --no-run")
     return 0
 
 
@@ -188,11 +189,16 @@ def main(argv: list[str] | None = None) -> int:
             print("(the full traceback: add --verbose)", file=sys.stderr)
         return 1
     except KeyboardInterrupt as exc:
-        print(f"sss-locus {args.command}: interrupted ({exc or 'Ctrl-C'}); the last good results are "
+        print(f"sss-locus {args.command}: interrupted ({str(exc) or 'Ctrl-C'}); the last good results are "
               "unchanged", file=sys.stderr)
         return 130
     except (ValueError, FileNotFoundError, RuntimeError) as exc:  # ParameterError is a ValueError
         print(f"sss-locus {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:  # a read-only folder, a full disk: one line, no traceback
+        from sss_locus.pipeline.transaction import describe_os_error
+
+        print(f"sss-locus {args.command}: error: {describe_os_error(exc)}", file=sys.stderr)
         return 2
 
 

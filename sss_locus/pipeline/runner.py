@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, export, outputs, paperinputs, provenance
+from sss_locus.pipeline import atomic, export, faults, outputs, paperinputs, provenance
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
 from sss_locus.pipeline.registry import NotebookEntry
@@ -213,8 +213,7 @@ def _execute(entry: NotebookEntry, staging: Path, notebook: Path, cwd: Path,
         error = outputs.notebook_error(nb) if nb else None
         if error:
             raise NotebookFailed(f"notebook {entry.name!r} failed in {error[0]}", error[1])
-        tail = log.strip().splitlines()[-1:] or ["?"]
-        raise NotebookFailed(f"notebook {entry.name!r} did not run: {tail[0]}", log)
+        raise NotebookFailed(f"notebook {entry.name!r} did not run: {faults.papermill_failure(log, staging)}", log)
 
 
 def _papermill_child(args: Path, log_file: Path) -> int:
@@ -286,9 +285,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
             except NotebookFailed as exc:
                 kept = executed.with_name(executed.stem + ".failed.ipynb") if side else \
                     paths.build_dir() / "failed" / executed.name
-                if staged.is_file():
-                    kept.parent.mkdir(parents=True, exist_ok=True)
-                    os.replace(staged, kept)
+                if staged.is_file() and faults.keep_failed_notebook(staged, kept):
                     exc.kept = kept
                     exc.args = (f"{exc.args[0]}; the failed notebook is kept in {kept}",)
                 raise
