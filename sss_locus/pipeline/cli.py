@@ -42,7 +42,10 @@ def _data_inputs(args: argparse.Namespace):
     ``{keys of ...}`` constraints then see the user's keys)."""
     from sss_locus.experiments import userdata
 
-    return userdata.use(args.data, args.set_values)
+    inputs = userdata.use(args.data, args.set_values)
+    for flag in userdata.hardware_flags(inputs):  # possible, but probably a mistake
+        print(f"sss-locus {args.command}: warning: {flag}", file=sys.stderr)
+    return inputs
 
 
 def _parser() -> argparse.ArgumentParser:
