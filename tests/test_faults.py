@@ -19,7 +19,8 @@ pytest.importorskip("papermill")
 pytest.importorskip("nbformat")
 
 from test_reliability import leftovers, quiet, snapshot, tiny_notebook  # noqa: E402
-from sss_locus.pipeline import cli, faults, outputs, runner, transaction  # noqa: E402
+from sss_locus import paths  # noqa: E402
+from sss_locus.pipeline import cli, faults, outputs, preflight, runner, transaction  # noqa: E402
 from sss_locus.pipeline.registry import NotebookEntry  # noqa: E402
 from sss_locus.pipeline.runner import NotebookFailed, run_notebook  # noqa: E402
 
@@ -126,3 +127,59 @@ def test_side_run_on_a_full_disk_keeps_no_truncated_notebook(build_area, entry, 
 def test_a_stopped_papermill_is_reported_by_its_error_line_not_a_cut_line(tmp_path):
     log = "Traceback (most recent call last):\n  File \"x.py\", line 3\nRuntimeError: kernel gone\n  done\n"
     assert faults.papermill_failure(log, tmp_path) == "RuntimeError: kernel gone"
+
+
+# -- items 2, 3 and 7: output paths checked before the run --------------------------------------
+
+def test_second_side_run_into_one_folder_is_refused_before_it_runs(build_area, entry, tmp_path):
+    first = tmp_path / "side" / "a.ipynb"
+    run_notebook(entry, "book", {"n": 4}, output=first, log=quiet)
+    figures = first.parent / "figures"
+    before = {p.name: p.read_bytes() for p in figures.iterdir()}
+    with pytest.raises(preflight.OutputError) as info:
+        run_notebook(entry, "book", {"n": 6}, output=first.with_name("b.ipynb"), log=quiet)
+    assert "a.ipynb" in str(info.value) and "\n" not in str(info.value)
+    assert {p.name: p.read_bytes() for p in figures.iterdir()} == before  # a's figures untouched
+    assert not first.with_name("b.ipynb").exists()
+
+
+@pytest.mark.parametrize("where, fragment", [
+    (lambda tmp: tmp, "is a directory"),
+    (lambda tmp: paths.NOTEBOOKS_DIR / "concept.ipynb", "the notebooks' sources"),
+    (lambda tmp: paths.NOTEBOOKS_DIR / "new.ipynb", "the notebooks' sources"),
+    (lambda tmp: tmp / "x.txt", "ending in .ipynb"),
+])
+def test_bad_side_outputs_are_refused_before_a_kernel_starts(build_area, tmp_path, monkeypatch, capsys,
+                                                             where, fragment):
+    source = paths.NOTEBOOKS_DIR / "concept.ipynb"
+    committed = source.read_bytes()
+    started = []
+    monkeypatch.setattr(runner, "_execute", lambda *a: started.append(a))
+    assert cli.main(["run", "concept", "--output", str(where(tmp_path))]) == 2
+    err = capsys.readouterr().err
+    assert fragment in err and len(err.strip().splitlines()) == 1 and not started
+    assert source.read_bytes() == committed and not (paths.NOTEBOOKS_DIR / "figures").exists()
+
+
+def test_read_only_folders_are_refused_in_one_line(build_area, tmp_path, monkeypatch, capsys):
+    def read_only(*args, **kwargs):
+        raise OSError(errno.EROFS, "Read-only file system")
+
+    monkeypatch.setattr(preflight.tempfile, "mkstemp", read_only)
+    started = []
+    monkeypatch.setattr(runner, "_execute", lambda *a: started.append(a))
+    assert cli.main(["run", "concept", "--output", str(tmp_path / "side" / "c.ipynb")]) == 2
+    assert cli.main(["run", "concept"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 2 and all("not writable" in line and "Read-only" in line for line in err)
+    assert not started
+
+
+def test_book_no_run_on_a_read_only_build_area_says_so_in_one_line(build_area, monkeypatch, capsys):
+    def read_only(*args, **kwargs):
+        raise OSError(errno.EROFS, "Read-only file system", str(build_area / ".lock"))
+
+    monkeypatch.setattr(os, "open", read_only)
+    assert cli.main(["book", "--no-run"]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "read-only" in err and "Traceback" not in err

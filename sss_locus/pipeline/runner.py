@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, export, faults, outputs, paperinputs, provenance
+from sss_locus.pipeline import atomic, export, faults, outputs, paperinputs, preflight, provenance
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
 from sss_locus.pipeline.registry import NotebookEntry
@@ -256,11 +256,10 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     """
     parameters = resolve_parameters(entry, profile, overrides, from_text=from_text, data=data)
     side = output is not None
-    executed = Path(output).resolve() if side else entry.executed_path()
+    executed = preflight.check_side_output(output, entry) if side else entry.executed_path()
     figures = executed.parent / paths.FIGURES_SUBDIR if side else paths.figures_dir()
-    if side and paths.build_dir().resolve() in executed.parents:
-        raise ValueError(f"--output {executed} is inside the build area {paths.build_dir()}: "
-                         "side runs must go elsewhere (run without --output to update the book)")
+    if not side:
+        preflight.check_writable(paths.build_dir(), "build area")
     executed.parent.mkdir(parents=True, exist_ok=True)
     tmp_root = executed.parent if side else paths.build_dir() / "tmp"
     tmp_root.mkdir(parents=True, exist_ok=True)
