@@ -35,13 +35,13 @@ from __future__ import annotations
 
 import ast
 import math
-import os
 import re
 from dataclasses import dataclass
 from typing import Any
 
-#: Overrides the memory budget (bytes) of :func:`memory_budget`.
-MEMORY_BUDGET_ENV = "SSS_LOCUS_MEMORY_BUDGET"
+from sss_locus.geometry import validation
+from sss_locus.geometry.validation import MEMORY_BUDGET_ENV
+
 _UNITS = {"B": 1, "kB": 10**3, "MB": 10**6, "GB": 10**9}
 _TAIL = re.compile(
     r"(?:\blen\s+(?P<len>[0-9]+)\s*)?"
@@ -112,17 +112,12 @@ def _bytes(n: float) -> str:
 
 
 def memory_budget() -> int:
-    """Bytes a run may plan to use: ``$SSS_LOCUS_MEMORY_BUDGET`` or half the physical memory."""
-    text = os.environ.get(MEMORY_BUDGET_ENV)
-    if text:
-        try:
-            return int(float(text))
-        except ValueError:
-            raise ConstraintError(f"{MEMORY_BUDGET_ENV} must be a number of bytes, got {text!r}") from None
+    """Bytes a run may plan to use: ``$SSS_LOCUS_MEMORY_BUDGET`` or half the physical memory
+    (:func:`sss_locus.geometry.validation.memory_budget`)."""
     try:
-        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") // 2
-    except (ValueError, OSError, AttributeError):
-        return 4 * 10**9
+        return validation.memory_budget()
+    except ValueError as exc:
+        raise ConstraintError(str(exc)) from None
 
 
 def split_comment(comment: str, name: str, default: Any) -> tuple[str, Constraint]:
