@@ -8,9 +8,15 @@ free space); everything else is a real run of a throwaway notebook.
 
 from __future__ import annotations
 
+import argparse
 import errno
+import json
 import os
 import shutil
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -18,9 +24,9 @@ import pytest
 pytest.importorskip("papermill")
 pytest.importorskip("nbformat")
 
-from test_reliability import leftovers, quiet, snapshot, tiny_notebook  # noqa: E402
+from test_reliability import DRIVER, _pid_gone, leftovers, quiet, snapshot, tiny_notebook  # noqa: E402
 from sss_locus import paths  # noqa: E402
-from sss_locus.pipeline import cli, faults, outputs, preflight, runner, transaction  # noqa: E402
+from sss_locus.pipeline import cache, cli, faults, outputs, preflight, runner, transaction  # noqa: E402
 from sss_locus.pipeline.registry import NotebookEntry  # noqa: E402
 from sss_locus.pipeline.runner import NotebookFailed, run_notebook  # noqa: E402
 
@@ -183,3 +189,106 @@ def test_book_no_run_on_a_read_only_build_area_says_so_in_one_line(build_area, m
     assert cli.main(["book", "--no-run"]) == 2
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and "read-only" in err and "Traceback" not in err
+
+
+# -- item 8: resources -------------------------------------------------------------------------
+
+def _start_driver(entry, marker, env, overrides):
+    return subprocess.Popen(
+        [sys.executable, "-c", DRIVER, str(entry.source), json.dumps({"marker": str(marker), **overrides})],
+        env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+
+
+def _wait_for(marker, child, timeout=240):
+    end = time.monotonic() + timeout
+    while not marker.exists() and child.poll() is None and time.monotonic() < end:
+        time.sleep(0.2)
+    assert marker.exists(), child.communicate(timeout=10)
+    time.sleep(0.5)
+
+
+def _papermill_children(pid: int) -> list[int]:
+    """Pids of papermill processes started by ``pid`` (from /proc)."""
+    found = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+            cmdline = (stat.parent / "cmdline").read_bytes()
+        except OSError:
+            continue
+        if int(fields[1]) == pid and b"papermill" in cmdline:
+            found.append(int(stat.parent.name))
+    return found
+
+
+def test_a_run_killed_with_sigkill_leaves_nothing_running_and_the_next_run_cleans_up(build_area, entry, tmp_path):
+    marker = tmp_path / "kernel.pid"
+    scratch = tmp_path / "scratch"
+    scratch.mkdir()
+    env = {**os.environ, "TMPDIR": str(scratch)}
+    child = _start_driver(entry, marker, env, {"sleep_s": 120, "n": 9})
+    try:
+        _wait_for(marker, child)
+        papermill = _papermill_children(child.pid)
+        assert papermill, "the run's papermill child was not found"
+        child.kill()  # SIGKILL: no finally block runs
+        child.communicate(timeout=60)
+    finally:
+        if child.poll() is None:
+            child.kill()
+    assert _pid_gone(int(marker.read_text())), "the kernel outlived the SIGKILLed run"
+    assert all(_pid_gone(pid) for pid in papermill), "papermill outlived the SIGKILLed run"
+    assert [p for p in (build_area / "tmp").iterdir() if p.name.startswith(".run-")]  # its staging folder
+    assert not list(scratch.glob("*.json"))  # the connection file was in the staging folder
+    run_notebook(entry, "book", {"n": 3}, log=quiet)  # the next run removes the dead run's folder
+    assert leftovers(build_area) == []
+
+
+def test_cache_prune_removes_the_staging_folder_of_a_killed_run(build_area):
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    stale = build_area / "tmp" / f".run-tiny-{dead.pid}-0123456789ab"
+    (stale / "runtime").mkdir(parents=True)
+    (stale / "tiny.ipynb").write_text("{}")
+    alive = build_area / "tmp" / f".run-tiny-{os.getpid()}-0123456789ab"
+    alive.mkdir()
+    report = cache.prune()
+    assert not stale.exists() and alive.exists() and report["removed"] >= 1
+
+
+def test_a_connection_file_never_lands_in_the_system_temporary_folder(build_area, entry, tmp_path):
+    scratch = tmp_path / "scratch"
+    scratch.mkdir()
+    marker = tmp_path / "kernel.pid"
+    child = _start_driver(entry, marker, {**os.environ, "TMPDIR": str(scratch)}, {"sleep_s": 120})
+    try:
+        _wait_for(marker, child)
+        child.send_signal(signal.SIGINT)  # Ctrl-C
+        child.communicate(timeout=60)
+    finally:
+        if child.poll() is None:
+            child.kill()
+    assert not list(scratch.glob("*.json")) and leftovers(build_area) == []
+
+
+def test_workers_are_capped_at_the_machines_cores(monkeypatch, capsys):
+    from sss_locus.pipeline import scaleout
+
+    started = []
+
+    class FakeCluster:  # records the worker count instead of starting processes
+        def __init__(self, n_workers, **kwargs):
+            started.append(n_workers)
+            self.scheduler_address = "tcp://127.0.0.1:1"
+
+        def close(self):
+            pass
+
+    monkeypatch.setattr("dask.distributed.LocalCluster", FakeCluster)
+    cores = len(os.sched_getaffinity(0))
+    with scaleout.scheduler_environment(argparse.Namespace(workers=100_000, scheduler=None)):
+        pass
+    assert started == [cores]
+    err = capsys.readouterr().err
+    assert f"--workers 100000 capped at {cores}" in err and len(err.strip().splitlines()) == 1

@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, export, faults, outputs, paperinputs, preflight, provenance
+from sss_locus.pipeline import atomic, export, faults, orphans, outputs, paperinputs, preflight, provenance
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
 from sss_locus.pipeline.registry import NotebookEntry
@@ -220,7 +220,8 @@ def _papermill_child(args: Path, log_file: Path) -> int:
     """One papermill process for ``args``, its output in ``log_file``; its exit code."""
     with open(log_file, "wb") as log_fh:
         child = subprocess.Popen([sys.executable, "-c", _CHILD, str(args)], stdout=log_fh,
-                                 stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True)
+                                 stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True,
+                                 preexec_fn=orphans.die_with_parent)  # even if we are SIGKILLed
         try:
             return child.wait()
         finally:
@@ -263,6 +264,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     executed.parent.mkdir(parents=True, exist_ok=True)
     tmp_root = executed.parent if side else paths.build_dir() / "tmp"
     tmp_root.mkdir(parents=True, exist_ok=True)
+    orphans.remove_stale_staging(tmp_root)  # left by runs that were killed (SIGKILL)
     staging = tmp_root / f".run-{entry.name}-{os.getpid()}-{uuid.uuid4().hex[:12]}"
     key = run_key(entry, profile, parameters)
     env = hermetic_env()
@@ -271,6 +273,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
         provenance.PARAMETERS_ENV: json.dumps(parameters, sort_keys=True, default=provenance.json_default),
         export.FIGURES_DIR_ENV: str(staging / "figures"), export.RUN_KEY_ENV: key,
         "JUPYTER_RUNTIME_DIR": str(staging / "runtime"),  # connection file goes with the staging folder
+        "TMPDIR": str(staging / "runtime"),  # jupyter_client writes it with tempfile.mkstemp
         READS_ENV: str(staging / "data-reads.txt"),  # the data entries the kernel's loaders read
     })
     staged = staging / executed.name
