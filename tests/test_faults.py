@@ -188,7 +188,7 @@ def test_book_no_run_on_a_read_only_build_area_says_so_in_one_line(build_area, m
     monkeypatch.setattr(os, "open", read_only)
     assert cli.main(["book", "--no-run"]) == 2
     err = capsys.readouterr().err
-    assert len(err.strip().splitlines()) == 1 and "read-only" in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1 and "read-only filesystem" in err and "Traceback" not in err
 
 
 # -- item 8: resources -------------------------------------------------------------------------

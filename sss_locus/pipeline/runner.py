@@ -213,7 +213,7 @@ def _execute(entry: NotebookEntry, staging: Path, notebook: Path, cwd: Path,
         error = outputs.notebook_error(nb) if nb else None
         if error:
             raise NotebookFailed(f"notebook {entry.name!r} failed in {error[0]}", error[1])
-        raise NotebookFailed(f"notebook {entry.name!r} did not run: {faults.papermill_failure(log, staging)}", log)
+        raise NotebookFailed(f"notebook {entry.name!r} did not run: {faults.papermill_failure(log, staging.parent)}", log)
 
 
 def _papermill_child(args: Path, log_file: Path) -> int:

@@ -41,8 +41,10 @@ def describe_os_error(exc: OSError) -> str:
     reason = exc.strerror or str(exc) or type(exc).__name__
     if exc.errno == errno.ENOSPC:
         reason = "no space left on the device"
-    elif exc.errno in (errno.EROFS, errno.EACCES, errno.EPERM):
-        reason = "read-only or not writable"
+    elif exc.errno == errno.EROFS:
+        reason = "read-only filesystem"
+    elif exc.errno in (errno.EACCES, errno.EPERM):
+        reason = "permission denied"
     where = f" ({exc.filename})" if exc.filename else ""
     return f"{reason}{where}"
 
