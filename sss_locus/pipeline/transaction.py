@@ -98,19 +98,17 @@ class FileSwap:
 
     def copy(self, source: Path, target: Path) -> None:
         """Stage a copy of ``source`` that will replace ``target``."""
-        target = Path(target)
-        tmp = atomic.temp_name(target)
-        self._staged.append(tmp)
-        shutil.copyfile(source, tmp)
-        self._keep_old(target)
-        self._steps.append(("replace", tmp, target))
+        self._stage(source, target, shutil.copyfile)
 
     def move(self, source: Path, target: Path) -> None:
         """Stage ``source`` (moved, a copy if on another filesystem) to replace ``target``."""
+        self._stage(source, target, shutil.move)
+
+    def _stage(self, source: Path, target: Path, put) -> None:
         target = Path(target)
         tmp = atomic.temp_name(target)
         self._staged.append(tmp)
-        shutil.move(source, tmp)
+        put(source, tmp)
         self._keep_old(target)
         self._steps.append(("replace", tmp, target))
 
