@@ -68,7 +68,7 @@ def test_survey_crop_keeps_samples_and_acceptance():
 def test_crop_effect_statistics_and_errors():
     a = pd.DataFrame({"locus_length_m": [2.0, 2.0, 1.0, 0.0], "n_arcs": [2, 1, 2, 0]})
     b = pd.DataFrame({"locus_length_m": [1.0, 2.0, 0.0, 0.0], "n_arcs": [1, 1, 0, 0]})
-    e = crop_effect(a, b, n_resamples=50).set_index("statistic")["estimate"]
+    e = crop_effect(a, b, n_batches=3).set_index("statistic")["estimate"]
     assert e["length_ratio"] == pytest.approx(3.0 / 5.0)
     assert e["shortened_share"] == pytest.approx(0.5)
     assert e["emptied_share"] == pytest.approx(1.0 / 3.0)
@@ -78,8 +78,8 @@ def test_crop_effect_statistics_and_errors():
         crop_effect(a, b.iloc[:2])
     with pytest.raises(ValueError, match="not the same samples"):
         crop_effect(b, a)
-    with pytest.raises(ValueError, match="n_resamples"):
-        crop_effect(a, b, n_resamples=0)
+    with pytest.raises(ValueError, match="n_batches"):
+        crop_effect(a, b, n_batches=2)
 
 
 def test_crop_effects_table_covers_conditions_and_subsets():
@@ -87,7 +87,7 @@ def test_crop_effects_table_covers_conditions_and_subsets():
     conds = default_conditions(pfs, surface_tilts_deg=[15.0], submerged_depths_m=[2.0, 500.0])
     assert [c.slug for c in conds] == ["boat-pose", "boat-pose-tilt15", "auv-pose-depth2m"]
     out = crop_effects(conds[:1], n_samples=4096, n_per_angle=10, crossing_angles_deg=[0.0], seed=1,
-                       n_resamples=5)
+                       n_batches=5)
     assert set(out["subset"]) == {"all", "port-port"} and (out["n"] > 0).all()
     with pytest.raises(ValueError, match="none of submerged_depths_m"):
         default_conditions(pfs, submerged_depths_m=[500.0])
