@@ -147,3 +147,14 @@ def test_survey_seafloor_and_pass2_above_surface():
     # brute force: count pass pairs whose pass 2 flies more than 2 m above pass 1
     expected = sum(r.altitude2_m - r.altitude1_m > 2.0 for r in a.itertuples()) / len(a)
     assert pass2_above_surface_share(a, pf, WaterColumn(2.0)) == pytest.approx(expected)
+
+
+def test_crop_effect_interval_of_a_rare_share_stays_in_zero_one():
+    # one shortened locus in 1000: the symmetric replicate interval would reach below 0
+    a = pd.DataFrame({"locus_length_m": np.ones(1000), "n_arcs": np.ones(1000, int)})
+    b = a.copy()
+    b.loc[7, "locus_length_m"] = 0.5
+    e = crop_effect(a, b).set_index("statistic")
+    assert e.loc["shortened_share", "estimate"] == pytest.approx(0.001)
+    assert e.loc["shortened_share", "ci_low"] == 0.0 < e.loc["shortened_share", "ci_high"] < 0.01
+    assert e.loc["length_ratio", "ci_high"] == 1.0

@@ -132,7 +132,7 @@ def curve_summary(samples: pd.DataFrame, values=VALUES, *, n_batches: int = N_BA
             x = g[v].to_numpy(float)
             boot[v][:, j] = bootstrap_median(x, n_resamples, rng)
             q25, med, q75 = np.quantile(x, [0.25, 0.5, 0.75])
-            lo, hi = replicate_interval(med, batch_statistic(x, np.median, n_batches), confidence_level)
+            lo, hi = median_with_interval(x, n_batches, confidence_level)[1:]
             row.update({f"{v}_median": med, f"{v}_q25": q25, f"{v}_q75": q75,
                         f"{v}_ci_low": float(lo), f"{v}_ci_high": float(hi)})
         rows.append(row)

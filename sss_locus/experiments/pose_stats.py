@@ -78,7 +78,8 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     independent replicates: the rows, i.i.d. draws, are dealt into batches (row ``i`` to batch
     ``i mod k``, :mod:`~sss_locus.experiments.replicates`), each batch is ranked on its own and its rho computed, and
     :func:`~sss_locus.experiments.replicates.replicate_interval` turns their spread into an
-    interval at ``confidence_level`` (coverage measured in ``tests/test_replicates.py``).
+    interval at ``confidence_level`` (coverage measured in ``tests/test_replicates.py``),
+    clipped to [-1, 1].
     ``ci_low_z``/``ci_high_z`` are the asymptotic Fisher-z interval
     (:func:`~sss_locus.experiments.replicates.fisher_z_interval`), the cross-check. Ranks of
     whole columns and of batches are remembered between calls (:func:`column_ranks`). A
@@ -114,7 +115,7 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     with np.errstate(invalid="ignore", divide="ignore"):  # a batch with a constant column: NaN
         batches = np.stack([rank_correlation(centred_from(Xb[a:b]), centred_from(Yb[a:b]))
                             for a, b in zip(starts[:-1], starts[1:])])
-    lo, hi = replicate_interval(rho, batches, confidence_level)
+    lo, hi = replicate_interval(rho, batches, confidence_level, bounds=(-1.0, 1.0))
     zlo, zhi = fisher_z_interval(rho, n, confidence_level)
     rows = [dict(target=tg, quantity=c, rho=rho[i, j], ci_low=lo[i, j], ci_high=hi[i, j], n=n,
                  ci_low_z=zlo[i, j], ci_high_z=zhi[i, j])

@@ -73,8 +73,10 @@ def batch_statistic(values, fn, n_batches: int = N_BATCHES) -> np.ndarray:
     return np.stack([np.asarray(fn(v[j::k])) for j in range(k)])
 
 
-def replicate_interval(estimate, batch_stats, confidence_level: float = 0.95):
-    """``(low, high)``: ``estimate +- t_{k-1} sd(batch_stats) / sqrt(k)`` (module docstring).
+def replicate_interval(estimate, batch_stats, confidence_level: float = 0.95, bounds=None):
+    """``(low, high)``: ``estimate +- t_{k-1} sd(batch_stats) / sqrt(k)`` (module docstring),
+    clipped to ``bounds = (lo, hi)`` when given (the statistic's range, e.g. ``(0, 1)`` for a
+    share: a symmetric interval of a rare share would otherwise reach below 0).
 
     ``batch_stats`` has the ``k`` replicates along axis 0; ``estimate`` broadcasts against the
     rest. NaN where any replicate is NaN (a batch whose statistic is undefined).
@@ -87,17 +89,22 @@ def replicate_interval(estimate, batch_stats, confidence_level: float = 0.95):
         raise ValueError(f"need at least 3 replicates; got {k}")
     q = stdtrit(k - 1, 0.5 + check_confidence(confidence_level) / 2.0)
     half = q * np.std(b, axis=0, ddof=1) / math.sqrt(k)
-    return np.asarray(estimate, float) - half, np.asarray(estimate, float) + half
+    lo, hi = np.asarray(estimate, float) - half, np.asarray(estimate, float) + half
+    if bounds is not None:
+        lo, hi = np.clip(lo, *bounds), np.clip(hi, *bounds)
+    return lo, hi
 
 
 def median_with_interval(values, n_batches: int = N_BATCHES,
                          confidence_level: float = 0.95) -> tuple[float, float, float]:
-    """Median of ``values`` (1-D) and its :func:`replicate_interval` from batch medians."""
+    """Median of ``values`` (1-D) and its :func:`replicate_interval` from batch medians, within
+    the values' range."""
     x = np.asarray(values, float)
     if x.ndim != 1 or x.size == 0:
         raise ValueError(f"values must be a non-empty 1-D array; got shape {x.shape}")
     med = float(np.median(x))
-    lo, hi = replicate_interval(med, batch_statistic(x, np.median, n_batches), confidence_level)
+    lo, hi = replicate_interval(med, batch_statistic(x, np.median, n_batches), confidence_level,
+                                bounds=(x.min(), x.max()))
     return med, float(lo), float(hi)
 
 

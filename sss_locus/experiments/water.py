@@ -157,7 +157,8 @@ def crop_effect(uncropped: pd.DataFrame, cropped: pd.DataFrame, *, n_batches: in
     n_batches : int
         Replicate batches of the rows (a pair stays together; >= 3): each statistic is computed
         on each batch, and :func:`~sss_locus.experiments.replicates.replicate_interval` turns
-        their spread into an interval around the whole table's value.
+        their spread into an interval around the whole table's value, clipped to [0, 1] (every
+        statistic below is a share; for a rare one, a handful of events, the interval is rough).
     confidence_level : float
         In (0, 1).
 
@@ -210,6 +211,6 @@ def crop_effect(uncropped: pd.DataFrame, cropped: pd.DataFrame, *, n_batches: in
             }
 
     est, bs = stats(full), stats(batches)
-    ci = {k: replicate_interval(est[k], bs[k], confidence_level) for k in est}
+    ci = {k: replicate_interval(est[k], bs[k], confidence_level, bounds=(0.0, 1.0)) for k in est}  # all in [0, 1]
     return pd.DataFrame([{"statistic": k, "estimate": float(est[k]), "ci_low": float(ci[k][0]),
                           "ci_high": float(ci[k][1]), "n": len(M)} for k in est])
