@@ -51,7 +51,7 @@ KERNEL_NAME = "sss-locus"
 #: product by its thread count, so the last bits of e.g. a Spearman rho (2.8e-17 measured) would
 #: depend on the machine's cores and on how many notebooks run at once; and two notebooks run side
 #: by side (``sss-locus book --jobs 2``) with two BLAS threads each made the bootstrap's matrix
-#: products 10-20x slower on 2 cores. Dask's workers run with one thread too.
+#: products (when the intervals were bootstrapped) 10-20x slower on 2 cores. Dask's workers run with one thread too.
 KERNEL_BLAS_THREADS = "1"
 
 

@@ -2,7 +2,8 @@
 
 The notebooks' Monte Carlo studies read :data:`sss_locus.experiments.scale.SCHEDULER_ENV`
 (kernels inherit this process's environment). ``--workers N`` starts one local cluster of
-``N`` worker processes here (at most the cores this process may use), shared by every notebook of the run; ``--scheduler ADDRESS``
+``N`` worker processes here (at most the cores this process may use; :func:`sss_locus.experiments.scale.start_local_cluster`, the
+launcher ``local:N`` uses too), shared by every notebook of the run; ``--scheduler ADDRESS``
 uses a running Dask scheduler. Neither given: the studies run in the kernel, without Dask.
 """
 
@@ -14,7 +15,7 @@ import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from sss_locus.experiments.scale import SCHEDULER_ENV
+from sss_locus.experiments.scale import SCHEDULER_ENV, start_local_cluster
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -51,10 +52,7 @@ def scheduler_environment(args: argparse.Namespace) -> Iterator[None]:
     cluster = None
     try:
         if args.workers is not None:
-            from dask.distributed import LocalCluster
-
-            cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
+            cluster = start_local_cluster(args.workers)
             os.environ[SCHEDULER_ENV] = cluster.scheduler_address
         else:
             os.environ[SCHEDULER_ENV] = args.scheduler
