@@ -195,3 +195,29 @@ def test_tilt_override_moves_the_fan():
         depression = tilt + df["azimuth1_deg"]  # level vehicle, elevation ~ 0
         assert depression.min() >= -1e-9 and depression.max() <= tilt + 25.0 + 1e-9
         assert depression.max() > tilt + 24.0
+
+
+def test_vehicle_depths_keep_vehicle_2_in_the_water():
+    pf = load_platform("auv")
+    span = pf.depth_max_m - pf.depth_min_m
+    fixed = sample_pose_space(PoseSpaceSpec(pf, vehicle1_depth_m=pf.depth_min_m), N, seed=5)
+    depth2 = pf.depth_min_m + fixed["depth2_minus_depth1_m"]  # vehicle 1 at its shallowest depth
+    assert depth2.min() >= pf.depth_min_m - 1e-9 and depth2.max() <= pf.depth_max_m + 1e-9
+    old = sample_pose_space(PoseSpaceSpec(pf, vehicle_depths="difference"), N, seed=5)
+    assert (pf.depth_min_m + old["depth2_minus_depth1_m"] < 0).mean() > 0.2  # above the surface, often
+    assert np.abs(old["depth2_minus_depth1_m"]).max() <= span
+    # vehicle 1's depth drawn uniformly in the range: a sample of the "difference" rule is kept
+    # with probability (span - |d|) / span, so its weighted mean of |d| predicts the new rule's
+    drawn = sample_pose_space(PoseSpaceSpec(pf), 4 * N, seed=6)
+    d_old = np.abs(sample_pose_space(PoseSpaceSpec(pf, vehicle_depths="difference"), 4 * N, seed=6)
+                   ["depth2_minus_depth1_m"].to_numpy())
+    w = (span - d_old) / span
+    predicted = float((d_old * w).sum() / w.sum())
+    assert abs(np.abs(drawn["depth2_minus_depth1_m"]).mean() / predicted - 1) < 0.03
+    boat = load_platform("boat")  # fixed depth: the rule does not apply, the table is unchanged
+    assert sample_pose_space(PoseSpaceSpec(boat), 500, seed=1).equals(
+        sample_pose_space(PoseSpaceSpec(boat, vehicle_depths="difference"), 500, seed=1))
+    with pytest.raises(ValueError, match="vehicle1_depth_m must lie in platform 'auv'"):
+        PoseSpaceSpec(pf, vehicle1_depth_m=-1.0)
+    with pytest.raises(ValueError, match="vehicle_depths must be one of"):
+        PoseSpaceSpec(pf, vehicle_depths="surface")

@@ -27,8 +27,15 @@ Method (Norman & Mangelson, Sec. IV-A, with every choice the paper leaves open n
      depth (of the two solutions, those inside the azimuth aperture; one at random if both are);
      draws where neither solution is in the aperture are redrawn. So for the boat ``theta2`` is
      not independently uniform — it is conditioned on the equal draft;
-   - for other platforms, if ``depth_envelope`` is true, the two vehicles' reference depths may
-     differ by at most ``depth_max_m - depth_min_m`` (both fit in the operating depth range).
+   - for other platforms, ``vehicle_depths`` says how the two vehicles' depths are bounded (the
+     paper does not say; an open choice). ``"in_water"`` (default): vehicle 1's reference point
+     is at ``vehicle1_depth_m`` below the surface, or, if that is ``None``, at a depth drawn
+     uniformly in the platform's depth range ``[depth_min_m, depth_max_m]``, and vehicle 2's
+     must lie in that range too, so both vehicles are in the water (``depth_min_m >= 0`` is
+     enforced by the data reader). ``"difference"``: only the two depths' difference is bounded
+     by ``depth_max_m - depth_min_m``; vehicle 2 may then be above the sea surface (the pose-space
+     chapter measures how often), the relative sampler of earlier versions.
+     ``"free"``: no depth rule;
    Because draws are redrawn *jointly*, the accepted samples follow the product distribution
    above conditioned on the constraints: marginals can differ from uniform (for the boat, for
    example, features deep below sensor 1 need a long ``r2`` and are accepted less often, so
@@ -76,6 +83,7 @@ BLOCK_SIZE = 4096
 PROFILES = ("platform", "unconstrained")
 FEATURE_DISTRIBUTIONS = ("angles", "volume")
 SIDE_CHOICES = ("port", "starboard", "either")
+VEHICLE_DEPTHS = ("in_water", "difference", "free")
 MIN_ACCEPTANCE = 1e-3
 """Below this fraction of accepted draws the constraints are declared unsatisfiable."""
 
@@ -100,9 +108,12 @@ class PoseSpaceSpec:
     side1, side2 : {"port", "starboard", "either"}
     pitch_max_deg, roll_max_deg : float or None
         Override the platform's attitude limits (degrees, in [0, 90]); ``None`` keeps them.
-    depth_envelope : bool
-        Apply the platform's depth range to the two vehicles' depth difference (not for
-        fixed-depth platforms, which are held at their depth exactly).
+    vehicle_depths : {"in_water", "difference", "free"}
+        How the two vehicles' depths are bounded (module docstring, step 4; not for fixed-depth
+        platforms, which are held at their depth exactly).
+    vehicle1_depth_m : float or None
+        Depth of vehicle 1's reference point below the surface for ``"in_water"`` (metres, in the
+        platform's depth range); ``None`` draws it uniformly in that range.
     tilt_deg : float or None
         Override the downward tilt of both transducers (degrees); ``None`` keeps the platform's.
     water : WaterColumn or None
@@ -123,7 +134,8 @@ class PoseSpaceSpec:
     side2: str = "either"
     pitch_max_deg: float | None = None
     roll_max_deg: float | None = None
-    depth_envelope: bool = True
+    vehicle_depths: str = "in_water"
+    vehicle1_depth_m: float | None = None
     tilt_deg: float | None = None
     water: WaterColumn | None = None
     feature_below: bool = True
@@ -132,7 +144,8 @@ class PoseSpaceSpec:
 
     def __post_init__(self) -> None:
         for name, choices in (("profile", PROFILES), ("feature_distribution", FEATURE_DISTRIBUTIONS),
-                              ("side1", SIDE_CHOICES), ("side2", SIDE_CHOICES)):
+                              ("side1", SIDE_CHOICES), ("side2", SIDE_CHOICES),
+                              ("vehicle_depths", VEHICLE_DEPTHS)):
             if getattr(self, name) not in choices:
                 raise ValueError(f"{name} must be one of {list(choices)}; got {getattr(self, name)!r}")
         if not isinstance(self.platform, Platform):
@@ -146,6 +159,10 @@ class PoseSpaceSpec:
                 raise ValueError(f"water must be a WaterColumn or None; got {type(self.water).__name__}")
             self.water.depth_for(limited)  # a depth the platform can have
         object.__setattr__(self, "platform", limited)
+        d1 = self.vehicle1_depth_m
+        if d1 is not None and not (isinstance(d1, (int, float)) and limited.depth_min_m <= d1 <= limited.depth_max_m):
+            raise ValueError(f"vehicle1_depth_m must lie in platform {limited.key!r}'s depth range "
+                             f"[{limited.depth_min_m:g}, {limited.depth_max_m:g}] m; got {d1!r}")
         half = limited.sonar.azimuth_deg / 2
         for name in ("azimuth1_window_deg", "azimuth2_window_deg"):
             w = getattr(self, name)
@@ -263,8 +280,12 @@ def _draw_candidates(spec: PoseSpaceSpec, rng, m: int) -> dict[str, np.ndarray]:
     if spec.profile == "platform":
         if spec.feature_below:
             accept &= (f[:, 2] < o1[:, 2]) & (f[:, 2] < o2[:, 2])
-        if not pf.fixed_depth and spec.depth_envelope:
+        if not pf.fixed_depth and spec.vehicle_depths == "difference":
             accept &= np.abs(v2_z) <= pf.depth_max_m - pf.depth_min_m
+        elif not pf.fixed_depth and spec.vehicle_depths == "in_water":  # drawn last: the draws above stay
+            d1 = (rng.uniform(pf.depth_min_m, pf.depth_max_m, m) if spec.vehicle1_depth_m is None
+                  else np.full(m, float(spec.vehicle1_depth_m)))
+            accept &= (d1 - v2_z >= pf.depth_min_m) & (d1 - v2_z <= pf.depth_max_m)  # v2_z: height over vehicle 1
     return dict(accept=accept, R1=R1, R2=R2, r1=r1, r2=r2, th1=th1, th2=th2, ph1=ph1, ph2=ph2,
                 yaw=yaw, pitch=pitch, roll=roll, port1=port1, port2=port2, v2_z=v2_z,
                 f=f, o1=o1, o2=o2)

@@ -117,7 +117,9 @@ def default_conditions(platforms: Sequence[Platform], *, surface_tilts_deg=(), s
 def _tables(cond: Condition, water, *, n_samples, n_per_angle, crossing_angles_deg, seed, sample,
             simulate) -> pd.DataFrame:
     if cond.study == "pose space":
-        spec = PoseSpaceSpec(cond.platform, tilt_deg=cond.tilt_deg, water=water)
+        # vehicle 1 at the condition's depth in both runs of a pair (same samples), vehicle 2 in the water
+        spec = PoseSpaceSpec(cond.platform, tilt_deg=cond.tilt_deg, water=water,
+                             vehicle1_depth_m=cond.water.vehicle_depth_m)
         return sample(spec, n_samples, seed)
     return simulate(cond.platform, cond.envelope, cond.offset_model, crossing_angles_deg,
                     n_per_angle, seed, water=water)[0]

@@ -24,7 +24,7 @@ from typing import Any
 from urllib.parse import unquote, urlsplit
 
 from sss_locus import paths
-from sss_locus.pipeline import citation, export, outputs, paperinputs, provenance
+from sss_locus.pipeline import citation, claimsindex, export, outputs, paperinputs, provenance
 from sss_locus.pipeline.buildlog import ANSI, StagingPathFilter
 from sss_locus.pipeline.runner import hermetic_env
 
@@ -223,6 +223,7 @@ def stage() -> Path:
     copy_mathjax()
     copy_plotly()
     stage_figure_pages(root, export.load_manifests())
+    claimsindex.stage_claims_index(staged_book / CLAIMS_PAGE)  # the notice, if any, goes above it
     stage_claims_notice(staged_book / CLAIMS_PAGE)
     for name, marker, generated in (
             (FIGURES_PAGE, FIGURES_MARKER, lambda: figures_index(_in_book_order(export.load_manifests()))),

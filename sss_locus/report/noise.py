@@ -17,7 +17,10 @@ import numpy as np
 import pandas as pd
 from matplotlib.ticker import NullFormatter
 
+from ..experiments.datadoc import label_key
 from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_colors, platform_title
+from .survey_passes import model_tag
+from .text import fmt_sig
 
 LEVEL_COLORS = ("tab:red", "tab:orange", "gold", "tab:pink")
 """Colours of the noise levels (``noise_scales`` in order, repeating)."""
@@ -34,6 +37,41 @@ BREAKDOWN_COLORS = {"position only": "tab:brown", "range only": "tab:green"}
 def level_label(scale: float) -> str:
     """Label of a noise level, as in the notebook's noise models: ``level_label(0.1) == "×0.1"``."""
     return f"×{scale:g}"
+
+
+def scale_text(bases: Mapping, scale: float) -> str:
+    """What a noise level scales, with the standard deviations it gives: ``bases`` maps platform
+    keys to their :class:`~sss_locus.experiments.noise.NoiseModel` (the file's values)."""
+    parts = []
+    for key, base in bases.items():
+        m = base.scaled(scale)
+        cell_mm = 1000 * m.range_sigma_per_resolution * m.range_resolution_m
+        parts.append(f"{key}: range {fmt_sig(cell_mm, 3)} mm and {fmt_sig(100 * m.sound_speed_relative_sigma, 2)} % "
+                     f"of the range, position {fmt_sig(m.horizontal_sigma_m, 2)} m per horizontal axis and "
+                     f"{fmt_sig(m.vertical_sigma_m, 2)} m vertical, roll {fmt_sig(m.roll_sigma_deg, 2)}°, "
+                     f"pitch {fmt_sig(m.pitch_sigma_deg, 2)}°, heading {fmt_sig(m.heading_sigma_deg, 2)}°")
+    return (f"{level_label(scale)}: every standard deviation of data/noise.toml times {scale:g}, range, position "
+            f"and attitude alike ({'; '.join(parts)})")
+
+
+def advice_texts(prefix: str, verdicts: Mapping[tuple[str, str, float], Mapping[str, float]],
+                 head_scale: float) -> dict[str, str]:
+    """Glue texts of :func:`~sss_locus.experiments.verdicts.advice_verdict` on the median extent,
+    ``verdicts`` keyed ``(platform key, offset-model spec, noise scale)``: per key,
+    ``<prefix>-<platform>-<model>-<level>-verdict`` ("holds"/"fails") and ``-ends-extent``,
+    ``-oblique-extent``, ``-perpendicular-extent`` (m); the ``independent`` model without its
+    tag (``nz-auv-x0p1-verdict``), the headline level also without the level
+    (``nz-auv-matched-10-same-verdict``)."""
+    out = {}
+    for (key, spec, scale), v in verdicts.items():
+        model = "" if spec == "independent" else f"-{model_tag(spec)}"
+        tags = [f"{model}-{file_label(level_label(scale))}"] + ([model] if model and scale == head_scale else [])
+        for tag in tags:
+            base = f"{prefix}-{label_key(key)}{tag}"
+            out[f"{base}-verdict"] = "holds" if v["holds"] else "fails"
+            for name in ("ends", "oblique", "perpendicular"):
+                out[f"{base}-{name}-extent"] = fmt_sig(v[name], 2)
+    return out
 
 
 def file_label(label: str) -> str:
@@ -92,8 +130,8 @@ def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.
         for i, s in enumerate(noise_scales):
             c = by_label[level_label(s)]
             color = LEVEL_COLORS[i % len(LEVEL_COLORS)]
-            ax.plot(g, c["extent_m_median"], color=color, lw=1.8, label=f"extent, noise ×{s:g}")
-            ax2.plot(g, c["empty_fraction_median"], color=color, lw=1.8, label=f"noise ×{s:g}")
+            ax.plot(g, c["extent_m_median"], color=color, lw=1.8, label=f"extent, every σ ×{s:g}")
+            ax2.plot(g, c["empty_fraction_median"], color=color, lw=1.8, label=f"every σ ×{s:g}")
         ax.plot(g, by_label["range only"]["extent_m_median"], lw=1.5, label="extent, range errors only",
                 **GROUP_STYLE["range only"])
         ax2.plot(g, by_label["attitude only"]["empty_fraction_median"], lw=1.5,

@@ -76,17 +76,25 @@ def plot_crop_effects(effects: pd.DataFrame, crop: str = "surface"):
         hi = np.array([allrows.loc[(lab, stat), "ci_high"] for lab in labels]) * 100
         bar = ax.barh(y + offset, est, height=0.38, color=color, label=label,
                       xerr=[est - lo, hi - est], error_kw={"lw": 1, "capsize": 2})
-        ax.bar_label(bar, labels=[f"{v:.1f}" for v in est], fontsize=9, padding=4)
+        # a share is at most 100 %: the axis stops there, and labels of bars that would run past
+        # it sit inside the bar's left end
+        inside = est > 0.7 * xmax
+        ax.bar_label(bar, labels=[f"{v:.1f}" if i else "" for v, i in zip(est, inside)], fontsize=9,
+                     label_type="center", color="white")
+        ax.bar_label(bar, labels=["" if i else f"{v:.1f}" for v, i in zip(est, inside)], fontsize=9, padding=4)
         return hi.max()
 
     cropped, title_b = CROP_TEXT[crop]
-    top = max(bars(axs[0], "multi_arc_share_uncropped", 0.2, PAPER_COLOR, "paper's locus (apertures only)"),
-              bars(axs[0], "multi_arc_share_cropped", -0.2, WATER_COLOR, cropped))
-    axs[0].set_xlim(0, 1.3 * max(top, 1.0))
+    top = 100 * sel.loc[sel["statistic"].str.startswith("multi_arc_share"), "ci_high"].max()
+    xmax = min(100.0, 1.3 * max(top, 1.0))  # read by bars()
+    axs[0].set_xlim(0, xmax)
+    bars(axs[0], "multi_arc_share_uncropped", 0.2, PAPER_COLOR, "paper's locus (apertures only)")
+    bars(axs[0], "multi_arc_share_cropped", -0.2, WATER_COLOR, cropped)
     axs[0].set_xlabel("fragmented loci (% of samples)", fontsize=10)
     axs[0].set_title("(a) loci with more than one arc", fontsize=10, loc="left")
+    xmax = 100.0
+    axs[1].set_xlim(0, xmax)
     bars(axs[1], "length_ratio", 0.0, WATER_COLOR, None)
-    axs[1].set_xlim(0, 125)
     axs[1].set_xlabel("total locus length kept (%)", fontsize=10)
     axs[1].set_title(title_b, fontsize=10, loc="left")
     axs[0].set_yticks(y, [textwrap.fill(lab, 28) for lab in labels], fontsize=9)
