@@ -14,6 +14,7 @@ import struct
 import subprocess
 import sys
 import termios
+import time
 from pathlib import Path
 
 import pytest
@@ -92,12 +93,15 @@ def _feed(path: Path, rows):
         fh.writelines(f"{call}\t{label}\t{done}\t{total}\n" for call, label, done, total in rows)
 
 
-def test_relay_prints_plain_quarter_lines_when_not_on_a_terminal(tmp_path):
+def test_relay_prints_plain_lines_for_long_studies_when_not_on_a_terminal(tmp_path):
     path, lines, stream = tmp_path / "progress.txt", [], io.StringIO()
-    with progress.relay_batches(path, "nb", lines.append, stream=stream):
-        _feed(path, [("a", "study", k, 8) for k in range(1, 9)] + [("b", "single", 1, 1)])
-    assert lines == [f"  nb: study batch {k}/8" for k in (2, 4, 6, 8)]  # one-batch studies: nothing
-    assert stream.getvalue() == ""
+    rows = [("a", "study", k, 8) for k in range(1, 9)] + [("b", "single", 1, 1)]
+    with progress.relay_batches(path, "nb", lines.append, stream=stream, every_s=0.0):
+        _feed(path, rows)
+    assert lines == [f"  nb: study batch {k}/8" for k in range(1, 9)]  # one-batch studies: nothing
+    with progress.relay_batches(tmp_path / "again.txt", "nb", lines.append, stream=stream):
+        _feed(tmp_path / "again.txt", rows)  # over before PLAIN_EVERY_S: not worth a line
+    assert len(lines) == 8 and stream.getvalue() == ""
 
 
 def _openpty():
@@ -131,7 +135,9 @@ def test_bars_on_a_terminal(tmp_path):
         path = tmp_path / "progress.txt"
         bar = progress.NotebookBar(2, stream=stream)
         with progress.relay_batches(path, "nb", stream=stream):
-            _feed(path, [("a", "study", k, 4) for k in range(1, 5)])
+            _feed(path, [("a", "study", k, 4) for k in range(1, 4)])
+            time.sleep(progress.BAR_DELAY_S + 2 * progress.POLL_S)  # a bar appears after BAR_DELAY_S
+            _feed(path, [("a", "study", 4, 4)])
         bar.finished("nb", True)
         bar.close()
         shown = _drain(master)
@@ -150,29 +156,35 @@ from sss_locus.experiments.pose_space import BLOCK_SIZE, PoseSpaceSpec, sample_p
 from sss_locus.pipeline.cache import cached
 table = cached(sample_pose_space)(PoseSpaceSpec(load_platform("boat")), 3 * BLOCK_SIZE, seed, chunk_size=BLOCK_SIZE)
 print(len(table))
+if fail:
+    raise RuntimeError("asked to fail")
 """
 
 
-def _entries(folder: Path, names):
+def _entries(folder: Path, names, failing=()):
     pytest.importorskip("papermill")
     from notebook_support import write_notebook
     from sss_locus.pipeline.registry import NotebookEntry
 
-    source = write_notebook(folder / "study.ipynb", "seed = 1  # [0, 100]\n", STUDY)
-    return [NotebookEntry(n, source, f"executed/{n}.ipynb", {"quick": {"seed": i}})
+    source = write_notebook(folder / "study.ipynb", "seed = 1  # [0, 100]\nfail = False\n", STUDY)
+    return [NotebookEntry(n, source, f"executed/{n}.ipynb", {"quick": {"seed": i, "fail": n in failing}})
             for i, n in enumerate(names)]
 
 
-def test_book_run_prints_start_and_finish_lines_without_terminal_codes(build_area, tmp_path, capsys):
+def test_book_run_prints_start_and_finish_lines_without_terminal_codes(build_area, tmp_path, capsys, monkeypatch):
     from sss_locus.pipeline.runner import run_many
 
-    run_many(_entries(tmp_path, ["study_a", "study_b"]), "quick")
+    monkeypatch.setattr(progress, "PLAIN_EVERY_S", 0.0)  # a line per batch, however fast the study
+
+    with pytest.raises(RuntimeError, match=r"1 notebook\(s\) failed:\nstudy_b: "):
+        run_many(_entries(tmp_path, ["study_a", "study_b"], failing={"study_b"}), "quick")
     out, err = capsys.readouterr()
     lines = out.splitlines()
-    for name in ("study_a", "study_b"):
+    for name, end in (("study_a", r"ran study_a \[quick\] in \d+\.\d s -> "),
+                      ("study_b", r"failed study_b after \d+\.\d s \(its error is listed at the end\)")):
         start = [i for i, line in enumerate(lines) if re.fullmatch(
             rf"start {name} \[quick\] at \d\d:\d\d:\d\d UTC", line)]
-        ran = [i for i, line in enumerate(lines) if re.match(rf"ran {name} \[quick\] in \d+\.\d s -> ", line)]
+        ran = [i for i, line in enumerate(lines) if re.match(end, line)]
         batches = [i for i, line in enumerate(lines) if line.startswith(f"  {name}: sample_pose_space batch ")]
         assert len(start) == 1 and len(ran) == 1 and start[0] < batches[0] <= batches[-1] < ran[0]
         assert lines[batches[-1]].endswith("batch 3/3")
@@ -184,6 +196,7 @@ def test_book_run_prints_start_and_finish_lines_without_terminal_codes(build_are
 def test_run_on_a_terminal_shows_bars(build_area, tmp_path):
     """A book of one notebook run by a child process whose stdout and stderr are a pty."""
     code = ("import sys; sys.path.insert(0, 'tests'); from test_progress import _entries; from pathlib import Path; "
+            "from sss_locus.pipeline import progress; progress.BAR_DELAY_S = 0; "
             "from sss_locus.pipeline.runner import run_many; "
             "run_many(_entries(Path(sys.argv[1]), ['study_t']), 'quick')")
     master, slave = _openpty()

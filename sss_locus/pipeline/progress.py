@@ -18,7 +18,10 @@
 
 On a terminal (``isatty()``) the bars are tqdm bars on stderr and the lines go to stdout above
 them. Anywhere else (a CI log, a pipe, a file) there are no bars and no terminal codes: plain
-lines only, a notebook count after each notebook and a batch line at every quarter of a study.
+lines only: a notebook count after each notebook and, for a study still running after
+:data:`PLAIN_EVERY_S` seconds, a batch line about that often and one when it ends (short studies,
+most of a quick run's, print nothing). Batch bars likewise appear only after
+:data:`BAR_DELAY_S` seconds.
 """
 
 from __future__ import annotations
@@ -40,6 +43,10 @@ QUIET_ENV = "SSS_LOCUS_QUIET_BATCHES"
 START_PREFIX = "start "
 #: Seconds between two reads of the progress file.
 POLL_S = 0.5
+#: Seconds between two plain batch lines of one study (the first comes this long after its start).
+PLAIN_EVERY_S = 10.0
+#: Seconds a study runs before its bar appears on a terminal.
+BAR_DELAY_S = 1.0
 
 
 def is_terminal(stream: Any) -> bool:
@@ -74,28 +81,29 @@ def batch_reporter(label: str) -> Callable[[int, int], None] | None:
 class _BatchView:
     """Shows the lines of one progress file: a bar per study on a terminal, else plain lines."""
 
-    def __init__(self, name: str, write: Callable[[str], Any], stream: Any) -> None:
-        self.name, self.write, self.stream = name, write, stream
+    def __init__(self, name: str, write: Callable[[str], Any], stream: Any, every_s: float) -> None:
+        self.name, self.write, self.stream, self.every_s = name, write, stream, every_s
         self.tty = is_terminal(stream)
         self.call: str | None = None
         self.bar = None
-        self.quarter = 0
+        self.last: float | None = None  # when the study began, then when its last line was written
+        self.printed = False
 
     def show(self, call: str, label: str, done: int, total: int) -> None:
         if total < 2:
             return  # one batch: nothing to follow
         if call != self.call:
             self.close()
-            self.call, self.quarter = call, 0
+            self.call, self.last, self.printed = call, time.monotonic(), False
             if self.tty:
                 from tqdm import tqdm
 
                 self.bar = tqdm(total=total, desc=f"{self.name}: {label}", unit="batch",
-                                file=self.stream, leave=False, dynamic_ncols=True)
+                                file=self.stream, leave=False, dynamic_ncols=True, delay=BAR_DELAY_S)
         if self.bar is not None:
             self.bar.update(done - self.bar.n)
-        elif 4 * done // total > self.quarter:
-            self.quarter = 4 * done // total
+        elif time.monotonic() - self.last >= self.every_s or (done == total and self.printed):
+            self.last, self.printed = time.monotonic(), True
             self.write(f"  {self.name}: {label} batch {done}/{total}")
 
     def close(self) -> None:
@@ -106,14 +114,16 @@ class _BatchView:
 
 @contextmanager
 def relay_batches(path: Path, name: str, write: Callable[[str], Any] = print,
-                  stream: Any = None) -> Iterator[None]:
+                  stream: Any = None, every_s: float | None = None) -> Iterator[None]:
     """While the body runs, show the batch progress a kernel appends to ``path`` (see
     :func:`batch_reporter`) for notebook ``name``: tqdm bars on ``stream`` (default stderr) if
-    it is a terminal, else lines through ``write``. Nothing when :data:`QUIET_ENV` is ``1``."""
+    it is a terminal, else lines through ``write`` (one per ``every_s`` seconds of a study, default :data:`PLAIN_EVERY_S`, and
+    its last batch if any was shown). Nothing when :data:`QUIET_ENV` is ``1``."""
     if os.environ.get(QUIET_ENV) == "1":
         yield
         return
-    view = _BatchView(name, write, sys.stderr if stream is None else stream)
+    view = _BatchView(name, write, sys.stderr if stream is None else stream,
+                      PLAIN_EVERY_S if every_s is None else every_s)
     stop = threading.Event()
     offset = [0]
 
@@ -148,8 +158,8 @@ def relay_batches(path: Path, name: str, write: Callable[[str], Any] = print,
 
 class NotebookBar:
     """Progress over ``total`` notebooks: a tqdm bar on ``stream`` (default stderr) when it is
-    a terminal, else a plain ``k/total notebooks done`` line after each. :meth:`write` prints a
-    line (stdout) without breaking the bar."""
+    a terminal, else a plain ``k/total notebooks done`` line after each; the bar closes after the
+    last. :meth:`write` prints a line (stdout) without breaking the bar."""
 
     def __init__(self, total: int, stream: Any = None) -> None:
         self.total, self.done, self.start = total, 0, time.perf_counter()
@@ -167,6 +177,17 @@ class NotebookBar:
         else:
             print(line, flush=True)
 
+    @contextmanager
+    def timed(self, name: str) -> Iterator[None]:
+        """Count the notebook run in the body: finished, or failed (with its time) if it raises."""
+        start = time.perf_counter()
+        try:
+            yield
+        except Exception:
+            self.finished(name, False, time.perf_counter() - start)
+            raise
+        self.finished(name, True)
+
     def finished(self, name: str, ok: bool, seconds: float | None = None) -> None:
         """Count one notebook; a failure gets its own line (its error is reported at the end)."""
         self.done += 1
@@ -175,6 +196,8 @@ class NotebookBar:
             self.write(f"failed {name}{took} (its error is listed at the end)")
         if self.bar is not None:
             self.bar.update(1)
+            if self.done >= self.total:
+                self.close()
         else:
             self.write(f"  {self.done}/{self.total} notebooks done, "
                        f"{time.perf_counter() - self.start:.0f} s elapsed")
@@ -182,3 +205,4 @@ class NotebookBar:
     def close(self) -> None:
         if self.bar is not None:
             self.bar.close()
+        self.bar = None

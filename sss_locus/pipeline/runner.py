@@ -345,14 +345,11 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
     if jobs <= 1 or len(entries) <= 1:
         failures = []
         for entry in entries:
-            start = time.perf_counter()
             try:
-                run_notebook(entry, profile, declared_overrides(entry, overrides), from_text=True, log=log, data=data)
-                bar.finished(entry.name, True)
+                with bar.timed(entry.name):
+                    run_notebook(entry, profile, declared_overrides(entry, overrides), from_text=True, log=log, data=data)
             except NotebookFailed as exc:
-                bar.finished(entry.name, False, time.perf_counter() - start)
                 failures.append(f"{entry.name}: {exc}" + (f"\n{exc.traceback}" if verbose else ""))
-        bar.close()
         if failures:
             raise RuntimeError(f"{len(failures)} notebook(s) failed:\n" + "\n".join(failures))
         return
@@ -394,7 +391,5 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
                 if child.poll() is None:
                     child.terminate()
             raise
-        finally:
-            bar.close()
     if failures:
         raise RuntimeError(f"{len(failures)} notebook(s) failed:\n" + "\n".join(failures))
