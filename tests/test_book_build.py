@@ -9,6 +9,7 @@ of ``make book`` in ``_build/`` are never overwritten.
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 import sys
@@ -36,6 +37,17 @@ def test_build_prints_the_index_path(quick_book):
     assert quick_book["stdout"].strip().splitlines()[-1] == str(index)
     closing = quick_book["stdout"].rsplit("build succeeded", 1)[-1]  # jupyter-book's closing lines
     assert "jupyter-book/_build/html" not in closing  # no pointer to its staging site (moved away)
+
+
+def test_build_log_shows_each_notebook_without_terminal_codes(quick_book):
+    """Not on a terminal (the build's stdout is a file): a start line with the time and an end
+    line with the duration per notebook, a count of notebooks done, no terminal codes."""
+    runs = quick_book["stdout"].split("\n$ ", 1)[0]  # the notebooks' part, before jupyter-book's output
+    for name in REGISTRY:
+        assert re.search(rf"^start {name} \[quick\] at \d\d:\d\d:\d\d UTC$", runs, re.M), name
+        assert re.search(rf"^ran {name} \[quick\] in \d+\.\d s -> ", runs, re.M), name
+    assert f"  {len(REGISTRY)}/{len(REGISTRY)} notebooks done" in runs
+    assert "\x1b[" not in runs and "\r" not in runs
 
 
 @pytest.mark.parametrize("name", list(REGISTRY))
