@@ -39,6 +39,17 @@ def test_build_prints_the_index_path(quick_book):
     assert "jupyter-book/_build/html" not in closing  # no pointer to its staging site (moved away)
 
 
+def test_build_log_shows_each_notebook_without_terminal_codes(quick_book):
+    """Not on a terminal (the build's stdout is a file): a start line with the time and an end
+    line with the duration per notebook, a count of notebooks done, no terminal codes."""
+    runs = quick_book["stdout"].split("\n$ ", 1)[0]  # the notebooks' part, before jupyter-book's output
+    for name in REGISTRY:
+        assert re.search(rf"^start {name} \[quick\] at \d\d:\d\d:\d\d UTC$", runs, re.M), name
+        assert re.search(rf"^ran {name} \[quick\] in \d+\.\d s -> ", runs, re.M), name
+    assert f"  {len(REGISTRY)}/{len(REGISTRY)} notebooks done" in runs
+    assert "\x1b[" not in runs and "\r" not in runs
+
+
 @pytest.mark.parametrize("name", list(REGISTRY))
 def test_notebook_ran_under_quick_profile(quick_book, name):
     entry = REGISTRY[name]

@@ -364,7 +364,7 @@ def _check_n_seed(n, seed):
 
 
 def sample_pose_space(spec: PoseSpaceSpec, n_samples: int, seed: int, *,
-                      chunk_size: int = 65536) -> pd.DataFrame:
+                      chunk_size: int = 65536, progress=None) -> pd.DataFrame:
     """Monte Carlo table of ``n_samples`` two-view configurations (one row each).
 
     Parameters
@@ -377,6 +377,8 @@ def sample_pose_space(spec: PoseSpaceSpec, n_samples: int, seed: int, *,
         Rows per kernel evaluation (memory; rounded down to whole blocks of
         :data:`BLOCK_SIZE`, at least one) and per chunk of work (:mod:`sss_locus.experiments.scale`:
         chunks run in-process or on a Dask cluster); does not change the result.
+    progress : callable or None
+        ``progress(done, total)`` after each chunk (``scale.map_chunks``); no effect on the result.
 
     Returns
     -------
@@ -394,5 +396,5 @@ def sample_pose_space(spec: PoseSpaceSpec, n_samples: int, seed: int, *,
     per_task = max(1, chunk_size // BLOCK_SIZE)  # whole blocks per kernel call and per chunk
     n_blocks = -(-n // BLOCK_SIZE)
     tasks = [(spec, seed, k, min(k + per_task, n_blocks), n) for k in range(0, n_blocks, per_task)]
-    out = pd.concat(map_chunks(_evaluate_blocks, tasks), ignore_index=True)
+    out = pd.concat(map_chunks(_evaluate_blocks, tasks, progress), ignore_index=True)
     return out[list(COLUMNS)]

@@ -111,16 +111,28 @@ def close_clients() -> None:
             cluster.close()
 
 
-def map_chunks(fn: Callable, tasks: Sequence[tuple]) -> list:
+def map_chunks(fn: Callable, tasks: Sequence[tuple], progress: Callable[[int, int], Any] | None = None) -> list:
     """``[fn(*task) for task in tasks]``, in order, here or on the configured Dask cluster.
 
     ``fn`` must be a module-level function and each task's arguments picklable; each chunk is
     a pure function of its arguments (its own seed), so the result does not depend on where it
-    ran.
+    ran. ``progress``, if given, is called as ``progress(done, total)`` once after each chunk
+    finishes (on a cluster, in the order the futures complete; the results keep task order); it
+    only observes, so the result is the same with or without it. This layer never prints.
     """
     setting = os.environ.get(SCHEDULER_ENV, "")
     if parse_scheduler(setting) is None or len(tasks) < 2:
-        return [fn(*task) for task in tasks]
+        results = []
+        for task in tasks:
+            results.append(fn(*task))
+            if progress is not None:
+                progress(len(results), len(tasks))
+        return results
     dask_client = client(setting)
     futures = dask_client.map(fn, *zip(*tasks), pure=False)
+    if progress is not None:
+        from dask.distributed import as_completed
+
+        for done, _ in enumerate(as_completed(futures), start=1):
+            progress(done, len(tasks))
     return dask_client.gather(futures)

@@ -227,7 +227,7 @@ def _simulate_angle(platform, envelope, offset_model, gamma, n, seed, water=None
 
 def simulate_passes(platform: Platform, envelope: SurveyEnvelope, offset_model: OffsetModel,
                     crossing_angles_deg, n_per_angle: int, seed: int, *,
-                    water: WaterColumn | None = None) -> tuple[pd.DataFrame, pd.DataFrame]:
+                    water: WaterColumn | None = None, progress=None) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Monte Carlo pairs of straight passes over one feature, per crossing angle.
 
     Parameters
@@ -245,6 +245,9 @@ def simulate_passes(platform: Platform, envelope: SurveyEnvelope, offset_model: 
     water : WaterColumn or None
         Also crop every locus to the water column (step 6 above); ``None`` (default): the
         paper's locus. The samples and the acceptance table do not depend on it.
+    progress : callable or None
+        Called as ``progress(done, total)`` after each crossing angle (one chunk,
+        :func:`~sss_locus.experiments.scale.map_chunks`); does not change the result.
 
     Returns
     -------
@@ -268,6 +271,6 @@ def simulate_passes(platform: Platform, envelope: SurveyEnvelope, offset_model: 
             raise ValueError(f"water must be a WaterColumn or None; got {type(water).__name__}")
         water.depth_for(platform)
     chunks = map_chunks(_simulate_angle, [(platform, envelope, offset_model, float(g), n, seed, water)
-                                          for g in angles])
+                                          for g in angles], progress)
     frames, acc = [c[0] for c in chunks], [c[1] for c in chunks]
     return pd.concat(frames, ignore_index=True)[list(COLUMNS)], pd.DataFrame(acc)

@@ -55,7 +55,7 @@ import numpy as np
 import pandas as pd
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, orphans, provenance
+from sss_locus.pipeline import atomic, orphans, progress, provenance
 
 CACHE_FORMAT = 2
 DATA_NAME = "data-{index}.parquet"
@@ -288,7 +288,9 @@ def cached(fn: Callable[..., Any], *, cache_dir: Path | None = None) -> Callable
     """``fn`` with its results cached on disk (see the module docstring for the key).
 
     ``fn`` must return a DataFrame or a tuple of DataFrames. The wrapper has ``fn``'s signature;
-    its call binds the arguments (defaults applied) and looks them up before computing.
+    its call binds the arguments (defaults applied) and looks them up before computing. An
+    argument ``progress`` (a callback that observes a study's batches) is not part of the key;
+    left ``None``, it becomes :func:`sss_locus.pipeline.progress.batch_reporter`.
     """
     signature = inspect.signature(fn)
     qualname = f"{fn.__module__}.{fn.__qualname__}"
@@ -297,7 +299,9 @@ def cached(fn: Callable[..., Any], *, cache_dir: Path | None = None) -> Callable
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         bound = signature.bind(*args, **kwargs)
         bound.apply_defaults()
-        arguments = {k: canonical(v, k) for k, v in bound.arguments.items()}
+        if bound.arguments.get("progress", False) is None:  # a study's batches, shown by the runner
+            bound.arguments["progress"] = progress.batch_reporter(fn.__name__)
+        arguments = {k: canonical(v, k) for k, v in bound.arguments.items() if k != "progress"}
         return cached_result({"function": qualname, "arguments": arguments},
                              lambda: fn(*bound.args, **bound.kwargs), cache_dir=cache_dir)
 

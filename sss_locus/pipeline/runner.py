@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, export, faults, orphans, outputs, paperinputs, preflight, provenance
+from sss_locus.pipeline import atomic, export, faults, orphans, outputs, paperinputs, preflight, progress, provenance
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
 from sss_locus.pipeline.registry import NotebookEntry
@@ -275,15 +275,18 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
         "JUPYTER_RUNTIME_DIR": str(staging / "runtime"),  # connection file goes with the staging folder
         "TMPDIR": str(staging / "runtime"),  # jupyter_client writes it with tempfile.mkstemp
         READS_ENV: str(staging / "data-reads.txt"),  # the data entries the kernel's loaders read
+        progress.PROGRESS_ENV: str(staging / "progress.txt"),  # the kernel's studies' batches
     })
     staged = staging / executed.name
     start = time.perf_counter()
+    log(progress.start_line(entry.name, profile))
     try:
         with atomic.signals_as_exceptions(), patched_environ(env):
             (staging / "runtime").mkdir(parents=True)
             install_kernelspec()
             try:
-                _execute(entry, staging, staged, executed.parent, parameters)
+                with progress.relay_batches(staging / "progress.txt", entry.name, log):
+                    _execute(entry, staging, staged, executed.parent, parameters)
             except NotebookFailed as exc:
                 kept = executed.with_name(executed.stem + ".failed.ipynb") if side else \
                     paths.build_dir() / "failed" / executed.name
@@ -336,11 +339,14 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
     notebooks that declare each parameter; ``data`` are the ``--data``/``--set`` inputs. If this process is interrupted, the running
     children get SIGTERM (each cleans up after itself) before the interruption propagates.
     """
+    bar = progress.NotebookBar(len(entries))
+    log = bar.write if log is print else log
     if jobs <= 1 or len(entries) <= 1:
         failures = []
         for entry in entries:
             try:
-                run_notebook(entry, profile, declared_overrides(entry, overrides), from_text=True, log=log, data=data)
+                with bar.timed(entry.name):
+                    run_notebook(entry, profile, declared_overrides(entry, overrides), from_text=True, log=log, data=data)
             except NotebookFailed as exc:
                 failures.append(f"{entry.name}: {exc}" + (f"\n{exc.traceback}" if verbose else ""))
         if failures:
@@ -357,8 +363,9 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
         if data is not None:
             cmd += [arg for f in data.files for arg in ("--data", f)]
             cmd += [arg for o in data.sets for arg in ("--set", o)]
+        log(progress.start_line(entry.name, profile))  # the child's own start line comes too late
         child = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                 stdin=subprocess.DEVNULL)
+                                 stdin=subprocess.DEVNULL, env={**os.environ, progress.QUIET_ENV: "1"})
         children[entry.name] = child
         out, err = child.communicate()
         return child.returncode, out, err
@@ -371,8 +378,9 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
             for future in as_completed(futures):
                 entry, (code, out, err) = futures[future], future.result()
                 for line in out.splitlines():
-                    if not line.startswith("Rebuild the site"):
+                    if not line.startswith(("Rebuild the site", progress.START_PREFIX)):
                         log(line)
+                bar.finished(entry.name, code == 0)
                 if code != 0:
                     failures.append(f"{entry.name}: {err.strip()[-4000:]}")
         except BaseException:
