@@ -174,8 +174,10 @@ def figure_url(label: str, config: Path | None = None) -> str | None:
 
 
 def data_note(manifest: Mapping[str, Any]) -> str:
-    """``; computed for <platform>: <sonar>, <aperture>, <range>, tilt ...; data: <files>``
-    (LaTeX) from a manifest's ``data_inputs``; empty when it has none."""
+    """``; computed for <platform> (<name>: <sonar>, <aperture>, <range>, tilt ...); data entries
+    <entries>; data files <file> (sha256 ...), ...`` (LaTeX) from a manifest's ``data_inputs``:
+    exactly the platforms, data entries and data files the figure was computed from (see
+    :func:`sss_locus.experiments.userdata.figure_record`); empty when it has none."""
     inputs = manifest.get("data_inputs") or {}
     parts = []
     for key, v in (inputs.get("values") or {}).items():
@@ -183,11 +185,12 @@ def data_note(manifest: Mapping[str, Any]) -> str:
         tilts = "/".join(f"{t:g}" for t in dict.fromkeys((v.get("tilt_deg") or {}).values()))
         parts.append(f"{key} ({v.get('name', '')}: {s.get('name', '')}, {s.get('azimuth_deg', 0):g} x "
                      f"{s.get('elevation_deg', 0):g} deg, {s.get('max_range_m', 0):g} m, tilt {tilts} deg)")
-    users = [f"{Path(f['path']).name} (sha256 {f['sha256'][:12]})" for f in inputs.get("files", [])
-             if f.get("role") == "user"]
-    users += [f"--set {o}" for o in inputs.get("overrides", [])]
+    files = [f"{f['path'] if f.get('role') == 'shipped' else Path(f['path']).name} (sha256 {f['sha256'][:12]})"
+             for f in inputs.get("files", [])]
+    files += [f"--set {o}" for o in inputs.get("overrides", [])]
     note = ("; computed for " + "; ".join(parts)) if parts else ""
-    note += ("; user data: " + ", ".join(users)) if users else ""
+    note += ("; data entries " + ", ".join(inputs["entries"])) if inputs.get("entries") else ""
+    note += ("; data files " + ", ".join(files)) if files else ""
     return latex_escape(note)
 
 
