@@ -37,7 +37,7 @@ NOTEBOOKS_SUBDIR = "notebooks"
 #: Staged folder of the per-figure blocks (``<source>/_cite/<label>.md``).
 CITE_SUBDIR = "_cite"
 #: Longest short caption in a figure's BibTeX ``title`` (characters, before escaping).
-SHORT_CAPTION_CHARS = 90
+SHORT_CAPTION_CHARS = 130
 _SPECIALS = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "&": r"\&", "%": r"\%",
              "#": r"\#", "_": r"\_", "^": r"\^{}", "~": r"\~{}", "$": r"\$"}
 _MARKDOWN = ((re.compile(r"\*\*(.+?)\*\*"), "textbf"), (re.compile(r"(?<![\w*])\*(?!\s)(.+?)\*"), "emph"),
@@ -104,19 +104,39 @@ def latex_escape(text: str, *, markdown: bool = False) -> str:
 
 
 def short_caption(caption: str, limit: int = SHORT_CAPTION_CHARS) -> str:
-    """The caption's first sentence (or clause, at ``;``), cut at a word to ``limit`` characters.
+    """The caption's first sentence (or clause, at ``;``); when longer than ``limit`` characters,
+    its longest run of whole clauses (ending before a ``,`` or ``:``) that fits, else cut at a
+    word with an ellipsis. Sentences, clauses and cuts end only outside parentheses, brackets and
+    ``$...$`` math, so a title never opens a bracket it does not close.
 
     >>> short_caption("Locus length vs. range; details. More.")
     'Locus length vs. range'
+    >>> short_caption("Median length per bin, Torpedo AUV (REMUS-100, Iver3), dual sonar", limit=50)
+    'Median length per bin, Torpedo AUV (REMUS-100, Iver3)'
     """
     text = " ".join(caption.split())
-    head = re.split(r"(?<=[a-z0-9)\]$][.!?])\s+(?=[A-Z(])|;\s", text, maxsplit=1)[0].rstrip(".")
+    depth, math, outside = 0, False, []  # outside[i]: character i is outside brackets and math
+    for char in text:
+        if char == "$":
+            math = not math
+        elif not math and char in "([":
+            depth += 1
+        elif not math and char in ")]":
+            depth = max(0, depth - 1)
+        outside.append(depth == 0 and not math and char not in ")]$")
+    end = next((m.start() for m in re.finditer(r"(?<=[a-z0-9)\]$][.!?])\s+(?=[A-Z(])|;\s", text)
+                if outside[m.start()]), len(text))
+    head = text[:end].rstrip(".")
     if len(head) <= limit:
         return head
-    cut = head[:limit].rsplit(" ", 1)[0].rstrip(",:;")
-    if cut.count("$") % 2:  # do not cut inside math
-        cut = cut[: cut.rfind("$")].rstrip()
-    return cut + "…"
+    clauses = [i for i in range(limit // 3, min(limit, len(head) - 1))
+               if head[i] in ",:" and head[i + 1] == " " and outside[i]]
+    if clauses:  # whole clauses that keep a useful title
+        return head[:clauses[-1]]
+    spaces = [i for i in range(1, limit) if head[i] == " " and outside[i]]
+    cut = spaces[-1] if spaces else limit
+    whole = head[cut:].lstrip().startswith("(")  # only a parenthesis left out: the phrase is whole
+    return head[:cut].rstrip(",:;") + ("" if whole else "…")
 
 
 def _load_yaml(path: Path) -> dict[str, Any]:
