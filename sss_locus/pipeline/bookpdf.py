@@ -34,6 +34,8 @@ PRINT_CSS = """
   .bd-main, .bd-content, .bd-article-container { max-width: 100% !important; }
   figure, img, table { break-inside: avoid; }
   h1 { break-before: page; }
+  /* the book's title above its printed contents: the first thing printed, no page before it */
+  #jb-print-docs-body > h1 { break-before: auto; }
 }
 """
 
