@@ -69,3 +69,12 @@ def test_row_numbers_are_dropped_and_labels_kept():
 def test_long_names_may_break_after_an_underscore():
     assert cell("elevation_misalignment_deg").replace("\u200b", "") == "elevation_misalignment_deg"
     assert "_\u200bmisalignment" in cell("elevation_misalignment_deg")
+
+
+def test_a_wide_table_of_few_rows_is_turned_a_quarter():
+    wide = pd.DataFrame({"platform": ["auv", "boat"], **{f"q{i}_m": [float(i), 2.0 * i] for i in range(8)}})
+    html = readable_table(wide).to_html()
+    assert _cells(html, "th") == ["quantity", "auv", "boat"]
+    assert _cells(html, "td")[:6] == ["q0 (m)", "0", "0", "q1 (m)", "1.00", "2.00"]
+    narrow = wide.iloc[:, :4]
+    assert _cells(readable_table(narrow).to_html(), "th") == ["platform", "q0 (m)", "q1 (m)", "q2 (m)"]

@@ -112,11 +112,19 @@ def print_pdf(index: Path, target: Path, browser: str, timeout_s: float = 300) -
 
 
 def main(argv: list[str] | None = None) -> int:
+    import argparse
+
+    from sss_locus.pipeline import areas
+
+    parser = argparse.ArgumentParser(description="Print the built book to one PDF.")
+    parser.add_argument("--name", help="the book of the build area _build/NAME (sss-locus book --name NAME)")
+    args = parser.parse_args(argv)
     try:
         browser = find_browser()  # before any work: a missing tool is the common failure
-        index = build_singlehtml(log=lambda line: print(line, file=sys.stderr))
-        pdf = print_pdf(index, paths.build_dir() / "pdf" / PDF_NAME, browser)
-    except (FileNotFoundError, RuntimeError, subprocess.TimeoutExpired) as exc:
+        with areas.entered(args.name):
+            index = build_singlehtml(log=lambda line: print(line, file=sys.stderr))
+            pdf = print_pdf(index, paths.build_dir() / "pdf" / PDF_NAME, browser)
+    except (FileNotFoundError, RuntimeError, ValueError, subprocess.TimeoutExpired) as exc:
         print(f"make pdf: {exc}", file=sys.stderr)
         return 1
     print(pdf)

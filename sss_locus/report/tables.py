@@ -9,6 +9,8 @@ A chapter shows a computed table through :func:`readable_table` instead of the r
   ``True``/``False`` as ``yes``/``no``;
 * an explicit mark, :data:`NOT_APPLICABLE`, instead of ``NaN``/``None``, explained in the
   table's caption;
+* a wide table of few rows (more than :data:`WIDE` columns) is turned a quarter, one row per
+  quantity;
 * text cells wrap at spaces (and after the ``_`` of long names) and numbers never wrap, at 80 %
   of the text size, so a column is never squeezed below its longest word and wide tables fit the
   text column (one that cannot scrolls inside it rather than overflow).
@@ -30,6 +32,8 @@ from .text import fmt_sig
 
 #: The mark of a cell with no value for its row.
 NOT_APPLICABLE = "–"
+#: More columns than this, and fewer rows than columns, and the table is shown turned a quarter.
+WIDE = 7
 #: Unit suffixes of column names, and how the header writes them.
 UNITS = (("_deg", "deg"), ("_rad", "rad"), ("_pct", "%"), ("_m", "m"), ("_s", "s"))
 
@@ -70,6 +74,18 @@ def cell(value: object, digits: int = 3) -> str:
     return str(value).replace("_", "_\u200b")  # long names may break after an underscore
 
 
+def _transposed(shown: pd.DataFrame) -> pd.DataFrame:
+    """A wide table of few rows turned a quarter: one row per column, one column per row, headed
+    by the row's labels (its leading text columns)."""
+    labels = [c for c in shown.columns[:2] if not pd.api.types.is_numeric_dtype(shown[c])] or []
+    heads = [", ".join(str(v) for v in row) for row in shown[labels].itertuples(index=False)] if labels \
+        else [str(i + 1) for i in range(len(shown))]
+    out = shown.drop(columns=labels).T
+    out.columns = pd.Index(heads)
+    out.index = pd.Index([header(c) for c in out.index], name="quantity")
+    return _index_as_columns(out)
+
+
 def _index_as_columns(frame: pd.DataFrame) -> pd.DataFrame:
     """``frame`` with its index levels as leading columns, but for unnamed integer levels (row
     numbers, which say nothing); an unnamed level of labels becomes a column without a header."""
@@ -104,6 +120,8 @@ def readable_table(frame: pd.DataFrame, *, caption: str = "", digits: int = 3,
     if not isinstance(frame, pd.DataFrame):
         raise ValueError(f"frame must be a pandas DataFrame; got {type(frame).__name__}")
     shown = _index_as_columns(frame)
+    if shown.shape[1] > WIDE and shown.shape[0] < shown.shape[1] - 1:  # few rows, many columns
+        shown = _transposed(shown)
     names = [(headers or {}).get(c, header(c)) if not isinstance(c, tuple) else header(c) for c in shown.columns]
     numeric = [pd.api.types.is_numeric_dtype(shown[c]) and not pd.api.types.is_bool_dtype(shown[c])
                for c in shown.columns]
