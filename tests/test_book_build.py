@@ -382,3 +382,56 @@ def test_editing_one_user_value_makes_exactly_its_readers_stale(user_book):
     assert stale() == readers  # every chapter that reads the platform
     user.write_text(text)
     assert stale() == set()
+
+
+# -- tables a reader can read, measured in a real browser -----------------------------------------
+
+TABLE_CHECK = """<script>
+(() => {  // at the end of the body: the stylesheets are loaded, the tables laid out
+  const found = [];
+  document.querySelectorAll("article table").forEach((table, i) => {
+    const name = `table ${i + 1} (${(table.querySelector("th") || table).textContent.trim().slice(0, 30)})`;
+    const box = table.parentElement.getBoundingClientRect(), own = table.getBoundingClientRect();
+    if (own.right > box.right + 1 || table.scrollWidth > table.clientWidth + 1)
+      found.push(`${name} is wider than the text column: ${table.scrollWidth} px in ${Math.round(box.width)} px`);
+    table.querySelectorAll("td, th").forEach(cell => {
+      if (cell.scrollWidth > cell.clientWidth + 1)
+        found.push(`${name}: cell "${cell.textContent.trim().slice(0, 40)}" is narrower than its text`);
+    });
+  });
+  const out = document.createElement("pre");
+  out.id = "table-check";
+  out.textContent = JSON.stringify(found);
+  document.body.appendChild(out);
+})();
+</script>"""
+
+
+def test_chapter_tables_fit_the_text_column_in_a_browser(quick_book, tmp_path):
+    """Every table of every chapter, rendered by headless Chromium in a 1280 px window: none wider
+    than the text column, no cell narrower than its text."""
+    import re
+    from html import unescape as html_unescape
+
+    browser = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
+    if browser is None:
+        pytest.skip("no Chromium to render the pages")
+    problems, tables = [], 0
+    for page in sorted(p for p in (quick_book["html"] / "executed").glob("*.html") if not p.name.startswith(".")):
+        text = page.read_text(encoding="utf-8")
+        tables += text.count("<table")
+        probe = page.with_name(f".{page.stem}-table-check.html")
+        probe.write_text(text.replace("</body>", TABLE_CHECK + "</body>", 1), encoding="utf-8")
+        try:
+            dom = subprocess.run(
+                [browser, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+                 "--disable-background-networking", "--proxy-server=127.0.0.1:9", "--proxy-bypass-list=<-loopback>",
+                 f"--user-data-dir={tmp_path / 'chromium'}", "--window-size=1280,1600", "--virtual-time-budget=10000",
+                 "--dump-dom", probe.as_uri()], capture_output=True, text=True, timeout=180).stdout
+        finally:
+            probe.unlink(missing_ok=True)
+        found = re.search(r'<pre id="table-check"[^>]*>(.*?)</pre>', dom, re.S)
+        assert found, f"{page.name}: the check did not run"
+        problems += [f"{page.name}: {p}" for p in json.loads(html_unescape(found.group(1)))]
+    assert tables >= 10
+    assert not problems, "\n".join(problems)

@@ -39,7 +39,7 @@ def test_the_same_table_gets_the_same_html_and_another_table_other_ids():
     assert re.search(r'id="(T_\w+)"', other).group(1) != re.search(r'id="(T_\w+)"', readable_table(frame).to_html()).group(1)
 
 
-@pytest.mark.parametrize("value, text", [(0.000123456, "0.000123"), (98765.4, "98,765"), (2.0, "2.00"),
+@pytest.mark.parametrize("value, text", [(0.000123456, "1.23e-04"), (0.00123456, "0.00123"), (98765.4, "98,765"), (2.0, "2.00"),
                                          (np.float32(0.5), "0.500"), (np.int64(12345), "12,345"),
                                          (float("inf"), "inf"), (pd.NA, NOT_APPLICABLE), (np.bool_(False), "no")])
 def test_cells(value, text):

@@ -60,23 +60,16 @@ def named_dir(name: str) -> Path:
 def entered(name: str | None) -> Iterator[None]:
     """Within the block, :func:`sss_locus.paths.build_dir` is the area of ``name`` (no-op for
     ``None``); child processes inherit it. The environment is restored afterwards."""
-    keys = (paths.BUILD_DIR_ENV, paths.BUILD_NAME_ENV, CHECKED_ENV)
-    old = {k: os.environ.get(k) for k in keys}
-    try:
-        if name is not None:
-            if paths.build_name() is not None:
-                raise ValueError(f"--name {name!r}: this process already works in the build area "
-                                 f"{paths.build_name()!r} ({paths.build_dir()})")
-            target = named_dir(name)
-            os.environ[paths.BUILD_DIR_ENV] = str(target)
-            os.environ[paths.BUILD_NAME_ENV] = name
+    from sss_locus.pipeline.runner import patched_environ
+
+    values = {CHECKED_ENV: os.environ.get(CHECKED_ENV, "")}  # restored afterwards, like the area
+    if name is not None:
+        if paths.build_name() is not None:
+            raise ValueError(f"--name {name!r}: this process already works in the build area "
+                             f"{paths.build_name()!r} ({paths.build_dir()})")
+        values.update({paths.BUILD_DIR_ENV: str(named_dir(name)), paths.BUILD_NAME_ENV: name})
+    with patched_environ(values):
         yield
-    finally:
-        for key, value in old.items():
-            if value is None:
-                os.environ.pop(key, None)
-            else:
-                os.environ[key] = value
 
 
 def differs_from_paper(entry: Any, parameters: Mapping[str, Any]) -> list[str]:

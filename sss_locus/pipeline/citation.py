@@ -111,7 +111,7 @@ def short_caption(caption: str, limit: int = SHORT_CAPTION_CHARS) -> str:
 
     >>> short_caption("Locus length vs. range; details. More.")
     'Locus length vs. range'
-    >>> short_caption("Median length per bin, Torpedo AUV (REMUS-100, Iver3), dual sonar", limit=50)
+    >>> short_caption("Median length per bin, Torpedo AUV (REMUS-100, Iver3), dual sonar", limit=60)
     'Median length per bin, Torpedo AUV (REMUS-100, Iver3)'
     """
     text = " ".join(caption.split())

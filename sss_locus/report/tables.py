@@ -55,10 +55,11 @@ def header(name: object) -> str:
 
 def cell(value: object, digits: int = 3) -> str:
     """One cell as text: numbers to ``digits`` significant figures (whole numbers of 10**digits
-    and more with thousands separators), booleans as yes/no, missing as :data:`NOT_APPLICABLE`.
+    and more with thousands separators, below 0.001 in scientific notation), booleans as yes/no,
+    missing as :data:`NOT_APPLICABLE`.
 
-    >>> [cell(v) for v in (0.012345, 123456.7, 7, True, None, float("nan"), "auv")]
-    ['0.0123', '123,457', '7', 'yes', '–', '–', 'auv']
+    >>> [cell(v) for v in (0.012345, 8.08e-12, 123456.7, 7, True, None, float("nan"), "auv")]
+    ['0.0123', '8.08e-12', '123,457', '7', 'yes', '–', '–', 'auv']
     """
     if value is None or (isinstance(value, (float, np.floating)) and not math.isfinite(value)):
         return NOT_APPLICABLE if value is None or math.isnan(value) else str(value)
@@ -70,6 +71,8 @@ def cell(value: object, digits: int = 3) -> str:
         return f"{int(value):,}"
     if isinstance(value, (float, np.floating)):
         x = float(value)
+        if x != 0 and abs(x) < 1e-3:  # a long row of zeros would widen the column
+            return f"{x:.{digits - 1}e}"
         return f"{x:,.0f}" if abs(x) >= 10 ** digits else fmt_sig(x, digits)
     return str(value).replace("_", "_\u200b")  # long names may break after an underscore
 
