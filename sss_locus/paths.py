@@ -16,7 +16,9 @@ Layout
 ``build_dir()``
     The build area (git-ignored), ``_build/`` by default. Set the environment variable
     ``SSS_LOCUS_BUILD_DIR`` to put it elsewhere; the tests do this so that a test build never
-    overwrites the ``book``-profile outputs. Inside it:
+    overwrites the ``book``-profile outputs. ``--name NAME`` (``sss-locus run``/``book``) makes
+    ``<build>/NAME`` the build area of that command, a book of its own beside the reproduction
+    (:mod:`sss_locus.pipeline.areas`). Inside it:
 
     - ``html/index.html``: the built book (where Jupyter Book users look for it),
     - ``source/``: the *staged* book source. ``sss-locus book`` copies ``_config.yml``,
@@ -56,6 +58,9 @@ LOCK_FILE: Path = REPO_ROOT / "environment.lock"
 CITATION_FILE: Path = REPO_ROOT / "CITATION.cff"
 
 BUILD_DIR_ENV = "SSS_LOCUS_BUILD_DIR"
+#: Set with ``BUILD_DIR_ENV`` by ``--name NAME``: the build area is the named area ``NAME``
+#: (``_build/NAME``), not the reproduction (see :mod:`sss_locus.pipeline.areas`).
+BUILD_NAME_ENV = "SSS_LOCUS_BUILD_NAME"
 CACHE_DIR_ENV = "SSS_LOCUS_CACHE_DIR"
 
 #: Folder names inside the build area (also used in ``_toc.yml`` and ``_config.yml``).
@@ -71,6 +76,11 @@ def build_dir() -> Path:
     """Root of the build area: ``$SSS_LOCUS_BUILD_DIR`` or ``<repo>/_build``."""
     override = os.environ.get(BUILD_DIR_ENV)
     return Path(override).resolve() if override else REPO_ROOT / "_build"
+
+
+def build_name() -> str | None:
+    """Name of the named build area in use (``--name``), ``None`` in the reproduction's area."""
+    return os.environ.get(BUILD_NAME_ENV) or None
 
 
 def source_dir() -> Path:

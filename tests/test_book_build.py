@@ -237,79 +237,148 @@ def test_interactive_view_renders_with_the_network_blocked(quick_book):
     assert shot.is_file() and shot.stat().st_size > 10_000
 
 
-# -- a user's platform through the whole book -----------------------------------------------------
+# -- the your-hardware page, run in order on a built book ------------------------------------------
 
 EXAMPLE = paths.REPO_ROOT / "data" / "examples" / "my_auv.toml"
+PAGE = paths.BOOK_DIR / "your_hardware.md"
+
+
+def page_commands(kind: str = "bash") -> list[list[str]]:
+    """The ``sss-locus`` commands of the page's ``kind`` code blocks, in order, as argument lists
+    (``text`` blocks: the commands after a ``$`` prompt, shown there with their refusal)."""
+    import re
+    import shlex
+
+    out = []
+    for block in re.findall(rf"```{kind}\n(.*?)```", PAGE.read_text(encoding="utf-8"), re.S):
+        for line in block.replace("\\\n", " ").splitlines():
+            if kind == "text" and not line.startswith("$ "):
+                continue  # a command's output
+            line = line.strip().removeprefix("$ ")
+            if line.startswith("sss-locus "):
+                out.append(shlex.split(line, comments=True))
+    return out
+
+
+def _snapshot(area: Path) -> dict[str, str]:
+    """SHA-256 of every file of the reproduction: its staged source (executed chapters, figures,
+    manifests, BibTeX, pages) and its site (the claims page among them)."""
+    import hashlib
+
+    return {p.relative_to(area).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+            for top in ("source", "html") for p in sorted((area / top).rglob("*")) if p.is_file()}
 
 
 @pytest.fixture(scope="module")
 def user_book(quick_book, tmp_path_factory):
-    """The quick book again, in a copy of ``quick_book``'s build area and with its cache (so the
-    shipped platforms' studies are cache hits), with the example file's ``my_auv`` beside the
-    paper's AUV and without the boat: a user platform added and a paper platform replaced."""
+    """Every ``sss-locus`` command of the your-hardware page, in order (quick profile, the example
+    file copied so a test may edit it), on a copy of ``quick_book``'s build area with its cache
+    (the paper's platforms are cache hits): the reproduction's files before and after, each
+    command's output, and the areas the commands named."""
     work = tmp_path_factory.mktemp("user-book")
     area = work / "build"
-    shutil.copytree(quick_book["area"], area, ignore=shutil.ignore_patterns("html", "jupyter-book"))
+    shutil.copytree(quick_book["area"], area, ignore=shutil.ignore_patterns("jupyter-book"))
     user = work / "my_auv.toml"
     shutil.copy(EXAMPLE, user)
     env = {**quick_book["env"], paths.BUILD_DIR_ENV: str(area)}
-    result = subprocess.run(
-        [sys.executable, "-m", "sss_locus.pipeline.cli", "book", "--profile", "quick", "--data", str(user),
-         "-p", "platforms", '["my_auv", "auv"]'],
-        env=env, capture_output=True, text=True, timeout=TIMEOUT_S, stdin=subprocess.DEVNULL)
-    if result.returncode != 0:
-        pytest.fail(f"user-platform book failed:\n{result.stdout[-6000:]}\n{result.stderr[-6000:]}")
-    return {"area": area, "html": area / "html", "user": user, "env": env}
+    before = _snapshot(area)
+
+    def run(argv: list[str]) -> subprocess.CompletedProcess:
+        argv = [str(user) if a == "data/examples/my_auv.toml" else a for a in argv[1:]]
+        if argv[0] in ("run", "book") and "--profile" not in argv:
+            argv += ["--profile", "quick"]
+        return subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli", *argv], env=env, cwd=paths.REPO_ROOT,
+                              capture_output=True, text=True, timeout=TIMEOUT_S, stdin=subprocess.DEVNULL)
+
+    refused = [run(argv) for argv in page_commands("text")]
+    outputs = []
+    for argv in page_commands("bash"):
+        result = run(argv)
+        if result.returncode != 0:
+            pytest.fail(f"`{' '.join(argv)}` failed:\n{result.stdout[-6000:]}\n{result.stderr[-6000:]}")
+        outputs.append((argv, result.stdout))
+    return {"area": area, "user": user, "env": env, "before": before, "after": _snapshot(area),
+            "refused": refused, "outputs": outputs,
+            "my_auv": area / "my_auv", "beside": area / "beside"}
 
 
-def _csv_hashes(area: Path) -> dict[str, str]:
-    import hashlib
+def test_the_page_runs_a_quick_answer_runs_and_a_book_each_into_its_own_area(user_book):
+    commands = [argv[:2] for argv, _ in user_book["outputs"]]
+    assert ["sss-locus", "answer"] in commands and ["sss-locus", "book"] in commands
+    assert all("--name" in argv for argv, _ in user_book["outputs"] if argv[1] in ("run", "book"))
+    answer = next(out for argv, out in user_book["outputs"] if argv[1] == "answer")
+    assert "my_auv.toml (user, sha256" in answer and "prefer" in answer and "Top drivers" in answer
+    assert user_book["refused"] and all(r.returncode == 2 and "would go into the reproduction" in r.stderr
+                                        for r in user_book["refused"])  # the page's refused example is
 
-    return {p.name: hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in (area / "source" / "_extra" / "figures").glob("*.csv")}
+
+def test_the_reproduction_is_byte_identical_after_the_pages_examples(user_book):
+    """The paper's figures (images, data, manifests, BibTeX), executed chapters and glued numbers,
+    and the built site with its claims table: not one file added, removed or changed."""
+    before, after = user_book["before"], user_book["after"]
+    assert any(k.startswith("source/_extra/figures/fig-") and k.endswith(".bib") for k in before)
+    assert "html/book/claims.html" in before and "<table" in (user_book["area"] / "html/book/claims.html").read_text()
+    assert after == before
 
 
 def test_user_platform_book_builds_and_places_every_figure(user_book):
-    html = user_book["html"]
+    html = user_book["my_auv"] / "html"
     assert bookbuild.site_problems(html) == []
     pose = unescape((html / "executed" / "pose_space.html").read_text())
-    for label in ("fig-sensitivity-my-auv", "fig-heatmaps-my-auv", "fig-sensitivity-auv", "fig-heatmaps-auv"):
+    for label in ("fig-sensitivity-my-auv", "fig-heatmaps-my-auv"):
         assert f'id="{label}"' in pose
-    assert "fig-heatmaps-boat" not in pose
-    assert "is left out here: this run does not include" in pose  # prose written for both
+    assert "fig-heatmaps-boat" not in pose and "fig-heatmaps-auv" not in pose
+    assert "is left out here: this run does not include" in pose  # prose written for the paper's platforms
     figures = (html / "book" / "figures.html").read_text()
     assert "sss-locus:fig-heatmaps-my-auv" in figures and "sss-locus:fig-heatmaps-boat" not in figures
 
 
 def test_claims_page_says_the_inputs_are_not_the_papers(user_book):
-    claims = unescape((html := user_book["html"] / "book" / "claims.html").read_text())
-    assert "This build does not use the paper" in claims and "does not include `boat`" in claims.replace(
-        "<code class=\"docutils literal notranslate\"><span class=\"pre\">boat</span></code>", "`boat`")
+    claims = unescape((html := user_book["my_auv"] / "html" / "book" / "claims.html").read_text())
+    assert "This build does not use the paper" in claims and "does not include `auv`" in claims.replace(
+        "<code class=\"docutils literal notranslate\"><span class=\"pre\">auv</span></code>", "`auv`")
     assert "<table" not in claims, html  # verdicts written for the paper's inputs are not shown
 
 
-def test_user_figures_name_the_users_platform_and_values(user_book):
-    manifests = {m["label"]: m for m in load_manifests(user_book["area"] / "source" / "_extra" / "figures")}
-    for label in ("fig-sensitivity-my-auv", "fig-survey-passes", "fig-noise-crossing", "fig-rigs"):
-        m = manifests[label]
-        values = m["data_inputs"]["values"]["my_auv"]
+def test_user_figures_cite_only_the_users_platform_and_inputs(user_book):
+    figures = user_book["my_auv"] / "source" / "_extra" / "figures"
+    manifests = {m["label"]: m for m in load_manifests(figures)}
+    assert {"fig-sensitivity-my-auv", "fig-survey-passes", "fig-noise-crossing", "fig-rigs"} <= set(manifests)
+    for label, m in manifests.items():
+        inputs = m["data_inputs"]
+        assert inputs["platforms"] == ["my_auv"] and list(inputs["values"]) == ["my_auv"], label
+        values = inputs["values"]["my_auv"]
         assert values["sonar"]["azimuth_deg"] == 40.0 and values["tilt_deg"]["port"] == 15.0
-        assert any(f["role"] == "user" and f["path"] == str(user_book["user"]) for f in m["data_inputs"]["files"])
-        bib = (user_book["area"] / "source" / "_extra" / "figures" / f"{label}.bib").read_text()
+        files = {f["path"] for f in inputs["files"]}
+        assert str(user_book["user"]) in files, label
+        # a shipped file only for a shipped entry the figure read: the survey's offset models
+        shipped = {e for e in inputs["entries"] if not e.endswith(("my_auv", "narrow_fan_450"))}
+        assert files - {str(user_book["user"])} == ({"data/survey.toml"} if shipped else set()), label
+        assert all(e.startswith("offset_models.") for e in shipped), label
+        bib = (figures / f"{label}.bib").read_text()
         assert "my\\_auv (Example AUV" in bib and "40 x 0.2 deg, 100 m, tilt 15 deg" in bib
-        assert "Example AUV" in m["caption"]
+        assert "edgetech" not in bib.lower() and "omniscan" not in bib.lower() and "platforms.toml" not in bib
+    assert "Example AUV" in manifests["fig-sensitivity-my-auv"]["caption"]
 
 
-def test_shipped_figures_keep_their_labels_and_data(quick_book, user_book):
-    """Adding a platform changes no figure of a shipped one: each per-platform figure of the AUV
-    has the same label and byte-identical data files as in the default build."""
-    before, after = _csv_hashes(quick_book["area"]), _csv_hashes(user_book["area"])
-    auv = {name: h for name, h in before.items() if name.startswith(("fig-sensitivity-auv", "fig-heatmaps-auv"))}
-    assert auv and all(after.get(name) == h for name, h in auv.items())
+def test_a_paper_figure_computed_beside_the_users_cites_what_the_papers_does(quick_book, user_book):
+    """In the area `beside` (the AUV and the user's platform in one run), the AUV's pose-space
+    figures have the reproduction's data files, data inputs and BibTeX entry, byte for byte."""
+    paper = quick_book["area"] / "source" / "_extra" / "figures"
+    beside = user_book["beside"] / "source" / "_extra" / "figures"
+    for label in ("fig-sensitivity-auv", "fig-heatmaps-auv"):
+        ours, theirs = json.loads((beside / f"{label}.json").read_text()), json.loads((paper / f"{label}.json").read_text())
+        assert ours["data_inputs"] == theirs["data_inputs"] and ours["data_inputs"]["platforms"] == ["auv"]
+        assert (beside / f"{label}.bib").read_text() == (paper / f"{label}.bib").read_text()
+        for name in ours["files"]:
+            if name.endswith(".csv"):
+                assert (beside / name).read_bytes() == (paper / name).read_bytes(), name
+        mine = json.loads((beside / f"{label.replace('-auv', '-my-auv')}.json").read_text())["data_inputs"]
+        assert mine["platforms"] == ["my_auv"] and [f["role"] for f in mine["files"]] == ["user"]
 
 
 def test_editing_one_user_value_makes_exactly_its_readers_stale(user_book):
-    env = user_book["env"]
+    env = {**user_book["env"], paths.BUILD_DIR_ENV: str(user_book["my_auv"]), paths.BUILD_NAME_ENV: "my_auv"}
     script = ("import json, sys; from sss_locus.pipeline import outputs, registry; "
               "print(json.dumps(sorted(e.name for e in registry.load_registry().values() "
               "if outputs.problems([e]))))")
@@ -329,3 +398,56 @@ def test_editing_one_user_value_makes_exactly_its_readers_stale(user_book):
     assert stale() == readers  # every chapter that reads the platform
     user.write_text(text)
     assert stale() == set()
+
+
+# -- tables a reader can read, measured in a real browser -----------------------------------------
+
+TABLE_CHECK = """<script>
+(() => {  // at the end of the body: the stylesheets are loaded, the tables laid out
+  const found = [];
+  document.querySelectorAll("article table").forEach((table, i) => {
+    const name = `table ${i + 1} (${(table.querySelector("th") || table).textContent.trim().slice(0, 30)})`;
+    const box = table.parentElement.getBoundingClientRect(), own = table.getBoundingClientRect();
+    if (own.right > box.right + 1 || table.scrollWidth > table.clientWidth + 1)
+      found.push(`${name} is wider than the text column: ${table.scrollWidth} px in ${Math.round(box.width)} px`);
+    table.querySelectorAll("td, th").forEach(cell => {
+      if (cell.scrollWidth > cell.clientWidth + 1)
+        found.push(`${name}: cell "${cell.textContent.trim().slice(0, 40)}" is narrower than its text`);
+    });
+  });
+  const out = document.createElement("pre");
+  out.id = "table-check";
+  out.textContent = JSON.stringify(found);
+  document.body.appendChild(out);
+})();
+</script>"""
+
+
+def test_chapter_tables_fit_the_text_column_in_a_browser(quick_book, tmp_path):
+    """Every table of every chapter, rendered by headless Chromium in a 1280 px window: none wider
+    than the text column, no cell narrower than its text."""
+    import re
+    from html import unescape as html_unescape
+
+    browser = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
+    if browser is None:
+        pytest.skip("no Chromium to render the pages")
+    problems, tables = [], 0
+    for page in sorted(p for p in (quick_book["html"] / "executed").glob("*.html") if not p.name.startswith(".")):
+        text = page.read_text(encoding="utf-8")
+        tables += text.count("<table")
+        probe = page.with_name(f".{page.stem}-table-check.html")
+        probe.write_text(text.replace("</body>", TABLE_CHECK + "</body>", 1), encoding="utf-8")
+        try:
+            dom = subprocess.run(
+                [browser, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+                 "--disable-background-networking", "--proxy-server=127.0.0.1:9", "--proxy-bypass-list=<-loopback>",
+                 f"--user-data-dir={tmp_path / 'chromium'}", "--window-size=1280,1600", "--virtual-time-budget=10000",
+                 "--dump-dom", probe.as_uri()], capture_output=True, text=True, timeout=180).stdout
+        finally:
+            probe.unlink(missing_ok=True)
+        found = re.search(r'<pre id="table-check"[^>]*>(.*?)</pre>', dom, re.S)
+        assert found, f"{page.name}: the check did not run"
+        problems += [f"{page.name}: {p}" for p in json.loads(html_unescape(found.group(1)))]
+    assert tables >= 10
+    assert not problems, "\n".join(problems)

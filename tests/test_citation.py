@@ -62,6 +62,15 @@ def test_short_caption_is_the_first_clause_and_short():
     assert citation.short_caption("A $x$ " + "long " * 30, limit=5).count("$") % 2 == 0
 
 
+def test_a_long_caption_gives_a_title_of_whole_clauses():
+    caption = ("Median locus length per bin, Torpedo AUV (REMUS-100 / Iver3 class), dual EdgeTech 2205, feature "
+               "on the port side of both vehicles (20,000 samples, seed 1): (a) range vs range.")
+    title = citation.short_caption(caption)
+    assert title == "Median locus length per bin, Torpedo AUV (REMUS-100 / Iver3 class), dual EdgeTech 2205"
+    head = "Two range spheres $S_1, S_2$ meet in a circle of radius $r$ (no cut in math or brackets, here)"
+    assert citation.short_caption(head + ", " + "x" * 200) == head
+
+
 def test_figure_entry_fields(tmp_path):
     config = tmp_path / "_config.yml"
     config.write_text("html:\n  baseurl: https://example.org/book/\n")

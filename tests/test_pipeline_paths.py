@@ -74,3 +74,19 @@ def test_book_output_drops_only_jupyter_books_staging_path_lines():
     shown = StagingPathFilter()
     kept = [out for line in tail for out in shown.feed(line)] + shown.flush()
     assert kept == [tail[0], "\n", "\n", tail[12], rule, tail[14], rule]
+
+
+def test_book_output_to_a_file_has_no_colour_codes_and_no_per_file_progress():
+    from sss_locus.pipeline.buildlog import ANSI, StagingPathFilter
+
+    lines = ["\x1b[01mreading sources... \x1b[39;49;00m[  5%] \x1b[35mbook/chapters\x1b[39;49;00m\n",
+             "\x1b[01mreading sources... \x1b[39;49;00m[100%] \x1b[35mexecuted/water\x1b[39;49;00m\n",
+             "\x1b[01mwriting output... \x1b[39;49;00m[ 50%] \x1b[32mbook/intro\x1b[39;49;00m\n",
+             "\x1b[91mWARNING: a real warning [ 50%]\x1b[39;49;00m\n", "\x1b[01mbuild succeeded.\x1b[39;49;00m\n"]
+    plain = StagingPathFilter(plain=True)
+    kept = [out for line in lines for out in plain.feed(line)] + plain.flush()
+    assert kept == ["reading sources... [100%] executed/water\n", "WARNING: a real warning [ 50%]\n",
+                    "build succeeded.\n"]
+    coloured = StagingPathFilter()  # a terminal keeps the colours
+    assert [out for line in lines for out in coloured.feed(line)] == [lines[1], lines[3], lines[4]]
+    assert all(not ANSI.search(line) for line in kept)

@@ -185,6 +185,18 @@ def note_read(*entries: str) -> None:
             fh.write("".join(f"{e}\n" for e in entries))
 
 
+def reads_so_far() -> set[str] | None:
+    """The data entries this run has read so far (:func:`note_read`), ``None`` outside a run that
+    records them (no :data:`READS_ENV`)."""
+    target = os.environ.get(READS_ENV)
+    if not target:
+        return None
+    try:
+        return set(Path(target).read_text(encoding="utf-8").split())
+    except OSError:
+        return set()
+
+
 def entries_sha256(entries: Iterable[str], inputs: DataInputs | None = None) -> dict[str, str]:
     """SHA-256 of each dotted entry of the merged document of ``inputs`` (``null`` if absent)."""
     doc = document(inputs)

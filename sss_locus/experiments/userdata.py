@@ -104,8 +104,10 @@ def hardware_flags(inputs: DataInputs | None = None) -> list[str]:
     return schema.hardware_warnings(parse_platforms(document(inputs)))
 
 
-def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = None) -> dict[str, Any]:
-    """The sonar, mounting and envelope values the named platforms resolve to (for manifests)."""
+def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = None, *,
+                    envelopes: bool | Iterable[str] = True) -> dict[str, Any]:
+    """The sonar, mounting and envelope values the named platforms resolve to (for manifests);
+    the envelope only for ``envelopes`` (True: every platform, else the keys listed)."""
     doc = document(inputs)
     platforms = parse_platforms(doc)
     out: dict[str, Any] = {}
@@ -113,8 +115,9 @@ def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = No
         if key not in platforms:
             continue
         p = platforms[key]
+        with_envelope = envelopes is True or (envelopes is not False and key in set(envelopes))
         datadoc.note_read(  # a figure's manifest records these values: the run reads them
-            f"platforms.{key}", f"sonars.{p.sonar.key}", f"envelopes.{key}")
+            f"platforms.{key}", f"sonars.{p.sonar.key}", *([f"envelopes.{key}"] if with_envelope else []))
         s = p.sonar
         entry: dict[str, Any] = {
             "name": p.name,
@@ -125,7 +128,7 @@ def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = No
             "attitude_max_deg": {"roll": p.roll_max_deg, "pitch": p.pitch_max_deg},
             "depth_m": [p.depth_min_m, p.depth_max_m],
         }
-        if key in doc.get("envelopes", {}):
+        if with_envelope and key in doc.get("envelopes", {}):
             entry["envelope"] = parse_envelope(doc, key).key()
         user = sorted(k for k, v in p.provenance.items() if v.startswith("assumption: " + SET_NOTE))
         if user:
@@ -139,6 +142,64 @@ def record(platform_keys: Iterable[str] = (), inputs: DataInputs | None = None) 
     inputs = active() if inputs is None else inputs
     return {"files": files_read(inputs), "overrides": list(inputs.sets),
             "values": resolved_values(platform_keys, inputs)}
+
+
+def figure_record(platform_keys: Iterable[str], inputs: DataInputs | None = None,
+                  read: Iterable[str] | None = None) -> dict[str, Any]:
+    """The data one figure was computed from: exactly the platforms it shows, with their entries.
+
+    Parameters
+    ----------
+    platform_keys : iterable of str
+        The platforms the figure shows (a figure per platform: one; a figure combining
+        platforms: each of them).
+    inputs : DataInputs, optional
+        The run's data inputs (default: the active ones).
+    read : iterable of str, optional
+        The data entries the run has read so far (:func:`sss_locus.experiments.datadoc.reads_so_far`);
+        a platform's ``envelopes``/``noise`` entries and the ``offset_models`` count only when read.
+        ``None`` (outside the runner): every entry the platforms have.
+
+    Returns
+    -------
+    dict
+        ``platforms`` (the keys), ``entries`` (each dotted data entry with the SHA-256 of its merged
+        value: ``platforms.<key>``, ``sonars.<sonar>``, ``envelopes.<key>``, ``noise.<key>``,
+        ``offset_models.<model>``), ``files`` (the data files that define any of these entries,
+        ``{"path", "sha256", "role"}``), ``overrides`` (the ``--set`` values inside them) and
+        ``values`` (:func:`resolved_values` of the platforms).
+    """
+    inputs = active() if inputs is None else inputs
+    keys = [k for k in dict.fromkeys(platform_keys) if isinstance(k, str)]
+    doc = document(inputs)
+    read = None if read is None else set(read)
+
+    def wanted(entry: str) -> bool:
+        table, _, key = entry.partition(".")
+        return key in doc.get(table, {}) and (read is None or entry in read)
+
+    envelopes = [k for k in keys if wanted(f"envelopes.{k}")]
+    values = resolved_values(keys, inputs, envelopes=envelopes)
+    entries = [e for k, v in values.items()
+               for e in (f"platforms.{k}", f"sonars.{v['sonar']['key']}", f"envelopes.{k}", f"noise.{k}")
+               if e.startswith(("platforms.", "sonars.")) or wanted(e)]
+    entries += sorted(e for e in (read or ()) if e.startswith("offset_models.") and values)
+    hashes = datadoc.entries_sha256(entries, inputs)
+
+    def defines(path: str) -> bool:
+        try:
+            own = datadoc.read_toml(datadoc.DATA_DIR / path.removeprefix("data/") if path.startswith("data/") else path)
+        except (OSError, ValueError):
+            return True  # unreadable now: keep it listed rather than hide an input
+        return any(e.partition(".")[2] in (own.get(e.partition(".")[0]) or {}) for e in entries)
+
+    def inside(override: str) -> bool:
+        key = override.split("=", 1)[0].strip()
+        return any(key == e or key.startswith(e + ".") for e in entries)
+
+    return {"platforms": list(values), "entries": hashes,
+            "files": [f for f in files_read(inputs) if defines(f["path"])],
+            "overrides": [o for o in inputs.sets if inside(o)], "values": values}
 
 
 def describe_platform(key: str, inputs: DataInputs | None = None) -> str:

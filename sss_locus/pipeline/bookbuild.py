@@ -360,7 +360,7 @@ def _build(log) -> Path:
     with subprocess.Popen(cmd, env=env, cwd=root, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           text=True, errors="replace") as proc:
         assert proc.stdout is not None
-        shown = StagingPathFilter()
+        shown = StagingPathFilter(plain=not sys.stdout.isatty())
         for line in proc.stdout:
             sys.stdout.writelines(shown.feed(line))
             if "WARNING" in line or "ERROR" in line or "CRITICAL" in line:

@@ -119,13 +119,21 @@ def print_pdf(index: Path, target: Path, browser: str, timeout_s: float = 300) -
 def main(argv: list[str] | None = None) -> int:
     """Print the book; then, when poppler's tools are installed, read the PDF back and fail on
     any of :func:`sss_locus.pipeline.pdfcheck.problems`."""
+    import argparse
+
+    from sss_locus.pipeline import areas
+
+    parser = argparse.ArgumentParser(description="Print the built book to one PDF and check it.")
+    parser.add_argument("--name", help="the book of the build area _build/NAME (sss-locus book --name NAME)")
+    args = parser.parse_args(argv)
     try:
         browser = find_browser()  # before any work: a missing tool is the common failure
-        index = build_singlehtml(log=lambda line: print(line, file=sys.stderr))
-        pdf = print_pdf(index, paths.build_dir() / "pdf" / PDF_NAME, browser)
+        with areas.entered(args.name):
+            index = build_singlehtml(log=lambda line: print(line, file=sys.stderr))
+            pdf = print_pdf(index, paths.build_dir() / "pdf" / PDF_NAME, browser)
         missing = pdfcheck.missing_tools()
         found = [] if missing else pdfcheck.problems(pdf, index)
-    except (FileNotFoundError, RuntimeError, subprocess.TimeoutExpired) as exc:
+    except (FileNotFoundError, RuntimeError, ValueError, subprocess.TimeoutExpired) as exc:
         print(f"make pdf: {exc}", file=sys.stderr)
         return 1
     if missing:

@@ -5,6 +5,8 @@ from __future__ import annotations
 import re
 
 ANSI = re.compile(r"\x1b\[[0-9;]*m")  # terminal colour codes
+#: Sphinx's per-file progress lines ("reading sources... [ 42%] executed/noise"); the 100 % one stays.
+PROGRESS = re.compile(r"^[a-z][a-z ]+\.\.\. \[\s*(\d+)%\]")
 
 
 class StagingPathFilter:
@@ -13,14 +15,23 @@ class StagingPathFilter:
     are in ...", and the banner "Finished generating HTML for book." with the rules around it.
     Every other line passes unchanged, in order (the build prints where the book really is).
 
+    Sphinx's per-file progress lines are left out but for the last (100 %) of each kind; with
+    ``plain`` (output that is not a terminal) the colour codes are removed from every line.
+
     Feed each line to :meth:`feed` and write what it returns; :meth:`flush` at the end."""
 
-    def __init__(self) -> None:
+    def __init__(self, plain: bool = False) -> None:
         self.in_banner = False
+        self.plain = plain
         self.pending: list[str] = []  # a rule and blank lines that may open the banner
 
     def feed(self, line: str) -> list[str]:
         text = ANSI.sub("", line).strip()
+        if self.plain:
+            line = ANSI.sub("", line)
+        progress = PROGRESS.match(text)
+        if progress and progress.group(1) != "100":
+            return []
         if self.in_banner:
             if text.startswith("====="):
                 self.in_banner = False

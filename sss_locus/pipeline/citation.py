@@ -38,7 +38,7 @@ NOTEBOOKS_SUBDIR = "notebooks"
 #: Staged folder of the per-figure blocks (``<source>/_cite/<label>.md``).
 CITE_SUBDIR = "_cite"
 #: Longest short caption in a figure's BibTeX ``title`` (characters, before escaping).
-SHORT_CAPTION_CHARS = 90
+SHORT_CAPTION_CHARS = 130
 _SPECIALS = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "&": r"\&", "%": r"\%",
              "#": r"\#", "_": r"\_", "^": r"\^{}", "~": r"\~{}", "$": r"\$"}
 _MARKDOWN = ((re.compile(r"\*\*(.+?)\*\*"), "textbf"), (re.compile(r"(?<![\w*])\*(?!\s)(.+?)\*"), "emph"),
@@ -105,19 +105,39 @@ def latex_escape(text: str, *, markdown: bool = False) -> str:
 
 
 def short_caption(caption: str, limit: int = SHORT_CAPTION_CHARS) -> str:
-    """The caption's first sentence (or clause, at ``;``), cut at a word to ``limit`` characters.
+    """The caption's first sentence (or clause, at ``;``); when longer than ``limit`` characters,
+    its longest run of whole clauses (ending before a ``,`` or ``:``) that fits, else cut at a
+    word with an ellipsis. Sentences, clauses and cuts end only outside parentheses, brackets and
+    ``$...$`` math, so a title never opens a bracket it does not close.
 
     >>> short_caption("Locus length vs. range; details. More.")
     'Locus length vs. range'
+    >>> short_caption("Median length per bin, Torpedo AUV (REMUS-100, Iver3), dual sonar", limit=60)
+    'Median length per bin, Torpedo AUV (REMUS-100, Iver3)'
     """
     text = " ".join(caption.split())
-    head = re.split(r"(?<=[a-z0-9)\]$][.!?])\s+(?=[A-Z(])|;\s", text, maxsplit=1)[0].rstrip(".")
+    depth, math, outside = 0, False, []  # outside[i]: character i is outside brackets and math
+    for char in text:
+        if char == "$":
+            math = not math
+        elif not math and char in "([":
+            depth += 1
+        elif not math and char in ")]":
+            depth = max(0, depth - 1)
+        outside.append(depth == 0 and not math and char not in ")]$")
+    end = next((m.start() for m in re.finditer(r"(?<=[a-z0-9)\]$][.!?])\s+(?=[A-Z(])|;\s", text)
+                if outside[m.start()]), len(text))
+    head = text[:end].rstrip(".")
     if len(head) <= limit:
         return head
-    cut = head[:limit].rsplit(" ", 1)[0].rstrip(",:;")
-    if cut.count("$") % 2:  # do not cut inside math
-        cut = cut[: cut.rfind("$")].rstrip()
-    return cut + "…"
+    clauses = [i for i in range(limit // 3, min(limit, len(head) - 1))
+               if head[i] in ",:" and head[i + 1] == " " and outside[i]]
+    if clauses:  # whole clauses that keep a useful title
+        return head[:clauses[-1]]
+    spaces = [i for i in range(1, limit) if head[i] == " " and outside[i]]
+    cut = spaces[-1] if spaces else limit
+    whole = head[cut:].lstrip().startswith("(")  # only a parenthesis left out: the phrase is whole
+    return head[:cut].rstrip(",:;") + ("" if whole else "…")
 
 
 def _load_yaml(path: Path) -> dict[str, Any]:
@@ -175,8 +195,10 @@ def figure_url(label: str, config: Path | None = None) -> str | None:
 
 
 def data_note(manifest: Mapping[str, Any]) -> str:
-    """``; computed for <platform>: <sonar>, <aperture>, <range>, tilt ...; data: <files>``
-    (LaTeX) from a manifest's ``data_inputs``; empty when it has none."""
+    """``; computed for <platform> (<name>: <sonar>, <aperture>, <range>, tilt ...); data entries
+    <entries>; data files <file> (sha256 ...), ...`` (LaTeX) from a manifest's ``data_inputs``:
+    exactly the platforms, data entries and data files the figure was computed from (see
+    :func:`sss_locus.experiments.userdata.figure_record`); empty when it has none."""
     inputs = manifest.get("data_inputs") or {}
     parts = []
     for key, v in (inputs.get("values") or {}).items():
@@ -184,11 +206,12 @@ def data_note(manifest: Mapping[str, Any]) -> str:
         tilts = "/".join(f"{t:g}" for t in dict.fromkeys((v.get("tilt_deg") or {}).values()))
         parts.append(f"{key} ({v.get('name', '')}: {s.get('name', '')}, {s.get('azimuth_deg', 0):g} x "
                      f"{s.get('elevation_deg', 0):g} deg, {s.get('max_range_m', 0):g} m, tilt {tilts} deg)")
-    users = [f"{Path(f['path']).name} (sha256 {f['sha256'][:12]})" for f in inputs.get("files", [])
-             if f.get("role") == "user"]
-    users += [f"--set {o}" for o in inputs.get("overrides", [])]
+    files = [f"{f['path'] if f.get('role') == 'shipped' else Path(f['path']).name} (sha256 {f['sha256'][:12]})"
+             for f in inputs.get("files", [])]
+    files += [f"--set {o}" for o in inputs.get("overrides", [])]
     note = ("; computed for " + "; ".join(parts)) if parts else ""
-    note += ("; user data: " + ", ".join(users)) if users else ""
+    note += ("; data entries " + ", ".join(inputs["entries"])) if inputs.get("entries") else ""
+    note += ("; data files " + ", ".join(files)) if files else ""
     return latex_escape(note)
 
 

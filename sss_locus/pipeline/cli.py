@@ -8,8 +8,12 @@ Examples::
     sss-locus book --profile quick       # the same from the fast profile
     sss-locus book --no-run              # rebuild the site from the executed copies as they are
     sss-locus cache --prune              # cache size; delete entries no current input reaches
-    sss-locus run pose_space --data my.toml -p platforms '["my_auv"]'   # your sonar and vehicle
-    sss-locus book --data my.toml --set platforms.auv.transducers.port.tilt_deg=15
+    sss-locus run pose_space --data my.toml -p platforms '["my_auv"]' --name my_auv  # your sonar and vehicle
+    sss-locus book --data my.toml -p platforms '["my_auv"]' --name my_auv  # its book: _build/my_auv/html
+    sss-locus answer --data my.toml -p platform my_auv  # bands and drivers in the terminal, no book
+
+A run on other inputs than the paper's (--data, --set, other platforms) goes into a build area of
+its own with --name; into the reproduction (_build/) it is refused unless --replace-reproduction.
 
 Every parameter value is checked (type, range, allowed values, memory) before a kernel starts.
 A failing notebook is reported in one line (cell and error); add --verbose for the traceback.
@@ -23,7 +27,7 @@ import sys
 import time
 
 from sss_locus import paths
-from sss_locus.pipeline import scaleout
+from sss_locus.pipeline import areas, scaleout
 from sss_locus.pipeline.registry import RENAMED, ParameterError, get_entry, load_registry
 
 
@@ -48,6 +52,15 @@ def _data_inputs(args: argparse.Namespace):
     return inputs
 
 
+def _area_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--name", metavar="NAME",
+                        help="work in the build area _build/NAME (its own executed copies, figures and "
+                        "site _build/NAME/html) instead of the reproduction in _build/")
+    parser.add_argument("--replace-reproduction", action="store_true",
+                        help="allow a run on other inputs than the paper's (--data, --set, other platforms) "
+                        "to replace the reproduction's chapters, figures and claims table")
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="sss-locus", description=__doc__.split("\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -62,6 +75,7 @@ def _parser() -> argparse.ArgumentParser:
                      "beside it) instead of the build area")
     run.add_argument("--verbose", action="store_true", help="show the full traceback of a failing cell")
     _data_arguments(run)
+    _area_arguments(run)
     scaleout.add_arguments(run)
 
     book = sub.add_parser("book", help="run every notebook, then build the book")
@@ -76,6 +90,7 @@ def _parser() -> argparse.ArgumentParser:
                       help="override one parameter in every notebook that declares it (repeatable), "
                       "e.g. -p platforms '[\"auv\", \"my_auv\"]'")
     _data_arguments(book)
+    _area_arguments(book)
     scaleout.add_arguments(book)
 
     cache = sub.add_parser("cache", help="show the result cache's size; --prune deletes unreachable entries")
@@ -86,18 +101,35 @@ def _parser() -> argparse.ArgumentParser:
     params = sub.add_parser("params", help="list a notebook's parameters and profiles")
     params.add_argument("notebook")
 
+    ans = sub.add_parser("answer", help="print the crossing angles to prefer/avoid and the top drivers of "
+                         "locus length for one platform (quick profile, no book)")
+    ans.add_argument("-p", "--parameter", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
+                     help="platform KEY (required), or a parameter of the planning/pose_space notebooks")
+    ans.add_argument("--profile", default="quick", help="parameter profile of those notebooks (default: quick)")
+    ans.add_argument("--top", type=int, default=5, help="drivers shown (default: 5)")
+    _data_arguments(ans)
+
     sub.add_parser("list", help="list the registered notebooks")
     return parser
 
 
 def _run(args: argparse.Namespace) -> int:
-    from sss_locus.pipeline.runner import run_notebook
+    from sss_locus.pipeline.runner import resolve_parameters, run_notebook
 
     data = _data_inputs(args)
     entry = get_entry(args.notebook)
     overrides = _overrides(args.parameter)
+    if args.output is None:
+        parameters = resolve_parameters(entry, args.profile, overrides, from_text=True, data=data)
+        areas.check_reproduction([(entry, parameters)], replace=args.replace_reproduction)
+    _say_area()
     run_notebook(entry, args.profile, overrides, from_text=True, output=args.output, data=data)
-    if not args.output:  # a side run leaves the book as it was
+    if args.output:  # a side run leaves the book as it was: nothing to rebuild
+        return 0
+    if paths.build_name():
+        print(f"Rebuild the site from the executed copies with: sss-locus book --name {paths.build_name()} "
+              "and this run's --data/--set/-p (chapters run already are reused, the others run first)")
+    else:
         print("Rebuild the site from the executed copies with: sss-locus book --no-run")
     return 0
 
@@ -128,8 +160,11 @@ def _book(args: argparse.Namespace) -> int:
             raise ParameterError(f"renamed parameter(s): {', '.join(sorted(renamed))}")
         if unknown:
             raise ParameterError(f"no notebook has the parameter(s) {sorted(unknown)}")
-        for entry in entries.values():  # validate every notebook's parameters before running anything
-            resolve_parameters(entry, args.profile, declared_overrides(entry, overrides), from_text=True, data=data)
+        runs = [(entry, resolve_parameters(entry, args.profile, declared_overrides(entry, overrides),
+                                           from_text=True, data=data))
+                for entry in entries.values()]  # every notebook's parameters, validated before anything runs
+        areas.check_reproduction(runs, replace=args.replace_reproduction)
+        _say_area()
         stale = []
         for entry in entries.values():
             if not args.force and is_up_to_date(entry, args.profile, declared_overrides(entry, overrides), data):
@@ -144,6 +179,12 @@ def _book(args: argparse.Namespace) -> int:
     return 0
 
 
+def _say_area() -> None:
+    if paths.build_name():
+        print(f"build area: {paths.build_dir()} (named {paths.build_name()!r}; the reproduction in "
+              f"{paths.build_dir().parent} is not touched)")
+
+
 def _params(args: argparse.Namespace) -> int:
     entry = get_entry(args.notebook)
     print(f"{entry.name}: {entry.source_relative} -> <build>/{entry.executed}")
@@ -153,6 +194,17 @@ def _params(args: argparse.Namespace) -> int:
     for profile, values in entry.profiles.items():
         shown = ", ".join(f"{k}={v!r}" for k, v in values.items()) or "(notebook defaults)"
         print(f"profile {profile}: {shown}")
+    return 0
+
+
+def _answer(args: argparse.Namespace) -> int:
+    from sss_locus.pipeline.answer import answer
+
+    keys = [value for name, value in args.parameter if name == "platform"]
+    if len(keys) != 1:
+        raise ParameterError("answer needs exactly one -p platform KEY (a key of the shipped data or of --data)")
+    _data_inputs(args)
+    answer(keys[0], args.profile, args.parameter, top=args.top)
     return 0
 
 
@@ -178,12 +230,14 @@ def main(argv: list[str] | None = None) -> int:
     from sss_locus.pipeline.runner import NotebookFailed
 
     args = _parser().parse_args(argv)
-    handler = {"run": _run, "book": _book, "params": _params, "list": _list, "cache": _cache}[args.command]
+    handler = {"run": _run, "book": _book, "params": _params, "list": _list, "cache": _cache,
+               "answer": _answer}[args.command]
     try:
-        if args.command in ("run", "book"):
-            with scaleout.scheduler_environment(args):
-                return handler(args)
-        return handler(args)
+        with areas.entered(getattr(args, "name", None)):
+            if args.command in ("run", "book"):
+                with scaleout.scheduler_environment(args):
+                    return handler(args)
+            return handler(args)
     except NotebookFailed as exc:
         print(f"sss-locus {args.command}: error: {exc}", file=sys.stderr)
         if getattr(args, "verbose", False) and exc.traceback:

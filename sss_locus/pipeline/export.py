@@ -39,7 +39,7 @@ import io
 import json
 import os
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -111,17 +111,18 @@ def _save_atomic(path: Path, save: Any) -> None:
         tmp.unlink(missing_ok=True)
 
 
-def data_inputs(parameters: Mapping[str, Any]) -> dict[str, Any]:
-    """The data a figure was computed from: every data file read (path, role, SHA-256), the
-    ``--set`` overrides and the resolved sonar, mounting and envelope values of the platforms
-    the run's ``platforms`` parameter names; see
-    :func:`sss_locus.experiments.userdata.record`."""
+def data_inputs(parameters: Mapping[str, Any], platforms: Sequence[str] | None = None) -> dict[str, Any]:
+    """The data one figure was computed from (:func:`sss_locus.experiments.userdata.figure_record`):
+    exactly the platforms it shows (``platforms``; default: every platform of the run's
+    ``platforms`` parameter), their data entries with SHA-256, the data files that define them
+    (with SHA-256), the ``--set`` overrides inside them and their resolved values."""
     from sss_locus.experiments import userdata
 
-    keys = parameters.get("platforms", [])
+    keys = parameters.get("platforms", []) if platforms is None else platforms
     keys = [keys] if isinstance(keys, str) else list(keys or [])
     try:
-        return userdata.record([k for k in dict.fromkeys(keys) if isinstance(k, str)])
+        return userdata.figure_record([k for k in dict.fromkeys(keys) if isinstance(k, str)],
+                                      read=userdata.datadoc.reads_so_far())
     except (OSError, ValueError) as exc:  # never lose a figure over its provenance
         return {"error": str(exc)}
 
@@ -145,6 +146,7 @@ def export_figure(
     dpi: int = 300,
     out_dir: Path | None = None,
     shown: list[bytes] | None = None,
+    platforms: Sequence[str] | None = None,
 ) -> dict[str, Any]:
     """Export one figure with its data, manifest and BibTeX entry; return the manifest.
 
@@ -178,6 +180,9 @@ def export_figure(
     shown : list, optional
         If given, the picture a chapter shows is appended to it: PNG bytes at the figure's own
         ``dpi``, from the same layout and tight box as the files (see :func:`_save_images`).
+    platforms : sequence of str, optional
+        The platforms the figure shows (its data inputs name exactly these, :func:`data_inputs`);
+        default: every platform of ``parameters["platforms"]``.
 
     Returns
     -------
@@ -230,7 +235,7 @@ def export_figure(
         "dpi": int(dpi),
         "text": text,  # smallest drawn text and picture width: readability on the page
         "run_key": os.environ.get(RUN_KEY_ENV),  # ties the figure to its executed copy
-        "data_inputs": data_inputs(params),
+        "data_inputs": data_inputs(params, platforms),
     }
     bib_path = out / f"{label}.bib"
     _write_atomic(bib_path, bibtex_entry(manifest))

@@ -65,7 +65,7 @@ def run_parameters() -> dict[str, Any]:
 
 
 def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame], *,
-            caption: str) -> None:
+            caption: str, platforms: Sequence[str] | None = None) -> None:
     """Export ``fig`` as a citable figure, glue it and its caption, and close it.
 
     Parameters
@@ -78,6 +78,10 @@ def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame
     caption : str
         MyST Markdown (``$...$`` math allowed). Glued as ``<label>-caption`` for the
         ``{glue:figure}`` block and recorded in the manifest and BibTeX entry.
+    platforms : sequence of str, optional
+        The platforms the figure shows, when not every platform of the run (a figure per
+        platform, or one drawn from the first platform only): its manifest and BibTeX name exactly
+        these platforms and the data they read.
     """
     import matplotlib.pyplot as plt
     from IPython.display import Markdown
@@ -90,7 +94,7 @@ def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame
     cell = getattr(shell, "execution_count", None) if shell is not None else None
     shown: list[bytes] = []  # the chapter's picture, drawn from the exported files' layout
     export.export_figure(fig, label, data, caption=caption, parameters=run_parameters(), cell=cell,
-                         shown=shown)
+                         shown=shown, platforms=platforms)
     display(HTML(f'<span id="{label}-source" class="figure-source-anchor"></span>'))
     glue(label, Image(data=shown[0], format="png"), display=False)
     glue(f"{label}-caption", Markdown(caption), display=False)

@@ -152,7 +152,7 @@ def plot_locus_concept(data: dict[str, pd.DataFrame], aperture, feature: np.ndar
         Line2D([], [], color="k", lw=0.8, ls="-.", label="baseline"),
         *(Line2D([], [], color=c, lw=2, label=f"sensor ${a}$ axis") for c, a in zip(AXIS_COLOURS, "xyz")),
     ]
-    fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=8, frameon=False)
+    fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=9.5, frameon=False)
     fig.subplots_adjust(left=0.0, right=1.0, top=1.05, bottom=0.12)
     return fig
 

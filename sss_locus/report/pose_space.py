@@ -103,7 +103,7 @@ def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
             ax.grid(alpha=0.3)
             continue
         mesh = ax.pcolormesh(xe, ye, z, cmap="viridis", shading="flat")
-        fig.colorbar(mesh, ax=ax, label="median locus length (m)")
+        fig.colorbar(mesh, ax=ax).ax.set_title("m", fontsize=plt.rcParams["axes.labelsize"])  # the title names it
         ax.set_xlabel(PANEL_AXIS_LABELS[x])
         ax.set_ylabel(PANEL_AXIS_LABELS[y])
         ax.set_title(PANEL_TITLES[panel])

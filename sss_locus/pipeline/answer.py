@@ -1,0 +1,147 @@
+"""``sss-locus answer``: the planning answer for one platform in the terminal, without a book.
+
+For a platform of the shipped data or of ``--data`` files, prints the crossing angles to prefer
+and to avoid between two straight passes (the planning chapter's bands,
+:func:`sss_locus.experiments.planning.planning_bands`) and the quantities that drive locus length
+most (the pose-space chapter's Spearman table, :func:`sss_locus.experiments.pose_stats.spearman_table`),
+computed exactly as those chapters compute them, with their ``quick`` profile by default (a
+minute or less; ``--profile book`` for the book's sample sizes), and names the data it used: the
+data entries with their SHA-256 and the files that define them. Results are cached like the
+chapters' (a later ``sss-locus book`` reuses them, and the other way round).
+"""
+
+from __future__ import annotations
+
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from sss_locus.experiments.pose_stats import round_sig
+from sss_locus.pipeline.registry import ParameterError, get_entry
+
+#: The chapters whose computations the answer repeats, and the parameter naming the platform.
+PLANNING, POSE_SPACE = "planning", "pose_space"
+
+
+def _parameters(profile: str, key: str, pairs: list[list[str]]) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The planning and pose-space chapters' parameters of ``profile`` for platform ``key``, with
+    the ``-p NAME VALUE`` overrides of the parameters each declares (validated like a run's)."""
+    entries = [get_entry(PLANNING), get_entry(POSE_SPACE)]
+    overrides = {name: value for name, value in pairs if name != "platform"}
+    unknown = set(overrides) - {n for e in entries for n in e.parameters()} | (
+        {"platforms", "data_files", "data_set"} & set(overrides))
+    if unknown:
+        raise ParameterError(f"answer: unknown parameter(s) {sorted(unknown)}; use -p platform KEY and the "
+                             f"parameters of `sss-locus params {PLANNING}` / `{POSE_SPACE}`")
+    out = []
+    for entry in entries:
+        mine = {n: v for n, v in overrides.items() if n in entry.parameters()}
+        mine["platforms"] = f'["{key}"]'
+        out.append(entry.resolve(profile, mine, from_text=True))
+    return out[0], out[1]
+
+
+def compute(key: str, planning: dict[str, Any], pose: dict[str, Any]) -> dict[str, Any]:
+    """Bands and Spearman table of platform ``key``, as the planning and pose-space chapters
+    compute them with these parameters (first offset model of ``planning``)."""
+    from sss_locus.experiments.envelopes import OffsetModel, load_envelope
+    from sss_locus.experiments.planning import crossing_angle_curve, crossing_angle_grid, planning_bands
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.pose_space import PoseSpaceSpec, sample_pose_space
+    from sss_locus.experiments.pose_stats import spearman_table, with_derived
+    from sss_locus.experiments.survey_passes import simulate_passes
+    from sss_locus.pipeline.cache import cached
+
+    platform = load_platform(key)
+    model = OffsetModel.parse(planning["offset_models"][0])
+    grid = crossing_angle_grid(planning["fine_step_deg"], 40.0, planning["coarse_step_deg"])
+    curve = crossing_angle_curve(platform, load_envelope(key), model, crossing_angles_deg=grid,
+                                 n_per_angle=planning["n_per_angle"][0], seed=planning["seed"],
+                                 n_resamples=planning["n_resamples"], simulate=cached(simulate_passes))
+    bands = planning_bands(curve.curve, prefer_below=planning["prefer_below"], avoid_above=planning["avoid_above"])
+    limit = pose["pitch_max_deg"] if pose["pitch_max_deg"] >= 0 else None
+    spec = PoseSpaceSpec(platform, profile=pose["profile"], feature_distribution=pose["feature_distribution"],
+                         pitch_max_deg=limit)
+    table = with_derived(cached(sample_pose_space)(spec, pose["n_samples"], pose["seed"]),
+                         misalignment=pose["misalignment_reading"])
+    rho = spearman_table(table, n_resamples=pose["n_resamples"], seed=pose["seed"])
+    return {"platform": platform, "model": model, "grid": grid, "bands": bands, "rho": rho, "n_pose": len(table)}
+
+
+def answer(key: str, profile: str = "quick", pairs: list[list[str]] | None = None, top: int = 5,
+           log=print) -> dict[str, Any]:
+    """Compute and print the answer for platform ``key`` (the data inputs must be active,
+    :func:`sss_locus.experiments.userdata.use`); return what :func:`compute` returned plus the
+    data record (``data``, :func:`sss_locus.experiments.userdata.figure_record`)."""
+    from sss_locus.experiments import userdata
+    from sss_locus.pipeline.runner import patched_environ
+
+    if not isinstance(top, int) or top < 1:
+        raise ValueError(f"--top must be a positive integer; got {top!r}")
+    planning, pose = _parameters(profile, key, pairs or [])
+    start = time.perf_counter()
+    with tempfile.TemporaryDirectory() as tmp:  # the data entries the computation reads
+        with patched_environ({userdata.datadoc.READS_ENV: str(Path(tmp) / "reads.txt")}):
+            result = compute(key, planning, pose)
+            result["data"] = userdata.figure_record([key], read=userdata.datadoc.reads_so_far())
+    data, grid = result["data"], result["grid"]
+    log(f"platform `{key}`: {userdata.describe_platform(key)}; profile {profile!r}")
+    log("data: " + ", ".join(f"{f['path']} ({f['role']}, sha256 {f['sha256'][:12]})" for f in data["files"])
+        + "".join(f"; --set {o}" for o in data["overrides"]))
+    log("entries: " + ", ".join(f"{e} ({h[:12]})" for e, h in data["entries"].items()))
+    log("")
+    log(f"Crossing angles between two straight passes (offset model {result['model'].label}; "
+        f"{planning['n_per_angle'][0]:,} pass pairs per angle at {grid[0]:g}–{grid[-1]:g}°, seed {planning['seed']}). "
+        f"Prefer: median locus length in the lowest {100 * planning['prefer_below']:g} % of its range; "
+        f"avoid: in the top {100 * (1 - planning['avoid_above']):g} %.")
+    log(text_table(bands_rows(result["bands"])) if len(result["bands"]) else "  (no bands: the curve is flat)")
+    log("")
+    log(f"Top drivers of locus length (Spearman rho over {result['n_pose']:,} pose-space samples, "
+        f"profile {pose['profile']!r}, seed {pose['seed']}; 95 % bootstrap interval, {pose['n_resamples']} resamples):")
+    log(text_table(driver_rows(result["rho"], top)))
+    log("")
+    log(f"computed in {time.perf_counter() - start:.1f} s (planning and pose_space chapters' code, profile "
+        f"{profile!r}; `sss-locus book --name NAME` draws the figures)")
+    return result
+
+
+def _sig(x: float) -> str:
+    """Two significant figures (the chapters' precision for lengths)."""
+    return f"{float(round_sig(x, 2)):g}"
+
+
+def bands_rows(bands: pd.DataFrame) -> pd.DataFrame:
+    """The prefer/avoid bands (:func:`sss_locus.experiments.planning.planning_bands`) as rows to
+    print: band, angles (deg) and the median locus length (m) within it."""
+    return pd.DataFrame({
+        "band": bands["kind"],
+        "crossing angle (deg)": [f"{lo:g}–{hi:g}" if lo != hi else f"{lo:g}"
+                                 for lo, hi in zip(bands["lo_deg"], bands["hi_deg"])],
+        "median locus length (m)": [f"{_sig(a)}–{_sig(b)}" if _sig(a) != _sig(b) else _sig(a)
+                                    for a, b in zip(bands["median_min"], bands["median_max"])],
+    })
+
+
+def driver_rows(rho: pd.DataFrame, top: int = 5, target: str = "locus_length_m") -> pd.DataFrame:
+    """The ``top`` quantities with the largest Spearman |rho| with ``target``
+    (:func:`sss_locus.experiments.pose_stats.spearman_table`, sorted so), as rows to print."""
+    rows = rho[rho["target"] == target].head(top)
+    return pd.DataFrame({
+        "rank": range(1, len(rows) + 1),
+        "quantity": list(rows["quantity"]),
+        "Spearman rho": [f"{r:.2f}" for r in rows["rho"]],
+        "95 % interval": [f"{lo:.2f} to {hi:.2f}" for lo, hi in zip(rows["ci_low"], rows["ci_high"])],
+    })
+
+
+def text_table(rows: pd.DataFrame, indent: int = 2) -> str:
+    """``rows`` as an aligned plain-text table (header, rule, one line a row; no index)."""
+    columns = [str(c) for c in rows.columns]
+    cells = [[str(v) for v in row] for row in rows.itertuples(index=False)]
+    widths = [max([len(c)] + [len(r[i]) for r in cells]) for i, c in enumerate(columns)]
+    lines = [columns, ["-" * w for w in widths], *cells]
+    return "\n".join((" " * indent + "  ".join(v.ljust(w) for v, w in zip(line, widths))).rstrip()
+                     for line in lines)

@@ -1,0 +1,143 @@
+"""Runs add, the reproduction stays (sss_locus.pipeline.areas), figure by figure provenance
+(sss_locus.experiments.userdata.figure_record) and the quick answer (``sss-locus answer``).
+
+The whole your-hardware page, run in order on a built book, is in ``test_book_build.py``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import re
+
+import pytest
+
+from sss_locus import paths
+from sss_locus.experiments import userdata
+from sss_locus.pipeline import areas, cli
+from sss_locus.pipeline.registry import load_registry
+
+EXAMPLE = paths.REPO_ROOT / "data" / "examples" / "my_auv.toml"
+REGISTRY = load_registry()
+
+
+@pytest.mark.parametrize("name", ["html", "source", "tmp", "My", "a/b", "../x", "", "-x", "x" * 65])
+def test_bad_area_names_are_refused(name):
+    with pytest.raises(ValueError, match="--name must match"):
+        areas.check_name(name)
+
+
+def test_a_named_area_is_a_folder_of_the_build_area_and_the_environment_is_restored(build_area):
+    with areas.entered("my_auv"):
+        assert paths.build_dir() == build_area.resolve() / "my_auv" and paths.build_name() == "my_auv"
+        assert paths.html_dir() == build_area.resolve() / "my_auv" / "html"
+        with pytest.raises(ValueError, match="already works in the build area"), areas.entered("other"):
+            pass
+    assert paths.build_dir() == build_area.resolve() and paths.build_name() is None
+
+
+def test_the_paper_inputs_of_every_chapter_are_not_refused():
+    for entry in REGISTRY.values():
+        assert areas.differs_from_paper(entry, entry.resolve("quick")) == [], entry.name
+        assert areas.differs_from_paper(entry, entry.resolve("book")) == [], entry.name
+
+
+def test_user_inputs_and_other_platform_lists_differ_from_the_paper():
+    entry = REGISTRY["survey_passes"]
+    default = list(entry.parameters()["platforms"].default)
+    assert areas.differs_from_paper(entry, entry.resolve("quick", {"platforms": default[::-1]}))  # other order
+    assert areas.differs_from_paper(entry, {**entry.resolve("quick"), "data_files": [str(EXAMPLE)]})
+    assert areas.differs_from_paper(entry, {**entry.resolve("quick"),
+                                            "data_set": ["platforms.auv.transducers.port.tilt_deg=15"]})
+
+
+def _paper_figure(label: str, notebook: str):
+    """A real exported figure in the reproduction's figures folder, made by ``notebook``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    from sss_locus.pipeline.export import export_figure
+
+    fig, ax = plt.subplots(figsize=(3, 2))
+    ax.plot([0, 1], [0, 1])
+    export_figure(fig, label, pd.DataFrame({"x_m": [0, 1]}), caption="A paper figure.", parameters={},
+                  notebook=notebook, out_dir=paths.figures_dir())
+    plt.close(fig)
+    return {p.name: p.read_bytes() for p in paths.figures_dir().iterdir()}
+
+
+def test_a_user_run_into_the_reproduction_is_refused_before_it_starts(build_area, capsys):
+    before = _paper_figure("fig-heatmaps-auv", "notebooks/pose_space.ipynb")
+    code = cli.main(["run", "pose_space", "--profile", "quick", "--data", str(EXAMPLE),
+                     "-p", "platforms", '["my_auv"]'])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert "would go into the reproduction" in err and "it would replace fig-heatmaps-auv" in err
+    assert "--name my_auv" in err and "--replace-reproduction" in err  # the way out, named
+    assert {p.name: p.read_bytes() for p in paths.figures_dir().iterdir()} == before
+    assert not paths.executed_dir().exists() and not (build_area / "tmp").exists()  # nothing started
+    code = cli.main(["book", "--profile", "quick", "--set", "platforms.auv.transducers.port.tilt_deg=15"])
+    assert code == 2 and "overrides platforms.auv.transducers.port.tilt_deg=15" in capsys.readouterr().err
+    assert not paths.executed_dir().exists()
+
+
+# -- figure by figure provenance ------------------------------------------------------------------
+
+def test_a_figure_names_only_its_own_platforms_entries_and_files(tmp_path):
+    user = tmp_path / "my_auv.toml"
+    user.write_bytes(EXAMPLE.read_bytes())
+    inputs = userdata.make_inputs([user], ["platforms.auv.transducers.port.tilt_deg=15"])
+    mine = userdata.figure_record(["my_auv"], inputs, read=set())
+    assert mine["platforms"] == ["my_auv"] and list(mine["values"]) == ["my_auv"]
+    assert set(mine["entries"]) == {"platforms.my_auv", "sonars.narrow_fan_450"}  # nothing else read
+    assert [(f["path"], f["sha256"]) for f in mine["files"]] == [
+        (str(user), hashlib.sha256(user.read_bytes()).hexdigest())]
+    assert mine["overrides"] == []  # the --set changes the AUV, not this platform
+    auv = userdata.figure_record(["auv"], inputs, read={"envelopes.auv", "offset_models.matched"})
+    assert set(auv["entries"]) == {"platforms.auv", "sonars.edgetech_2205", "envelopes.auv",
+                                   "offset_models.matched"}
+    assert [f["path"] for f in auv["files"]] == ["data/platforms.toml", "data/survey.toml"]
+    assert auv["overrides"] == ["platforms.auv.transducers.port.tilt_deg=15"]
+    both = userdata.figure_record(["auv", "my_auv"], inputs, read={"noise.my_auv"})
+    assert set(both["entries"]) == {"platforms.auv", "sonars.edgetech_2205", "platforms.my_auv",
+                                    "sonars.narrow_fan_450", "noise.my_auv"}
+    assert [f["path"] for f in both["files"]] == ["data/platforms.toml", str(user)]
+
+
+def test_an_entry_hash_changes_exactly_with_its_value(tmp_path):
+    user = tmp_path / "my_auv.toml"
+    user.write_bytes(EXAMPLE.read_bytes())
+    plain = userdata.figure_record(["auv", "my_auv"], userdata.make_inputs([user]), read=set())["entries"]
+    tilted = userdata.figure_record(["auv", "my_auv"], userdata.make_inputs(
+        [user], ["platforms.auv.transducers.port.tilt_deg=15"]), read=set())["entries"]
+    assert {e for e in plain if plain[e] != tilted[e]} == {"platforms.auv"}
+
+
+# -- the quick answer -----------------------------------------------------------------------------
+
+def test_answer_prints_bands_and_drivers_and_names_the_data(build_area, capsys):
+    code = cli.main(["answer", "--data", str(EXAMPLE), "-p", "platform", "my_auv"])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    sha = hashlib.sha256(EXAMPLE.read_bytes()).hexdigest()[:12]
+    assert f"my_auv.toml (user, sha256 {sha})" in out and "data/platforms.toml" not in out
+    assert "platforms.my_auv" in out and "sonars.narrow_fan_450" in out
+    bands = re.findall(r"^  (prefer|avoid) +(\d+)(?:–(\d+))? ", out, re.M)
+    assert {b[0] for b in bands} == {"prefer", "avoid"}
+    assert all(0 <= int(lo) <= int(hi or lo) <= 180 for _, lo, hi in bands)
+    drivers = re.findall(r"^  (\d) +([a-z0-9_]+) +(-?\d\.\d\d) +(-?\d\.\d\d) to (-?\d\.\d\d)$", out, re.M)
+    assert [int(d[0]) for d in drivers] == [1, 2, 3, 4, 5]
+    rho = [abs(float(d[2])) for d in drivers]
+    assert rho == sorted(rho, reverse=True)  # the top drivers, strongest first
+    assert all(float(lo) <= float(r) <= float(hi) for _, _, r, lo, hi in drivers)
+    assert not paths.executed_dir().exists()  # no chapter ran, no book
+
+
+def test_answer_needs_one_known_platform(build_area, capsys):
+    assert cli.main(["answer"]) == 2 and "exactly one -p platform KEY" in capsys.readouterr().err
+    assert cli.main(["answer", "-p", "platform", "my_auv"]) == 2  # not in the shipped data
+    assert "'my_auv' is not allowed" in capsys.readouterr().err
+    assert cli.main(["answer", "-p", "platform", "auv", "-p", "n_sampels", "5"]) == 2
+    assert "unknown parameter(s) ['n_sampels']" in capsys.readouterr().err
