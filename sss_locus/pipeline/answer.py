@@ -64,10 +64,10 @@ def compute(key: str, planning: dict[str, Any], pose: dict[str, Any]) -> dict[st
     bands = planning_bands(curve.curve, prefer_below=planning["prefer_below"], avoid_above=planning["avoid_above"])
     limit = pose["pitch_max_deg"] if pose["pitch_max_deg"] >= 0 else None
     spec = PoseSpaceSpec(platform, profile=pose["profile"], feature_distribution=pose["feature_distribution"],
-                         pitch_max_deg=limit)
+                         pitch_max_deg=limit, vehicle_depths=pose["vehicle_depths"])
     table = with_derived(cached(sample_pose_space)(spec, pose["n_samples"], pose["seed"]),
                          misalignment=pose["misalignment_reading"])
-    rho = spearman_table(table, n_resamples=pose["n_resamples"], seed=pose["seed"])
+    rho = spearman_table(table, n_batches=pose["n_batches"])
     return {"platform": platform, "model": model, "grid": grid, "bands": bands, "rho": rho, "n_pose": len(table)}
 
 
@@ -100,7 +100,7 @@ def answer(key: str, profile: str = "quick", pairs: list[list[str]] | None = Non
     log(text_table(bands_rows(result["bands"])) if len(result["bands"]) else "  (no bands: the curve is flat)")
     log("")
     log(f"Top drivers of locus length (Spearman rho over {result['n_pose']:,} pose-space samples, "
-        f"profile {pose['profile']!r}, seed {pose['seed']}; 95 % bootstrap interval, {pose['n_resamples']} resamples):")
+        f"profile {pose['profile']!r}, seed {pose['seed']}; 95 % interval from {pose['n_batches']} replicate batches):")
     log(text_table(driver_rows(result["rho"], top)))
     log("")
     log(f"computed in {time.perf_counter() - start:.1f} s (planning and pose_space chapters' code, profile "
