@@ -26,7 +26,7 @@ pytest.importorskip("nbformat")
 
 from test_reliability import DRIVER, _pid_gone, leftovers, quiet, snapshot, tiny_notebook  # noqa: E402
 from sss_locus import paths  # noqa: E402
-from sss_locus.pipeline import cache, cli, faults, outputs, preflight, runner, transaction  # noqa: E402
+from sss_locus.pipeline import cache, cli, faults, orphans, outputs, preflight, runner, transaction  # noqa: E402
 from sss_locus.pipeline.registry import NotebookEntry  # noqa: E402
 from sss_locus.pipeline.runner import NotebookFailed, run_notebook  # noqa: E402
 
@@ -292,3 +292,28 @@ def test_workers_are_capped_at_the_machines_cores(monkeypatch, capsys):
     assert started == [cores]
     err = capsys.readouterr().err
     assert f"--workers 100000 capped at {cores}" in err and len(err.strip().splitlines()) == 1
+
+
+def test_book_jobs_children_die_with_a_killed_book(build_area, entry, monkeypatch):
+    """``book --jobs N`` starts one ``sss-locus run`` child per notebook: each is asked to get
+    SIGTERM when the book process dies, even by SIGKILL (the same ``preexec_fn`` whose effect the
+    SIGKILL test above checks end to end for a run's papermill child)."""
+    started = []
+
+    class FakeChild:  # records how the child would be started instead of starting it
+        returncode = 0
+
+        def __init__(self, cmd, **kwargs):
+            started.append((cmd, kwargs))
+
+        def communicate(self):
+            return "", ""
+
+        def poll(self):
+            return 0
+
+    monkeypatch.setattr(runner.subprocess, "Popen", FakeChild)
+    other = NotebookEntry("tiny2", entry.source, "executed/tiny2.ipynb", {"book": {}, "quick": {}})
+    runner.run_many([entry, other], "quick", jobs=2, log=quiet)
+    assert sorted(cmd[cmd.index("run") + 1] for cmd, _ in started) == ["tiny", "tiny2"]
+    assert all(kwargs.get("preexec_fn") is orphans.die_with_parent for _, kwargs in started)

@@ -365,7 +365,8 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
             cmd += [arg for o in data.sets for arg in ("--set", o)]
         log(progress.start_line(entry.name, profile))  # the child's own start line comes too late
         child = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                 stdin=subprocess.DEVNULL, env={**os.environ, progress.QUIET_ENV: "1"})
+                                 stdin=subprocess.DEVNULL, env={**os.environ, progress.QUIET_ENV: "1"},
+                                 preexec_fn=orphans.die_with_parent)  # a SIGKILLed book takes its runs along
         children[entry.name] = child
         out, err = child.communicate()
         return child.returncode, out, err
