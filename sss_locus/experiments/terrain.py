@@ -228,7 +228,7 @@ def parse_terrain_config(doc: dict) -> dict:
     terrains = table(doc, "terrain", "")
     unknown = set(terrains) - set(_KEYS)
     if unknown:
-        raise ValueError(f"terrain has unknown tables {sorted(unknown)}; allowed: {list(_KEYS)}")
+        raise ValueError(f"terrain.{sorted(unknown)[0]} is not a terrain model; allowed: {list(_KEYS)}")
     for kind, keys in _KEYS.items():
         t = table(terrains, kind, "terrain")
         unknown = set(t) - {k for k, _, _ in keys}
@@ -239,7 +239,8 @@ def parse_terrain_config(doc: dict) -> dict:
     s = table(doc, "survey", "")
     unknown = set(s) - {k for k, _, _ in _SURVEY_KEYS}
     if unknown:
-        raise ValueError(f"survey has unknown keys {sorted(unknown)}; allowed: {[k for k, _, _ in _SURVEY_KEYS]}")
+        raise ValueError(f"survey.{sorted(unknown)[0]} is not a survey key; allowed: "
+                         f"{[k for k, _, _ in _SURVEY_KEYS]}")
     out["survey"] = {k: sourced(s, k, "survey", prov, lo=lo, hi=hi) for k, lo, hi in _SURVEY_KEYS}
     return out
 
