@@ -7,6 +7,10 @@
 * Registers hypothesis profiles: ``default`` (no per-example deadline: the first call of a
   numpy kernel can be slow on a loaded machine, and speed is measured in ``benchmarks/``, not
   in tests) and ``thorough`` (more examples; select with ``--hypothesis-profile=thorough``).
+* Skipped checks: on a developer's machine a check whose tool is missing (Chromium, poppler,
+  pdflatex/bibtex, actionlint) is skipped and named at the end of the run; in CI (environment
+  variable ``CI`` set to ``true`` or ``1``, as ``.ci/run`` and GitHub Actions run) every skip is
+  reported as a failure instead, since ``.ci/install-tools`` provides the tools there.
 """
 
 from __future__ import annotations
@@ -48,6 +52,45 @@ def build_area(tmp_path, monkeypatch):
     monkeypatch.setenv("SSS_LOCUS_CACHE_DIR", str(tmp_path / "cache"))
     monkeypatch.delenv("SSS_LOCUS_FIGURES_DIR", raising=False)
     return area
+
+
+# -- skipped checks: named on a developer's machine, failures in CI ---------------------------------
+
+def in_ci() -> bool:
+    """Whether this run is CI's (``CI=true``/``1``): no check may be skipped there."""
+    return os.environ.get("CI", "").strip().lower() in ("true", "1", "yes")
+
+
+def _skip_reason(report) -> str:
+    longrepr = report.longrepr
+    return str(longrepr[2] if isinstance(longrepr, tuple) and len(longrepr) == 3 else longrepr)
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    outcome = yield
+    report = outcome.get_result()
+    if report.skipped and not hasattr(report, "wasxfail") and in_ci():
+        report.outcome = "failed"
+        report.longrepr = f"skipped in CI (CI={os.environ['CI']}), where every check must run: {_skip_reason(report)}"
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_make_collect_report(collector):
+    outcome = yield
+    report = outcome.get_result()
+    if report.skipped and in_ci():  # a module-level importorskip
+        report.outcome = "failed"
+        report.longrepr = f"skipped in CI (CI={os.environ['CI']}), where every check must run: {_skip_reason(report)}"
+
+
+def pytest_terminal_summary(terminalreporter):
+    skipped = terminalreporter.stats.get("skipped", [])
+    if skipped:
+        terminalreporter.section("checks that did not run on this machine")
+        for report in skipped:
+            terminalreporter.write_line(f"{report.nodeid}: {_skip_reason(report).removeprefix('Skipped: ')}")
+        terminalreporter.write_line("(.ci/install-tools installs their tools as root; in CI a skip fails the run)")
 
 
 # -- the shared quick book, built while the other tests run (see book_support) ----------------------

@@ -9,6 +9,7 @@ of ``make book`` in ``_build/`` are never overwritten.
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 import sys
@@ -158,13 +159,16 @@ def test_each_figure_page_has_its_files_source_and_citation(quick_book):
         notebook = Path(entry.executed).name
         assert f'href="../notebooks/{notebook}"' in text
         assert (html / "notebooks" / notebook).is_file()
-        import re
-
         assert f"@misc{{sss-locus:{label}," in re.sub(r"<[^>]+>", "", text)  # highlighted code
 
 
 def test_every_figure_bibtex_entry_parses_and_compiles(quick_book, tmp_path):
+    """One LaTeX document cites every figure's entry and the project's own (from CITATION.cff);
+    pdflatex + bibtex compile it with no warning (``latex_check``)."""
     pybtex_database = pytest.importorskip("pybtex.database")
+    import sss_locus
+    from sss_locus.pipeline import citation
+
     figures = quick_book["area"] / "source" / "_extra" / "figures"
     bibs = sorted(figures.glob("fig-*.bib"))
     assert len(bibs) >= 10
@@ -175,14 +179,15 @@ def test_every_figure_bibtex_entry_parses_and_compiles(quick_book, tmp_path):
         assert len(entry.fields["title"]) < 200, key
         for field in ("title", "year", "version", "note"):
             assert entry.fields.get(field), (key, field)
+        assert entry.fields["version"] == sss_locus.__version__, key
         assert entry.persons["author"], key
-    import shutil
-
+    cite_page = unescape((quick_book["html"] / "book" / "cite.html").read_text())
+    assert f"version {sss_locus.__version__}" in cite_page and "@misc{sss-locus," in re.sub(r"<[^>]+>", "", cite_page)
     if not (shutil.which("pdflatex") and shutil.which("bibtex")):
-        pytest.skip("no TeX installation to compile the entries")
+        pytest.skip("no TeX installation (pdflatex, bibtex) to compile the entries")
     from latex_check import compile_latex
 
-    compile_latex(tmp_path, text, list(entries))
+    compile_latex(tmp_path, citation.project_bibtex() + "\n" + text, ["sss-locus", *entries])
 
 
 def test_interactive_concept_view_is_served_locally(quick_book):

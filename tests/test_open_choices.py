@@ -100,7 +100,7 @@ def test_hotspot_check_on_hand_built_bins():
     binned = binned_median(df, "a", "b", x_edges=[0, 1, 2], y_edges=[0, 1, 2], min_count=1)
     targeted = df.assign(a=rng.uniform(1, 2, len(df)), b=rng.uniform(1, 2, len(df)),
                          locus_length_m=5.0 + rng.normal(0, 0.1, len(df)))
-    out = hotspot_check(binned, targeted, n_resamples=50)
+    out = hotspot_check(binned, targeted)
     assert (out["x_mid"], out["y_mid"]) == (1.5, 1.5)
     assert out["target_count"] == len(in_bin(targeted, "a", "b", (1, 2), (1, 2)))
     assert out["target_ci_low"] <= 5.0 <= out["target_ci_high"] + 0.02

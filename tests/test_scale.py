@@ -177,12 +177,34 @@ def test_vectorised_nan_quantile_equals_numpy_nanquantile():
             assert np.array_equal(nanquantile_rows(x, q), ref, equal_nan=True), (shape, q)
 
 
-def test_local_workers_keep_freed_memory_instead_of_trimming_it():
-    """``--workers N`` clusters start without Dask's MALLOC_TRIM_THRESHOLD_=65536 (which made the
-    kernel's large arrays page-fault back in on every chunk), and say so in the workers' env."""
-    pytest.importorskip("distributed")
+def _worker_environ(dask_client, names):
+    return list(dask_client.run(lambda: {k: __import__("os").environ.get(k) for k in names}).values())
+
+
+def test_both_local_cluster_paths_give_workers_the_documented_memory_trim(monkeypatch):
+    """``sss-locus run --workers 2`` and ``SSS_LOCUS_SCHEDULER=local:2`` start their workers
+    with MALLOC_TRIM_THRESHOLD_ = 256 MiB (book/cluster.md, README), not Dask's 65536, and the
+    launcher leaves this process's environment as it was (Dask's nannies write their spawn
+    variables into it)."""
+    distributed = pytest.importorskip("distributed")
+    import argparse
+
+    from sss_locus.pipeline import scaleout
+
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)  # another test's cluster may leak it
+    monkeypatch.delenv("OMP_NUM_THREADS", raising=False)
+    monkeypatch.delenv(scale.SCHEDULER_ENV, raising=False)
+    names = ("MALLOC_TRIM_THRESHOLD_", "OMP_NUM_THREADS")
+    before = dict(__import__("os").environ)
+    args = argparse.Namespace(workers=2, scheduler=None)
+    with scaleout.scheduler_environment(args):
+        address = __import__("os").environ[scale.SCHEDULER_ENV]
+        with distributed.Client(address) as dask_client:
+            via_cli = _worker_environ(dask_client, names)
     try:
-        env = scale.client("local:1").run(lambda: __import__("os").environ.get("MALLOC_TRIM_THRESHOLD_"))
+        via_env = _worker_environ(scale.client("local:2"), names)
     finally:
         scale.close_clients()
-    assert list(env.values()) == [str(scale.LOCAL_MALLOC_TRIM_THRESHOLD)]
+    expected = {"MALLOC_TRIM_THRESHOLD_": str(256 * 2**20), "OMP_NUM_THREADS": "1"}
+    assert via_cli == [expected, expected] and via_env == [expected, expected]
+    assert dict(__import__("os").environ) == before

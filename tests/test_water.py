@@ -68,7 +68,7 @@ def test_survey_crop_keeps_samples_and_acceptance():
 def test_crop_effect_statistics_and_errors():
     a = pd.DataFrame({"locus_length_m": [2.0, 2.0, 1.0, 0.0], "n_arcs": [2, 1, 2, 0]})
     b = pd.DataFrame({"locus_length_m": [1.0, 2.0, 0.0, 0.0], "n_arcs": [1, 1, 0, 0]})
-    e = crop_effect(a, b, n_resamples=50).set_index("statistic")["estimate"]
+    e = crop_effect(a, b, n_batches=3).set_index("statistic")["estimate"]
     assert e["length_ratio"] == pytest.approx(3.0 / 5.0)
     assert e["shortened_share"] == pytest.approx(0.5)
     assert e["emptied_share"] == pytest.approx(1.0 / 3.0)
@@ -78,8 +78,8 @@ def test_crop_effect_statistics_and_errors():
         crop_effect(a, b.iloc[:2])
     with pytest.raises(ValueError, match="not the same samples"):
         crop_effect(b, a)
-    with pytest.raises(ValueError, match="n_resamples"):
-        crop_effect(a, b, n_resamples=0)
+    with pytest.raises(ValueError, match="n_batches"):
+        crop_effect(a, b, n_batches=2)
 
 
 def test_crop_effects_table_covers_conditions_and_subsets():
@@ -87,7 +87,7 @@ def test_crop_effects_table_covers_conditions_and_subsets():
     conds = default_conditions(pfs, surface_tilts_deg=[15.0], submerged_depths_m=[2.0, 500.0])
     assert [c.slug for c in conds] == ["boat-pose", "boat-pose-tilt15", "auv-pose-depth2m"]
     out = crop_effects(conds[:1], n_samples=4096, n_per_angle=10, crossing_angles_deg=[0.0], seed=1,
-                       n_resamples=5)
+                       n_batches=5)
     assert set(out["subset"]) == {"all", "port-port"} and (out["n"] > 0).all()
     with pytest.raises(ValueError, match="none of submerged_depths_m"):
         default_conditions(pfs, submerged_depths_m=[500.0])
@@ -147,3 +147,14 @@ def test_survey_seafloor_and_pass2_above_surface():
     # brute force: count pass pairs whose pass 2 flies more than 2 m above pass 1
     expected = sum(r.altitude2_m - r.altitude1_m > 2.0 for r in a.itertuples()) / len(a)
     assert pass2_above_surface_share(a, pf, WaterColumn(2.0)) == pytest.approx(expected)
+
+
+def test_crop_effect_interval_of_a_rare_share_stays_in_zero_one():
+    # one shortened locus in 1000: the symmetric replicate interval would reach below 0
+    a = pd.DataFrame({"locus_length_m": np.ones(1000), "n_arcs": np.ones(1000, int)})
+    b = a.copy()
+    b.loc[7, "locus_length_m"] = 0.5
+    e = crop_effect(a, b).set_index("statistic")
+    assert e.loc["shortened_share", "estimate"] == pytest.approx(0.001)
+    assert e.loc["shortened_share", "ci_low"] == 0.0 < e.loc["shortened_share", "ci_high"] < 0.01
+    assert e.loc["length_ratio", "ci_high"] == 1.0

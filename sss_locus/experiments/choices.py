@@ -18,8 +18,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .planning import bootstrap_median
 from .platforms import Platform
+from .replicates import N_BATCHES, median_with_interval
 from .pose_stats import MISALIGNMENT_READINGS, spearman_table, with_derived
 from .straight_pass import vehicle_attitude
 
@@ -60,8 +60,8 @@ def fan_share_removed(platform: Platform, side: str = "port", pitch_deg: float =
             "theta_min_deg": float(np.degrees(below0.min())) if below0.size else float("nan")}
 
 
-def reading_effect(table: pd.DataFrame, readings=MISALIGNMENT_READINGS, *, n_resamples: int = 10,
-                   seed: int = 0) -> pd.DataFrame:
+def reading_effect(table: pd.DataFrame, readings=MISALIGNMENT_READINGS, *,
+                   n_batches: int = N_BATCHES) -> pd.DataFrame:
     """Elevation misalignment under each reading of the paper's ``max(psi1, psi2)``.
 
     ``table`` is a pose-space table (:func:`~sss_locus.experiments.pose_space.sample_pose_space`,
@@ -77,7 +77,7 @@ def reading_effect(table: pd.DataFrame, readings=MISALIGNMENT_READINGS, *, n_res
     """
     rows = []
     for reading in readings:
-        rho = spearman_table(with_derived(table, misalignment=reading), n_resamples=n_resamples, seed=seed)
+        rho = spearman_table(with_derived(table, misalignment=reading), n_batches=n_batches)
         for target, tag in (("locus_length_m", "raw"), ("locus_length_normalized", "norm")):
             tab = rho[rho["target"] == target].reset_index(drop=True)
             i = int(np.flatnonzero(tab["quantity"] == "elevation_misalignment_deg")[0])
@@ -100,7 +100,7 @@ def in_bin(df: pd.DataFrame, x: str, y: str, x_window, y_window) -> pd.DataFrame
 
 
 def hotspot_check(binned: pd.DataFrame, targeted: pd.DataFrame, *, value: str = "locus_length_m",
-                  n_resamples: int = 200, confidence_level: float = 0.95, seed: int = 0) -> dict[str, float]:
+                  n_batches: int = N_BATCHES, confidence_level: float = 0.95) -> dict[str, float]:
     """The heatmap's peak bin, re-measured with targeted extra samples.
 
     Parameters
@@ -115,7 +115,8 @@ def hotspot_check(binned: pd.DataFrame, targeted: pd.DataFrame, *, value: str = 
     -------
     dict
         ``x_mid``, ``y_mid`` of the peak bin (among the shown bins); ``count`` and ``median``
-        there; ``target_count``, ``target_median`` and its percentile-bootstrap interval
+        there; ``target_count``, ``target_median`` and its replicate interval (``n_batches`` batches,
+        :func:`~sss_locus.experiments.replicates.median_with_interval`)
         ``target_ci_low``/``target_ci_high``; ``runner_up_median``, ``runner_up_count``,
         ``runner_up_x_mid``, ``runner_up_y_mid`` (the second-largest shown bin); and
         ``still_peak`` (1.0 if the targeted interval lies above the runner-up's median, else 0.0).
@@ -130,12 +131,10 @@ def hotspot_check(binned: pd.DataFrame, targeted: pd.DataFrame, *, value: str = 
     inside = in_bin(targeted, x, y, (top.x_lo, top.x_hi), (top.y_lo, top.y_hi))[value].to_numpy(float)
     if inside.size == 0:
         raise ValueError("no targeted sample lies inside the peak bin")
-    boot = bootstrap_median(inside, n_resamples, np.random.default_rng(seed))
-    alpha = (1.0 - confidence_level) / 2.0
-    lo, hi = np.quantile(boot, [alpha, 1.0 - alpha])
+    med, lo, hi = median_with_interval(inside, n_batches, confidence_level)
     return {"x_mid": float(top.x_mid), "y_mid": float(top.y_mid), "count": float(top["count"]),
             "median": float(top["median"]), "target_count": float(inside.size),
-            "target_median": float(np.median(inside)), "target_ci_low": float(lo), "target_ci_high": float(hi),
+            "target_median": med, "target_ci_low": float(lo), "target_ci_high": float(hi),
             "runner_up_median": float(second["median"]), "runner_up_count": float(second["count"]),
             "runner_up_x_mid": float(second.x_mid), "runner_up_y_mid": float(second.y_mid),
             "still_peak": float(lo > second["median"])}

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from ..paths import DATA_DIR
-from .inputs import read_toml
+from .inputs import read_toml, suggestion
 
 #: Platform, sonar, envelope and noise keys (``_`` becomes ``-`` in figure labels and glue keys).
 KEY_PATTERN = re.compile(r"[a-z][a-z0-9_]*")
@@ -72,7 +72,9 @@ def check_user_document(doc: Mapping[str, Any], where: str) -> None:
     """Only the known top-level tables, and keys of the form :data:`KEY_PATTERN`."""
     unknown = set(doc) - set(USER_TABLES) - {"schema_version"}
     if unknown:
-        raise ValueError(f"{where}: unknown top-level keys {sorted(unknown)}; allowed: {list(USER_TABLES)}")
+        first = sorted(unknown)[0]
+        raise ValueError(f"{where}: unknown top-level keys {sorted(unknown)}{suggestion(first, USER_TABLES)} "
+                         f"(allowed: {list(USER_TABLES)})")
     for name in USER_TABLES:
         tables = doc.get(name, {})
         if not isinstance(tables, Mapping):
@@ -93,7 +95,8 @@ def parse_set(text: str, base: Mapping[str, Any]) -> dict[str, Any]:
     if len(parts) < (2 if parts[0] in FLAT_TABLES else 3) or parts[0] not in USER_TABLES or not all(parts):
         raise ValueError(f"--set {text!r}: KEY.PATH must start with one of {list(USER_TABLES)}, then a key "
                          "and a field (e.g. platforms.auv.transducers.port.tilt_deg, "
-                         "terrain.random.rms_relief_m; survey.area_m)")
+                         "terrain.random.rms_relief_m; survey.area_m)"
+                         + suggestion(parts[0], USER_TABLES))
     try:
         value = tomllib.loads(f"v = {raw}")["v"]
     except tomllib.TOMLDecodeError:

@@ -135,6 +135,9 @@ def gaussian_norm_quantile(cov, quantile: float = 0.95) -> np.ndarray:
     if cov.ndim < 2 or cov.shape[-1] != cov.shape[-2] or not 1 <= cov.shape[-1] <= 3:
         raise ValueError(f"cov must have shape (..., d, d) with d in 1..3; got {cov.shape}")
     q = _check_quantile(quantile)
+    asym = np.abs(cov - np.swapaxes(cov, -1, -2)).max(initial=0.0)
+    if asym > 1e-9 * np.abs(cov).max(initial=0.0):
+        raise ValueError(f"cov must be symmetric (a covariance); found |cov - cov^T| up to {asym:.3g}")
     lam = np.linalg.eigvalsh(cov)  # ascending
     if lam.size and np.any(lam[..., 0] < -1e-9 * np.abs(lam).max(axis=-1)):
         raise ValueError("cov must be positive semi-definite (a covariance); found a negative eigenvalue "

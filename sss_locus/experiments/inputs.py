@@ -8,6 +8,7 @@ checks its range. Every error names the full key path of the offending entry (fo
 
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
 from collections.abc import Mapping
@@ -16,13 +17,24 @@ from typing import Any
 
 
 def read_toml(path: str | Path) -> dict[str, Any]:
-    """Parse a TOML file; a syntax error becomes a ``ValueError`` naming the file."""
+    """Parse a TOML file (UTF-8, a byte-order mark allowed); a syntax error becomes a
+    ``ValueError`` naming the file."""
     path = Path(path)
-    with open(path, "rb") as fh:
-        try:
-            return tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{path} is not valid TOML: {exc}") from exc
+    if path.is_dir():
+        raise ValueError(f"data file {path} is a directory, not a TOML file")
+    raw = path.read_bytes()
+    try:
+        return tomllib.loads(raw.decode("utf-8-sig"))
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path} is not UTF-8 text (byte {exc.start}); save it as UTF-8") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path} is not valid TOML: {exc}") from exc
+
+
+def suggestion(name: str, known: Any) -> str:
+    """``"; did you mean `x`?"`` for the known name nearest to ``name``, or ``""``."""
+    close = difflib.get_close_matches(str(name), [str(k) for k in known], n=1, cutoff=0.6)
+    return f"; did you mean `{close[0]}`?" if close else ""
 
 
 def platform_table(doc: Mapping[str, Any], section: str,
@@ -67,7 +79,9 @@ def sourced(doc: Mapping[str, Any], key: str, path: str, provenance: dict[str, s
     full = f"{path}.{key}"
     unknown = set(entry) - {"value", "source", "assumption"}
     if unknown:
-        raise ValueError(f"{full} has unknown keys {sorted(unknown)}; allowed: value, source, assumption")
+        first = sorted(unknown)[0]
+        raise ValueError(f"{full} has unknown keys {sorted(unknown)}{suggestion(first, ('value', 'source', 'assumption'))}"
+                         " (allowed: value, source, assumption)")
     if "value" not in entry:
         raise ValueError(f"missing key {full}.value")
     notes = [k for k in ("source", "assumption") if k in entry]

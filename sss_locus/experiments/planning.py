@@ -11,10 +11,11 @@ Typical use::
     curve = crossing_angle_curve(pf, load_envelope("auv"), OffsetModel("independent"))
     planning_bands(curve.curve)          # rows: kind ("prefer"/"avoid"), lo_deg, hi_deg, ...
 
-Statistics: medians and quartiles per crossing angle; uncertainty by a vectorised percentile
-bootstrap of the median (:func:`bootstrap_median`: resample the rows of one angle with
-replacement). The peak angle's interval resamples every angle independently and takes the
-argmax of the resampled medians.
+Statistics: medians and quartiles per crossing angle; the median's interval from independent
+replicates (each angle's pass pairs split into ``n_batches`` batches,
+:mod:`sss_locus.experiments.replicates`). The peak angle is the argmax of the median curve, not a
+smooth statistic, so its interval keeps a percentile bootstrap (:func:`bootstrap_median`:
+resample the rows of every angle independently and take the argmax of the resampled medians).
 
 Band rule (:func:`planning_bands`), fixed before any result was seen: with ``m(gamma)`` the
 median curve and ``m_lo``, ``m_hi`` its smallest and largest values, an angle is **preferred**
@@ -37,6 +38,8 @@ import numpy as np
 import pandas as pd
 
 from .platforms import Platform
+from .replicates import (N_BATCHES, batch_statistic, check_confidence, median_with_interval,
+                         replicate_interval, spearman_rho)
 from .envelopes import OffsetModel, SurveyEnvelope, load_envelope
 from .survey_passes import simulate_passes
 
@@ -101,20 +104,22 @@ def _interval(boot, confidence_level):
     return np.quantile(boot, [alpha, 1.0 - alpha], axis=0)
 
 
-def curve_summary(samples: pd.DataFrame, values=VALUES, *, n_resamples: int = 200,
-                  confidence_level: float = 0.95, seed: int = 0) -> tuple[pd.DataFrame, dict]:
-    """Median, quartiles and bootstrap interval of the median per crossing angle.
+def curve_summary(samples: pd.DataFrame, values=VALUES, *, n_batches: int = N_BATCHES,
+                  n_resamples: int = 200, confidence_level: float = 0.95,
+                  seed: int = 0) -> tuple[pd.DataFrame, dict]:
+    """Median, quartiles and replicate interval of the median per crossing angle.
 
     Returns
     -------
     curve : pandas.DataFrame
         ``crossing_angle_deg, n`` and for each value ``v``: ``v_median, v_q25, v_q75,
-        v_ci_low, v_ci_high`` (percentile bootstrap of the median at ``confidence_level``).
+        v_ci_low, v_ci_high`` (the median's :func:`~sss_locus.experiments.replicates.replicate_interval`
+        from ``n_batches`` batches of the angle's rows, at ``confidence_level``).
     boot : dict
-        ``v -> ndarray (n_resamples, n_angles)`` of bootstrap medians (for :func:`peak_angle`).
+        ``v -> ndarray (n_resamples, n_angles)`` of bootstrap medians (seeded by ``seed``), for
+        :func:`peak_angle`.
     """
-    if not 0.0 < confidence_level < 1.0:
-        raise ValueError(f"confidence_level must be in (0, 1); got {confidence_level}")
+    check_confidence(confidence_level)
     missing = [c for c in ("crossing_angle_deg", *values) if c not in samples.columns]
     if missing:
         raise ValueError(f"samples lacks columns {missing}")
@@ -127,14 +132,13 @@ def curve_summary(samples: pd.DataFrame, values=VALUES, *, n_resamples: int = 20
             x = g[v].to_numpy(float)
             boot[v][:, j] = bootstrap_median(x, n_resamples, rng)
             q25, med, q75 = np.quantile(x, [0.25, 0.5, 0.75])
-            row.update({f"{v}_median": med, f"{v}_q25": q25, f"{v}_q75": q75})
+            lo, hi = median_with_interval(x, n_batches, confidence_level)[1:]
+            row.update({f"{v}_median": med, f"{v}_q25": q25, f"{v}_q75": q75,
+                        f"{v}_ci_low": float(lo), f"{v}_ci_high": float(hi)})
         rows.append(row)
-    curve = pd.DataFrame(rows)
-    for v in values:  # one quantile call per value for the whole grid
-        curve[f"{v}_ci_low"], curve[f"{v}_ci_high"] = _interval(boot[v], confidence_level)
     order = ["crossing_angle_deg", "n"] + [f"{v}_{s}" for v in values
                                           for s in ("median", "q25", "q75", "ci_low", "ci_high")]
-    return curve[order], boot
+    return pd.DataFrame(rows)[order], boot
 
 
 def peak_angle(curve: pd.DataFrame, boot: np.ndarray, value: str = "locus_length_m", *,
@@ -182,8 +186,8 @@ class CrossingAngleCurve:
 
 def crossing_angle_curve(platform: Platform, envelope: SurveyEnvelope | None = None,
                          offset_model: OffsetModel | None = None, *, crossing_angles_deg=None,
-                         n_per_angle: int = 2000, seed: int = 0, n_resamples: int = 200,
-                         confidence_level: float = 0.95,
+                         n_per_angle: int = 2000, seed: int = 0, n_batches: int = N_BATCHES,
+                         n_resamples: int = 200, confidence_level: float = 0.95,
                          simulate=simulate_passes) -> CrossingAngleCurve:
     """Locus length and elevation misalignment against crossing angle for two straight passes.
 
@@ -198,8 +202,11 @@ def crossing_angle_curve(platform: Platform, envelope: SurveyEnvelope | None = N
         Default :func:`crossing_angle_grid` (1 deg to 40 deg, then 5 deg).
     n_per_angle, seed : int
         Accepted pass pairs per angle; random seed.
-    n_resamples, confidence_level
-        Bootstrap of the medians.
+    n_batches : int
+        Replicate batches of each angle's rows for the medians' intervals (:func:`curve_summary`).
+    n_resamples : int
+        Bootstrap resamples for the peak angle's interval (:func:`peak_angle`).
+    confidence_level : float
     simulate : callable
         :func:`~sss_locus.experiments.survey_passes.simulate_passes` or a cached version of it.
     """
@@ -207,7 +214,7 @@ def crossing_angle_curve(platform: Platform, envelope: SurveyEnvelope | None = N
     offset_model = offset_model if offset_model is not None else OffsetModel("independent")
     angles = crossing_angle_grid() if crossing_angles_deg is None else crossing_angles_deg
     samples, acc = simulate(platform, envelope, offset_model, angles, n_per_angle, seed)
-    curve, boot = curve_summary(samples, n_resamples=n_resamples,
+    curve, boot = curve_summary(samples, n_batches=n_batches, n_resamples=n_resamples,
                                 confidence_level=confidence_level, seed=seed)
     curve["acceptance"] = acc.set_index("crossing_angle_deg")["acceptance"].reindex(
         curve["crossing_angle_deg"]).to_numpy()
@@ -283,23 +290,29 @@ def curve_shape_rho(curve: pd.DataFrame, a: str = "locus_length_m",
     """Rank correlation (Spearman, as the Pearson correlation of ranks) of the median curves of
     ``a`` and ``b`` over the crossing-angle grid: whether the two curves rise and fall together
     (it says nothing about where their peaks are)."""
-    rho = np.corrcoef(curve[f"{a}_median"].rank(), curve[f"{b}_median"].rank())
-    return float(rho[0, 1])
+    return spearman_rho(curve[f"{a}_median"].to_numpy(float), curve[f"{b}_median"].to_numpy(float))
 
 
-def median_ratio(x, y, *, n_resamples: int = 1000, confidence_level: float = 0.95,
-                 seed: int = 0) -> dict[str, float]:
-    """``median(x) / median(y)`` with a percentile bootstrap interval (x and y resampled
-    independently), and each median with its own interval."""
-    rng = np.random.default_rng(seed)
-    bx, by = bootstrap_median(x, n_resamples, rng), bootstrap_median(y, n_resamples, rng)
-    mx, my = float(np.median(x)), float(np.median(y))
-    out = {"median_x": mx, "median_y": my, "ratio": mx / my if my > 0 else math.nan}
-    for name, b in (("x", bx), ("y", by), ("ratio", bx / np.where(by > 0, by, np.nan))):
-        lo, hi = _interval(b, confidence_level)
-        key = "ratio" if name == "ratio" else f"median_{name}"
-        out[f"{key}_ci_low"], out[f"{key}_ci_high"] = float(lo), float(hi)
-    return out
+def median_ratio(x, y, *, n_batches: int = N_BATCHES,
+                 confidence_level: float = 0.95) -> dict[str, float]:
+    """``median(x) / median(y)`` and each median, each with its replicate interval.
+
+    ``x`` and ``y`` (independent samples, each i.i.d. in its order) are each split into
+    ``n_batches`` batches; batch ``j``'s ratio is the median of ``x``'s batch ``j`` over that of
+    ``y``'s (NaN where the latter is not positive), and
+    :func:`~sss_locus.experiments.replicates.replicate_interval` turns the spread of the
+    batches' statistics into intervals around the full-sample ones.
+    """
+    mx, x_lo, x_hi = median_with_interval(x, n_batches, confidence_level)
+    my, y_lo, y_hi = median_with_interval(y, n_batches, confidence_level)
+    k = min(len(np.asarray(x)), len(np.asarray(y)), n_batches)
+    bx, by = batch_statistic(x, np.median, k), batch_statistic(y, np.median, k)
+    ratio = mx / my if my > 0 else math.nan
+    lo, hi = replicate_interval(ratio, bx / np.where(by > 0, by, np.nan), confidence_level)
+    return {"median_x": mx, "median_y": my, "ratio": ratio,
+            "median_x_ci_low": x_lo, "median_x_ci_high": x_hi,
+            "median_y_ci_low": y_lo, "median_y_ci_high": y_hi,
+            "ratio_ci_low": float(lo), "ratio_ci_high": float(hi)}
 
 
 def band_samples(platform: Platform, envelope: SurveyEnvelope, offset_model: OffsetModel,

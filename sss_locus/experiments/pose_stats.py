@@ -1,4 +1,4 @@
-"""Statistics of a pose-space table: rank correlations with bootstrap intervals, binned medians.
+"""Statistics of a pose-space table: rank correlations with replicate intervals, binned medians.
 
 Works on the tables of :func:`sss_locus.experiments.pose_space.sample_pose_space` (any DataFrame with the named
 columns). Angles in degrees, lengths in metres.
@@ -13,7 +13,9 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
-from .rowstats import average_ranks, bootstrap_draw_counts, weighted_correlation_sets
+from .replicates import (N_BATCHES, batch_count, centred_from, check_confidence, fisher_z_interval,
+                         rank_correlation, replicate_interval, spearman_rho)
+from .rowstats import average_ranks
 
 TARGETS = ("locus_length_m", "locus_length_normalized")
 """Raw and range-normalised locus length (``locus_length_m / mean_range_m``)."""
@@ -28,13 +30,10 @@ CANDIDATES = (
 :func:`with_derived` (signed yaw, elevation and psi are symmetric about 0, so their rank
 correlation with length is ~0 by construction and says nothing)."""
 
-_RESAMPLES_PER_READ = 200
-"""Bootstrap resamples whose correlations are computed in one read of the table (one matrix of
-draw counts, ``n`` bytes a resample; the book's 200 resamples take one read)."""
-
 _RANK_MEMO_BYTES = 256 * 2 ** 20
 """Bound of the memo of column ranks (:func:`column_ranks`), bytes."""
 _rank_memo: OrderedDict[tuple, np.ndarray] = OrderedDict()
+_memo_bytes = [0]  # bytes held by _rank_memo
 
 
 MISALIGNMENT_READINGS = ("magnitude", "signed")
@@ -69,69 +68,71 @@ def _require(df: pd.DataFrame, columns: Sequence[str], name: str = "df") -> None
 
 
 def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
-                   targets: Sequence[str] = TARGETS, *, n_resamples: int = 400,
-                   confidence_level: float = 0.95, seed: int = 0,
-                   drop_constant: bool = True) -> pd.DataFrame:
-    """Spearman rho of each candidate with each target, with percentile bootstrap intervals.
+                   targets: Sequence[str] = TARGETS, *, n_batches: int = N_BATCHES,
+                   confidence_level: float = 0.95, drop_constant: bool = True) -> pd.DataFrame:
+    """Spearman rho of each candidate with each target, with replicate-batch intervals.
 
-    The point estimate is exactly :func:`scipy.stats.spearmanr` (Pearson correlation of
-    average ranks). The interval resamples rows with replacement ``n_resamples`` times and
-    recomputes the correlation of the full-sample ranks on each resample (weights = how often a
-    row is drawn); ranks are not recomputed per resample, which differs from re-ranking by
-    O(1/n) and lets one pass cost O(n * candidates). The correlations of up to
-    :data:`_RESAMPLES_PER_READ` resamples at a time come from one matrix product per chunk of the
-    table (:func:`~sss_locus.experiments.rowstats.weighted_correlation_sets`); the columns'
-    ranks are remembered between calls (:func:`column_ranks`). Percentile interval at
-    ``confidence_level``. A constant column (e.g. the boat's pitch, always 0) has no rank
-    correlation: with ``drop_constant`` it is left out (listed in ``out.attrs["dropped"]``),
-    otherwise it raises ``ValueError``.
+    The point estimate is Spearman's rho of the whole table (Pearson correlation of average
+    ranks, :func:`~sss_locus.experiments.replicates.rank_correlation`; the numbers of
+    :func:`scipy.stats.spearmanr` to rounding). The interval comes from ``n_batches``
+    independent replicates: the rows, i.i.d. draws, are dealt into batches (row ``i`` to batch
+    ``i mod k``, :mod:`~sss_locus.experiments.replicates`), each batch is ranked on its own and its rho computed, and
+    :func:`~sss_locus.experiments.replicates.replicate_interval` turns their spread into an
+    interval at ``confidence_level`` (coverage measured in ``tests/test_replicates.py``),
+    clipped to [-1, 1].
+    ``ci_low_z``/``ci_high_z`` are the asymptotic Fisher-z interval
+    (:func:`~sss_locus.experiments.replicates.fisher_z_interval`), the cross-check. Ranks of
+    whole columns and of batches are remembered between calls (:func:`column_ranks`). A
+    constant column (e.g. the boat's pitch, always 0) has no rank correlation: with
+    ``drop_constant`` it is left out (listed in ``out.attrs["dropped"]``), otherwise it raises
+    ``ValueError``.
 
     Returns
     -------
     pandas.DataFrame
-        One row per (target, quantity): ``target, quantity, rho, ci_low, ci_high, n``, sorted by
-        target then decreasing ``|rho|``.
+        One row per (target, quantity): ``target, quantity, rho, ci_low, ci_high, n,
+        ci_low_z, ci_high_z``, sorted by target then decreasing ``|rho|``;
+        ``attrs["n_batches"]`` the number of replicates used, ``min(n_batches, n // 3)`` (a
+        batch has at least three rows). A batch in which a column is constant has no rho, and
+        the intervals of that column are NaN.
     """
     _require(df, list(candidates) + list(targets))
-    if not 0.0 < confidence_level < 1.0:
-        raise ValueError(f"confidence_level must be in (0, 1); got {confidence_level}")
-    if int(n_resamples) < 10:
-        raise ValueError(f"n_resamples must be >= 10; got {n_resamples}")
+    check_confidence(confidence_level)
     n = len(df)
-    if n < 3:
-        raise ValueError(f"need at least 3 rows for a rank correlation; got {n}")
-
-    def centred_ranks(cols):
-        r = np.column_stack([column_ranks(df[c].to_numpy()) for c in cols])  # = stats.rankdata
-        return (r - (n + 1) / 2.0) / n  # centred and scaled: well-conditioned sums
+    k = batch_count(n // 3, n_batches)  # checks n_batches; batches of >= 3 rows, n >= 9
 
     constant = [c for c in list(candidates) + list(targets) if _is_constant(df[c])]
     if constant and (not drop_constant or set(constant) & set(targets)):
         raise ValueError(f"columns {constant} are constant: their rank correlation is undefined")
     candidates = [c for c in candidates if c not in constant]
-    X, Y = centred_ranks(candidates), centred_ranks(targets)
-    rng = np.random.default_rng(seed)
-    results = []
-    for start in range(0, int(n_resamples), _RESAMPLES_PER_READ):  # bounded memory: n bytes a resample
-        counts = bootstrap_draw_counts(rng, n, min(_RESAMPLES_PER_READ, int(n_resamples) - start))
-        point = [np.ones((1, n), np.uint8)] if start == 0 else []  # rides along the first read
-        results += weighted_correlation_sets(X, Y, point + [counts])
-    rho, boots = results[0][0], np.concatenate(results[1:])
-    alpha = (1.0 - confidence_level) / 2.0
-    lo, hi = np.quantile(boots, [alpha, 1.0 - alpha], axis=0)
-    rows = [dict(target=tg, quantity=c, rho=rho[i, j], ci_low=lo[i, j], ci_high=hi[i, j], n=n)
+    X = np.column_stack([column_ranks(df[c].to_numpy()) for c in candidates])
+    Y = np.column_stack([column_ranks(df[c].to_numpy()) for c in targets])
+    rho = rank_correlation(centred_from(X), centred_from(Y))
+    # each batch ranked on its own: column_ranks(.., k) holds the batches one after another
+    Xb = np.column_stack([column_ranks(df[c].to_numpy(), k) for c in candidates])
+    Yb = np.column_stack([column_ranks(df[c].to_numpy(), k) for c in targets])
+    starts = np.concatenate([[0], np.cumsum([len(range(j, n, k)) for j in range(k)])])
+    with np.errstate(invalid="ignore", divide="ignore"):  # a batch with a constant column: NaN
+        batches = np.stack([rank_correlation(centred_from(Xb[a:b]), centred_from(Yb[a:b]))
+                            for a, b in zip(starts[:-1], starts[1:])])
+    lo, hi = replicate_interval(rho, batches, confidence_level, bounds=(-1.0, 1.0))
+    zlo, zhi = fisher_z_interval(rho, n, confidence_level)
+    rows = [dict(target=tg, quantity=c, rho=rho[i, j], ci_low=lo[i, j], ci_high=hi[i, j], n=n,
+                 ci_low_z=zlo[i, j], ci_high_z=zhi[i, j])
             for j, tg in enumerate(targets) for i, c in enumerate(candidates)]
     out = pd.DataFrame(rows)
     out["abs_rho"] = out["rho"].abs()
     out = out.sort_values(["target", "abs_rho"], ascending=[True, False]).drop(columns="abs_rho")
     out = out.reset_index(drop=True)
     out.attrs["dropped"] = constant
+    out.attrs["n_batches"] = k
     return out
 
 
-def column_ranks(values: np.ndarray) -> np.ndarray:
+def column_ranks(values: np.ndarray, n_batches: int = 1) -> np.ndarray:
     """:func:`~sss_locus.experiments.rowstats.average_ranks` of one column, remembered by its
-    content.
+    content; with ``n_batches = k > 1``, the ranks of each batch ``values[j::k]`` within the
+    batch, concatenated in batch order.
 
     A chapter ranks the same columns of a table more than once (the readings of the
     misalignment share all other columns); ranking costs a sort, recognising a column one
@@ -140,18 +141,24 @@ def column_ranks(values: np.ndarray) -> np.ndarray:
     ranks are half-integers up to ``n``); the ranks returned are the same numbers either way.
     """
     v = np.ascontiguousarray(values)
+    k = int(n_batches)
+
+    def rank():
+        return average_ranks(v) if k == 1 else np.concatenate([average_ranks(v[j::k]) for j in range(k)])
+
     if v.ndim != 1 or v.dtype.kind not in "fiub" or not 0 < 2 * v.size < 2 ** 32:
-        return average_ranks(v)
-    key = (v.dtype.str, v.size, hashlib.sha256(v.view(np.uint8)).digest())
+        return rank()
+    key = (v.dtype.str, v.size, k, hashlib.sha256(v.view(np.uint8)).digest())
     if key in _rank_memo:
         _rank_memo.move_to_end(key)
         return _rank_memo[key] * 0.5
-    ranks = average_ranks(v)
-    if np.isnan(ranks[0]):
+    ranks = rank()
+    if np.isnan(ranks).any():
         return ranks
     _rank_memo[key] = (2.0 * ranks).astype(np.uint32)
-    while sum(a.nbytes for a in _rank_memo.values()) > _RANK_MEMO_BYTES:
-        _rank_memo.popitem(last=False)
+    _memo_bytes[0] += _rank_memo[key].nbytes
+    while _memo_bytes[0] > _RANK_MEMO_BYTES:
+        _memo_bytes[0] -= _rank_memo.popitem(last=False)[1].nbytes
     return ranks
 
 
@@ -317,10 +324,8 @@ def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFr
     far = df[(df.r1_m > half_r) & (df.r2_m > half_r)]["locus_length_m"].median()
     near = df[(df.r1_m <= half_r) & (df.r2_m <= half_r)]["locus_length_m"].median()
     m["range_far_over_near_ratio"] = float(far / near)
-    from scipy import stats  # here: importing scipy.stats costs every chapter ~1.5 s
-
-    m["range_r1_rho"] = float(stats.spearmanr(df["r1_m"], df["locus_length_m"]).statistic)
-    m["range_r2_rho"] = float(stats.spearmanr(df["r2_m"], df["locus_length_m"]).statistic)
+    m["range_r1_rho"] = spearman_rho(df["r1_m"].to_numpy(), df["locus_length_m"].to_numpy())
+    m["range_r2_rho"] = spearman_rho(df["r2_m"].to_numpy(), df["locus_length_m"].to_numpy())
     # (b) azimuth x azimuth: where the largest bin median is
     pk = _peak(maps["b"])
     m["azimuth_peak_theta1_deg"], m["azimuth_peak_theta2_deg"] = float(pk.x_mid), float(pk.y_mid)

@@ -38,53 +38,6 @@ def _lerp(a, b, gamma):
     return np.where(gamma >= 0.5, b - diff * (1 - gamma), a + diff * gamma)
 
 
-def weighted_correlations(X, Y, weights, *, rows_per_chunk: int = 8192) -> np.ndarray:
-    """Weighted Pearson correlation of every column of ``X`` with every column of ``Y``, for
-    each row of ``weights``.
-
-    ``X`` is ``(n, p)``, ``Y`` ``(n, q)``, ``weights`` ``(k, n)`` (non-negative; e.g. how often
-    each row is drawn in a bootstrap resample, any integer or float dtype). Returns ``(k, p, q)``
-    with ``corr = (S_xy / s - m_x m_y) / sqrt((S_xx / s - m_x^2) (S_yy / s - m_y^2))``, where
-    ``s`` is the weights' sum and ``S``, ``m`` are weighted sums and means. All ``k`` rows of
-    weights are handled by one matrix product per chunk of ``rows_per_chunk`` table rows (the
-    products ``x^2``, ``y^2``, ``x y`` are formed per chunk, in cache), so the table is read
-    once for all of them. Centre and scale the columns beforehand (e.g. ranks ``(r - (n+1)/2)
-    / n``) for well-conditioned sums. Several weight matrices: :func:`weighted_correlation_sets`.
-    """
-    return weighted_correlation_sets(X, Y, [weights], rows_per_chunk=rows_per_chunk)[0]
-
-
-def weighted_correlation_sets(X, Y, weight_sets, *, rows_per_chunk: int = 8192) -> list[np.ndarray]:
-    """:func:`weighted_correlations` for each matrix of ``weight_sets`` (a list of ``(k_i, n)``
-    arrays), with one pass over the table: the products of each chunk of rows are formed once
-    and multiplied by every matrix. Each result is the same, bit for bit, as a separate call
-    (the same matrix products, accumulated in the same order)."""
-    X, Y = np.asarray(X, float), np.asarray(Y, float)
-    sets = [np.asarray(W) for W in weight_sets]
-    n, p = X.shape
-    q = Y.shape[1]
-    for W in sets:
-        if Y.shape[0] != n or W.ndim != 2 or W.shape[1] != n:
-            raise ValueError(f"X (n, p), Y (n, q) and weights (k, n) must share n; got shapes "
-                             f"{X.shape}, {Y.shape}, {W.shape}")
-    sums = [np.zeros((W.shape[0], 2 * (p + q) + p * q)) for W in sets]
-    for a in range(0, n, rows_per_chunk):
-        x, y = X[a:a + rows_per_chunk], Y[a:a + rows_per_chunk]
-        xy = (x[:, :, None] * y[:, None, :]).reshape(len(x), p * q)
-        products = np.hstack([x, y, x * x, y * y, xy])
-        for W, total in zip(sets, sums):
-            total += W[:, a:a + rows_per_chunk].astype(float) @ products
-    out = []
-    for W, total in zip(sets, sums):
-        s = W.sum(axis=1, dtype=float)[:, None]
-        mx, my = total[:, :p] / s, total[:, p:p + q] / s
-        vx = total[:, p + q:2 * p + q] / s - mx ** 2
-        vy = total[:, 2 * p + q:2 * (p + q)] / s - my ** 2
-        cxy = total[:, 2 * (p + q):].reshape(-1, p, q) / s[:, :, None] - mx[:, :, None] * my[:, None, :]
-        out.append(cxy / np.sqrt(vx[:, :, None] * vy[:, None, :]))
-    return out
-
-
 def average_ranks(v) -> np.ndarray:
     """Ranks 1..n of a 1-D array, ties given their average rank; all NaN if any value is NaN.
 
@@ -124,25 +77,3 @@ def _float_order(v: np.ndarray) -> np.ndarray:
     ``+0.0`` (key 0), and equal bits give equal keys."""
     bits = np.ascontiguousarray(v).view(np.int64)
     return np.argsort(np.where(bits < 0, bits ^ np.int64(0x7FFFFFFFFFFFFFFF), bits))
-
-
-def bootstrap_draw_counts(rng, n: int, n_resamples: int):
-    """How often each of ``n`` rows is drawn in each of ``n_resamples`` bootstrap resamples
-    (rows drawn with replacement), shape ``(n_resamples, n)``, in the smallest unsigned dtype.
-
-    Resample ``b`` is ``rng.integers(0, n, n)``, drawn one resample after another (the same
-    draws as a loop calling it ``n_resamples`` times), then counted. The draws are asked for
-    as ``uint32`` when ``n <= 2**32``: numpy's ``Generator`` draws a range that fits in 32 bits
-    with the same 32-bit bounded generator for every integer dtype (one fresh buffer per call),
-    so the values are the same (``tests/test_throughput.py`` checks this), and counting
-    32-bit indices is faster.
-    """
-    out = np.empty((int(n_resamples), n), np.uint8)
-    small = {"dtype": np.uint32} if n <= 2 ** 32 else {}
-    for b in range(out.shape[0]):
-        c = np.bincount(rng.integers(0, n, n, **small), minlength=n)
-        top = int(c.max()) if n else 0
-        if top > np.iinfo(out.dtype).max:
-            out = out.astype(np.min_scalar_type(top))
-        out[b] = c
-    return out

@@ -53,35 +53,51 @@ LOCAL_MALLOC_TRIM_THRESHOLD = 256 * 2**20
 _TRIM = "MALLOC_TRIM_THRESHOLD_"
 
 
+def start_local_cluster(n_workers: int):
+    """A Dask ``LocalCluster`` of ``n_workers`` single-threaded worker processes.
+
+    The one launcher of both ``local:N`` (:func:`client`) and ``sss-locus run/book --workers N``
+    (:mod:`sss_locus.pipeline.scaleout`). Its workers start with
+    ``MALLOC_TRIM_THRESHOLD_`` = :data:`LOCAL_MALLOC_TRIM_THRESHOLD`, set through Dask's
+    configuration ``distributed.nanny.pre-spawn-environ``: with Dask's default (65536) glibc
+    hands every large array back to the OS and the next chunk page-faults it in again, which
+    raised the kernel's CPU time per chunk by ~70 % (benchmarks/bench_studies.py). By Dask's
+    rule a ``MALLOC_TRIM_THRESHOLD_`` already in this process's environment takes precedence
+    (a user who sets it gets that value). Dask's nannies copy their spawn variables into this
+    process's environment (``OMP_NUM_THREADS=1`` among them); the environment is restored
+    after the start, so the variables reach only the workers, not this process, a later
+    cluster or a notebook kernel started from here.
+
+    Raises ``RuntimeError`` naming the extra to install if Dask is missing.
+    """
+    try:
+        import dask
+        from dask.distributed import LocalCluster
+    except ImportError as exc:  # pragma: no cover - depends on the installed extras
+        raise RuntimeError("a local Dask cluster needs the extra `sss-locus[scale]` "
+                           "(dask[distributed])") from exc
+    before = dict(os.environ)
+    try:
+        with dask.config.set({f"distributed.nanny.pre-spawn-environ.{_TRIM}":
+                              str(LOCAL_MALLOC_TRIM_THRESHOLD)}):
+            return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                                dashboard_address=None)
+    finally:
+        for key in set(os.environ) - set(before):
+            del os.environ[key]
+        os.environ.update({k: v for k, v in before.items() if os.environ.get(k) != v})
+
+
 def client(value: str):
     """The Dask client for a scheduler setting (created once per process and setting)."""
     kind, arg = parse_scheduler(value)
     if value not in _CLIENTS:
         try:
-            from dask.distributed import Client, LocalCluster
+            from dask.distributed import Client
         except ImportError as exc:  # pragma: no cover - depends on the installed extras
             raise RuntimeError(f"{SCHEDULER_ENV}={value!r} needs Dask: install the extra "
                                "`sss-locus[scale]` (dask[distributed])") from exc
-        if kind == "local":
-            # Dask starts workers with MALLOC_TRIM_THRESHOLD_=65536, so glibc hands every large
-            # array back to the OS and the next chunk page-faults it in again: the kernel's CPU
-            # time per chunk rose by ~70 % (benchmarks/bench_studies.py). Local workers keep
-            # freed memory up to LOCAL_MALLOC_TRIM_THRESHOLD instead. Dask's nannies take the
-            # variable from os.environ before their config (distributed.nanny.pre-spawn-environ)
-            # and leave it set there: set it for the start of the cluster, then restore it.
-            before = os.environ.get(_TRIM)
-            os.environ[_TRIM] = str(LOCAL_MALLOC_TRIM_THRESHOLD)
-            try:
-                cluster = LocalCluster(n_workers=arg, threads_per_worker=1, processes=True,
-                                       dashboard_address=None)
-            finally:
-                if before is None:
-                    os.environ.pop(_TRIM, None)
-                else:
-                    os.environ[_TRIM] = before
-            _CLIENTS[value] = Client(cluster)
-        else:
-            _CLIENTS[value] = Client(arg)
+        _CLIENTS[value] = Client(start_local_cluster(arg) if kind == "local" else arg)
     return _CLIENTS[value]
 
 

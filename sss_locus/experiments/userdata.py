@@ -28,7 +28,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from . import datadoc
+from . import datadoc, schema
 from .datadoc import (KEY_PATTERN, SET_NOTE, SHIPPED_FILES, USER_TABLES, DataInputs, activate, active,  # noqa: F401
                       check_user_document, document, file_sha256, files_read, label_key, make_inputs,
                       merge, parse_set, shipped_document)
@@ -41,16 +41,21 @@ from .terrain import parse_terrain_config
 def validate(inputs: DataInputs) -> dict[str, Any]:
     """Read and validate everything ``inputs`` resolve to; return the merged document.
 
-    Raises ``ValueError`` naming the file or the full key path of the first bad entry.
+    Raises ``ValueError`` naming the file or the full key path of the first bad entry: unknown
+    keys (with the nearest known one) and impossible hardware included
+    (:mod:`sss_locus.experiments.schema`).
     """
     for path in inputs.files:
+        if Path(path).is_dir():
+            raise ValueError(f"data file {path} is a directory, not a TOML file")
         if not Path(path).is_file():
             raise ValueError(f"data file {path} does not exist")
     try:
         doc = document(inputs)
-        parse_platforms(doc)
-        for key in doc.get("envelopes", {}):
-            parse_envelope(doc, key)
+        schema.check_known_keys(doc)
+        platforms = parse_platforms(doc)
+        envelopes = {key: parse_envelope(doc, key) for key in doc.get("envelopes", {})}
+        schema.check_hardware(platforms, envelopes)
         for key in doc.get("noise", {}):
             parse_noise_model(doc, key)
         default_offset_model("matched", doc=doc)
@@ -94,6 +99,12 @@ def use(data_files: Iterable[str | Path] = (), data_set: Iterable[str] = ()) -> 
     validate(inputs)
     activate(inputs)
     return inputs
+
+
+def hardware_flags(inputs: DataInputs | None = None) -> list[str]:
+    """Values of ``inputs`` that are possible but look like a mistake (e.g. a tilt in radians),
+    one line each (:func:`sss_locus.experiments.schema.hardware_warnings`)."""
+    return schema.hardware_warnings(parse_platforms(document(inputs)))
 
 
 def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = None) -> dict[str, Any]:

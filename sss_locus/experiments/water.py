@@ -35,6 +35,7 @@ import pandas as pd
 from ..geometry import max_depth_half_space, sea_surface_half_space
 from .inputs import check_range
 from .platforms import Platform
+from .replicates import N_BATCHES, batch_statistic, check_batches, check_confidence, replicate_interval
 
 
 @dataclass(frozen=True)
@@ -144,19 +145,20 @@ def deepest_feature_m(platform: Platform) -> float:
     return float(platform.depth_min_m + t.depth_m + platform.sonar.max_range_m * np.sin(down))
 
 
-def crop_effect(uncropped: pd.DataFrame, cropped: pd.DataFrame, *, n_resamples: int = 200,
-                seed: int = 0, confidence_level: float = 0.95) -> pd.DataFrame:
-    """How the water crop changes the loci of the same samples, with paired bootstrap intervals.
+def crop_effect(uncropped: pd.DataFrame, cropped: pd.DataFrame, *, n_batches: int = N_BATCHES,
+                confidence_level: float = 0.95) -> pd.DataFrame:
+    """How the water crop changes the loci of the same samples, with replicate intervals.
 
     Parameters
     ----------
     uncropped, cropped : pandas.DataFrame
         The same configurations row by row (same sampler, spec and seed), without and with a
         :class:`WaterColumn`; columns ``locus_length_m`` (m) and ``n_arcs``.
-    n_resamples : int
-        Bootstrap resamples of the rows (the pairs are resampled together), >= 1.
-    seed : int
-        Seed of the resampling.
+    n_batches : int
+        Replicate batches of the rows (a pair stays together; >= 3): each statistic is computed
+        on each batch, and :func:`~sss_locus.experiments.replicates.replicate_interval` turns
+        their spread into an interval around the whole table's value, clipped to [0, 1] (every
+        statistic below is a share; for a rare one, a handful of events, the interval is rough).
     confidence_level : float
         In (0, 1).
 
@@ -176,10 +178,8 @@ def crop_effect(uncropped: pd.DataFrame, cropped: pd.DataFrame, *, n_resamples: 
     if len(uncropped) != len(cropped) or len(cropped) == 0:
         raise ValueError(f"uncropped and cropped must be the same non-empty samples; got "
                          f"{len(uncropped)} and {len(cropped)} rows")
-    if isinstance(n_resamples, bool) or not isinstance(n_resamples, (int, np.integer)) or n_resamples < 1:
-        raise ValueError(f"n_resamples must be an integer >= 1; got {n_resamples!r}")
-    if not 0.0 < confidence_level < 1.0:
-        raise ValueError(f"confidence_level must be in (0, 1); got {confidence_level!r}")
+    check_batches(n_batches)
+    check_confidence(confidence_level)
     a = uncropped["locus_length_m"].to_numpy(float)
     b = cropped["locus_length_m"].to_numpy(float)
     if np.any(b > a * (1.0 + 1e-9) + 1e-12):
@@ -195,8 +195,7 @@ def crop_effect(uncropped: pd.DataFrame, cropped: pd.DataFrame, *, n_resamples: 
     }
     names = list(cols)
     M = np.stack([cols[k] for k in names], axis=1)
-    rng = np.random.default_rng(seed)
-    boot = np.stack([M[rng.integers(0, len(M), len(M))].mean(axis=0) for _ in range(int(n_resamples))])
+    batches = batch_statistic(M, lambda rows: rows.mean(axis=0), n_batches)
     full = M.mean(axis=0)
 
     def stats(v):  # (..., columns) of means -> the reported statistics
@@ -211,8 +210,7 @@ def crop_effect(uncropped: pd.DataFrame, cropped: pd.DataFrame, *, n_resamples: 
                 "extra_arcs_share": col["extra_arcs_share"],
             }
 
-    est, bs = stats(full), stats(boot)
-    alpha = (1.0 - confidence_level) / 2.0
-    return pd.DataFrame([
-        {"statistic": k, "estimate": float(est[k]), "ci_low": float(np.nanquantile(bs[k], alpha)),
-         "ci_high": float(np.nanquantile(bs[k], 1.0 - alpha)), "n": len(M)} for k in est])
+    est, bs = stats(full), stats(batches)
+    ci = {k: replicate_interval(est[k], bs[k], confidence_level, bounds=(0.0, 1.0)) for k in est}  # all in [0, 1]
+    return pd.DataFrame([{"statistic": k, "estimate": float(est[k]), "ci_low": float(ci[k][0]),
+                          "ci_high": float(ci[k][1]), "n": len(M)} for k in est])

@@ -22,6 +22,7 @@ from .envelopes import OffsetModel, SurveyEnvelope
 from .platforms import Platform
 from .pose_space import PoseSpaceSpec, sample_pose_space
 from .survey_passes import simulate_passes
+from .replicates import N_BATCHES
 from .water import WaterColumn, crop_effect
 
 STUDIES = ("pose space", "survey passes")
@@ -126,7 +127,7 @@ def _tables(cond: Condition, water, *, n_samples, n_per_angle, crossing_angles_d
 
 
 def crop_effects(conditions: Sequence[Condition], *, n_samples: int, n_per_angle: int,
-                 crossing_angles_deg, seed: int, n_resamples: int = 200,
+                 crossing_angles_deg, seed: int, n_batches: int = N_BATCHES,
                  sample: Callable = sample_pose_space, simulate: Callable = simulate_passes
                  ) -> pd.DataFrame:
     """The crop's effect for every condition, as one long table.
@@ -141,9 +142,9 @@ def crop_effects(conditions: Sequence[Condition], *, n_samples: int, n_per_angle
     crossing_angles_deg : array_like
         Crossing angles of the survey passes (deg, in [-180, 180]).
     seed : int
-        Seed of the samplers and of the bootstrap.
-    n_resamples : int
-        Paired bootstrap resamples.
+        Seed of the samplers.
+    n_batches : int
+        Replicate batches for the intervals (:func:`~sss_locus.experiments.water.crop_effect`).
     sample, simulate : callable
         :func:`~sss_locus.experiments.pose_space.sample_pose_space` and
         :func:`~sss_locus.experiments.survey_passes.simulate_passes`, or cached versions of
@@ -167,7 +168,7 @@ def crop_effects(conditions: Sequence[Condition], *, n_samples: int, n_per_angle
         if cond.study == "pose space":
             subsets["port-port"] = ((paper["side1"] == "port") & (paper["side2"] == "port")).to_numpy()
         for name, keep in subsets.items():
-            eff = crop_effect(paper[keep], water[keep], n_resamples=n_resamples, seed=seed)
+            eff = crop_effect(paper[keep], water[keep], n_batches=n_batches)
             rows.append(eff.assign(condition=cond.slug, label=cond.label, platform=cond.platform.key,
                                    study=cond.study, crop=cond.crop, subset=name))
     out = pd.concat(rows, ignore_index=True)

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .validation import as_float_array
+from .validation import as_float_array, check_memory
 
 MAX_ARCS = 8
 """Width of the arc arrays: eight half-space conditions (four per aperture) bound at most eight
@@ -106,6 +106,7 @@ class LocusResult:
         ndarray, shape ``alpha.shape + (3,)``
         """
         _check_frame(frame)
+        self._needs_geometry("point_at")
         alpha = as_float_array(alpha, "alpha", finite=False)
         if np.isinf(alpha).any():
             raise ValueError("alpha must be finite angles in radians (or NaN); found infinity")
@@ -142,18 +143,28 @@ class LocusResult:
                                                and n_per_arc >= 2):
             raise ValueError(f"n_per_arc must be an integer >= 2; got {n_per_arc!r}")
         _check_frame(frame)
+        self._needs_geometry("points")
         n = int(n_per_arc)
+        check_memory(64.0 * int(np.prod(self.arc_start.shape)) * n,  # 64 B a point (tracemalloc)
+                     f"points(n_per_arc={n}) for {int(np.prod(self.arc_start.shape))} arcs")
         s = np.linspace(0.0, 1.0, n)
         alpha = self.arc_start[..., None] + (self.arc_end - self.arc_start)[..., None] * s
         width = self.arc_start.shape[-1]
         flat = alpha.reshape(self.shape + (width * n,))
         return self.point_at(flat, frame).reshape(self.shape + (width, n, 3))
 
+    def _needs_geometry(self, method: str) -> None:
+        if self.center is None or self.arc_start is None:
+            raise ValueError(f"{method}() needs the circle's geometry, which a result of "
+                             "two_view_locus(..., outputs='lengths') does not keep; call it with "
+                             "outputs='all' (the default)")
+
     def angle_of(self, p1) -> np.ndarray:
         """Circle angle ``alpha`` (rad) of points ``p1`` by projection onto the circle's plane.
 
         ``p1``: finite real coordinates (m) in frame 1, shape broadcasting with ``S + (3,)``.
         """
+        self._needs_geometry("angle_of")
         d = as_float_array(p1, "p1", tail=(3,)) - self.center
         return np.arctan2(np.sum(d * self.basis2, axis=-1), np.sum(d * self.basis1, axis=-1))
 

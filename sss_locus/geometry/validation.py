@@ -23,6 +23,8 @@ factor, angles and statuses do not change).
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 ROTATION_ATOL = 1e-9
@@ -68,7 +70,16 @@ def as_real_array(value, name: str) -> np.ndarray:
     dates and timedeltas, ``None`` and object arrays. NaN and infinity pass (see
     :func:`as_float_array` for the finite check).
     """
-    arr = value if isinstance(value, np.ndarray) else np.asarray(value)
+    if isinstance(value, np.ma.MaskedArray):
+        if np.ma.getmaskarray(value).any():
+            raise InputTypeError(f"{name} must be plain numbers; got a masked array with masked entries "
+                                 "(drop them, or fill them with .filled(...), first)")
+        value = value.data
+    try:
+        arr = value if isinstance(value, np.ndarray) else np.asarray(value)
+    except ValueError:  # numpy refuses a ragged nested sequence
+        raise ValueError(f"{name} must be a regular array of numbers; got a ragged sequence (rows of "
+                         "different lengths)") from None
     if arr.dtype.kind not in _REAL_KINDS:
         raise InputTypeError(
             f"{name} must be real numbers (int or float); got {_describe(value, arr)}"
@@ -155,11 +166,38 @@ def as_rotation_matrices(value, name: str = "R") -> np.ndarray:
     det = (m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
            + m[2] * (m[3] * m[7] - m[4] * m[6]))
     if np.any(np.abs(det - 1.0) > ROTATION_ATOL):
+        worst = det[np.argmax(np.abs(det - 1.0))]
+        why = "a reflection" if worst < 0 else f"|det - 1| = {abs(worst - 1.0):.3g} > {ROTATION_ATOL:g}"
         raise ValueError(
-            f"{name} must be a proper rotation (determinant +1); found determinant "
-            f"{det[np.argmax(np.abs(det - 1.0))]:.6g} (a reflection?)"
+            f"{name} must be a proper rotation (determinant +1); found determinant {worst:.12g} ({why})"
         )
     return R
+
+
+#: Overrides the memory budget (bytes) of :func:`memory_budget`.
+MEMORY_BUDGET_ENV = "SSS_LOCUS_MEMORY_BUDGET"
+
+
+def memory_budget() -> int:
+    """Bytes one request may plan to use: ``$SSS_LOCUS_MEMORY_BUDGET`` or half the physical memory."""
+    text = os.environ.get(MEMORY_BUDGET_ENV)
+    if text:
+        try:
+            return int(float(text))
+        except ValueError:
+            raise ValueError(f"{MEMORY_BUDGET_ENV} must be a number of bytes, got {text!r}") from None
+    try:
+        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") // 2
+    except (ValueError, OSError, AttributeError):
+        return 4 * 10**9
+
+
+def check_memory(n_bytes: float, what: str) -> None:
+    """Refuse, in one line, a request whose arrays (``n_bytes``) exceed :func:`memory_budget`."""
+    budget = memory_budget()
+    if n_bytes > budget:
+        raise MemoryError(f"{what} would need about {n_bytes / 1e9:.3g} GB of memory, more than the budget "
+                          f"of {budget / 1e9:.3g} GB (half the RAM; set {MEMORY_BUDGET_ENV} to change it)")
 
 
 def broadcast_leading(named_shapes: dict[str, tuple[int, ...]]) -> tuple[int, ...]:

@@ -31,6 +31,8 @@ from sss_locus.pipeline.runner import hermetic_env
 FIGURES_PAGE = "figures.md"
 CLAIMS_PAGE = "claims.md"
 FIGURES_MARKER = "<!-- FIGURES-INDEX -->"
+CITE_PAGE = "cite.md"
+PROJECT_BIBTEX_MARKER = "<!-- PROJECT-BIBTEX -->"
 MATHJAX_DIST = "sphinx-mathjax-offline"
 #: The site folder (under ``_extra``) of plotly.js, served locally for the interactive views.
 PLOTLY_SUBDIR = "plotly"
@@ -86,10 +88,12 @@ def stage_figure_pages(root: Path, manifests: list[dict[str, Any]]) -> None:
 
 
 def stage_config(root: Path) -> None:
-    """Copy ``_config.yml``, turning the repository buttons on when ``repository.url`` is set."""
+    """Copy ``_config.yml``, turning the repository buttons on when ``repository.url`` is set and
+    giving the pages the package's version as the substitution ``{{ version }}``."""
     import yaml
 
     config = yaml.safe_load(paths.CONFIG_FILE.read_text(encoding="utf-8"))
+    config.setdefault("parse", {}).setdefault("myst_substitutions", {})["version"] = provenance.package_version()
     if citation.repository_url():
         config.setdefault("html", {}).update(use_repository_button=True, use_issues_button=True)
     (root / paths.CONFIG_FILE.name).write_text(yaml.safe_dump(config, sort_keys=False), encoding="utf-8")
@@ -221,12 +225,13 @@ def stage() -> Path:
     stage_figure_pages(root, export.load_manifests())
     claimsindex.stage_claims_index(staged_book / CLAIMS_PAGE)  # the notice, if any, goes above it
     stage_claims_notice(staged_book / CLAIMS_PAGE)
-    page = staged_book / FIGURES_PAGE
-    text = page.read_text(encoding="utf-8")
-    if FIGURES_MARKER not in text:
-        raise ValueError(f"{paths.BOOK_DIR / FIGURES_PAGE} must contain the line {FIGURES_MARKER}")
-    page.write_text(text.replace(FIGURES_MARKER, figures_index(_in_book_order(export.load_manifests()))),
-                    encoding="utf-8")
+    for name, marker, generated in (
+            (FIGURES_PAGE, FIGURES_MARKER, lambda: figures_index(_in_book_order(export.load_manifests()))),
+            (CITE_PAGE, PROJECT_BIBTEX_MARKER, lambda: f"```bibtex\n{citation.project_bibtex()}```")):
+        text = (staged_book / name).read_text(encoding="utf-8")
+        if marker not in text:
+            raise ValueError(f"{paths.BOOK_DIR / name} must contain the line {marker}")
+        (staged_book / name).write_text(text.replace(marker, generated()), encoding="utf-8")
     return root
 
 

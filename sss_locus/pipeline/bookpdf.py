@@ -8,7 +8,8 @@ Run after ``make book`` (it uses the executed notebooks and exported figures in 
 The single page is built into ``<build>/singlehtml`` and printed to ``<build>/pdf/sss-locus-book.pdf``
 with Chromium from the operating system (Debian/Ubuntu package ``chromium``, or Google Chrome):
 the figures are the book's own (embedded PNGs), math is typeset by the site's local MathJax, and
-the interactive views and the "cite this figure" dropdowns are left out of the print.
+the interactive views and the "cite this figure" dropdowns are left out of the print. The PDF is
+then read back and checked (:mod:`sss_locus.pipeline.pdfcheck`) when poppler-utils is installed.
 """
 
 from __future__ import annotations
@@ -20,12 +21,16 @@ import sys
 from pathlib import Path
 
 from sss_locus import paths
-from sss_locus.pipeline import bookbuild
+from sss_locus.pipeline import bookbuild, pdfcheck
 from sss_locus.pipeline.runner import hermetic_env
 
 PDF_NAME = "sss-locus-book.pdf"
 BROWSERS = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable", "chrome")
 #: Printing rules added to the single page: no navigation, no interactive plots, no dropdowns.
+#: The first page is the theme's title page (the book's title and contents; the theme hides the
+#: root page's own title in print; no bottom margin, which would spill a blank page); the root
+#: page's text and each other page of the book (a section the singlehtml builder places after a
+#: ``<span id="document-...">``) start a new page.
 PRINT_CSS = """
 @media print {
   .bd-header, .bd-sidebar-primary, .bd-sidebar-secondary, .header-article, .prev-next-area,
@@ -33,7 +38,9 @@ PRINT_CSS = """
   .sd-dropdown, .toggle-details, button { display: none !important; }
   .bd-main, .bd-content, .bd-article-container { max-width: 100% !important; }
   figure, img, table { break-inside: avoid; }
-  h1 { break-before: page; }
+  #jb-print-docs-body { break-after: page; }
+  #jb-print-toc { margin-bottom: 0 !important; }
+  span[id^="document-"] + section { break-before: page; }
 }
 """
 
@@ -110,12 +117,22 @@ def print_pdf(index: Path, target: Path, browser: str, timeout_s: float = 300) -
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Print the book; then, when poppler's tools are installed, read the PDF back and fail on
+    any of :func:`sss_locus.pipeline.pdfcheck.problems`."""
     try:
         browser = find_browser()  # before any work: a missing tool is the common failure
         index = build_singlehtml(log=lambda line: print(line, file=sys.stderr))
         pdf = print_pdf(index, paths.build_dir() / "pdf" / PDF_NAME, browser)
+        missing = pdfcheck.missing_tools()
+        found = [] if missing else pdfcheck.problems(pdf, index)
     except (FileNotFoundError, RuntimeError, subprocess.TimeoutExpired) as exc:
         print(f"make pdf: {exc}", file=sys.stderr)
+        return 1
+    if missing:
+        print(f"make pdf: the PDF was not checked ({', '.join(missing)} not found: "
+              "`apt-get install poppler-utils`)", file=sys.stderr)
+    if found:
+        print(f"make pdf: {pdf} was printed, but:\n  " + "\n  ".join(found), file=sys.stderr)
         return 1
     print(pdf)
     return 0

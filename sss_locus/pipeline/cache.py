@@ -55,7 +55,7 @@ import numpy as np
 import pandas as pd
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, provenance
+from sss_locus.pipeline import atomic, orphans, provenance
 
 CACHE_FORMAT = 2
 DATA_NAME = "data-{index}.parquet"
@@ -246,8 +246,15 @@ def prune(cache_dir: Path | None = None) -> dict[str, int]:
     """Delete entries no current input reaches: their key, recomputed from the key parts they
     record with today's package version and code/data fingerprint, is not their name (or they
     are broken); and temporary folders whose writing process is gone. Returns the counts of
-    :func:`usage` (taken before deleting) plus ``removed`` and ``freed`` bytes."""
-    return usage(cache_dir, prune_unreachable=True)
+    :func:`usage` (taken before deleting) plus ``removed`` and ``freed`` bytes. With the default
+    cache it also deletes the build area's staging folders of runs that were killed
+    (:func:`sss_locus.pipeline.orphans.remove_stale_staging`)."""
+    report = usage(cache_dir, prune_unreachable=True)
+    if cache_dir is None:
+        removed, freed = orphans.remove_stale_staging(paths.build_dir() / "tmp")
+        report["removed"] += removed
+        report["freed"] += freed
+    return report
 
 
 def canonical(value: Any, name: str = "argument") -> Any:

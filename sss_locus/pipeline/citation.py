@@ -1,4 +1,5 @@
-"""Citation metadata: figure BibTeX entries, the site's base URL, and ``.zenodo.json``.
+"""Citation metadata: figure BibTeX entries, the project's entry, the site's base URL, and
+``.zenodo.json``.
 
 One source for each fact:
 
@@ -226,6 +227,27 @@ def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None 
     return f"@misc{{sss-locus:{label},\n{body}\n}}\n"
 
 
+def project_bibtex(cff: Mapping[str, Any] | None = None, *, config: Path | None = None) -> str:
+    """The ``@misc`` BibTeX entry ``sss-locus`` citing this project, from ``CITATION.cff``: its
+    title, authors, ``version``, the year of ``date-released``, and its ``doi`` and address
+    (``url``, else ``repository-code``) when set."""
+    cff = load_cff() if cff is None else cff
+    fields = {
+        "title": "{" + latex_escape(str(cff["title"])) + "}",
+        "author": _bibtex_authors(cff),
+        "year": latex_escape(str(cff["date-released"])[:4]),
+        "version": latex_escape(str(cff["version"])),
+        "howpublished": "Software and web book, version " + latex_escape(str(cff["version"])),
+    }
+    if cff.get("doi"):
+        fields["doi"] = latex_escape(str(cff["doi"]))
+    url = cff.get("url") or cff.get("repository-code")
+    if url:
+        fields["url"] = str(url).replace("%", r"\%").replace("#", r"\#")
+    body = ",\n".join(f"  {key} = {{{value}}}" for key, value in fields.items())
+    return f"@misc{{sss-locus,\n{body}\n}}\n"
+
+
 def launch_links(notebook: str, config: Path | None = None) -> dict[str, str]:
     """Binder and Colab addresses of a source notebook (repository-relative path), when
     ``repository.url`` in ``_config.yml`` is a GitHub repository; otherwise ``{}``."""
@@ -326,7 +348,11 @@ def zenodo_json(cff: Mapping[str, Any] | None = None) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description="Generate .zenodo.json from CITATION.cff.")
     parser.add_argument("--check", action="store_true", help="only check that .zenodo.json is up to date")
+    parser.add_argument("--bibtex", action="store_true", help="print the project's BibTeX entry instead")
     args = parser.parse_args(argv)
+    if args.bibtex:
+        print(project_bibtex(), end="")
+        return 0
     text = zenodo_json()
     current = ZENODO_FILE.read_text(encoding="utf-8") if ZENODO_FILE.exists() else None
     if args.check:

@@ -42,7 +42,10 @@ def _data_inputs(args: argparse.Namespace):
     ``{keys of ...}`` constraints then see the user's keys)."""
     from sss_locus.experiments import userdata
 
-    return userdata.use(args.data, args.set_values)
+    inputs = userdata.use(args.data, args.set_values)
+    for flag in userdata.hardware_flags(inputs):  # possible, but probably a mistake
+        print(f"sss-locus {args.command}: warning: {flag}", file=sys.stderr)
+    return inputs
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -94,7 +97,8 @@ def _run(args: argparse.Namespace) -> int:
     entry = get_entry(args.notebook)
     overrides = _overrides(args.parameter)
     run_notebook(entry, args.profile, overrides, from_text=True, output=args.output, data=data)
-    print("Rebuild the site from the executed copies with: sss-locus book --no-run")
+    if not args.output:  # a side run leaves the book as it was
+        print("Rebuild the site from the executed copies with: sss-locus book --no-run")
     return 0
 
 
@@ -188,11 +192,16 @@ def main(argv: list[str] | None = None) -> int:
             print("(the full traceback: add --verbose)", file=sys.stderr)
         return 1
     except KeyboardInterrupt as exc:
-        print(f"sss-locus {args.command}: interrupted ({exc or 'Ctrl-C'}); the last good results are "
+        print(f"sss-locus {args.command}: interrupted ({str(exc) or 'Ctrl-C'}); the last good results are "
               "unchanged", file=sys.stderr)
         return 130
     except (ValueError, FileNotFoundError, RuntimeError) as exc:  # ParameterError is a ValueError
         print(f"sss-locus {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:  # a read-only folder, a full disk: one line, no traceback
+        from sss_locus.pipeline.transaction import describe_os_error
+
+        print(f"sss-locus {args.command}: error: {describe_os_error(exc)}", file=sys.stderr)
         return 2
 
 

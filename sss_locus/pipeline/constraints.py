@@ -17,13 +17,17 @@ A comment in a ``parameters`` cell may end with, in this order and each optional
     The keys of a data table (``platforms``, ``sonars``, ``envelopes``, ``noise``) of ``data/``
     merged with the active user data (``--data``, ``--set``;
     :mod:`sss_locus.experiments.userdata`), read when the value is checked.
+``len N`` (before the range)
+    A list or tuple parameter must have exactly ``N`` elements (e.g. a band ``[lo, hi]``).
 ``~N B`` (or ``kB``, ``MB``, ``GB``)
     The memory one unit of the value costs (measured or estimated): the value times ``N`` must
     stay within the memory budget (:func:`memory_budget`), so a run that cannot fit is refused
     before it starts.
 
 For a list or tuple parameter the constraints apply to every element, and every element must
-have the type of the default's elements. The comment's text before the constraints is the
+have the type of the default's elements; a list whose default is not empty must not be empty.
+Whatever the declaration, a float (or element) must be finite: ``1e999`` reads as ``inf`` and is
+refused. The comment's text before the constraints is the
 parameter's description.
 """
 
@@ -31,15 +35,16 @@ from __future__ import annotations
 
 import ast
 import math
-import os
 import re
 from dataclasses import dataclass
 from typing import Any
 
-#: Overrides the memory budget (bytes) of :func:`memory_budget`.
-MEMORY_BUDGET_ENV = "SSS_LOCUS_MEMORY_BUDGET"
+from sss_locus.geometry import validation
+from sss_locus.geometry.validation import MEMORY_BUDGET_ENV
+
 _UNITS = {"B": 1, "kB": 10**3, "MB": 10**6, "GB": 10**9}
 _TAIL = re.compile(
+    r"(?:\blen\s+(?P<len>[0-9]+)\s*)?"
     r"(?P<range>[\[(]\s*[-+]?[0-9._eE+-]*\s*,\s*[-+]?[0-9._eE+-]*\s*[\])])?\s*"
     r"(?P<choices>\{[^{}]*\})?\s*"
     r"(?:~\s*(?P<mem>[0-9][0-9_.eE+]*)\s*(?P<unit>B|kB|MB|GB))?\s*\Z"
@@ -62,6 +67,7 @@ class Constraint:
     bytes_each: float | None = None
     element_type: str | None = None  # "int", "float", "str", "bool" for list/tuple parameters
     data_table: str | None = None  # choices are the keys of this data table (``{keys of <table>}``)
+    length: int | None = None  # a list's exact number of elements (``len N``)
 
     def allowed_choices(self) -> tuple[Any, ...] | None:
         """The allowed values: the declared ones, or the current keys of the data table."""
@@ -75,7 +81,8 @@ class Constraint:
         """What is allowed, e.g. ``[1, 5000000]``, ``one of 'auv', 'boat'``."""
         parts = []
         if self.element_type:
-            parts.append(f"a list of {self.element_type}")
+            parts.append(f"a non-empty list of {self.element_type}"
+                         + (f" with exactly {self.length} values" if self.length else ""))
         if self.low is not None or self.high is not None:
             lo = "" if self.low is None else _number(self.low)
             hi = "" if self.high is None else _number(self.high)
@@ -105,17 +112,12 @@ def _bytes(n: float) -> str:
 
 
 def memory_budget() -> int:
-    """Bytes a run may plan to use: ``$SSS_LOCUS_MEMORY_BUDGET`` or half the physical memory."""
-    text = os.environ.get(MEMORY_BUDGET_ENV)
-    if text:
-        try:
-            return int(float(text))
-        except ValueError:
-            raise ConstraintError(f"{MEMORY_BUDGET_ENV} must be a number of bytes, got {text!r}") from None
+    """Bytes a run may plan to use: ``$SSS_LOCUS_MEMORY_BUDGET`` or half the physical memory
+    (:func:`sss_locus.geometry.validation.memory_budget`)."""
     try:
-        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") // 2
-    except (ValueError, OSError, AttributeError):
-        return 4 * 10**9
+        return validation.memory_budget()
+    except ValueError as exc:
+        raise ConstraintError(str(exc)) from None
 
 
 def split_comment(comment: str, name: str, default: Any) -> tuple[str, Constraint]:
@@ -142,6 +144,8 @@ def split_comment(comment: str, name: str, default: Any) -> tuple[str, Constrain
             fields["data_table"] = data_keys.group(1)
         elif match["choices"]:
             fields["choices"] = tuple(ast.literal_eval(match["choices"][1:-1] + ","))
+        if match["len"]:
+            fields["length"] = int(match["len"])
         if match["mem"]:
             fields["bytes_each"] = float(match["mem"]) * _UNITS[match["unit"]]
     except (ValueError, SyntaxError, TypeError):
@@ -157,8 +161,15 @@ def check(name: str, value: Any, constraint: Constraint) -> None:
     items = list(value) if isinstance(value, (list, tuple)) else [value]
     allowed = constraint.describe()
     choices = constraint.allowed_choices()
+    if isinstance(value, (list, tuple)) and constraint.element_type and not items:
+        raise ConstraintError(f"parameter {name!r} = {value!r} is empty: allowed {allowed}")
+    if isinstance(value, (list, tuple)) and constraint.length and len(items) != constraint.length:
+        raise ConstraintError(f"parameter {name!r} = {value!r} has {len(items)} value(s): allowed {allowed}")
     for index, item in enumerate(items):
         where = f"{name}[{index}]" if isinstance(value, (list, tuple)) else name
+        if isinstance(item, float) and not math.isfinite(item):
+            raise ConstraintError(f"parameter {where!r} = {item!r} must be a finite number"
+                                  + (f" (allowed: {allowed})" if allowed else ""))
         if constraint.element_type and isinstance(value, (list, tuple)):
             ok = {"int": isinstance(item, int) and not isinstance(item, bool),
                   "float": isinstance(item, (int, float)) and not isinstance(item, bool),

@@ -6,10 +6,14 @@ Commit
 A run writes into a private staging folder. :func:`commit_run` then, holding the build area's
 lock (:func:`build_lock`) and with SIGINT/SIGTERM/SIGHUP held back until it is done:
 
-1. copies the run's figure files into the figures folder (each through a unique temporary name
-   and a rename, each manifest after the files it lists),
-2. removes the notebook's figures the run no longer exported (manifest first),
-3. renames the staged executed copy over the old one.
+1. checks the space the new files need and stages each of them beside its target under a
+   unique temporary name (nothing old is touched yet),
+2. then, by renames and unlinks only, replaces the figure files (each manifest after the files
+   it lists), removes the notebook's figures the run no longer exported (manifest first) and
+   puts the executed copy in place;
+
+any failure (a full disk included) undoes every step: the last good results stay as they were
+(:mod:`sss_locus.pipeline.transaction`).
 
 Every figure manifest records the run key of the run that made it, and so does the executed
 copy: :func:`problems` finds a copy and figures from different runs whatever happened.
@@ -19,7 +23,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 import re
 import signal
 from collections import Counter
@@ -29,7 +32,7 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, export, provenance
+from sss_locus.pipeline import atomic, export, provenance, transaction
 
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
 _HELD = {signal.SIGINT, signal.SIGTERM, signal.SIGHUP}
@@ -62,12 +65,13 @@ def _manifests_of(folder: Path, notebook: str | None) -> dict[str, dict[str, Any
             if notebook is None or m.get("notebook") == notebook}
 
 
-def _remove_figure(folder: Path, manifest: dict[str, Any], keep: set[str] = frozenset()) -> None:
+def _remove_figure(swap: transaction.FileSwap, folder: Path, manifest: dict[str, Any],
+                   keep: set[str] = frozenset()) -> None:
     if not keep:
-        (folder / f"{manifest['label']}.json").unlink(missing_ok=True)
+        swap.unlink(folder / f"{manifest['label']}.json")
     for name in manifest.get("files", {}):
         if name not in keep:
-            (folder / name).unlink(missing_ok=True)
+            swap.unlink(folder / name)
 
 
 def commit_run(staged_notebook: Path, staged_figures: Path, executed: Path, figures: Path,
@@ -75,24 +79,30 @@ def commit_run(staged_notebook: Path, staged_figures: Path, executed: Path, figu
     """Move a finished run into place (see the module docstring); return the exported labels.
 
     ``notebook`` is the source path recorded in the manifests: the notebook's earlier figures
-    in ``figures`` are replaced (``None``: only same-label figures are replaced).
+    in ``figures`` are replaced (``None``: only same-label figures are replaced). Every new file
+    is staged first (:class:`sss_locus.pipeline.transaction.FileSwap`): a failure, a full disk
+    included, raises :class:`~sss_locus.pipeline.transaction.CommitFailed` and leaves the old
+    figures, manifests and executed copy exactly as they were.
     """
     new = _manifests_of(staged_figures, None) if staged_figures.is_dir() else {}
-    figures.mkdir(parents=True, exist_ok=True)
-    executed.parent.mkdir(parents=True, exist_ok=True)
-    with signals_held():
+    what = f"the run into {executed.name} and {figures}"
+    with signals_held(), transaction.FileSwap(what) as swap:
+        figures.mkdir(parents=True, exist_ok=True)
+        executed.parent.mkdir(parents=True, exist_ok=True)
+        swap.check_space(figures, [staged_figures / name for m in new.values()
+                                   for name in [*m["files"], f"{m['label']}.json"]])
         old = _manifests_of(figures, notebook) if notebook is not None else {}
         for label, manifest in new.items():
             previous = old.pop(label, None) or _manifests_of(figures, None).get(label)
-            (figures / f"{label}.json").unlink(missing_ok=True)  # incomplete while files change
+            swap.unlink(figures / f"{label}.json")  # incomplete while files change
             for name in manifest["files"]:
-                atomic.copy_atomic(staged_figures / name, figures / name)
-            atomic.copy_atomic(staged_figures / f"{label}.json", figures / f"{label}.json")
+                swap.copy(staged_figures / name, figures / name)
+            swap.copy(staged_figures / f"{label}.json", figures / f"{label}.json")
             if previous:
-                _remove_figure(figures, previous, keep=set(manifest["files"]) | {f"{label}.json"})
+                _remove_figure(swap, figures, previous, keep=set(manifest["files"]) | {f"{label}.json"})
         for manifest in old.values():  # figures this notebook no longer draws
-            _remove_figure(figures, manifest)
-        os.replace(staged_notebook, executed)
+            _remove_figure(swap, figures, manifest)
+        swap.move(staged_notebook, executed)
     return sorted(new)
 
 

@@ -13,12 +13,10 @@ import os
 from typing import Any
 import subprocess
 from datetime import datetime, timezone
-from importlib import metadata
 from pathlib import Path
 
 from sss_locus import paths
 
-DISTRIBUTION = "sss-locus"
 
 #: Environment variables set by the notebook runner (``sss-locus run`` / ``sss-locus book``)
 #: so that code running inside a kernel knows which notebook and profile it belongs to.
@@ -45,11 +43,12 @@ def json_default(value: Any) -> Any:
 
 
 def package_version() -> str:
-    """Installed version of the ``sss-locus`` distribution (``"unknown"`` if not installed)."""
-    try:
-        return metadata.version(DISTRIBUTION)
-    except metadata.PackageNotFoundError:
-        return "unknown"
+    """The package's version, ``sss_locus.__version__``: the one place it is stated (the
+    distribution's metadata, CITATION.cff and .zenodo.json are checked to agree with it; an
+    editable install's metadata would lag behind a bump until reinstalled)."""
+    import sss_locus
+
+    return sss_locus.__version__
 
 
 def git_commit(repo: Path | None = None) -> str:

@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, export, outputs, paperinputs, provenance
+from sss_locus.pipeline import atomic, export, faults, orphans, outputs, paperinputs, preflight, provenance
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
 from sss_locus.pipeline.registry import NotebookEntry
@@ -51,7 +51,7 @@ KERNEL_NAME = "sss-locus"
 #: product by its thread count, so the last bits of e.g. a Spearman rho (2.8e-17 measured) would
 #: depend on the machine's cores and on how many notebooks run at once; and two notebooks run side
 #: by side (``sss-locus book --jobs 2``) with two BLAS threads each made the bootstrap's matrix
-#: products 10-20x slower on 2 cores. Dask's workers run with one thread too.
+#: products (when the intervals were bootstrapped) 10-20x slower on 2 cores. Dask's workers run with one thread too.
 KERNEL_BLAS_THREADS = "1"
 
 
@@ -213,15 +213,15 @@ def _execute(entry: NotebookEntry, staging: Path, notebook: Path, cwd: Path,
         error = outputs.notebook_error(nb) if nb else None
         if error:
             raise NotebookFailed(f"notebook {entry.name!r} failed in {error[0]}", error[1])
-        tail = log.strip().splitlines()[-1:] or ["?"]
-        raise NotebookFailed(f"notebook {entry.name!r} did not run: {tail[0]}", log)
+        raise NotebookFailed(f"notebook {entry.name!r} did not run: {faults.papermill_failure(log, staging.parent)}", log)
 
 
 def _papermill_child(args: Path, log_file: Path) -> int:
     """One papermill process for ``args``, its output in ``log_file``; its exit code."""
     with open(log_file, "wb") as log_fh:
         child = subprocess.Popen([sys.executable, "-c", _CHILD, str(args)], stdout=log_fh,
-                                 stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True)
+                                 stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True,
+                                 preexec_fn=orphans.die_with_parent)  # even if we are SIGKILLed
         try:
             return child.wait()
         finally:
@@ -257,14 +257,14 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     """
     parameters = resolve_parameters(entry, profile, overrides, from_text=from_text, data=data)
     side = output is not None
-    executed = Path(output).resolve() if side else entry.executed_path()
+    executed = preflight.check_side_output(output, entry) if side else entry.executed_path()
     figures = executed.parent / paths.FIGURES_SUBDIR if side else paths.figures_dir()
-    if side and paths.build_dir().resolve() in executed.parents:
-        raise ValueError(f"--output {executed} is inside the build area {paths.build_dir()}: "
-                         "side runs must go elsewhere (run without --output to update the book)")
+    if not side:
+        preflight.check_writable(paths.build_dir(), "build area")
     executed.parent.mkdir(parents=True, exist_ok=True)
     tmp_root = executed.parent if side else paths.build_dir() / "tmp"
     tmp_root.mkdir(parents=True, exist_ok=True)
+    orphans.remove_stale_staging(tmp_root)  # left by runs that were killed (SIGKILL)
     staging = tmp_root / f".run-{entry.name}-{os.getpid()}-{uuid.uuid4().hex[:12]}"
     key = run_key(entry, profile, parameters)
     env = hermetic_env()
@@ -273,6 +273,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
         provenance.PARAMETERS_ENV: json.dumps(parameters, sort_keys=True, default=provenance.json_default),
         export.FIGURES_DIR_ENV: str(staging / "figures"), export.RUN_KEY_ENV: key,
         "JUPYTER_RUNTIME_DIR": str(staging / "runtime"),  # connection file goes with the staging folder
+        "TMPDIR": str(staging / "runtime"),  # jupyter_client writes it with tempfile.mkstemp
         READS_ENV: str(staging / "data-reads.txt"),  # the data entries the kernel's loaders read
     })
     staged = staging / executed.name
@@ -286,9 +287,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
             except NotebookFailed as exc:
                 kept = executed.with_name(executed.stem + ".failed.ipynb") if side else \
                     paths.build_dir() / "failed" / executed.name
-                if staged.is_file():
-                    kept.parent.mkdir(parents=True, exist_ok=True)
-                    os.replace(staged, kept)
+                if staged.is_file() and faults.keep_failed_notebook(staged, kept):
                     exc.kept = kept
                     exc.args = (f"{exc.args[0]}; the failed notebook is kept in {kept}",)
                 raise

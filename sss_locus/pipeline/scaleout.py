@@ -2,7 +2,8 @@
 
 The notebooks' Monte Carlo studies read :data:`sss_locus.experiments.scale.SCHEDULER_ENV`
 (kernels inherit this process's environment). ``--workers N`` starts one local cluster of
-``N`` worker processes here, shared by every notebook of the run; ``--scheduler ADDRESS``
+``N`` worker processes here (at most the cores this process may use; :func:`sss_locus.experiments.scale.start_local_cluster`, the
+launcher ``local:N`` uses too), shared by every notebook of the run; ``--scheduler ADDRESS``
 uses a running Dask scheduler. Neither given: the studies run in the kernel, without Dask.
 """
 
@@ -10,10 +11,11 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from sss_locus.experiments.scale import SCHEDULER_ENV
+from sss_locus.experiments.scale import SCHEDULER_ENV, start_local_cluster
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -25,11 +27,24 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                        help="run the Monte Carlo chunks on a local Dask cluster of N processes")
 
 
+def available_cores() -> int:
+    """The cores this process may run on (its CPU affinity; the machine's count elsewhere)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
+
+
 @contextmanager
 def scheduler_environment(args: argparse.Namespace) -> Iterator[None]:
     """Set :data:`SCHEDULER_ENV` for the duration of a command (and start a local cluster)."""
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be a positive integer; got {args.workers}")
+    if args.workers is not None and args.workers > available_cores():
+        print(f"sss-locus: --workers {args.workers} capped at {available_cores()}, the cores this process "
+              "may use (more worker processes than cores only compete; --scheduler ADDRESS uses a cluster)",
+              file=sys.stderr)
+        args.workers = available_cores()
     if args.scheduler is None and args.workers is None:
         yield
         return
@@ -37,10 +52,7 @@ def scheduler_environment(args: argparse.Namespace) -> Iterator[None]:
     cluster = None
     try:
         if args.workers is not None:
-            from dask.distributed import LocalCluster
-
-            cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
+            cluster = start_local_cluster(args.workers)
             os.environ[SCHEDULER_ENV] = cluster.scheduler_address
         else:
             os.environ[SCHEDULER_ENV] = args.scheduler

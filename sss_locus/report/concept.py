@@ -67,7 +67,8 @@ def concept_data(locus, axes2: np.ndarray, origin2: np.ndarray, r1: float, r2: f
         "circle": pd.DataFrame({"alpha_rad": alpha, "x_m": circle[:, 0], "y_m": circle[:, 1],
                                 "z_m": circle[:, 2]}),
         "locus": pd.concat([pd.DataFrame({"arc": k, "x_m": a[:, 0], "y_m": a[:, 1], "z_m": a[:, 2]})
-                            for k, a in enumerate(arcs)], ignore_index=True),
+                            for k, a in enumerate(arcs)]  # no arc (an empty locus): no rows
+                           or [pd.DataFrame(columns=["arc", "x_m", "y_m", "z_m"])], ignore_index=True),
         "sensors": pd.DataFrame([dict(sensor=n, x_m=o[0], y_m=o[1], z_m=o[2], range_m=r,
                                       **{f"{a}_axis_{c}": axes[i, j] for j, a in enumerate("xyz")
                                          for i, c in enumerate("xyz")})

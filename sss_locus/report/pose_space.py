@@ -46,7 +46,7 @@ def scatter_subset(df: pd.DataFrame, n_points: int, seed: int) -> pd.DataFrame:
 
 def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""):
     """The paper's Fig. 3 for one platform: (a, b) Spearman rho of each quantity with the raw and
-    the range-normalised locus length, with bootstrap intervals; (c) normalised length against
+    the range-normalised locus length, with replicate-batch intervals; (c) normalised length against
     elevation misalignment for ``subset`` (:func:`scatter_subset`), fragmented loci in orange.
 
     ``rho`` is a :func:`~sss_locus.experiments.pose_stats.spearman_table`. Returns the figure.
@@ -140,7 +140,7 @@ def fmt_metric(name: str, v) -> str:
 
 
 def metric_texts(metrics: Mapping[str, float | str], rho: pd.DataFrame) -> dict[str, str]:
-    """Prose of every claim metric (:func:`fmt_metric`) plus the bootstrap interval of every
+    """Prose of every claim metric (:func:`fmt_metric`) plus the replicate interval of every
     rank correlation, ``"<raw|norm>_<quantity>_ci"`` -> ``"[lo, hi]"`` (three decimals)."""
     out = {name: fmt_metric(name, v) for name, v in metrics.items()}
     for row in rho.itertuples():

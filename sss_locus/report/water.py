@@ -20,7 +20,7 @@ def _pct(row) -> str:
 
 def effect_texts(effects: pd.DataFrame) -> dict[str, str]:
     """Glue texts ``<condition>-<subset>-<statistic>`` (e.g. ``boat-pose-tilt15-all-length_ratio``):
-    percentages with their 95 % bootstrap interval, plus ``<condition>-<subset>-n`` (sample count)."""
+    percentages with their 95 % replicate interval, plus ``<condition>-<subset>-n`` (sample count)."""
     out = {}
     for row in effects.itertuples():
         base = f"{row.condition}-{row.subset}"
@@ -58,7 +58,7 @@ CROP_TEXT = {"surface": ("cropped to the water", "(b) length below the surface")
 def plot_crop_effects(effects: pd.DataFrame, crop: str = "surface"):
     """(a) Share of fragmented loci without and with the crop; (b) share of the total locus
     length the crop keeps; one row per condition whose ``crop`` column is ``crop`` (all
-    samples), 95 % bootstrap intervals. Returns the figure."""
+    samples), 95 % replicate-batch intervals. Returns the figure."""
     if crop not in CROP_TEXT:
         raise ValueError(f"crop must be one of {list(CROP_TEXT)}; got {crop!r}")
     sel = effects[(effects["subset"] == "all") & (effects["crop"] == crop)]

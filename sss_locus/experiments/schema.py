@@ -1,0 +1,165 @@
+"""What a data document may hold, and what hardware can exist: checks run on the merged data
+(shipped ``data/*.toml``, ``--data`` files, ``--set`` overrides) before any work starts.
+
+Known keys
+    The fields an entry of ``sonars``, ``platforms``, ``envelopes``, ``offset_models``,
+    ``noise`` or ``terrain`` may have are the fields the shipped entries of that table have (at
+    any depth; a number ``{value = ..., source|assumption = ...}`` is one field); a table of
+    numbers only (``survey``, :data:`~sss_locus.experiments.datadoc.FLAT_TABLES`) may hold the
+    shipped table's keys. Any other key is refused,
+    with the nearest known key suggested: a misspelt key would otherwise be merged, never read,
+    and listed as a change from the paper's inputs although nothing changed.
+Physical rules (:func:`check_hardware`)
+    Each refused in one line naming the rule and the values:
+
+    * a transducer above the sea surface at the platform's shallowest depth
+      (``depth_m.min + transducers.<side>.depth_m < 0``);
+    * a survey envelope's pitch beyond the platform's attitude limit
+      (``max(|pitch_min_deg|, |pitch_max_deg|) > attitude.pitch_max_deg``), or its bounds the
+      wrong way round;
+    * an envelope altitude at or beyond the sonar's range (``altitude_max_m >= max_range_m``:
+      the seafloor would be out of reach);
+    * a sonar's apertures that look like radians (the kernel's rule,
+      :data:`sss_locus.geometry.aperture.RADIANS_FAN_DEG` and ``RADIANS_SHAPE_RATIO``);
+    * a name the figures cannot draw (control characters, emoji and other pictographs).
+
+    :func:`hardware_warnings` flags, without refusing, a transducer tilt that looks like radians
+    (``0 < |tilt_deg| < pi/2`` with a fractional part) and a sonar fan of at most ``pi`` "degrees"
+    whose beam alone does not meet the radians rule.
+"""
+
+from __future__ import annotations
+
+import math
+import unicodedata
+from collections.abc import Mapping
+from typing import Any
+
+from ..geometry.aperture import RADIANS_FAN_DEG, RADIANS_SHAPE_RATIO
+from .datadoc import FLAT_TABLES, USER_TABLES, shipped_document
+from .inputs import suggestion
+
+
+def _is_leaf(value: Any) -> bool:
+    return not isinstance(value, Mapping) or "value" in value
+
+
+def _fields(entry: Mapping[str, Any], into: dict[str, set[str]], prefix: str = "") -> None:
+    """Record, for each sub-table path of ``entry`` (``""`` its top), the keys it holds."""
+    into.setdefault(prefix, set()).update(entry)
+    for key, value in entry.items():
+        if not _is_leaf(value):
+            _fields(value, into, f"{prefix}.{key}" if prefix else key)
+
+
+def known_fields() -> dict[str, dict[str, set[str]]]:
+    """For each user table, the keys each of its sub-table paths may hold (from the shipped data)."""
+    shipped = shipped_document()
+    out: dict[str, dict[str, set[str]]] = {}
+    for table in USER_TABLES:
+        fields: dict[str, set[str]] = {}
+        for entry in shipped.get(table, {}).values():
+            if isinstance(entry, Mapping):
+                _fields(entry, fields)
+        out[table] = fields
+    return out
+
+
+def check_known_keys(doc: Mapping[str, Any]) -> None:
+    """Refuse the first key of ``doc``'s entries that no shipped entry has (see the module
+    docstring); the message starts with the key's full dotted path."""
+    known = known_fields()
+    for table in FLAT_TABLES:
+        _check_entry(doc.get(table) or {}, {"": set(shipped_document().get(table, {}))}, table, "")
+    for table in USER_TABLES:
+        if table in FLAT_TABLES:
+            continue
+        for key, entry in (doc.get(table) or {}).items():
+            if isinstance(entry, Mapping):
+                _check_entry(entry, known[table], f"{table}.{key}", "")
+
+
+def _check_entry(entry: Mapping[str, Any], known: dict[str, set[str]], path: str, prefix: str) -> None:
+    allowed = known.get(prefix, set())
+    for name, value in entry.items():
+        full = f"{path}.{name}"
+        if name not in allowed:
+            listing = ", ".join(sorted(allowed))
+            raise ValueError(f"{full}: unknown key {name!r}{suggestion(name, allowed)} "
+                             f"(keys here: {listing})")
+        if not _is_leaf(value):
+            _check_entry(value, known, full, f"{prefix}.{name}" if prefix else name)
+
+
+def _drawable(text: str) -> bool:
+    for char in text:
+        category = unicodedata.category(char)
+        if category.startswith("C") or ord(char) > 0xFFFF or "\u2600" <= char <= "\u27bf" \
+                or char == "\ufe0f":
+            return False
+    return True
+
+
+def check_hardware(platforms: Mapping[str, Any], envelopes: Mapping[str, Any]) -> None:
+    """Refuse physically impossible hardware (see the module docstring).
+
+    ``platforms``: :class:`~sss_locus.experiments.platforms.Platform` by key; ``envelopes``:
+    :class:`~sss_locus.experiments.envelopes.SurveyEnvelope` by platform key.
+    """
+    sonars = {p.sonar.key: p.sonar for p in platforms.values()}
+    for key, sonar in sonars.items():
+        if sonar.azimuth_deg <= RADIANS_FAN_DEG and sonar.elevation_deg <= sonar.azimuth_deg / RADIANS_SHAPE_RATIO:
+            raise ValueError(
+                f"sonars.{key}: azimuth_deg = {sonar.azimuth_deg:g} and elevation_deg = "
+                f"{sonar.elevation_deg:g} look like radians (azimuth <= pi and elevation <= azimuth / "
+                f"{RADIANS_SHAPE_RATIO:g}); give FULL apertures in degrees (did you mean "
+                f"{math.degrees(sonar.azimuth_deg):.4g} x {math.degrees(sonar.elevation_deg):.4g} deg?)")
+        if not _drawable(sonar.name):
+            raise ValueError(f"sonars.{key}.name = {sonar.name!r}: use text the figures can draw "
+                             "(no emoji, pictographs or control characters)")
+    for key, p in platforms.items():
+        if not _drawable(p.name):
+            raise ValueError(f"platforms.{key}.name = {p.name!r}: use text the figures can draw "
+                             "(no emoji, pictographs or control characters)")
+        for side, t in p.transducers.items():
+            if p.depth_min_m + t.depth_m < 0:
+                raise ValueError(
+                    f"platforms.{key}.transducers.{side}.depth_m = {t.depth_m:g}: the transducer is "
+                    f"{-(p.depth_min_m + t.depth_m):g} m above the sea surface at the platform's "
+                    f"shallowest depth (depth_m.min = {p.depth_min_m:g}); a sidescan works under water "
+                    "(rule: depth_m.min + transducer depth_m >= 0)")
+        env = envelopes.get(key)
+        if env is None:
+            continue
+        where = f"envelopes.{key}"
+        if env.pitch_min_deg > env.pitch_max_deg or env.altitude_min_m > env.altitude_max_m:
+            raise ValueError(f"{where}: pitch_min_deg/altitude_min_m must not exceed pitch_max_deg/"
+                             f"altitude_max_m; got pitch [{env.pitch_min_deg:g}, {env.pitch_max_deg:g}], "
+                             f"altitude [{env.altitude_min_m:g}, {env.altitude_max_m:g}]")
+        pitch = max(abs(env.pitch_min_deg), abs(env.pitch_max_deg))
+        if pitch > p.pitch_max_deg:
+            raise ValueError(
+                f"{where}: pitch within [{env.pitch_min_deg:g}, {env.pitch_max_deg:g}] deg exceeds the "
+                f"vehicle's limit platforms.{key}.attitude.pitch_max_deg = {p.pitch_max_deg:g} "
+                "(rule: |pitch| <= the platform's pitch limit)")
+        if env.altitude_max_m >= p.sonar.max_range_m:
+            raise ValueError(
+                f"{where}.altitude_max_m = {env.altitude_max_m:g} m is at or beyond the sonar's range "
+                f"sonars.{p.sonar.key}.max_range_m = {p.sonar.max_range_m:g} m: the seafloor would be "
+                "out of reach (rule: altitude_max_m < max_range_m)")
+
+
+def hardware_warnings(platforms: Mapping[str, Any]) -> list[str]:
+    """Values that are possible but look like a mistake (one line each; see the module docstring)."""
+    found = []
+    for key, sonar in {p.sonar.key: p.sonar for p in platforms.values()}.items():
+        if sonar.azimuth_deg <= RADIANS_FAN_DEG:
+            found.append(f"sonars.{key}.azimuth_deg = {sonar.azimuth_deg:g} looks like radians (a "
+                         f"{math.degrees(sonar.azimuth_deg):.4g} deg fan?); apertures are FULL angles in degrees")
+    for key, p in platforms.items():
+        for side, t in p.transducers.items():
+            tilt = abs(t.tilt_deg)
+            if 0 < tilt < math.pi / 2 and not float(tilt).is_integer():
+                found.append(f"platforms.{key}.transducers.{side}.tilt_deg = {t.tilt_deg:g} looks like "
+                             f"radians (a look-down of {math.degrees(t.tilt_deg):.3g} deg?); tilts are in degrees")
+    return found

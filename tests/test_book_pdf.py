@@ -1,0 +1,105 @@
+"""The whole book as one PDF (``make pdf``), printed from the quick book and read back: a page
+range per chapter, every figure embedded, the math typeset, and rendered pages that are not blank.
+
+Needs headless Chromium and poppler-utils (``.ci/install-tools`` installs both); without them the
+tests are skipped and named at the end of the run, and in CI they fail (``conftest.py``).
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("jupyter_book")
+yaml = pytest.importorskip("yaml")
+
+from book_support import TIMEOUT_S  # noqa: E402
+from sss_locus import paths  # noqa: E402
+from sss_locus.pipeline import bookpdf, pdfcheck  # noqa: E402
+from sss_locus.pipeline.export import load_manifests  # noqa: E402
+from sss_locus.pipeline.registry import load_registry  # noqa: E402
+
+pytestmark = pytest.mark.book
+
+
+def _needs(*, browser: bool) -> None:
+    missing = pdfcheck.missing_tools()
+    if browser and not any(shutil.which(name) for name in bookpdf.BROWSERS):
+        missing.append("headless Chromium")
+    if missing:
+        pytest.skip("needs " + ", ".join(missing) + " (poppler-utils, chromium: .ci/install-tools)")
+
+
+@pytest.fixture(scope="module")
+def quick_pdf(quick_book):
+    """``make pdf`` (``python -m sss_locus.pipeline.bookpdf``) on the quick book's build area:
+    ``{"pdf", "html"}`` (the PDF and the single page it was printed from)."""
+    _needs(browser=True)
+    result = subprocess.run([sys.executable, "-m", "sss_locus.pipeline.bookpdf"], env=quick_book["env"],
+                            capture_output=True, text=True, timeout=TIMEOUT_S, stdin=subprocess.DEVNULL)
+    if result.returncode != 0:
+        pytest.fail(f"make pdf failed:\n{result.stdout[-3000:]}\n{result.stderr[-6000:]}")
+    pdf = Path(result.stdout.strip().splitlines()[-1])
+    assert pdf == quick_book["area"] / "pdf" / bookpdf.PDF_NAME
+    return {"pdf": pdf, "html": quick_book["area"] / "singlehtml" / "_build" / "singlehtml" / "book-print.html"}
+
+
+def _toc_files() -> list[str]:
+    toc = yaml.safe_load(paths.TOC_FILE.read_text(encoding="utf-8"))
+    return [toc["root"], *(c["file"] for part in toc["parts"] for c in part["chapters"])]
+
+
+def test_pdf_has_every_page_in_order_every_figure_and_typeset_math(quick_book, quick_pdf):
+    # the printed page holds every page of the book, one title each, in the table of contents' order
+    titles = [pdfcheck.printed_page(quick_book["html"] / f"{file}.html")[0][0] for file in _toc_files()]
+    printed_titles, printed_figures, _ = pdfcheck.printed_page(quick_pdf["html"])
+    assert printed_titles == titles
+    registered = {entry.source_relative for entry in load_registry().values()}
+    placed = [m for m in load_manifests(quick_book["area"] / "source" / "_extra" / "figures")
+              if m["notebook"] in registered]
+    assert len(placed) >= 10 and len(printed_figures) >= len(placed)
+    assert "\\(" in quick_pdf["html"].read_text(encoding="utf-8")  # there is math to typeset
+    # ... and the PDF shows them: a page range per title, the figures, the math typeset, ink
+    assert pdfcheck.problems(quick_pdf["pdf"], quick_pdf["html"]) == []
+    texts = pdfcheck.page_texts(quick_pdf["pdf"])
+    assert len(texts) > len(titles)
+
+
+def test_pdf_check_finds_missing_pages_figures_raw_math_and_blank_pages(tmp_path):
+    """The checks can fail: a PDF whose second title is missing, whose first opens two pages,
+    with no image for either figure, math left as source on a page and a blank last page."""
+    _needs(browser=False)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_pdf import PdfPages
+
+    pdf = tmp_path / "bad.pdf"
+    with PdfPages(pdf) as pages:
+        for text in ("Alpha\nsome words", "Alpha\nthe length is \\(L\\) metres", ""):
+            fig = plt.figure(figsize=(8.27, 11.69))
+            fig.text(0.1, 0.9, text, fontsize=40, va="top")
+            pages.savefig(fig)
+            plt.close(fig)
+    html = tmp_path / "page.html"
+    fig = plt.figure(figsize=(3, 2), dpi=100)
+    fig.savefig(tmp_path / "fig.png")  # 300 x 200 px, not in the PDF
+    plt.close(fig)
+    html.write_text('<article class="bd-article"><section><h1>Alpha<a class="headerlink" href="#a">#</a>'
+                    '</h1><figure><img src="fig.png"></figure><figure><img src="gone.png"></figure>'
+                    "<pre>$ make</pre></section></article>"
+                    '<span id="document-beta"></span><section><h3>Beta</h3></section>', encoding="utf-8")
+    assert pdfcheck.printed_page(html) == (["Alpha", "Beta"], ["fig.png", "gone.png"], "$ make")
+    assert pdfcheck.problems(pdf, html) == [
+        "page title 'Alpha' opens 2 pages ([1, 2]), not one",
+        "page title 'Beta' opens 0 pages ([]), not one",
+        "figure image fig.png (300 x 200 px) is not embedded",
+        "figure image 'gone.png' is not a PNG file beside the page",
+        "math left as source: 1 '\\\\(' in the text (pages [2]), 0 in code blocks",
+        "page 3 rendered blank (0.00% of its pixels inked)",
+    ]

@@ -1,0 +1,58 @@
+"""The README is a user's guide that stays true: short, the two commands first, the user's own
+hardware early, its layout table naming paths that exist, and its Python example running and
+printing what its comment says."""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import sys
+
+from sss_locus import paths
+
+README = paths.REPO_ROOT / "README.md"
+
+
+def _lines() -> list[str]:
+    return README.read_text(encoding="utf-8").splitlines()
+
+
+def test_readme_is_short_with_the_two_commands_and_own_hardware_first():
+    lines = _lines()
+    assert len(lines) <= 150
+    first_screen = "\n".join(lines[:25])
+    assert "make book" in first_screen and "make test" in first_screen
+    heading = next(i for i, line in enumerate(lines) if line.startswith("## ") and "own sonar" in line)
+    assert heading < 60
+
+
+def test_no_issue_numbers_or_development_log_in_readme_or_book():
+    pages = [README, *sorted(paths.BOOK_DIR.glob("*.md"))]
+    for page in pages:
+        text = page.read_text(encoding="utf-8")
+        assert not re.search(r"\bissues? #?\d+|(?<![\w&])#\d+\b", text, re.I), page
+        assert not re.search(r"\b(this|earlier) rounds?\b", text, re.I), page
+
+
+def test_layout_table_names_existing_paths():
+    rows = [line for line in _lines() if line.startswith("| `")]
+    assert len(rows) >= 8
+    generated = {"_build/", ".cache/", ".venv/"}
+    for row in rows:
+        for name in re.findall(r"`([^`]+)`", row.split("|")[1]):
+            if name not in generated:
+                assert (paths.REPO_ROOT / name).exists(), name
+
+
+def test_python_example_runs_and_prints_the_stated_length(tmp_path):
+    text = README.read_text(encoding="utf-8")
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert len(blocks) == 1
+    shutil.copy(paths.DATA_DIR / "examples" / "my_auv.toml", tmp_path / "my_auv.toml")  # as the README's cp
+    run = subprocess.run([sys.executable, "-c", blocks[0]], cwd=tmp_path, capture_output=True, text=True,
+                         timeout=300)
+    assert run.returncode == 0, run.stderr
+    length = float(run.stdout.split()[-1])
+    stated = re.search(r"print\(locus\.length\)\s*#\s*([0-9.]+) m", blocks[0])
+    assert stated and length > 0 and f"{length:.2f}" == stated.group(1)
