@@ -93,6 +93,10 @@ def test_jacobian_against_finite_differences_and_sympy():
     e_s, g_s = fn(*np.moveaxis(P, -1, 0), *np.moveaxis(o, -1, 0), r, sig)
     assert np.allclose(e, e_s, rtol=1e-12, atol=1e-12)
     assert np.allclose(J, np.stack(g_s, axis=-1), rtol=1e-12, atol=1e-15)
+    # the derivation chapter's check (unequal sigmas, noisy ranges): rounding-level agreement
+    d = S.kernel_jacobian_discrepancy(seed=1, n=200, n_views=5)
+    assert d["n_rows"] == 1000
+    assert d["residual"] < 1e-10 and d["jacobian_rel"] < 1e-13 and d["finite_difference_rel"] < 1e-6
 
 
 def test_invariant_under_a_rigid_motion():

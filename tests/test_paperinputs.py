@@ -58,6 +58,10 @@ def test_compare_reads_the_defaults_of_each_notebook():
     assert not paperinputs.is_paper(replaced) and replaced["missing"] == ["boat", "auv"]
     tilted = _record("rigs", {"platforms": ["boat", "auv"], "data_set": ["platforms.boat.transducers.port.tilt_deg=35"]})
     assert tilted["changed"] == ["platforms.boat.transducers.port.tilt_deg"] and not paperinputs.is_paper(tilted)
+    relief = {"platforms": ["auv", "boat"], "data_set": ["terrain.random.rms_relief_m=3"]}
+    assert paperinputs.is_paper(_record("reconstruction", relief))  # a run that read no terrain
+    read = paperinputs.compare(REGISTRY["reconstruction"], relief, ["platforms.auv", "terrain", "survey"])
+    assert read["changed"] == ["terrain.random.rms_relief_m"] and not paperinputs.is_paper(read)
 
 
 def _notebook(tmp_path, cells):

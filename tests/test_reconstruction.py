@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -109,7 +110,7 @@ def test_paired_comparison_and_verdict_against_constructed_tables():
 
     from sss_locus.experiments.platforms import load_platform
     from sss_locus.experiments.reconstruction_study import paired_comparison
-    from sss_locus.report.reconstruction import verdict_sentence
+    from sss_locus.report.reconstruction import loss_sentence, verdict_sentence
 
     rng = np.random.default_rng(0)
     rows = []
@@ -128,5 +129,13 @@ def test_paired_comparison_and_verdict_against_constructed_tables():
     # goes, the verdict names the smallest relief from which every larger one wins
     expected = "1.0 m" if c.p_value.iloc[1] < 0.01 else "2.0 m"
     assert f"from {expected} RMS relief on" in text
+    # the other side: at relief 0 (all views 0.5 m worse) the flat mosaic is significantly closer
+    assert c.p_value_b_closer.iloc[0] < 1e-10 and c.p_value_b_closer.iloc[2] > 0.5
+    loss = loss_sentence(load_platform("auv"), c, alpha=0.01, noise_scale=1.0)
+    assert re.search(r"significantly closer than all views at 0 m RMS relief \(all views farther by a median "
+                     r"0\.(49|50|51) m, closer for only 0\.0 % of the features\)\.$", loss)  # shift 0.5 m
+    assert "2.0 m RMS relief" not in loss
     c.loc[2, "p_value"] = 0.5
     assert "at no relief up to 2.0 m" in verdict_sentence(load_platform("auv"), c, alpha=0.01)
+    loss = loss_sentence(load_platform("auv"), c, 0.01, 1.0)  # relief 2.0 m: now neither side
+    assert "neither is significantly closer at" in loss and loss.endswith("2.0 m.")

@@ -202,3 +202,40 @@ def test_world_pose_and_relative_pose_reproduce_observe_pass_and_the_locus():
     # the feature lies on the locus circle: distance to the centre equals the radius, in its plane
     c, nrm, rad = np.asarray(locus.center), np.asarray(locus.normal), float(locus.radius)
     assert abs(float(np.dot(p1 - c, nrm))) < 1e-6 and abs(np.linalg.norm(p1 - c) - rad) < 1e-6
+
+
+def test_terrain_and_survey_are_overridden_by_key_and_validated(tmp_path):
+    from sss_locus.experiments.terrain import load_terrain_config
+
+    shipped = load_terrain_config()
+    user = tmp_path / "seafloor.toml"
+    user.write_text('[terrain.random.rms_relief_m]\nvalue = 2.5\nassumption = "our multibeam survey"\n'
+                    '[survey.line_spacing_m]\nvalue = 80.0\nsource = "our survey plan"\n')
+    userdata.use([user], ["terrain.slope.slope_deg=7", "survey.area_m=400"])
+    cfg = load_terrain_config()
+    assert cfg["random"]["rms_relief_m"] == 2.5 and cfg["survey"]["line_spacing_m"] == 80.0
+    assert cfg["slope"]["slope_deg"] == 7.0 and cfg["survey"]["area_m"] == 400.0
+    assert cfg["random"]["correlation_length_m"] == shipped["random"]["correlation_length_m"]  # untouched
+    assert cfg["provenance"]["terrain.random.rms_relief_m"] == "assumption: our multibeam survey"
+    assert cfg["provenance"]["survey.area_m"] == "assumption: user override: --set survey.area_m=400"
+    # only a run that reads the shared tables counts them as changed
+    assert userdata.changed_from_shipped(["auv"], userdata.active()) == []
+    assert userdata.changed_from_shipped(["auv"], userdata.active(), ["terrain", "survey"]) == [
+        "terrain.random.rms_relief_m", "terrain.slope.slope_deg", "survey.area_m", "survey.line_spacing_m"]
+
+
+@pytest.mark.parametrize("text, sets, match", [
+    ('[terrain.random]\nrms_relief_m = { value = -1.0, assumption = "x" }\n', [],
+     r"terrain\.random\.rms_relief_m\.value must be a finite number in \[0\.0, 1000\.0\]; got -1\.0 \(from data file "),
+    ('[terrain.hills]\nheight_m = { value = 1.0, assumption = "x" }\n', [],
+     r"terrain\.hills is not a terrain model; allowed: .*\(from data file "),
+    ('[survey]\nlanes_m = { value = 1.0, assumption = "x" }\n', [], r"survey\.lanes_m: unknown key 'lanes_m'.*\(from data file "),
+    ("", ["survey.bogus_m=5"], r"survey\.bogus_m: unknown key 'bogus_m'.*\(set by --set survey\.bogus_m=5\)"),
+    ("", ["survey.margin_m=-5"], r"survey\.margin_m\.value must be .*\(set by --set survey\.margin_m=-5\)"),
+])
+def test_bad_terrain_input_names_the_key_and_where_it_came_from(tmp_path, text, sets, match):
+    user = tmp_path / "bad.toml"
+    user.write_text(text)
+    with pytest.raises(ValueError, match=match):
+        userdata.use([user], sets)
+    assert userdata.active().is_default

@@ -1,6 +1,6 @@
 """Merging the shipped ``data/*.toml`` with a user's files and ``--set`` overrides (the
 low-level half of :mod:`sss_locus.experiments.userdata`, which documents the rules; the loaders
-of platforms, envelopes and noise read :func:`document`)."""
+of platforms, envelopes, noise and terrain read :func:`document`)."""
 
 from __future__ import annotations
 
@@ -21,8 +21,10 @@ from .inputs import read_toml, suggestion
 #: Platform, sonar, envelope and noise keys (``_`` becomes ``-`` in figure labels and glue keys).
 KEY_PATTERN = re.compile(r"[a-z][a-z0-9_]*")
 #: Shipped files, in merge order, and the top-level tables a user file may hold.
-SHIPPED_FILES: tuple[str, ...] = ("platforms.toml", "survey.toml", "noise.toml")
-USER_TABLES: tuple[str, ...] = ("sonars", "platforms", "envelopes", "offset_models", "noise")
+SHIPPED_FILES: tuple[str, ...] = ("platforms.toml", "survey.toml", "noise.toml", "terrain.toml")
+USER_TABLES: tuple[str, ...] = ("sonars", "platforms", "envelopes", "offset_models", "noise", "terrain", "survey")
+#: Tables whose numbers sit one level down (``survey.area_m``), not two (``noise.auv.range_m``).
+FLAT_TABLES: tuple[str, ...] = ("survey",)
 SET_NOTE = "user override: --set "
 
 
@@ -90,9 +92,10 @@ def parse_set(text: str, base: Mapping[str, Any]) -> dict[str, Any]:
                          f"got {text!r}")
     path, _, raw = (s.strip() for s in text.partition("="))
     parts = path.split(".")
-    if len(parts) < 3 or parts[0] not in USER_TABLES or not all(parts):
+    if len(parts) < (2 if parts[0] in FLAT_TABLES else 3) or parts[0] not in USER_TABLES or not all(parts):
         raise ValueError(f"--set {text!r}: KEY.PATH must start with one of {list(USER_TABLES)}, then a key "
-                         "and a field (e.g. platforms.auv.transducers.port.tilt_deg)"
+                         "and a field (e.g. platforms.auv.transducers.port.tilt_deg, "
+                         "terrain.random.rms_relief_m; survey.area_m)"
                          + suggestion(parts[0], USER_TABLES))
     try:
         value = tomllib.loads(f"v = {raw}")["v"]

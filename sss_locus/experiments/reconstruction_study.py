@@ -79,7 +79,9 @@ def shape_cases(platform, envelope, noise, config: dict, noise_scales, *, n_feat
 def paired_comparison(table: pd.DataFrame, a: str, b: str, by=()) -> pd.DataFrame:
     """``a`` against ``b`` on the features both estimated, per group of ``by``: the number of
     pairs, the median of ``error_3d(a) - error_3d(b)`` (m), the share where ``a`` is closer,
-    and the one-sided Wilcoxon signed-rank p-value for "``a`` is closer" (``scipy.stats``)."""
+    and the one-sided Wilcoxon signed-rank p-values for "``a`` is closer" (``p_value``) and for
+    "``b`` is closer" (``p_value_b_closer``) (``scipy.stats``; NaN for fewer than 10 pairs or
+    all differences 0)."""
     from scipy.stats import wilcoxon
 
     rows = []
@@ -89,9 +91,12 @@ def paired_comparison(table: pd.DataFrame, a: str, b: str, by=()) -> pd.DataFram
         eb = t[t.estimator == b].set_index("feature")
         both = ea.estimated & eb.reindex(ea.index).estimated.fillna(False).astype(bool)
         d = (ea.error_3d_m - eb.error_3d_m.reindex(ea.index))[both].to_numpy()
-        p = wilcoxon(d, alternative="less").pvalue if d.size >= 10 and np.any(d != 0) else np.nan
+        testable = d.size >= 10 and np.any(d != 0)
+        p = wilcoxon(d, alternative="less").pvalue if testable else np.nan
+        q = wilcoxon(d, alternative="greater").pvalue if testable else np.nan
         key = key if isinstance(key, tuple) else (key,)
         rows.append(dict(zip(by, key), n_pairs=int(d.size),
                          median_difference_m=float(np.median(d)) if d.size else np.nan,
-                         share_closer=float(np.mean(d < 0)) if d.size else np.nan, p_value=float(p)))
+                         share_closer=float(np.mean(d < 0)) if d.size else np.nan, p_value=float(p),
+                         p_value_b_closer=float(q)))
     return pd.DataFrame(rows)

@@ -2,9 +2,11 @@
 (shipped ``data/*.toml``, ``--data`` files, ``--set`` overrides) before any work starts.
 
 Known keys
-    The fields an entry of ``sonars``, ``platforms``, ``envelopes``, ``offset_models`` or
-    ``noise`` may have are the fields the shipped entries of that table have (at any depth; a
-    number ``{value = ..., source|assumption = ...}`` is one field). Any other key is refused,
+    The fields an entry of ``sonars``, ``platforms``, ``envelopes``, ``offset_models``,
+    ``noise`` or ``terrain`` may have are the fields the shipped entries of that table have (at
+    any depth; a number ``{value = ..., source|assumption = ...}`` is one field); a table of
+    numbers only (``survey``, :data:`~sss_locus.experiments.datadoc.FLAT_TABLES`) may hold the
+    shipped table's keys. Any other key is refused,
     with the nearest known key suggested: a misspelt key would otherwise be merged, never read,
     and listed as a change from the paper's inputs although nothing changed.
 Physical rules (:func:`check_hardware`)
@@ -34,7 +36,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..geometry.aperture import RADIANS_FAN_DEG, RADIANS_SHAPE_RATIO
-from .datadoc import USER_TABLES, shipped_document
+from .datadoc import FLAT_TABLES, USER_TABLES, shipped_document
 from .inputs import suggestion
 
 
@@ -67,7 +69,11 @@ def check_known_keys(doc: Mapping[str, Any]) -> None:
     """Refuse the first key of ``doc``'s entries that no shipped entry has (see the module
     docstring); the message starts with the key's full dotted path."""
     known = known_fields()
+    for table in FLAT_TABLES:
+        _check_entry(doc.get(table) or {}, {"": set(shipped_document().get(table, {}))}, table, "")
     for table in USER_TABLES:
+        if table in FLAT_TABLES:
+            continue
         for key, entry in (doc.get(table) or {}).items():
             if isinstance(entry, Mapping):
                 _check_entry(entry, known[table], f"{table}.{key}", "")

@@ -22,7 +22,8 @@ synthesised spectrally on a periodic grid (white Gaussian noise shaped in the Fo
 the square root of the power spectrum ``exp(-|k|^2 ell^2 / 4)``; the grid is padded by
 ``3 ell`` on every side so the wrap-around correlation is below ``exp(-9)``), its mean removed
 and its RMS over the grid scaled to exactly ``sigma``, then bilinearly interpolated. Values in
-``data/terrain.toml`` (all assumptions); :func:`load_terrain_config` reads them.
+``data/terrain.toml`` (all assumptions), which a user's ``--data`` file or ``--set`` may override
+by key (:mod:`sss_locus.experiments.userdata`); :func:`load_terrain_config` reads them.
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from ..paths import DATA_DIR
+from . import datadoc
 from .inputs import read_toml, sourced, table
 
 TERRAIN_FILE: Path = DATA_DIR / "terrain.toml"
@@ -207,12 +209,26 @@ def place_features(terrain: Terrain, n: int, area_m: float, seed: int) -> np.nda
 
 
 def load_terrain_config(path: str | Path | None = None) -> dict:
-    """``data/terrain.toml`` (or ``path``) validated: ``{"slope": {...}, "mound": {...},
-    "step": {...}, "random": {...}, "survey": {...}, "provenance": {key: note}}``."""
-    doc = read_toml(TERRAIN_FILE if path is None else path)
+    """The ``terrain`` and ``survey`` tables of ``data/terrain.toml`` merged with the active user
+    data (:mod:`sss_locus.experiments.userdata`), or of the file ``path`` only, validated by
+    :func:`parse_terrain_config`."""
+    if path is None:
+        datadoc.note_read("terrain", "survey")
+    return parse_terrain_config(datadoc.document() if path is None else read_toml(path))
+
+
+def parse_terrain_config(doc: dict) -> dict:
+    """The validated ``terrain`` and ``survey`` tables of a parsed document: ``{"slope": {...},
+    "mound": {...}, "step": {...}, "random": {...}, "survey": {...}, "provenance": {key: note}}``.
+
+    Raises ``ValueError`` naming the full key path of a missing, unknown or out-of-range entry.
+    """
     prov: dict[str, str] = {}
     out: dict = {"provenance": prov}
     terrains = table(doc, "terrain", "")
+    unknown = set(terrains) - set(_KEYS)
+    if unknown:
+        raise ValueError(f"terrain.{sorted(unknown)[0]} is not a terrain model; allowed: {list(_KEYS)}")
     for kind, keys in _KEYS.items():
         t = table(terrains, kind, "terrain")
         unknown = set(t) - {k for k, _, _ in keys}
@@ -221,6 +237,10 @@ def load_terrain_config(path: str | Path | None = None) -> dict:
                              f"{[k for k, _, _ in keys]}")
         out[kind] = {k: sourced(t, k, f"terrain.{kind}", prov, lo=lo, hi=hi) for k, lo, hi in keys}
     s = table(doc, "survey", "")
+    unknown = set(s) - {k for k, _, _ in _SURVEY_KEYS}
+    if unknown:
+        raise ValueError(f"survey.{sorted(unknown)[0]} is not a survey key; allowed: "
+                         f"{[k for k, _, _ in _SURVEY_KEYS]}")
     out["survey"] = {k: sourced(s, k, "survey", prov, lo=lo, hi=hi) for k, lo, hi in _SURVEY_KEYS}
     return out
 

@@ -2,8 +2,8 @@
 
 A user file (``sss-locus run/book --data FILE.toml``, or the notebook parameter ``data_files``)
 has the schema of ``data/*.toml``: its ``sonars``, ``platforms``, ``envelopes``,
-``offset_models`` and ``noise`` tables add to or override the shipped ones **by key**, at any
-depth, so a file may hold a whole new platform or a single value::
+``offset_models``, ``noise``, ``terrain`` and ``survey`` tables add to or override the shipped
+ones **by key**, at any depth, so a file may hold a whole new platform or a single value::
 
     [platforms.auv.transducers.port.tilt_deg]
     value = 15.0
@@ -18,7 +18,8 @@ The active inputs (:func:`use`) are module state, set once per process: the comm
 them before it validates parameters, and a notebook's imports cell calls
 ``userdata.use(data_files, data_set)``; the loaders (:func:`sss_locus.experiments.platforms.load_platforms`,
 :func:`sss_locus.experiments.envelopes.load_envelope`,
-:func:`sss_locus.experiments.noise.load_noise_model`) read :func:`document`.
+:func:`sss_locus.experiments.noise.load_noise_model`,
+:func:`sss_locus.experiments.terrain.load_terrain_config`) read :func:`document`.
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ from .datadoc import (KEY_PATTERN, SET_NOTE, SHIPPED_FILES, USER_TABLES, DataInp
 from .envelopes import default_offset_model, parse_envelope
 from .noise import parse_noise_model
 from .platforms import parse_platforms
+from .terrain import parse_terrain_config
 
 
 def validate(inputs: DataInputs) -> dict[str, Any]:
@@ -57,6 +59,7 @@ def validate(inputs: DataInputs) -> dict[str, Any]:
         for key in doc.get("noise", {}):
             parse_noise_model(doc, key)
         default_offset_model("matched", doc=doc)
+        parse_terrain_config(doc)
     except ValueError as exc:
         origin = _origin(str(exc), inputs)
         if origin:
@@ -218,13 +221,15 @@ def _leaf_differences(a: Any, b: Any, path: str) -> list[str]:
     return [] if a == b else [path]
 
 
-def changed_from_shipped(platform_keys: Iterable[str], inputs: DataInputs | None = None) -> list[str]:
+def changed_from_shipped(platform_keys: Iterable[str], inputs: DataInputs | None = None,
+                         tables: Iterable[str] = ()) -> list[str]:
     """The data entries that the named platforms read and ``inputs`` change from the shipped data.
 
     For each key: its ``platforms``, ``envelopes`` and ``noise`` tables and its sonar's table, and
-    the ``offset_models`` every survey study reads; as dotted key paths (e.g.
-    ``platforms.auv.transducers.port.tilt_deg``), or ``platforms.<key>`` for a key the shipped
-    data do not have. Empty when the platforms read exactly the shipped values.
+    the ``offset_models`` every survey study reads; then the shared ``tables`` a run read (e.g.
+    ``terrain`` and ``survey``, which only the reconstruction chapter reads); as dotted key paths
+    (e.g. ``platforms.auv.transducers.port.tilt_deg``), or ``platforms.<key>`` for a key the
+    shipped data do not have. Empty when the platforms read exactly the shipped values.
     """
     doc, shipped = document(inputs), shipped_document()
     found: list[str] = []
@@ -239,4 +244,6 @@ def changed_from_shipped(platform_keys: Iterable[str], inputs: DataInputs | None
             found += _leaf_differences(doc.get(table, {}).get(name), shipped.get(table, {}).get(name),
                                        f"{table}.{name}")
     found += _leaf_differences(doc.get("offset_models"), shipped.get("offset_models"), "offset_models")
+    for table in tables:
+        found += _leaf_differences(doc.get(table), shipped.get(table), table)
     return list(dict.fromkeys(found))

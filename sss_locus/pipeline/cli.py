@@ -34,7 +34,7 @@ from sss_locus.pipeline.registry import RENAMED, ParameterError, get_entry, load
 def _data_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--data", action="append", default=[], metavar="FILE.toml",
                         help="your data file (schema of data/*.toml): its sonars, platforms, envelopes, "
-                        "offset_models and noise tables add to or override the shipped ones by key "
+                        "offset_models, noise, terrain and survey tables add to or override the shipped ones by key "
                         "(repeatable; validated before any notebook starts)")
     parser.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE", dest="set_values",
                         help="override one data value, e.g. platforms.auv.transducers.port.tilt_deg=15 "

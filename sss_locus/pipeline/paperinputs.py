@@ -24,16 +24,20 @@ from typing import Any
 
 #: Cell tag of a markdown cell written for the paper's platforms with the shipped data.
 PROSE_TAG = "paper-inputs"
+#: Data tables not keyed by platform that only some chapters read (their changes count for those).
+SHARED_TABLES = ("terrain", "survey")
 
 
-def compare(entry: Any, parameters: Mapping[str, Any]) -> dict[str, list[str]] | None:
+def compare(entry: Any, parameters: Mapping[str, Any],
+            reads: Sequence[str] = ()) -> dict[str, list[str]] | None:
     """How a run of ``entry`` (a registry entry) with ``parameters`` differs from the paper's inputs.
 
     Returns ``None`` for a notebook without a ``platforms`` parameter, else a dict with
     ``paper`` (the default platforms), ``missing`` (default platforms not selected), ``changed``
     (data entries they read that the run's data files and overrides change, see
-    :func:`sss_locus.experiments.userdata.changed_from_shipped`) and ``added`` (selected platforms
-    the defaults do not have).
+    :func:`sss_locus.experiments.userdata.changed_from_shipped`; of the tables every platform
+    shares, such as ``terrain``, only those in ``reads``, the entries the run's loaders read)
+    and ``added`` (selected platforms the defaults do not have).
     """
     from sss_locus.experiments import userdata
 
@@ -44,7 +48,8 @@ def compare(entry: Any, parameters: Mapping[str, Any]) -> dict[str, list[str]] |
     used = list(parameters.get("platforms", paper))
     inputs = userdata.make_inputs(parameters.get("data_files") or [], parameters.get("data_set") or [])
     return {"paper": paper, "missing": [k for k in paper if k not in used],
-            "changed": userdata.changed_from_shipped([k for k in paper if k in used], inputs),
+            "changed": userdata.changed_from_shipped([k for k in paper if k in used], inputs,
+                                                     [t for t in SHARED_TABLES if t in reads]),
             "added": [k for k in used if k not in paper]}
 
 

@@ -304,7 +304,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
                 reads = staging / "data-reads.txt"
                 record["data_read"] = userdata.datadoc.entries_sha256(
                     reads.read_text(encoding="utf-8").split() if reads.is_file() else [], inputs)
-            record["paper_inputs"] = paperinputs.compare(entry, parameters)
+            record["paper_inputs"] = paperinputs.compare(entry, parameters, list(record.get("data_read", ())))
             _label_injected_cell(staged, profile, parameters, record)
             paperinputs.adapt_prose(staged, record["paper_inputs"])
             with outputs.build_lock() if not side else _nothing():

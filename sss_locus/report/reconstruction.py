@@ -18,12 +18,13 @@ from ..experiments.reconstruction import summarise
 from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
 from .text import fmt_percent, fmt_sig
 
-ESTIMATORS = {"flat1": ("flat seafloor, one view", "tab:gray", ":"),
-              "flat": ("flat seafloor, all views averaged", "black", "--"),
-              "two": ("two views + prior", "tab:orange", "-"),
-              "n3": ("3 views", "tab:blue", "-"),
-              "all": ("all views", "tab:green", "-")}
-"""Estimators drawn against relief: display name, colour, line style."""
+ESTIMATORS = {"flat1": ("flat seafloor, one view", "tab:gray", ":", "o"),
+              "flat": ("flat seafloor, all views averaged", "black", "--", "s"),
+              "two": ("two views + prior", "tab:orange", "-", "^"),
+              "n3": ("3 views", "tab:blue", "-", "D"),
+              "all": ("all views", "tab:green", "-", "o")}
+"""Estimators drawn against relief: display name, colour, line style, marker (distinct, so lines
+that coincide, e.g. 3 and all views at the 1 mm floor without noise, stay visible)."""
 
 VIEW_STEPS = (("flat1", "1\n(flat)"), ("two", "2\n(+prior)"), ("n3", "3"), ("n4", "4"), ("n6", "6"),
               ("all", "all"))
@@ -33,28 +34,55 @@ FLOOR_M = 1e-3
 """Errors below this are drawn at it (noise-free N-view errors are at rounding level)."""
 
 
+@plt.FuncFormatter
+def _plain(value, _pos):
+    """Log-axis labels as plain numbers (``0.1``, ``1``, ``10``)."""
+    return f"{value:g}"
+
+
+@plt.FuncFormatter
+def _plain_minor(value, _pos):
+    """Minor labels 2 and 5 of each decade: an axis of less than two decades keeps readable values."""
+    mantissa = value / 10 ** np.floor(np.log10(value) + 1e-9)
+    return f"{value:g}" if np.isclose(mantissa, 2) or np.isclose(mantissa, 5) else ""
+
+
+def _mark_floor(ax) -> None:
+    ax.annotate("< 1 mm, drawn at 1 mm", (0.98, FLOOR_M), xycoords=("axes fraction", "data"),
+                xytext=(0, 5), textcoords="offset points", ha="right", va="bottom",
+                fontsize=SMALL_FONT_PT, color="0.35")
+
+
 def noise_label(scale: float) -> str:
-    """``"noise-free"``, ``"noise model x 0.1"``, ``"noise model"``."""
+    """``"noise-free"``, ``"noise model × 0.1"``, ``"full noise model"``."""
     if scale == 0:
         return "noise-free"
-    return "noise model" if scale == 1 else f"noise model × {scale:g}"
+    return "full noise model" if scale == 1 else f"noise model × {scale:g}"
 
 
 def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
     """Median 3-D error (log scale) against RMS relief, one column per platform and one row per
-    noise scale, one line per estimator of :data:`ESTIMATORS`; returns the figure."""
+    noise scale (each row its own error axis, so the noisy rows are not squeezed by the
+    noise-free row's rounding-level errors), one line per estimator of :data:`ESTIMATORS`;
+    returns the figure."""
     scales = sorted(next(iter(tables.values())).noise_scale.unique())
     fig, axs = plt.subplots(len(scales), len(platforms), figsize=(PAGE_WIDTH_IN, 2.3 * len(scales) + 0.9),
-                            constrained_layout=True, squeeze=False, sharex=True, sharey=True)
+                            constrained_layout=True, squeeze=False, sharex=True, sharey="row")
     for j, pf in enumerate(platforms):
         s = summarise(tables[pf.key], by=("noise_scale", "rms_relief_m", "estimator"))
         for i, k in enumerate(scales):
             ax = axs[i, j]
-            for est, (label, color, ls) in ESTIMATORS.items():
+            floored = False
+            for est, (label, color, ls, marker) in ESTIMATORS.items():
                 d = s[(s.noise_scale == k) & (s.estimator == est)].sort_values("rms_relief_m")
+                floored |= bool((d.error_3d_median_m < FLOOR_M).any())
                 ax.plot(d.rms_relief_m, np.maximum(d.error_3d_median_m, FLOOR_M), ls, color=color,
-                        marker="o", ms=3, label=label)
+                        marker=marker, ms=6 if est == "n3" else 3.5, mfc="none" if est == "n3" else color,
+                        label=label)
+            if floored:
+                _mark_floor(ax)
             ax.set_yscale("log")
+            ax.yaxis.set_major_formatter(_plain)
             ax.grid(alpha=0.3, which="both")
             ax.set_title(f"{platform_title(pf, 72 // len(platforms))}\n{noise_label(k)}" if i == 0
                          else noise_label(k), fontsize=10)
@@ -62,6 +90,9 @@ def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
                 ax.set_ylabel("median 3-D error (m)")
             if i == len(scales) - 1:
                 ax.set_xlabel("RMS seafloor relief (m)")
+    for ax in axs.flat:  # a row spanning less than two decades also labels 2 and 5
+        lo, hi = ax.get_ylim()
+        ax.yaxis.set_minor_formatter(_plain_minor if hi / lo < 100 else plt.NullFormatter())
     handles, labels = axs[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=SMALL_FONT_PT, frameon=False)
     return fig
@@ -85,6 +116,9 @@ def plot_views(platforms: Sequence, tables: Mapping[str, pd.DataFrame], rms_reli
             axs[1, j].plot(x, d.estimated, "-o", color=color, ms=4, label=noise_label(k))
             axs[1, j].plot(x, d.ambiguous, ":", color=color, lw=1)
         axs[0, j].set_yscale("log")
+        axs[0, j].yaxis.set_major_formatter(_plain)
+        if (s.error_3d_median_m < FLOOR_M).any():
+            _mark_floor(axs[0, j])
         axs[0, j].set_title(f"{platform_title(pf, 72 // len(platforms))}\n(a) median 3-D error", fontsize=10)
         axs[1, j].set_title("(b) share estimated (dotted: ambiguous)", fontsize=10)
         axs[1, j].set_ylim(-0.02, 1.02)
@@ -136,3 +170,27 @@ def verdict_sentence(platform, comparison: pd.DataFrame, alpha: float) -> str:
                      f"difference {fmt_sig(row.median_difference_m, 2)} m)")
         parts.append(text)
     return f"**{platform.name}**: " + "; ".join(parts) + "."
+
+
+def loss_sentence(platform, comparison: pd.DataFrame, alpha: float, noise_scale: float) -> str:
+    """One Markdown sentence: at which RMS reliefs, at ``noise_scale``, the flat-seafloor mosaic
+    is significantly closer than all views (one-sided paired Wilcoxon ``p_value_b_closer`` <
+    ``alpha`` of :func:`~sss_locus.experiments.reconstruction_study.paired_comparison` of
+    ``"all"`` against ``"flat"``), with the median excess error of all views there, and at which
+    neither estimator is significantly closer."""
+    c = comparison[np.isclose(comparison.noise_scale, noise_scale)].sort_values("rms_relief_m")
+    lost = c[c.p_value_b_closer < alpha]
+    tie = c[~(c.p_value_b_closer < alpha) & ~(c.p_value < alpha)]
+    head = f"**{platform.name}** ({noise_label(noise_scale)}): "
+    if lost.empty:
+        text = (head + "the flat-seafloor mosaic is significantly closer at no RMS relief up to "
+                f"{fmt_sig(c.rms_relief_m.max(), 2)} m")
+    else:
+        text = head + "the flat-seafloor mosaic is significantly closer than all views at " + "; ".join(
+            f"{fmt_sig(r.rms_relief_m, 2)} m RMS relief (all views farther by a median "
+            f"{fmt_sig(r.median_difference_m, 2)} m, closer for only {fmt_percent(r.share_closer)} of "
+            "the features)" for r in lost.itertuples())
+    if not tie.empty:
+        text += "; neither is significantly closer at " + ", ".join(
+            f"{fmt_sig(r, 2)} m" for r in tie.rms_relief_m)
+    return text + "."

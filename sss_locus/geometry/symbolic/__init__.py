@@ -15,7 +15,11 @@ numeric kernel (:mod:`sss_locus.geometry.locus`, :mod:`sss_locus.geometry.arcs`)
   the circle becomes ``A cos(alpha) + B sin(alpha) + D >= 0``, with boundary
   angles ``alpha0 +- arccos(-D / hypot(A, B))``, ``alpha0 = atan2(B, A)``;
   :func:`elevation_halfspaces`, :func:`azimuth_halfspaces` and
-  :func:`halfspace_in_frame1` give the aperture bounds in that form.
+  :func:`halfspace_in_frame1` give the aperture bounds in that form;
+* :func:`derive_range_jacobian` -- the gradient of the weighted range residual
+  ``(|p - o| - rho) / sigma`` of the N-view reconstruction, the unit line of
+  sight over ``sigma`` (:mod:`.range_residuals`), and
+  :func:`kernel_jacobian_discrepancy`, its check against the kernel.
 
 Each ``derive_*`` function returns ``(result, steps)``: ``result`` is a dict
 of the final SymPy expressions, ``steps`` an ordered dict of intermediate
@@ -49,6 +53,7 @@ from .derivation import (
     symbols,
 )
 from .numeric import kernel_discrepancy, numeric_functions
+from .range_residuals import derive_range_jacobian, kernel_jacobian_discrepancy, numeric_range_jacobian
 
 __all__ = [
     "symbols",
@@ -63,4 +68,7 @@ __all__ = [
     "halfspace_in_frame1",
     "numeric_functions",
     "kernel_discrepancy",
+    "derive_range_jacobian",
+    "numeric_range_jacobian",
+    "kernel_jacobian_discrepancy",
 ]
