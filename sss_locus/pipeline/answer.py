@@ -100,7 +100,7 @@ def answer(key: str, profile: str = "quick", pairs: list[list[str]] | None = Non
     log(text_table(bands_rows(result["bands"])) if len(result["bands"]) else "  (no bands: the curve is flat)")
     log("")
     log(f"Top drivers of locus length (Spearman rho over {result['n_pose']:,} pose-space samples, "
-        f"profile {pose['profile']!r}, seed {pose['seed']}; 95 % interval from {pose['n_batches']} replicate batches):")
+        f"sampling profile {pose['profile']!r}, seed {pose['seed']}; 95 % interval from {pose['n_batches']} replicate batches):")
     log(text_table(driver_rows(result["rho"], top)))
     log("")
     log(f"computed in {time.perf_counter() - start:.1f} s (planning and pose_space chapters' code, profile "
