@@ -392,7 +392,7 @@ def test_editing_one_user_value_makes_exactly_its_readers_stale(user_book):
     user = user_book["user"]
     text = user.read_text()
     user.write_text(text.replace("roll_sigma_deg = { value = 0.1", "roll_sigma_deg = { value = 0.2"))
-    assert stale() == {"noise", "three_views"}  # the two chapters that read noise models
+    assert stale() == {"noise", "reconstruction", "three_views"}  # the chapters that read noise models
     user.write_text(text.replace("max_range_m = { value = 100.0", "max_range_m = { value = 90.0"))
     readers = {n for n, e in REGISTRY.items() if "platforms" in e.parameters()}
     assert stale() == readers  # every chapter that reads the platform

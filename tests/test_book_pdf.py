@@ -103,3 +103,17 @@ def test_pdf_check_finds_missing_pages_figures_raw_math_and_blank_pages(tmp_path
         "math left as source: 1 '\\\\(' in the text (pages [2]), 0 in code blocks",
         "page 3 rendered blank (0.00% of its pixels inked)",
     ]
+
+
+def test_contents_running_onto_a_second_page_is_not_a_chapter_start():
+    """A printed contents that runs over onto a page which starts with a title (the last entries)
+    does not count as that page opening; a chapter page that names other titles in its prose does."""
+    titles = ["Book", "Alpha", "Beta chapter", "Delta: a longer title of a chapter", "Gamma, the last one"]
+    texts = ["Book\nContents\nAlpha\nBeta chapter\nDelta: a longer title\nof a chapter", "Gamma, the last one",
+             "Alpha\nThe first chapter, before Beta chapter and Gamma, the last one, says a lot more here.",
+             "Beta chapter\nIts own words, many of them, on its first page.",
+             "Delta: a longer title of\na chapter\nwrapped over two lines, then its words.",
+             "Gamma, the last one\nAnd the last words."]
+    assert [pdfcheck.is_contents_page(t, titles) for t in texts] == [True, True, False, False, False, False]
+    assert pdfcheck.chapter_starts(texts, titles) == {  # the first page opens the book's first page
+        "Book": [1], "Alpha": [3], "Beta chapter": [4], "Delta: a longer title of a chapter": [5], "Gamma, the last one": [6]}

@@ -142,14 +142,30 @@ def image_sizes(pdf: Path) -> list[tuple[int, int, int]]:
     return out
 
 
+def _norm(s: str) -> str:
+    return " ".join(unescape(s).replace("\u00b6", " ").split())
+
+
+def is_contents_page(text: str, titles: list[str], other_share: float = 0.2) -> bool:
+    """Whether a page's text is (a part of) the printed contents: little else than the page titles
+    (at most ``other_share`` of its characters left once every title is taken out). The contents
+    run over several pages as the book grows, and a page of them may start with a title."""
+    page = _norm(text)
+    rest = page
+    for title in sorted((_norm(t) for t in titles), key=len, reverse=True):
+        rest = rest.replace(title, " ")
+    return len(_norm(rest)) <= other_share * max(len(page), 1)
+
+
 def chapter_starts(texts: list[str], titles: list[str], head_lines: int = 3) -> dict[str, list[int]]:
     """For each title, the (1-based) pages whose text starts with it (over at most ``head_lines``
-    lines: a long title wraps)."""
-    def norm(s: str) -> str:
-        return " ".join(unescape(s).replace("\u00b6", " ").split())
-
-    heads = [norm(" ".join([line for line in text.splitlines() if line.strip()][:head_lines])) for text in texts]
-    return {t: [i + 1 for i, head in enumerate(heads) if head.startswith(norm(t))] for t in titles}
+    lines: a long title wraps). Pages of the printed contents (:func:`is_contents_page`) after the
+    first are left out: the first opens the book with its title, the book's first page title."""
+    heads = [None if i > 0 and is_contents_page(text, titles)
+             else _norm(" ".join([line for line in text.splitlines() if line.strip()][:head_lines]))
+             for i, text in enumerate(texts)]
+    return {t: [i + 1 for i, head in enumerate(heads) if head is not None and head.startswith(_norm(t))]
+            for t in titles}
 
 
 def ink_fraction(pdf: Path, page: int, dpi: int = RENDER_DPI) -> float:
