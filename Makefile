@@ -26,8 +26,11 @@ quick-book: $(STAMP)
 pdf: $(STAMP)
 	$(VPY) -m sss_locus.pipeline.bookpdf
 
+# On every core (pytest-xdist). Tests sharing an expensive fixture form one group (conftest.py);
+# --no-loadscope-reorder keeps the order conftest.py sets: the book tests last, while the shared
+# quick book builds in the background.
 test: $(STAMP)
-	$(VPY) -m pytest
+	$(VPY) -m pytest -n auto --dist loadgroup --no-loadscope-reorder
 
 venv: $(STAMP)
 

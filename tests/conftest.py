@@ -99,30 +99,54 @@ def _uses_quick_book(item) -> bool:
     return "quick_book" in getattr(item, "fixturenames", ())
 
 
+def _shared_fixtures(item) -> list[str]:
+    """The project's own fixtures broader than one test (module or session scope) that ``item``
+    uses, the quick book aside: building one twice would double its cost."""
+    defs = getattr(getattr(item, "_fixtureinfo", None), "name2fixturedefs", {})
+    return sorted(name for name, fixturedefs in defs.items()
+                  if name != "quick_book" and fixturedefs and fixturedefs[-1].baseid
+                  and fixturedefs[-1].scope != "function")
+
+
 def pytest_collection_modifyitems(config, items):
     """Tests of the built book run last (the order is otherwise kept), so the background build
-    started by ``_background_quick_book`` overlaps everything else."""
-    items.sort(key=_uses_quick_book)
+    overlaps everything else; among them, those sharing an expensive fixture (the your-hardware
+    page's runs, the PDF) come first and, under pytest-xdist's ``--dist loadgroup``, form one
+    group each, so that fixture is built by one worker only."""
+    def key(item):
+        return (_uses_quick_book(item), not _shared_fixtures(item))
+
+    items.sort(key=key)
+    for item in items:
+        if _uses_quick_book(item) and _shared_fixtures(item):
+            item.add_marker(pytest.mark.xdist_group("+".join(_shared_fixtures(item))))
 
 
-@pytest.fixture(scope="session", autouse=True)
-def _background_quick_book(request, tmp_path_factory):
-    """Starts the quick book at the session's first test if any collected test uses it."""
-    build = None
-    if any(_uses_quick_book(item) for item in request.session.items):
-        from book_support import QuickBook
+def _quick_book(config):
+    from book_support import QuickBook, shared_root
 
-        build = QuickBook(tmp_path_factory.mktemp("quick-book"))
-    yield build
-    if build is not None:
-        build.stop()
+    return QuickBook(shared_root(config._tmp_path_factory.getbasetemp()))
+
+
+def pytest_collection_finish(session):
+    """Start the quick book (once per run, whichever process gets here first) if a collected,
+    selected test uses it."""
+    if any(_uses_quick_book(item) for item in session.items):
+        _quick_book(session.config).start()
+
+
+def pytest_sessionfinish(session):
+    """The controller (or the only process) kills a build still running when the run ends; an
+    xdist worker leaves it to the others."""
+    if not os.environ.get("PYTEST_XDIST_WORKER") and hasattr(session.config, "_tmp_path_factory"):
+        _quick_book(session.config).stop()
 
 
 @pytest.fixture(scope="session")
-def quick_book(_background_quick_book):
+def quick_book(request):
     """The whole book built from the ``quick`` profile into a temporary build area and its own cache
-    (started in the background at the session's start): ``{"area", "html", "stdout", "env"}``."""
+    (started in the background at collection): ``{"area", "html", "stdout", "env"}``."""
     try:
-        return _background_quick_book.result()
+        return _quick_book(request.config).result()
     except RuntimeError as error:
         pytest.fail(str(error))
