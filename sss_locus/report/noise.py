@@ -6,6 +6,12 @@ The curves are those of :func:`sss_locus.experiments.planning.curve_summary` on
 (``label`` the noise model's label, e.g. ``"×1"``, ``"range only"``). Platforms are
 :class:`~sss_locus.experiments.platforms.Platform` objects: their names and colours come from the
 data (:mod:`sss_locus.report.style`).
+
+Plain matplotlib, not seaborn: the curves' medians and interquartile bands are the quantiles
+:func:`~sss_locus.experiments.planning.curve_summary` computed (and the figures' CSV data);
+``seaborn.lineplot(errorbar=("pi", 50))`` would compute them a second time from the raw
+samples. The check's scatter shares one legend below four panels, which one ``ax.scatter`` per
+platform gives directly (a seaborn legend per panel would have to be taken apart).
 """
 
 from __future__ import annotations
