@@ -5,14 +5,15 @@ Nothing here is keyed by a platform's key: a platform's display name is its ``na
 ``data/platforms.toml`` (or a user's file), and its colour follows its position in that file, so
 every chapter draws the same platform in the same colour and a new platform needs no code.
 
-The statistical figures drawn with seaborn (heatmaps of binned medians, scatter plots coloured by
-a category) are drawn inside :func:`theme`, the one seaborn theme of the book: seaborn's
-``whitegrid`` style with the font sizes the rest of the book's figures use, so a seaborn figure
-and a plain matplotlib one side by side read alike. The theme is applied per figure (a context
-manager, or the :func:`themed` decorator), never globally: importing this module changes no
-matplotlib setting.
+The statistical figures are drawn inside :func:`theme`, the one seaborn theme of the book
+(seaborn's ``whitegrid`` style with matplotlib's font sizes, for which the figures are laid out):
+the pose-space heatmaps of binned medians and its scatter coloured by a category with seaborn
+itself, the median curves with interquartile bands of the survey-pass, planning and noise
+chapters with matplotlib in the same theme. The theme is applied per figure (a context manager,
+or the :func:`themed` decorator), never globally: importing this module changes no matplotlib
+setting.
 
-Where plain matplotlib is clearer, the figures keep it:
+Where plain matplotlib is clearer than a seaborn function, the figures keep it:
 
 - the rig drawings (:mod:`.rigs`), the 3-D locus concept (:mod:`.concept`) and the terrain
   profiles (:mod:`.reconstruction`) are drawings of geometry, not statistics;
@@ -99,14 +100,14 @@ SMALL_FONT_PT = 8.5
 
 
 THEME_RC = {
-    "font.size": 10.0, "axes.labelsize": 10.0, "axes.titlesize": 11.0,
-    "xtick.labelsize": 9.5, "ytick.labelsize": 9.5,
-    "legend.fontsize": SMALL_FONT_PT, "legend.title_fontsize": 9.5,
-    "grid.color": "0.88", "axes.edgecolor": "0.3", "figure.facecolor": "white",
+    "font.size": 10.0, "axes.labelsize": 10.0, "axes.titlesize": 12.0,
+    "xtick.labelsize": 10.0, "ytick.labelsize": 10.0, "legend.fontsize": 10.0,
+    "legend.title_fontsize": 10.0, "grid.color": "0.88", "axes.edgecolor": "0.3",
 }
 """Settings of :func:`theme` over seaborn's ``whitegrid`` style and ``notebook`` context: the
-font sizes of the book's matplotlib figures (10 pt labels, :data:`SMALL_FONT_PT` legends), which
-the readability check (:mod:`sss_locus.pipeline.readability`) measures at :data:`PAGE_WIDTH_IN`."""
+font sizes of matplotlib's defaults, for which the book's figures are sized (10 pt labels, 12 pt
+titles; legends that want less pass :data:`SMALL_FONT_PT`), and which the readability check
+(:mod:`sss_locus.pipeline.readability`) measures at :data:`PAGE_WIDTH_IN`."""
 
 
 @contextmanager
