@@ -83,30 +83,44 @@ def test_sorted_by_magnitude_and_errors():
         spearman_table(df, ["x"], ["c"])
 
 
+def _brute_bins(v: pd.Series, edges) -> list[pd.Series]:
+    """Membership of each bin by the stated rule, one comparison at a time: [lo, hi), the last
+    bin [lo, hi]; NaN in no bin."""
+    return [(v >= lo) & ((v <= hi) if hi == edges[-1] else (v < hi)) for lo, hi in zip(edges[:-1], edges[1:])]
+
+
 def test_binned_median_brute_force():
     rng = np.random.default_rng(9)
     df = pd.DataFrame({"a": rng.uniform(-1, 1, 3000), "b": rng.uniform(0, 10, 3000),
                        "v": rng.exponential(size=3000)})
     df.loc[0, "a"] = 1.0  # the last edge is inclusive
     df.loc[1, "a"] = 1.5  # outside: ignored
+    df.loc[2:9, "a"] = 0.0  # on an interior edge: in the bin above it
+    df.loc[10, "a"], df.loc[11, "b"], df.loc[12, "v"] = np.nan, np.nan, np.nan  # in no bin
     xe, ye = np.linspace(-1, 1, 5), np.linspace(0, 10, 4)
     out = binned_median(df, "a", "b", "v", x_edges=xe, y_edges=ye, min_count=200)
-    assert len(out) == 12 and out["count"].sum() == 2999
+    assert len(out) == 12 and out["count"].sum() == 2996 and out.attrs["n_nan"] == 3
+    keep = df.v.notna()
     for _, row in out.iterrows():
-        top_a = row.x_hi == xe[-1]
-        top_b = row.y_hi == ye[-1]
-        sel = ((df.a >= row.x_lo) & ((df.a <= row.x_hi) if top_a else (df.a < row.x_hi))
-               & (df.b >= row.y_lo) & ((df.b <= row.y_hi) if top_b else (df.b < row.y_hi)))
+        sel = (_brute_bins(df.a, xe)[int(np.searchsorted(xe, row.x_lo))]
+               & _brute_bins(df.b, ye)[int(np.searchsorted(ye, row.y_lo))] & keep)
         assert row["count"] == sel.sum()
-        assert row["median"] == pytest.approx(df.v[sel].median())
+        assert row["median"] == pytest.approx(np.median(df.v[sel]))
         assert row["masked"] == (sel.sum() < 200)
     x, y, z = median_grid(out)
     assert z.shape == (3, 4) and np.allclose(x, xe) and np.allclose(y, ye)
     assert np.isnan(z).sum() == out["masked"].sum()
     prof = binned_profile(df, "a", "v", edges=xe, min_count=1)
-    assert prof["count"].sum() == 2999
+    for i, sel in enumerate(_brute_bins(df.a, xe)):
+        assert prof["count"][i] == (sel & keep).sum()
+        assert prof["median"][i] == pytest.approx(np.median(df.v[sel & keep]))
+    assert prof["count"][2] >= 8  # the eight rows on the edge 0.0 are in [0, 0.5)
+    empty = binned_profile(df.iloc[:0], "a", "v", edges=xe)
+    assert (empty["count"] == 0).all() and empty["median"].isna().all()
     with pytest.raises(ValueError, match="x_edges"):
         binned_median(df, "a", "b", "v", x_edges=[1, 0], y_edges=ye)
+    with pytest.raises(ValueError, match="min_count"):
+        binned_profile(df, "a", "v", edges=xe, min_count=0)
 
 
 def test_significant_figures():

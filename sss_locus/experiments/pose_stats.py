@@ -12,6 +12,7 @@ from collections.abc import Sequence
 
 import numpy as np
 import pandas as pd
+from scipy.stats import binned_statistic_dd
 
 from .replicates import (N_BATCHES, batch_count, centred_from, check_confidence, fisher_z_interval,
                          rank_correlation, replicate_interval, spearman_rho)
@@ -169,48 +170,61 @@ def _is_constant(column: pd.Series) -> bool:
     return v.size == 0 or bool(v.min() == v.max())
 
 
+def _edges(name: str, edges) -> np.ndarray:
+    e = np.asarray(edges, float)
+    if e.ndim != 1 or len(e) < 2 or not np.all(np.diff(e) > 0):
+        raise ValueError(f"{name} must be a strictly increasing 1-D array of >= 2 edges")
+    return e
+
+
+def _binned(df: pd.DataFrame, columns: Sequence[str], edges: Sequence[np.ndarray], value: str,
+            min_count: int) -> tuple[np.ndarray, np.ndarray, int]:
+    """Counts and medians of ``value`` per bin of ``columns`` (one axis per column), by
+    :func:`scipy.stats.binned_statistic_dd`; and the number of rows left out for a NaN."""
+    if int(min_count) < 1:
+        raise ValueError(f"min_count must be >= 1; got {min_count}")
+    coords = np.column_stack([df[c].to_numpy(float) for c in columns])
+    v = df[value].to_numpy(float)
+    ok = ~(np.isnan(coords).any(axis=1) | np.isnan(v))
+    if not ok.any():  # scipy needs a sample to bin: every bin empty
+        shape = tuple(len(e) - 1 for e in edges)
+        return np.zeros(shape, int), np.full(shape, np.nan), int((~ok).sum())
+    res = binned_statistic_dd(coords[ok], v[ok], "median", bins=list(edges))
+    shape = tuple(len(e) + 1 for e in edges)  # binnumber counts the outlier bins either side
+    inner = tuple(slice(1, -1) for _ in edges)
+    count = np.bincount(res.binnumber, minlength=np.prod(shape)).reshape(shape)[inner]
+    return count, res.statistic, int((~ok).sum())
+
+
 def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m", *,
                   x_edges, y_edges, min_count: int = 30) -> pd.DataFrame:
     """Median of ``value`` per 2-D bin of ``(x, y)``, with counts and a sparse-bin mask.
 
-    Bins are half-open ``[lo, hi)`` except the last, which includes its upper edge; rows outside
-    the edges are ignored. Every bin appears (empty ones with ``count`` 0 and NaN median).
+    Bins are those of :func:`scipy.stats.binned_statistic_dd`: half-open ``[lo, hi)``
+    except the last, which includes its upper edge (and, by scipy's rounding, a value above it by
+    less than a millionth of the narrowest bin); rows outside the edges are ignored. A row with a
+    NaN coordinate or value lies in no bin (neither counted nor in a median); their number is
+    ``attrs["n_nan"]``. Every bin appears (empty ones with ``count`` 0 and NaN median).
 
     Returns
     -------
     pandas.DataFrame
-        ``x_lo, x_hi, y_lo, y_hi, x_mid, y_mid, count, median, masked``; ``masked`` is true where
-        ``count < min_count`` (such medians are not shown).
+        ``x_lo, x_hi, y_lo, y_hi, x_mid, y_mid, count, median, masked``, one row per bin with
+        ``y`` varying fastest; ``masked`` is true where ``count < min_count`` (such medians are
+        not shown).
     """
     _require(df, [x, y, value])
-    xe, ye = np.asarray(x_edges, float), np.asarray(y_edges, float)
-    for name, e in (("x_edges", xe), ("y_edges", ye)):
-        if e.ndim != 1 or len(e) < 2 or not np.all(np.diff(e) > 0):
-            raise ValueError(f"{name} must be a strictly increasing 1-D array of >= 2 edges")
-    if int(min_count) < 1:
-        raise ValueError(f"min_count must be >= 1; got {min_count}")
-    ix = _bin_index(df[x].to_numpy(float), xe)
-    iy = _bin_index(df[y].to_numpy(float), ye)
-    ok = (ix >= 0) & (iy >= 0)
-    nx, ny = len(xe) - 1, len(ye) - 1
-    flat = pd.Series(df[value].to_numpy(float)[ok]).groupby(ix[ok] * ny + iy[ok])
-    med = flat.median().reindex(range(nx * ny))
-    cnt = flat.size().reindex(range(nx * ny), fill_value=0)
-    gx, gy = np.divmod(np.arange(nx * ny), ny)
+    xe, ye = _edges("x_edges", x_edges), _edges("y_edges", y_edges)
+    count, med, n_nan = _binned(df, [x, y], [xe, ye], value, min_count)
+    gx, gy = np.divmod(np.arange(count.size), len(ye) - 1)
     out = pd.DataFrame({
         "x_lo": xe[gx], "x_hi": xe[gx + 1], "y_lo": ye[gy], "y_hi": ye[gy + 1],
         "x_mid": 0.5 * (xe[gx] + xe[gx + 1]), "y_mid": 0.5 * (ye[gy] + ye[gy + 1]),
-        "count": cnt.to_numpy(), "median": med.to_numpy(),
+        "count": count.ravel(), "median": med.ravel(),
     })
     out["masked"] = out["count"] < int(min_count)
-    out.attrs.update(x=x, y=y, value=value, min_count=int(min_count))
+    out.attrs.update(x=x, y=y, value=value, min_count=int(min_count), n_nan=n_nan)
     return out
-
-
-def _bin_index(v: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    i = np.searchsorted(edges, v, side="right") - 1
-    i = np.where(v == edges[-1], len(edges) - 2, i)
-    return np.where((v < edges[0]) | (v > edges[-1]), -1, i)
 
 
 def median_grid(binned: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -224,18 +238,15 @@ def median_grid(binned: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
 def binned_profile(df: pd.DataFrame, x: str, value: str = "locus_length_m", *, edges,
                    min_count: int = 30) -> pd.DataFrame:
-    """1-D version of :func:`binned_median`: ``lo, hi, mid, count, median, masked``."""
+    """1-D version of :func:`binned_median`: ``lo, hi, mid, count, median, masked``; the same
+    bins and NaN rule."""
     _require(df, [x, value])
-    e = np.asarray(edges, float)
-    if e.ndim != 1 or len(e) < 2 or not np.all(np.diff(e) > 0):
-        raise ValueError("edges must be a strictly increasing 1-D array of >= 2 edges")
-    i = _bin_index(df[x].to_numpy(float), e)
-    ok = i >= 0
-    g = pd.Series(df[value].to_numpy(float)[ok]).groupby(i[ok])
+    e = _edges("edges", edges)
+    count, med, n_nan = _binned(df, [x], [e], value, min_count)
     out = pd.DataFrame({"lo": e[:-1], "hi": e[1:], "mid": 0.5 * (e[:-1] + e[1:]),
-                        "count": g.size().reindex(range(len(e) - 1), fill_value=0).to_numpy(),
-                        "median": g.median().reindex(range(len(e) - 1)).to_numpy()})
+                        "count": count, "median": med})
     out["masked"] = out["count"] < int(min_count)
+    out.attrs.update(x=x, value=value, min_count=int(min_count), n_nan=n_nan)
     return out
 
 

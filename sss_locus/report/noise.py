@@ -6,6 +6,13 @@ The curves are those of :func:`sss_locus.experiments.planning.curve_summary` on
 (``label`` the noise model's label, e.g. ``"×1"``, ``"range only"``). Platforms are
 :class:`~sss_locus.experiments.platforms.Platform` objects: their names and colours come from the
 data (:mod:`sss_locus.report.style`).
+
+Drawn with matplotlib in the book's seaborn theme (:func:`~sss_locus.report.style.theme`), not
+with seaborn's functions: the curves' medians and interquartile bands are the quantiles
+:func:`~sss_locus.experiments.planning.curve_summary` computed (and the figures' CSV data);
+``seaborn.lineplot(errorbar=("pi", 50))`` would compute them a second time from the raw
+samples. The check's scatter shares one legend below four panels, which one ``ax.scatter`` per
+platform gives directly (a seaborn legend per panel would have to be taken apart).
 """
 
 from __future__ import annotations
@@ -18,7 +25,7 @@ import pandas as pd
 from matplotlib.ticker import NullFormatter
 
 from ..experiments.datadoc import label_key
-from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_colors, platform_title
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_colors, platform_title, themed
 from .survey_passes import model_tag
 from .text import fmt_sig
 
@@ -108,6 +115,7 @@ def _angle_axis(ax, ncol: int = 1, legend: bool = True) -> None:
                   frameon=False)
 
 
+@themed
 def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.DataFrame]],
                       noise_scales: Sequence[float]):
     """Crossing-angle curves with noise, one row per platform; returns the figure.
@@ -147,6 +155,7 @@ def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.
     return fig
 
 
+@themed
 def plot_breakdown(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.DataFrame]],
                    head: str):
     """Band width against crossing angle by error group (all errors at level ``head``; sensor
@@ -180,6 +189,7 @@ def plot_breakdown(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.Dat
     return fig
 
 
+@themed
 def plot_check(check: pd.DataFrame, platforms: Sequence, scales: Sequence[float]):
     """Monte Carlo against first-order 95 % distances, a 2 x len(scales) grid; returns the figure.
 

@@ -19,7 +19,7 @@ from matplotlib.patches import Patch
 from ..experiments.planning import CrossingAngleCurve, band_at
 from ..experiments.userdata import label_key
 from .survey_passes import model_tag
-from .style import PAGE_WIDTH_IN, SMALL_FONT_PT
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, themed
 from .text import fmt_bands
 
 PAPER_AVOID_DEG = (10.0, 40.0)
@@ -39,6 +39,7 @@ def _models_and_platforms(curves: Mapping[tuple[str, str], CrossingAngleCurve]):
     return specs, keys
 
 
+@themed
 def plot_planning_bands(curves: Mapping[tuple[str, str], CrossingAngleCurve],
                         bands: Mapping[tuple[str, str], pd.DataFrame],
                         paper_avoid_deg: tuple[float, float] = PAPER_AVOID_DEG):

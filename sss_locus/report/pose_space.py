@@ -3,7 +3,10 @@
 The numbers come from :mod:`sss_locus.experiments.pose_stats`; this module only draws them
 (:func:`plot_sensitivity`, the paper's Fig. 3; :func:`plot_heatmaps`, its Fig. 4), lays them
 out as tables (:func:`seed_stability_table`, :func:`check_row`) and writes them as prose
-(:func:`fmt_metric`, :func:`metric_texts`).
+(:func:`fmt_metric`, :func:`metric_texts`). The heatmaps and the scatter coloured by the
+number of arcs are drawn with seaborn in the book's theme (:func:`sss_locus.report.style.theme`);
+the bars of rho keep ``barh`` because their intervals are the replicate-batch intervals of
+:func:`~sss_locus.experiments.pose_stats.spearman_table` (``seaborn.barplot`` would compute its own).
 """
 
 from __future__ import annotations
@@ -14,9 +17,12 @@ from collections.abc import Mapping, Sequence
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+import seaborn as sns
+from matplotlib.colors import to_rgba
+from matplotlib.ticker import MaxNLocator
 
 from ..experiments.pose_stats import HEATMAP_PANELS, TARGETS, median_grid, stable_to
-from .style import PAGE_WIDTH_IN, QUANTITY_LABELS, SMALL_FONT_PT
+from .style import PAGE_WIDTH_IN, QUANTITY_LABELS, SMALL_FONT_PT, themed
 from .text import fmt_sig, plain_label
 
 PANEL_TITLES = {
@@ -44,6 +50,7 @@ def scatter_subset(df: pd.DataFrame, n_points: int, seed: int) -> pd.DataFrame:
     return sub[list(SCATTER_COLUMNS)]
 
 
+@themed
 def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""):
     """The paper's Fig. 3 for one platform: (a, b) Spearman rho of each quantity with the raw and
     the range-normalised locus length, with replicate-batch intervals; (c) normalised length against
@@ -64,29 +71,50 @@ def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""
         what = "length" if target == TARGETS[0] else "length / mean range"
         ax.set_xlabel(r"Spearman $\rho$ with " + what)
         ax.set_title(name)
-        ax.grid(axis="x", alpha=0.3)
-    multi = subset["n_arcs"] > 1
-    ax = axs[2]
-    for sel, size, alpha, color, label in ((~multi, 3, 0.35, "tab:blue", "one arc"),
-                                           (multi, 9, 0.9, "tab:orange", "several arcs (fragmented)")):
-        if not sel.any():  # no legend entry for a class with no points
-            continue
-        ax.scatter(subset.loc[sel, "elevation_misalignment_deg"],
-                   subset.loc[sel, "locus_length_normalized"],
-                   s=size, alpha=alpha, color=color, lw=0, label=label)
+        ax.grid(axis="y", visible=False)  # no line through the bars
+    arcs = np.where(subset["n_arcs"] > 1, "several arcs (fragmented)", "one arc")
+    shown = subset.assign(arcs=arcs).sort_values("arcs", key=lambda a: a != "one arc", kind="stable")
+    ax = axs[2]  # fragmented loci drawn last, on top; no legend entry for a class with no points
+    sns.scatterplot(shown, x="elevation_misalignment_deg", y="locus_length_normalized", hue="arcs",
+                    size="arcs", sizes={"one arc": 3, "several arcs (fragmented)": 9},
+                    palette={"one arc": to_rgba("tab:blue", 0.35),  # the many single arcs faint
+                             "several arcs (fragmented)": to_rgba("tab:orange", 0.9)}, lw=0, ax=ax)
     ax.set_yscale("log")
     ax.set_xlabel("elevation misalignment (deg)")
     ax.set_ylabel("locus length / mean range")
     ax.set_title("(c) normalised length vs misalignment")
-    ax.legend(loc="best", fontsize=SMALL_FONT_PT, markerscale=2)  # where it covers fewest points
-    ax.grid(alpha=0.3)
+    sns.move_legend(ax, "best", title=None, fontsize=SMALL_FONT_PT, markerscale=2)  # covers fewest points
     fig.suptitle(textwrap.fill(title, 75))
     return fig
 
 
+def _heatmap(ax, xe: np.ndarray, ye: np.ndarray, z: np.ndarray) -> None:
+    """``seaborn.heatmap`` of ``z`` (shape ``(n_y, n_x)``, NaN for a masked bin, drawn blank on
+    grey) with ``y`` increasing upwards and ticks at round values of the binned quantities (a
+    heatmap's own ticks name its cells; these bins are intervals of numbers). Cells are drawn
+    of equal size, so the axes are linear for equal-width bins (those of
+    :func:`~sss_locus.experiments.pose_stats.panel_edges`)."""
+    fig = ax.figure
+    layout = fig.get_layout_engine()
+    fig.set_layout_engine("none")  # seaborn draws the figure once per heatmap: without the layout
+    sns.heatmap(z, mask=np.isnan(z), cmap="viridis", ax=ax, cbar=False)  # pass, a fraction of the time
+    fig.set_layout_engine(layout)
+    fig.colorbar(ax.collections[0], ax=ax, pad=0.02).outline.set_linewidth(0)
+    ax.invert_yaxis()
+    ax.set_facecolor("0.85")
+    ax.grid(False)
+    for axis, e in ((ax.xaxis, xe), (ax.yaxis, ye)):  # data values -> cell positions
+        values = [v for v in MaxNLocator(nbins=7, steps=[1, 2, 2.5, 5, 10]).tick_values(e[0], e[-1])
+                  if e[0] <= v <= e[-1]]
+        axis.set_ticks(np.interp(values, e, np.arange(len(e))),  # edge k at cell position k
+                       [f"{v:g}".replace("-", "\N{MINUS SIGN}") for v in values], rotation=0)
+    ax.collections[0].colorbar.ax.set_title("m", fontsize=plt.rcParams["axes.labelsize"])  # the title names it
+
+
+@themed
 def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
     """The paper's Fig. 4 for one platform: median locus length per bin for each panel of
-    :data:`~sss_locus.experiments.pose_stats.HEATMAP_PANELS`; masked (sparse) bins blank.
+    :data:`~sss_locus.experiments.pose_stats.HEATMAP_PANELS` (``seaborn.heatmap``); masked (sparse) bins blank.
 
     ``maps`` is a :func:`~sss_locus.experiments.pose_stats.heatmaps` result. Returns the figure.
     """
@@ -100,14 +128,11 @@ def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
             ax.set_title(f"{PANEL_TITLES[panel].split(' vs ')[0]}\n({PANEL_AXIS_LABELS[y].split(' (')[0]} "
                          f"always {0.5 * (ye[0] + ye[1]):g})")
             ax.set_ylim(bottom=0)
-            ax.grid(alpha=0.3)
             continue
-        mesh = ax.pcolormesh(xe, ye, z, cmap="viridis", shading="flat")
-        fig.colorbar(mesh, ax=ax).ax.set_title("m", fontsize=plt.rcParams["axes.labelsize"])  # the title names it
+        _heatmap(ax, xe, ye, z)
         ax.set_xlabel(PANEL_AXIS_LABELS[x])
         ax.set_ylabel(PANEL_AXIS_LABELS[y])
         ax.set_title(PANEL_TITLES[panel])
-        ax.set_facecolor("0.85")
     axs.flat[-1].axis("off")
     fig.suptitle(textwrap.fill(title, 75))
     return fig

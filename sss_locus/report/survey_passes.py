@@ -22,7 +22,7 @@ import pandas as pd
 from ..experiments.envelopes import OffsetModel, SurveyEnvelope
 from ..experiments.userdata import label_key
 from ..experiments.planning import VALUES, CrossingAngleCurve, curve_shape_rho, rejected_share
-from .style import AXIS_LABELS, PAGE_WIDTH_IN, SMALL_FONT_PT, platform_colors, platform_title
+from .style import AXIS_LABELS, PAGE_WIDTH_IN, SMALL_FONT_PT, platform_colors, platform_title, themed
 from .text import fmt_change, fmt_interval, fmt_sig
 
 UNITS = {"locus_length_m": "m", "elevation_misalignment_deg": "°"}
@@ -76,6 +76,7 @@ def describe_offset_model(model: OffsetModel) -> str:
     return text if model.side1 == "random" else f"{text}; pass 1 sees it on its {model.side1} side"
 
 
+@themed
 def plot_fig5(curves: Mapping[str, CrossingAngleCurve]):
     """The paper's Fig. 5: (a) locus length and (b) elevation misalignment against crossing
     angle, median line and interquartile band per platform. Returns the figure."""
@@ -136,6 +137,7 @@ def peak_table(curves: Mapping[str, CrossingAngleCurve]) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+@themed
 def plot_offset_models(main: Mapping[str, CrossingAngleCurve],
                        sensitivity: Mapping[tuple[str, str], CrossingAngleCurve], main_label: str):
     """Median length (row a) and misalignment (row b) per platform (columns): the main curves
@@ -268,6 +270,7 @@ VARIANT_COLORS = ("tab:purple", "tab:green")
 """Colours of the level-pass-1 rows of :func:`plot_pitch_depth` (turning to port, starboard)."""
 
 
+@themed
 def plot_pitch_depth(pitch: pd.DataFrame, depth: pd.DataFrame, band_deg: tuple[float, float],
                      n_both: int):
     """(a) Nose-up over nose-down median-length ratios with intervals, one row per ``pitch`` row
