@@ -115,6 +115,13 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     with np.errstate(invalid="ignore", divide="ignore"):  # a batch with a constant column: NaN
         batches = np.stack([rank_correlation(centred_from(Xb[a:b]), centred_from(Yb[a:b]))
                             for a, b in zip(starts[:-1], starts[1:])])
+    return rho_frame(rho, batches, n, candidates, targets, confidence_level, dropped=constant)
+
+
+def rho_frame(rho: np.ndarray, batches: np.ndarray, n: int, candidates: Sequence[str],
+              targets: Sequence[str], confidence_level: float = 0.95, dropped=()) -> pd.DataFrame:
+    """The table of :func:`spearman_table` from a point estimate ``rho`` ``(p, q)`` (candidates x
+    targets), the ``k`` replicate batches' rhos ``(k, p, q)`` and the number of rows ``n``."""
     lo, hi = replicate_interval(rho, batches, confidence_level, bounds=(-1.0, 1.0))
     zlo, zhi = fisher_z_interval(rho, n, confidence_level)
     rows = [dict(target=tg, quantity=c, rho=rho[i, j], ci_low=lo[i, j], ci_high=hi[i, j], n=n,
@@ -124,8 +131,8 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     out["abs_rho"] = out["rho"].abs()
     out = out.sort_values(["target", "abs_rho"], ascending=[True, False]).drop(columns="abs_rho")
     out = out.reset_index(drop=True)
-    out.attrs["dropped"] = constant
-    out.attrs["n_batches"] = k
+    out.attrs["dropped"] = list(dropped)
+    out.attrs["n_batches"] = len(batches)
     return out
 
 
@@ -189,8 +196,8 @@ def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m
             raise ValueError(f"{name} must be a strictly increasing 1-D array of >= 2 edges")
     if int(min_count) < 1:
         raise ValueError(f"min_count must be >= 1; got {min_count}")
-    ix = _bin_index(df[x].to_numpy(float), xe)
-    iy = _bin_index(df[y].to_numpy(float), ye)
+    ix = bin_index(df[x].to_numpy(float), xe)
+    iy = bin_index(df[y].to_numpy(float), ye)
     ok = (ix >= 0) & (iy >= 0)
     nx, ny = len(xe) - 1, len(ye) - 1
     flat = pd.Series(df[value].to_numpy(float)[ok]).groupby(ix[ok] * ny + iy[ok])
@@ -207,7 +214,8 @@ def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m
     return out
 
 
-def _bin_index(v: np.ndarray, edges: np.ndarray) -> np.ndarray:
+def bin_index(v: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """Bin of each value for increasing ``edges``: half-open ``[lo, hi)``, the last bin closed; -1 outside."""
     i = np.searchsorted(edges, v, side="right") - 1
     i = np.where(v == edges[-1], len(edges) - 2, i)
     return np.where((v < edges[0]) | (v > edges[-1]), -1, i)
@@ -229,7 +237,7 @@ def binned_profile(df: pd.DataFrame, x: str, value: str = "locus_length_m", *, e
     e = np.asarray(edges, float)
     if e.ndim != 1 or len(e) < 2 or not np.all(np.diff(e) > 0):
         raise ValueError("edges must be a strictly increasing 1-D array of >= 2 edges")
-    i = _bin_index(df[x].to_numpy(float), e)
+    i = bin_index(df[x].to_numpy(float), e)
     ok = i >= 0
     g = pd.Series(df[value].to_numpy(float)[ok]).groupby(i[ok])
     out = pd.DataFrame({"lo": e[:-1], "hi": e[1:], "mid": 0.5 * (e[:-1] + e[1:]),
