@@ -11,22 +11,13 @@ import time
 import numpy as np
 import pytest
 from scipy.stats import spearmanr
+from test_scale import _assert_bit_identical  # bit for bit, NaN patterns included
 
 from sss_locus.experiments import scale
 from sss_locus.experiments.platforms import load_platform
 from sss_locus.experiments.pose_reduce import batch_rows, reduce_pose_space
 from sss_locus.experiments.pose_space import PoseSpaceSpec, sample_pose_space
 from sss_locus.experiments.pose_stats import CANDIDATES, TARGETS, heatmaps, spearman_table, with_derived
-
-
-def _frames_identical(a, b):
-    assert list(a.columns) == list(b.columns) and len(a) == len(b)
-    for col in a.columns:
-        x, y = a[col].to_numpy(), b[col].to_numpy()
-        if x.dtype.kind == "f":
-            assert x.tobytes() == y.tobytes(), col  # bit for bit, NaN patterns included
-        else:
-            assert np.array_equal(x, y), col
 
 
 @pytest.mark.parametrize("key", ["auv", "boat"])
@@ -39,7 +30,7 @@ def test_reduction_equals_the_statistics_of_the_whole_table(key, monkeypatch):
     port = table[table["side2"] == "port"]
     ref = heatmaps(port, spec.platform, n_bins=16, min_count=30)
     for letter in ref:  # exact per-bin counts and medians, bit for bit
-        _frames_identical(red.maps[letter], ref[letter])
+        _assert_bit_identical(red.maps[letter], ref[letter])
     assert red.n == n and red.n_heatmap == len(port)
     # each batch's rho is scipy's Spearman rho of that batch's rows of the table
     rows = red.rho.set_index(["target", "quantity"])
@@ -80,10 +71,10 @@ def test_bit_identical_in_process_and_on_1_2_3_workers(monkeypatch):
                     time.sleep(0.1)
                 assert len(dask_client.scheduler_info()["workers"]) == workers
                 there = run()
-                _frames_identical(there.rho, here.rho)
+                _assert_bit_identical(there.rho, here.rho)
                 assert there.batch_rho.tobytes() == here.batch_rho.tobytes()
                 for letter in here.maps:
-                    _frames_identical(there.maps[letter], here.maps[letter])
+                    _assert_bit_identical(there.maps[letter], here.maps[letter])
                 assert (there.n, there.n_heatmap) == (here.n, here.n_heatmap)
         finally:
             scale.close_clients()
