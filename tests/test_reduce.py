@@ -1,7 +1,8 @@
-"""The pose-space study reduced on the workers (experiments/pose_reduce.py): its heatmaps are the
-whole table's, its rhos the batches' Spearman rhos (scipy on the table's rows), it is
-bit-identical in-process and on local clusters of 1, 2 and 3 worker processes, and it sends the
-client at least 50 times fewer bytes than the table."""
+"""Studies reduced on the workers (experiments/pose_reduce.py, survey_reduce.py): the pose-space
+heatmaps are the whole table's, its rhos the batches' Spearman rhos (scipy on the table's rows),
+the crossing-angle curve is crossing_angle_curve's; both are bit-identical in-process and on local
+clusters of 1, 2 and 3 worker processes and send the client at least 50 times fewer bytes than
+the table."""
 
 from __future__ import annotations
 
@@ -14,10 +15,21 @@ from scipy.stats import spearmanr
 from test_scale import _assert_bit_identical  # bit for bit, NaN patterns included
 
 from sss_locus.experiments import scale
+from sss_locus.experiments.envelopes import OffsetModel, load_envelope
+from sss_locus.experiments.planning import crossing_angle_curve
 from sss_locus.experiments.platforms import load_platform
 from sss_locus.experiments.pose_reduce import batch_rows, reduce_pose_space
 from sss_locus.experiments.pose_space import PoseSpaceSpec, sample_pose_space
 from sss_locus.experiments.pose_stats import CANDIDATES, TARGETS, heatmaps, spearman_table, with_derived
+from sss_locus.experiments.survey_passes import simulate_passes
+from sss_locus.experiments.survey_reduce import reduce_crossing_angle_curve
+
+ANGLES = [0.0, 35.0, 90.0]
+
+
+def _survey(n=600):
+    pf = load_platform("boat")
+    return reduce_crossing_angle_curve(pf, load_envelope("boat"), OffsetModel("independent"), ANGLES, n, 3)
 
 
 @pytest.mark.parametrize("key", ["auv", "boat"])
@@ -57,6 +69,8 @@ def test_bit_identical_in_process_and_on_1_2_3_workers(monkeypatch):
     def run():
         return reduce_pose_space(spec, 9_001, 2, n_batches=5, n_bins=6, min_count=5)
 
+    survey = _survey(300)
+
     monkeypatch.delenv(scale.SCHEDULER_ENV, raising=False)
     here = run()
     with distributed.LocalCluster(n_workers=3, threads_per_worker=1, processes=True,
@@ -76,8 +90,32 @@ def test_bit_identical_in_process_and_on_1_2_3_workers(monkeypatch):
                 for letter in here.maps:
                     _assert_bit_identical(there.maps[letter], here.maps[letter])
                 assert (there.n, there.n_heatmap) == (here.n, here.n_heatmap)
+                _assert_bit_identical(_survey(300)[0], survey[0])
         finally:
             scale.close_clients()
+
+
+def test_survey_curve_reduced_equals_the_curve_of_the_whole_table(monkeypatch):
+    monkeypatch.delenv(scale.SCHEDULER_ENV, raising=False)
+    pf, env, model = load_platform("boat"), load_envelope("boat"), OffsetModel("independent")
+    curve, sent = _survey(600)
+    ref = crossing_angle_curve(pf, env, model, crossing_angles_deg=ANGLES, n_per_angle=600, seed=3,
+                               n_resamples=10)
+    _assert_bit_identical(curve, ref.curve)
+    samples, _ = simulate_passes(pf, env, model, ANGLES, 600, 3)
+    assert len(pickle.dumps(samples)) >= 50 * sent
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(crossing_angles_deg=[10.0, 10.0]), "must be distinct"),
+    (dict(crossing_angles_deg=[200.0]), "crossing_angles_deg must be"),
+    (dict(n_per_angle=0), "n_per_angle must be"),
+    (dict(n_batches=1), "n_batches must be"),
+])
+def test_bad_survey_arguments_are_refused(kwargs, message):
+    args = dict(crossing_angles_deg=ANGLES, n_per_angle=100, seed=1) | kwargs
+    with pytest.raises(ValueError, match=message):
+        reduce_crossing_angle_curve(load_platform("boat"), load_envelope("boat"), OffsetModel("independent"), **args)
 
 
 @pytest.mark.parametrize("kwargs, message", [
