@@ -21,7 +21,7 @@ Spearman's rho is the mean of the ``k`` batch rhos (a full-table rank needs ever
 place), and its interval is the batch-means interval around it
 (:func:`~sss_locus.experiments.replicates.replicate_interval`); it differs from the full-table
 rho of :func:`~sss_locus.experiments.pose_stats.spearman_table` by far less than that interval
-(``tests/test_pose_reduce.py``). Every number is a pure function of ``(spec, n, seed, k)``
+(``tests/test_reduce.py``). Every number is a pure function of ``(spec, n, seed, k)``
 combined in batch order, so it is bit-identical in-process and on any number of workers.
 """
 
