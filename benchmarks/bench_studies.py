@@ -12,6 +12,12 @@ with a local Dask cluster of 2 worker processes over in-process (with ``--quick`
 samples instead of 1,000,000), the load average at start and end, and each target of issue 14
 with the measured value.
 
+Last (also alone, with ``--reduce-only``), the pose-space study reduced on the workers
+(``sss_locus.experiments.pose_reduce.reduce_pose_space``: rho table and heatmaps from
+summaries): its end-to-end rate against the kernel-only rate, in-process against 2 local
+worker processes (bit-identical?), and the bytes per sample the client receives against the
+bytes per sample of the table that ``sample_pose_space`` sends back.
+
 ``--baseline REF`` runs the same measurements (not the Dask one) on a ``git worktree`` of
 ``REF`` with ``PYTHONPATH`` pointing there, in the same run, and prints both side by side.
 This is a benchmark, not a test: nothing is asserted.
@@ -20,6 +26,7 @@ Usage::
 
     python benchmarks/bench_studies.py --baseline 71ed8ba          # everything (see README)
     python benchmarks/bench_studies.py --quick --baseline 71ed8ba  # small sizes, no notebooks
+    python benchmarks/bench_studies.py --reduce-only               # the reduced pose-space study alone
 """
 
 from __future__ import annotations
@@ -189,6 +196,55 @@ def measure_dask(quick: bool) -> dict:
     return dict(n=n, serial=t_serial, workers2=t_par, speedup=t_serial / t_par, identical=same)
 
 
+def measure_reduce(quick: bool) -> dict:
+    """The pose-space study reduced on the workers (``experiments/pose_reduce.py``: Spearman rho
+    table with replicate intervals and the five heatmaps' exact per-bin medians): end to end
+    in-process against the kernel's share of it, in-process against 2 local worker processes
+    (best of :data:`DASK_REPEATS` each, bit-identical?), and the bytes per sample the client
+    receives, against the bytes per sample of the table ``sample_pose_space`` sends back."""
+    import pickle
+
+    from sss_locus.experiments import pose_space, scale
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.pose_reduce import reduce_pose_space
+
+    spec, n = pose_space.PoseSpaceSpec(load_platform("auv")), (200_000 if quick else 1_000_000)
+    run = lambda: reduce_pose_space(spec, n, 3, n_bins=16, min_count=30)  # the book's bins
+    os.environ.pop(scale.SCHEDULER_ENV, None)
+    reduce_pose_space(spec, 20_000, 9)  # warm-up (imports), not timed
+    spent = _timed_kernel([pose_space])
+    spent[0] = 0.0
+    t_serial, serial = _best_of(DASK_REPEATS, run)
+    kernel = spent[0] / DASK_REPEATS
+    chunk = pose_space.sample_pose_space(spec, 65536, 3)  # one chunk of the table path
+    table_bytes = len(pickle.dumps(chunk)) / len(chunk)
+    os.environ[scale.SCHEDULER_ENV] = "local:2"
+    scale.client("local:2").run(importlib.import_module, "sss_locus.experiments.pose_reduce")
+    reduce_pose_space(spec, 200_000, 4)  # warm-up on the workers
+    t_par, parallel = _best_of(DASK_REPEATS, run)
+    scale.close_clients()
+    os.environ.pop(scale.SCHEDULER_ENV, None)
+    frames = [(serial.rho, parallel.rho)] + [(serial.maps[p], parallel.maps[p]) for p in serial.maps]
+    same = serial.batch_rho.tobytes() == parallel.batch_rho.tobytes() and all(
+        a[c].to_numpy().tobytes() == b[c].to_numpy().tobytes() for a, b in frames for c in a.columns
+        if a[c].dtype.kind == "f")
+    return dict(n=n, serial=t_serial, kernel=kernel, workers2=t_par, speedup=t_serial / t_par, identical=same,
+                client_bytes=serial.bytes_to_client / n, worker_bytes=serial.bytes_between_workers / n,
+                table_bytes=table_bytes)
+
+
+def print_reduce(r: dict) -> None:
+    print(f"\nPose space reduced on the workers (rho table + 5 heatmaps, 16 bins), {r['n']:,} samples, "
+          f"best of {DASK_REPEATS}:\n"
+          f"- in-process: {r['n'] / r['serial']:,.0f} samples/s end to end, kernel-only {r['n'] / r['kernel']:,.0f}"
+          f" samples/s: end to end {100 * r['kernel'] / r['serial']:.0f} % of the kernel-only rate (target >= 40 %)\n"
+          f"- 2 local worker processes: {r['workers2']:.1f} s against {r['serial']:.1f} s in-process, speed-up "
+          f"{r['speedup']:.2f}x (target >= 1.6x); bit-identical: {r['identical']}\n"
+          f"- bytes to the client per sample: {r['client_bytes']:.3f} (the table: {r['table_bytes']:.0f}; "
+          f"{r['table_bytes'] / r['client_bytes']:,.0f}x less, target >= 50x); between workers (heatmap rows "
+          f"to the per-panel reduce tasks): {r['worker_bytes']:.1f}")
+
+
 def measure_tree(tree: Path, args) -> dict:
     """Run the study measurements in a child process importing ``sss_locus`` from ``tree``."""
     cmd = [sys.executable, str(Path(__file__).resolve()), "--child"] + (["--quick"] if args.quick else [])
@@ -237,7 +293,17 @@ def main() -> int:
     parser.add_argument("--quick", action="store_true", help="small sizes, no notebooks, a small Dask run")
     parser.add_argument("--notebooks", nargs="*", default=list(NOTEBOOKS))
     parser.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--reduce-only", action="store_true",
+                        help="only the pose-space study reduced on the workers (in-process and 2 workers)")
     args = parser.parse_args()
+    if args.reduce_only:
+        started, load_start = time.perf_counter(), os.getloadavg()
+        sys.path.insert(0, str(REPO))
+        result = measure_reduce(args.quick)
+        print(f"{os.cpu_count()} CPUs; load average at start {load_start[0]:.2f}, at end {os.getloadavg()[0]:.2f}; "
+              f"run took {time.perf_counter() - started:.0f} s")
+        print_reduce(result)
+        return 0
     if args.child:
         print(json.dumps({"studies": measure_studies(args.quick)}))
         return 0
@@ -282,6 +348,7 @@ def main() -> int:
           f"2 local worker processes {dask['workers2']:.1f} s, speed-up {dask['speedup']:.2f}x, "
           f"bit-identical: {dask['identical']}")
     print("\nTargets (issue 14), this tree:\n" + "\n".join(_targets(results, dask)))
+    print_reduce(measure_reduce(args.quick))
     return 0
 
 

@@ -127,18 +127,30 @@ def curve_summary(samples: pd.DataFrame, values=VALUES, *, n_batches: int = N_BA
     groups = list(samples.groupby("crossing_angle_deg", sort=True))
     rows, boot = [], {v: np.empty((int(n_resamples), len(groups))) for v in values}
     for j, (gamma, g) in enumerate(groups):
-        row = {"crossing_angle_deg": float(gamma), "n": len(g)}
         for v in values:
-            x = g[v].to_numpy(float)
-            boot[v][:, j] = bootstrap_median(x, n_resamples, rng)
-            q25, med, q75 = np.quantile(x, [0.25, 0.5, 0.75])
-            lo, hi = median_with_interval(x, n_batches, confidence_level)[1:]
-            row.update({f"{v}_median": med, f"{v}_q25": q25, f"{v}_q75": q75,
-                        f"{v}_ci_low": float(lo), f"{v}_ci_high": float(hi)})
-        rows.append(row)
+            boot[v][:, j] = bootstrap_median(g[v].to_numpy(float), n_resamples, rng)
+        rows.append(curve_row(gamma, g, values, n_batches, confidence_level))
+    return curve_frame(rows, values), boot
+
+
+def curve_row(gamma_deg: float, g: pd.DataFrame, values=VALUES, n_batches: int = N_BATCHES,
+              confidence_level: float = 0.95) -> dict:
+    """One crossing angle's row of :func:`curve_summary` from its samples ``g`` (its rows only)."""
+    row = {"crossing_angle_deg": float(gamma_deg), "n": len(g)}
+    for v in values:
+        x = g[v].to_numpy(float)
+        q25, med, q75 = np.quantile(x, [0.25, 0.5, 0.75])
+        lo, hi = median_with_interval(x, n_batches, confidence_level)[1:]
+        row.update({f"{v}_median": med, f"{v}_q25": q25, f"{v}_q75": q75,
+                    f"{v}_ci_low": float(lo), f"{v}_ci_high": float(hi)})
+    return row
+
+
+def curve_frame(rows: list[dict], values=VALUES) -> pd.DataFrame:
+    """The rows of :func:`curve_row` as the table of :func:`curve_summary`."""
     order = ["crossing_angle_deg", "n"] + [f"{v}_{s}" for v in values
                                           for s in ("median", "q25", "q75", "ci_low", "ci_high")]
-    return pd.DataFrame(rows)[order], boot
+    return pd.DataFrame(rows)[order]
 
 
 def peak_angle(curve: pd.DataFrame, boot: np.ndarray, value: str = "locus_length_m", *,

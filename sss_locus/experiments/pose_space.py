@@ -340,7 +340,7 @@ def _evaluate(spec: PoseSpaceSpec, g: dict[str, np.ndarray]) -> pd.DataFrame:
     })
 
 
-def _evaluate_blocks(spec: PoseSpaceSpec, seed: int, first: int, stop: int, n: int) -> pd.DataFrame:
+def evaluate_blocks(spec: PoseSpaceSpec, seed: int, first: int, stop: int, n: int) -> pd.DataFrame:
     """Rows of blocks ``first .. stop - 1`` (cut at row ``n``): one chunk of the study."""
     blocks = [draw_block(spec, seed, k) for k in range(first, stop)]
     g = {key: np.concatenate([b[key] for b in blocks])[:n - first * BLOCK_SIZE] for key in blocks[0]}
@@ -350,12 +350,12 @@ def _evaluate_blocks(spec: PoseSpaceSpec, seed: int, first: int, stop: int, n: i
 def sample_geometry(spec: PoseSpaceSpec, n: int, seed: int) -> dict[str, np.ndarray]:
     """The first ``n`` raw configurations (``R``, ``t``, ranges, angles, world positions ``f``,
     ``o1``, ``o2`` ...) for ``seed``; the rows of :func:`sample_pose_space` in the same order."""
-    n, seed = _check_n_seed(n, seed)
+    n, seed = check_n_seed(n, seed)
     blocks = [draw_block(spec, seed, k) for k in range(-(-n // BLOCK_SIZE))]
     return {k: np.concatenate([b[k] for b in blocks])[:n] for k in blocks[0]} if blocks else {}
 
 
-def _check_n_seed(n, seed):
+def check_n_seed(n, seed):
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"n_samples must be a positive integer; got {n!r}")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
@@ -390,11 +390,11 @@ def sample_pose_space(spec: PoseSpaceSpec, n_samples: int, seed: int, *,
         ``locus_length_normalized`` = ``locus_length_m / mean_range_m``; ``status`` is the
         kernel's :class:`~sss_locus.geometry.locus.LocusStatus`.
     """
-    n, seed = _check_n_seed(n_samples, seed)
+    n, seed = check_n_seed(n_samples, seed)
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size must be a positive integer; got {chunk_size!r}")
     per_task = max(1, chunk_size // BLOCK_SIZE)  # whole blocks per kernel call and per chunk
     n_blocks = -(-n // BLOCK_SIZE)
     tasks = [(spec, seed, k, min(k + per_task, n_blocks), n) for k in range(0, n_blocks, per_task)]
-    out = pd.concat(map_chunks(_evaluate_blocks, tasks, progress), ignore_index=True)
+    out = pd.concat(map_chunks(evaluate_blocks, tasks, progress), ignore_index=True)
     return out[list(COLUMNS)]

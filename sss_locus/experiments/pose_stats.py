@@ -116,6 +116,13 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     with np.errstate(invalid="ignore", divide="ignore"):  # a batch with a constant column: NaN
         batches = np.stack([rank_correlation(centred_from(Xb[a:b]), centred_from(Yb[a:b]))
                             for a, b in zip(starts[:-1], starts[1:])])
+    return rho_frame(rho, batches, n, candidates, targets, confidence_level, dropped=constant)
+
+
+def rho_frame(rho: np.ndarray, batches: np.ndarray, n: int, candidates: Sequence[str],
+              targets: Sequence[str], confidence_level: float = 0.95, dropped=()) -> pd.DataFrame:
+    """The table of :func:`spearman_table` from a point estimate ``rho`` ``(p, q)`` (candidates x
+    targets), the ``k`` replicate batches' rhos ``(k, p, q)`` and the number of rows ``n``."""
     lo, hi = replicate_interval(rho, batches, confidence_level, bounds=(-1.0, 1.0))
     zlo, zhi = fisher_z_interval(rho, n, confidence_level)
     rows = [dict(target=tg, quantity=c, rho=rho[i, j], ci_low=lo[i, j], ci_high=hi[i, j], n=n,
@@ -125,8 +132,8 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     out["abs_rho"] = out["rho"].abs()
     out = out.sort_values(["target", "abs_rho"], ascending=[True, False]).drop(columns="abs_rho")
     out = out.reset_index(drop=True)
-    out.attrs["dropped"] = constant
-    out.attrs["n_batches"] = k
+    out.attrs["dropped"] = list(dropped)
+    out.attrs["n_batches"] = len(batches)
     return out
 
 
@@ -225,6 +232,13 @@ def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m
     out["masked"] = out["count"] < int(min_count)
     out.attrs.update(x=x, y=y, value=value, min_count=int(min_count), n_nan=n_nan)
     return out
+
+
+def bin_index(v: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """Bin of each value for increasing ``edges``: half-open ``[lo, hi)``, the last bin closed; -1 outside."""
+    i = np.searchsorted(edges, v, side="right") - 1
+    i = np.where(v == edges[-1], len(edges) - 2, i)
+    return np.where((v < edges[0]) | (v > edges[-1]), -1, i)
 
 
 def median_grid(binned: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -136,3 +136,42 @@ def map_chunks(fn: Callable, tasks: Sequence[tuple], progress: Callable[[int, in
         for done, _ in enumerate(as_completed(futures), start=1):
             progress(done, len(tasks))
     return dask_client.gather(futures)
+
+
+def _part(output, index: int):
+    """Part ``index`` of a map task's output ``(summary, parts)``: ``summary`` for -1."""
+    return output[0] if index < 0 else output[1][index]
+
+
+def map_reduce(map_fn: Callable, tasks: Sequence[tuple], reduce_fn: Callable, n_parts: int,
+               progress: Callable[[int, int], Any] | None = None) -> tuple[list, list]:
+    """Reduce where the data lives: ``(summaries, reduced)`` of a two-stage computation.
+
+    Each task runs ``map_fn(*task) -> (summary, parts)`` with ``parts`` a sequence of
+    ``n_parts`` objects (e.g. the rows of one heatmap panel); then, for each ``g``,
+    ``reduce_fn(g, [parts[g] of every task, in task order])``. Returns the summaries in task
+    order and the reduced results in part order. In this process (no scheduler, or a single
+    task) that is plain composition. On a Dask cluster the map outputs stay on the workers
+    that made them; the parts move between workers to the reduce tasks, and only the
+    summaries and the reduced results travel to this process. Both stages are pure functions of
+    their arguments, combined in a fixed order, so the result is bit-identical here and on any
+    number of workers. ``progress(done, total)`` is called after each map task.
+    """
+    setting = os.environ.get(SCHEDULER_ENV, "")
+    if parse_scheduler(setting) is None or len(tasks) < 2:
+        outputs = map_chunks(map_fn, tasks, progress)
+        return ([out[0] for out in outputs],
+                [reduce_fn(g, [out[1][g] for out in outputs]) for g in range(n_parts)])
+    dask_client = client(setting)
+    mapped = dask_client.map(map_fn, *zip(*tasks), pure=False)
+    summaries = [dask_client.submit(_part, f, -1, pure=False) for f in mapped]
+    reduced = [dask_client.submit(reduce_fn, g, [dask_client.submit(_part, f, g, pure=False) for f in mapped],
+                                  pure=False) for g in range(n_parts)]
+    if progress is not None:
+        from dask.distributed import as_completed
+
+        for done, _ in enumerate(as_completed(mapped), start=1):
+            progress(done, len(tasks))
+    result = dask_client.gather([summaries, reduced])
+    del mapped, summaries, reduced  # releases the tables held on the workers
+    return result[0], result[1]

@@ -170,7 +170,7 @@ def draw_blocks(platform: Platform, envelope: SurveyEnvelope, model: OffsetModel
              rejected[i], int(have[i])) for i in range(len(blocks))]
 
 
-def _check_inputs(angles, n, seed):
+def check_inputs(angles, n, seed):
     g = np.atleast_1d(np.asarray(angles, float))
     if g.ndim != 1 or g.size == 0 or not np.all(np.isfinite(g)) or np.any(np.abs(g) > 180):
         raise ValueError(f"crossing_angles_deg must be a non-empty 1-D list of finite angles in "
@@ -260,7 +260,7 @@ def simulate_passes(platform: Platform, envelope: SurveyEnvelope, offset_model: 
         ``rejected_<reason>`` for each of :data:`REJECTION_REASONS`, counted over every draw
         made (``n_accepted`` includes accepted draws beyond ``n_per_angle`` in the last block).
     """
-    angles, n, seed = _check_inputs(crossing_angles_deg, n_per_angle, seed)
+    angles, n, seed = check_inputs(crossing_angles_deg, n_per_angle, seed)
     if not isinstance(platform, Platform):
         raise ValueError(f"platform must be a sss_locus.experiments.platforms.Platform; got {type(platform).__name__}")
     if not isinstance(envelope, SurveyEnvelope) or not isinstance(offset_model, OffsetModel):
