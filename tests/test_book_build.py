@@ -328,7 +328,8 @@ def test_user_platform_book_builds_and_places_every_figure(user_book):
     for label in ("fig-sensitivity-my-auv", "fig-heatmaps-my-auv"):
         assert f'id="{label}"' in pose
     assert "fig-heatmaps-boat" not in pose and "fig-heatmaps-auv" not in pose
-    assert "is left out here: this run does not include" in pose  # prose written for the paper's platforms
+    assert pose.count("are left out here: this run does not include") == 1  # the paper's prose: one note
+    assert "The raw locus length is ranked first by" in pose  # and findings from the user's own numbers
     figures = (html / "book" / "figures.html").read_text()
     assert "sss-locus:fig-heatmaps-my-auv" in figures and "sss-locus:fig-heatmaps-boat" not in figures
 
