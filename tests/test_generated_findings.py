@@ -184,3 +184,22 @@ def test_panels_hotspot_and_choices_follow_their_numbers():
     assert "0.90" not in text  # another platform's row is not quoted
     md = ps.findings_markdown({"A (`a`)": text})
     assert re.match(r"- \*\*A \(`a`\)\*\*: main run: ", md)
+
+
+def test_a_table_a_cell_shows_is_its_last_statement():
+    """A cell shows only its last expression: a readable_table() earlier in a cell (for example
+    before lines gluing generated findings) would silently vanish from the page."""
+    import ast
+    import json
+
+    from sss_locus.paths import REPO_ROOT
+
+    for path in sorted((REPO_ROOT / "notebooks").glob("*.ipynb")):
+        for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]:
+            source = "".join(cell["source"])
+            if cell["cell_type"] != "code" or "readable_table(" not in source:
+                continue
+            body = ast.parse(source.replace("%matplotlib inline", "pass")).body
+            shown = [i for i, node in enumerate(body) if isinstance(node, ast.Expr)
+                     and "readable_table(" in ast.get_source_segment(source, node).split("\n")[0][:20]]
+            assert all(i == len(body) - 1 for i in shown), (path.name, source[:120])
