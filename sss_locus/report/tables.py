@@ -163,3 +163,12 @@ def key_caption(names: Mapping[str, str]) -> str:
     if not names:
         raise ValueError("key_caption needs at least one platform")
     return "Platforms by key: " + "; ".join(f"{k}, {n}" for k, n in names.items()) + "."
+
+
+def files_note(label: str) -> str:
+    """The caption sentence that points to a published table's files (served beside the figures).
+
+    >>> files_note("tab-survey-peaks")
+    'Cite it with its files: figures/tab-survey-peaks.csv (values), .json (what it was computed from), .bib.'
+    """
+    return f"Cite it with its files: figures/{label}.csv (values), .json (what it was computed from), .bib."
