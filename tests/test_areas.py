@@ -74,8 +74,9 @@ def test_a_user_run_into_the_reproduction_is_refused_before_it_starts(build_area
                      "-p", "platforms", '["my_auv"]'])
     err = capsys.readouterr().err
     assert code == 2
-    assert "would go into the reproduction" in err and "it would replace fig-heatmaps-auv" in err
-    assert "--name my_auv" in err and "--replace-reproduction" in err  # the way out, named
+    assert err.startswith("sss-locus run: error: add --name NAME (e.g. --name my_auv)")  # the way out, first
+    assert len(err.strip().splitlines()) == 1  # in one line
+    assert "would replace fig-heatmaps-auv" in err and "--replace-reproduction" in err
     assert {p.name: p.read_bytes() for p in paths.figures_dir().iterdir()} == before
     assert not paths.executed_dir().exists() and not (build_area / "tmp").exists()  # nothing started
     code = cli.main(["book", "--profile", "quick", "--set", "platforms.auv.transducers.port.tilt_deg=15"])

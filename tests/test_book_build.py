@@ -64,8 +64,9 @@ def test_notebook_ran_under_quick_profile(quick_book, name):
         assert len(injected) == 1 and "hide-input" in injected[0]["metadata"]["tags"]
     page = quick_book["html"] / Path(entry.executed).with_suffix(".html")
     assert page.is_file()
-    if entry.parameters():  # the collapsed block with this run's parameters
-        assert "Show this run's parameters (profile 'quick')" in unescape(page.read_text())
+    if entry.parameters():  # the visible cell shows the run's values; the collapsed block its data files
+        text = unescape(page.read_text())
+        assert "The values this run used (profile 'quick')" in text and "Show the data files this run read" in text
 
 
 def test_site_has_no_broken_images_or_unresolved_glue(quick_book):
@@ -308,7 +309,7 @@ def test_the_page_runs_a_quick_answer_runs_and_a_book_each_into_its_own_area(use
     assert all("--name" in argv for argv, _ in user_book["outputs"] if argv[1] in ("run", "book"))
     answer = next(out for argv, out in user_book["outputs"] if argv[1] == "answer")
     assert "my_auv.toml (user, sha256" in answer and "prefer" in answer and "Top drivers" in answer
-    assert user_book["refused"] and all(r.returncode == 2 and "would go into the reproduction" in r.stderr
+    assert user_book["refused"] and all(r.returncode == 2 and "add --name NAME" in r.stderr
                                         for r in user_book["refused"])  # the page's refused example is
 
 
@@ -328,7 +329,8 @@ def test_user_platform_book_builds_and_places_every_figure(user_book):
     for label in ("fig-sensitivity-my-auv", "fig-heatmaps-my-auv"):
         assert f'id="{label}"' in pose
     assert "fig-heatmaps-boat" not in pose and "fig-heatmaps-auv" not in pose
-    assert "is left out here: this run does not include" in pose  # prose written for the paper's platforms
+    assert pose.count("are left out here: this run does not include") == 1  # the paper's prose: one note
+    assert "The raw locus length is ranked first by" in pose  # and findings from the user's own numbers
     figures = (html / "book" / "figures.html").read_text()
     assert "sss-locus:fig-heatmaps-my-auv" in figures and "sss-locus:fig-heatmaps-boat" not in figures
 

@@ -7,6 +7,7 @@ area (``SSS_LOCUS_BUILD_DIR``), so nothing of the real build is touched.
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -80,8 +81,10 @@ def test_run_with_profile_and_override(build_area, entry, monkeypatch):
     injected = [c for c in nb["cells"] if "injected-parameters" in c["metadata"].get("tags", [])]
     assert len(injected) == 1
     assert "hide-input" in injected[0]["metadata"]["tags"]
-    assert "profile 'quick'" in injected[0]["metadata"]["mystnb"]["code_prompt_show"]
     assert "n = 2" in "".join(injected[0]["source"])
+    shown = "".join(next(c for c in nb["cells"] if "parameters" in c["metadata"].get("tags", []))["source"])
+    assert shown.startswith("# The values this run used (profile 'quick')")  # the visible cell: the run's values
+    assert re.search(r"^n: int = 2\b", shown, re.M) and re.search(r"^scale = 2.0\b", shown, re.M)
     manifest = json.loads((build_area / "source" / "_extra" / "figures" / "fig-tiny-line.json").read_text())
     assert manifest["parameters"] == {"n": 2, "scale": 2.0}
     assert manifest["profile"] == "quick" and manifest["notebook"] == entry.source_relative

@@ -100,22 +100,22 @@ def check_reproduction(runs: Iterable[tuple[Any, Mapping[str, Any]]], *, replace
     from sss_locus.pipeline import export
 
     figures = export.load_manifests(paths.figures_dir()) if paths.figures_dir().is_dir() else []
-    found, files = [], []
+    found, files, replaced = [], [], []
     for entry, parameters in runs:
         files += list(parameters.get("data_files") or [])
         why = differs_from_paper(entry, parameters)
         if why:
-            mine = [m["label"] for m in figures if m.get("notebook") == entry.source_relative]
-            shown = f"; it would replace {', '.join(mine)}" if mine else ""
-            found.append(f"{entry.name}: {'; '.join(why)}{shown}")
+            replaced += [m["label"] for m in figures if m.get("notebook") == entry.source_relative]
+            found.append(f"{entry.name} {'; '.join(why)}")
     if found:
         stem = re.sub(r"[^a-z0-9_-]+", "_", Path(files[0]).stem.lower()).strip("_-") if files else ""
         name = stem if stem and NAME_PATTERN.fullmatch(stem) and stem not in RESERVED else "my_run"
-        raise ValueError(
-            "run(s) not on the paper's inputs would go into the reproduction "
-            f"({paths.build_dir()}), replacing its chapters, figures and claims table:\n  "
-            + "\n  ".join(found)
-            + f"\nGive them a book of their own with --name NAME (for example --name {name}: results in "
-            f"{paths.build_dir() / name}, site in {paths.build_dir() / name / 'html'}), "
-            "or replace the reproduction with --replace-reproduction.")
+        more = f" (and {len(found) - 1} more chapter(s))" if len(found) > 1 else ""
+        shown = (", ".join(replaced[:3]) + (f" and {len(replaced) - 3} more paper figures" if len(replaced) > 3 else "")
+                 if replaced else "the paper's chapters")
+        raise ValueError(  # one line: the flag first, then why
+            f"add --name NAME (e.g. --name {name}) to run on inputs other than the paper's: {found[0]}{more}, "
+            f"and without a name it would replace {shown} in the reproduction ({paths.build_dir()}); "
+            f"--name {name} puts it in {paths.build_dir() / name} (--replace-reproduction overwrites the "
+            "reproduction on purpose).")
     os.environ[CHECKED_ENV] = "1"

@@ -188,10 +188,10 @@ def _bibtex_authors(cff: Mapping[str, Any]) -> str:
     return " and ".join(names) or "{sss-locus contributors}"
 
 
-def figure_url(label: str, config: Path | None = None) -> str | None:
-    """Public address of a figure's PNG, when ``html.baseurl`` is set."""
+def figure_url(label: str, config: Path | None = None, suffix: str = "png") -> str | None:
+    """Public address of a figure's PNG (a table's CSV: ``suffix``), when ``html.baseurl`` is set."""
     base = base_url(config)
-    return f"{base}/{paths.FIGURES_SUBDIR}/{label}.png" if base else None
+    return f"{base}/{paths.FIGURES_SUBDIR}/{label}.{suffix}" if base else None
 
 
 def data_note(manifest: Mapping[str, Any]) -> str:
@@ -231,19 +231,20 @@ def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None 
         except (OSError, ValueError, ImportError):
             cff = {}
     label = manifest["label"]
+    kind = "Table" if label.startswith("tab-") else "Figure"
     fields = {
-        "title": "{" + latex_escape(f"Figure {label}: ") + latex_escape(short_caption(manifest["caption"]),
+        "title": "{" + latex_escape(f"{kind} {label}: ") + latex_escape(short_caption(manifest["caption"]),
                                                                        markdown=True) + "}",
         "author": _bibtex_authors(cff),
         "year": latex_escape(str(manifest["run_time_utc"])[:4]),
         "version": latex_escape(str(manifest["package_version"])),
-        "howpublished": "Figure in \\emph{" + latex_escape(str(cff.get("title", "sss-locus"))) + "}",
+        "howpublished": f"{kind} in \\emph{{" + latex_escape(str(cff.get("title", "sss-locus"))) + "}",
         "note": (f"Notebook \\texttt{{{latex_escape(str(manifest['notebook']))}}}, "
                  f"profile {latex_escape(str(manifest['profile']))}, "
                  f"commit \\texttt{{{latex_escape(short_commit(str(manifest['git_commit'])))}}}"
                  + data_note(manifest)),
     }
-    url = figure_url(label, config)
+    url = figure_url(label, config, "csv" if kind == "Table" else "png")
     if url:
         fields["url"] = url.replace("%", r"\%").replace("#", r"\#")
     body = ",\n".join(f"  {key} = {{{value}}}" for key, value in fields.items())

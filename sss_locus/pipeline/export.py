@@ -51,6 +51,9 @@ from sss_locus.pipeline import atomic, citation, provenance, readability
 
 # Used with fullmatch: the whole string must match (``$`` alone would accept a trailing newline).
 LABEL_PATTERN = re.compile(r"fig-[a-z0-9]+(?:-[a-z0-9]+)*")
+TABLE_LABEL_PATTERN = re.compile(r"tab-[a-z0-9]+(?:-[a-z0-9]+)*")
+#: Label prefixes of exported items: figures, and tables (:func:`export_table`).
+KINDS = ("fig", "tab")
 DATA_NAME_PATTERN = re.compile(r"[a-z0-9]+(?:[_-][a-z0-9]+)*")
 #: Set by the runner: the folder a run exports into, and the run key recorded in each manifest.
 FIGURES_DIR_ENV = "SSS_LOCUS_FIGURES_DIR"
@@ -309,15 +312,16 @@ def _png_width_px(path: Path) -> int:
     return int.from_bytes(head[16:20], "big")
 
 
-def load_manifests(out_dir: Path | None = None) -> list[dict[str, Any]]:
-    """Manifests of all complete exported figures, sorted by notebook then label.
+def load_manifests(out_dir: Path | None = None, kinds: Sequence[str] = ("fig",)) -> list[dict[str, Any]]:
+    """Manifests of all complete exported figures (``kinds``: label prefixes, ``"tab"`` for
+    tables), sorted by notebook then label.
 
     A figure counts as complete when its manifest exists and every file it lists is present with
     the recorded SHA-256.
     """
     out = paths.figures_dir() if out_dir is None else Path(out_dir)
     manifests = []
-    for path in sorted(out.glob("fig-*.json")):
+    for path in sorted(p for kind in kinds for p in out.glob(f"{kind}-*.json")):
         manifest = _read_manifest(path)
         files = manifest.get("files", {}) if manifest else {}
         if files and all(isinstance(entry, dict) and provenance.file_sha256(out / name) == entry.get("sha256")
@@ -342,14 +346,14 @@ def _read_manifest(path: Path) -> dict[str, Any] | None:
 
 
 def remove_figures_of(notebook: str, out_dir: Path | None = None) -> list[str]:
-    """Delete every exported figure whose manifest names ``notebook``; return their labels.
+    """Delete every exported figure and table whose manifest names ``notebook``; return their labels.
 
     The runner calls this before rerunning a notebook so that a figure the notebook no longer
     draws does not linger on the site.
     """
     out = paths.figures_dir() if out_dir is None else Path(out_dir)
     removed = []
-    for path in sorted(out.glob("fig-*.json")):
+    for path in sorted(p for kind in KINDS for p in out.glob(f"{kind}-*.json")):
         manifest = _read_manifest(path)
         if manifest is None or manifest.get("notebook") != notebook:
             continue

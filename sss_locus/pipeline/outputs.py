@@ -61,7 +61,7 @@ def signals_held() -> Iterator[None]:
 
 
 def _manifests_of(folder: Path, notebook: str | None) -> dict[str, dict[str, Any]]:
-    return {m["label"]: m for m in export.load_manifests(folder)
+    return {m["label"]: m for m in export.load_manifests(folder, export.KINDS)
             if notebook is None or m.get("notebook") == notebook}
 
 

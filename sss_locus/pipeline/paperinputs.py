@@ -24,6 +24,10 @@ from typing import Any
 
 #: Cell tag of a markdown cell written for the paper's platforms with the shipped data.
 PROSE_TAG = "paper-inputs"
+#: Cell tag of a markdown cell of findings generated from the run's own numbers for every platform
+#: of the run (``sss_locus.report.pose_findings``, ``pass_findings``): shown when the run is not
+#: the paper's inputs alone, dropped from the reproduction (where the paper's prose says it).
+GENERATED_TAG = "generated-findings"
 #: Data tables not keyed by platform that only some chapters read (their changes count for those).
 SHARED_TABLES = ("terrain", "survey")
 
@@ -74,36 +78,58 @@ def _reasons(record: Mapping[str, Any]) -> str:
     return " and ".join(out)
 
 
+def shows_generated(record: Mapping[str, Any] | None) -> bool:
+    """True when a run's chapter shows its :data:`GENERATED_TAG` cells: its inputs are not the
+    paper's, or it adds platforms beside the paper's (whose prose says nothing of them)."""
+    return bool(record) and (not is_paper(record) or bool(record.get("added")))
+
+
 def prose_note(record: Mapping[str, Any]) -> str:
-    """The note that stands in for prose written for the paper's inputs (MyST)."""
-    return ("```{note}\nA passage written for the paper's platforms with the shipped data — "
-            f"{_names(record['paper'])} — is left out here: this run {_reasons(record)}. The figures, "
-            "captions and tables of this chapter show the values this run used.\n```\n")
+    """The note that stands in for prose written for the paper's inputs (MyST), once a chapter."""
+    return ("```{note}\nThe passages written for the paper's platforms with the shipped data — "
+            f"{_names(record['paper'])} — are left out here: this run {_reasons(record)}. The figures, "
+            "captions and tables of this chapter show the values this run used, and the findings in "
+            "this chapter are generated from this run's numbers.\n```\n")
+
+
+def _tags(cell: Mapping[str, Any]) -> list[str]:
+    return cell.get("metadata", {}).get("tags", []) if cell["cell_type"] == "markdown" else []
 
 
 def adapt_prose(notebook: Path, record: Mapping[str, Any] | None) -> int:
-    """Replace the :data:`PROSE_TAG` cells of an executed ``notebook`` when ``record`` (from
-    :func:`compare`) is not the paper's inputs: the first cell of each block of consecutive
-    tagged cells becomes :func:`prose_note` (under its leading headings), the others are dropped. Returns the number replaced."""
-    if is_paper(record):
+    """Fit an executed ``notebook``'s prose to its run's inputs (``record`` from :func:`compare`).
+
+    On the paper's inputs alone the :data:`GENERATED_TAG` cells are dropped. Otherwise they stay,
+    and when the inputs are not the paper's the :data:`PROSE_TAG` cells go: each block of
+    consecutive tagged cells keeps only the leading headings of its first cell, and the first
+    block of the chapter is followed by :func:`prose_note` (one note a chapter). Returns the
+    number of cells replaced or dropped."""
+    if record is None:
         return 0
+    generated, paper = shows_generated(record), is_paper(record)
     nb = json.loads(notebook.read_text(encoding="utf-8"))
-    cells, replaced, previous_tagged = [], 0, False
+    cells, changed, previous_tagged, noted = [], 0, False, False
     for cell in nb["cells"]:
-        tagged = cell["cell_type"] == "markdown" and PROSE_TAG in cell.get("metadata", {}).get("tags", [])
-        if tagged:
-            replaced += 1
-            if not previous_tagged:  # keep the cell's leading headings, then the note
+        tags = _tags(cell)
+        tagged = PROSE_TAG in tags and not paper
+        if GENERATED_TAG in tags and not generated:
+            changed += 1
+        elif tagged:
+            changed += 1
+            if not previous_tagged:  # keep the block's leading headings; the note once a chapter
                 lines = "".join(cell["source"]).splitlines(keepends=True)
                 n = next((i for i, line in enumerate(lines) if not line.startswith("#")), len(lines))
-                heads = "".join(lines[:n]) + ("\n" if n else "")
-                cells.append({**cell, "source": heads + prose_note(record)})
+                heads = "".join(lines[:n]) + ("\n" if n and not noted else "")
+                if heads or not noted:
+                    cells.append({**cell, "source": heads + ("" if noted else prose_note(record))})
+                noted = True
         else:
             cells.append(cell)
         previous_tagged = tagged
-    nb["cells"] = cells
-    notebook.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
-    return replaced
+    if changed:
+        nb["cells"] = cells
+        notebook.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+    return changed
 
 
 def claims_notice(records: Mapping[str, Mapping[str, Any] | None]) -> tuple[str, bool]:

@@ -116,3 +116,12 @@ def place(key: str, labels: Sequence[str]) -> None:
     if isinstance(labels, str) or not labels:
         raise ValueError(f"labels must be a non-empty list of figure labels; got {labels!r}")
     glue(key, Markdown("\n".join(figure_block(label) for label in labels)), display=False)
+
+
+def publish_table(frame: pd.DataFrame, label: str, *, caption: str, platforms: Sequence[str] | None = None) -> None:
+    """Export a table the chapter shows as a citable table (``tab-`` label, its CSV, manifest and
+    BibTeX beside the figures, :func:`sss_locus.pipeline.table_export.export_table`) with the
+    run's parameters; ``platforms``: those its rows come from, when not every platform of the run."""
+    from sss_locus.pipeline.table_export import export_table
+
+    export_table(frame, label, caption=caption, parameters=run_parameters(), platforms=platforms)

@@ -39,7 +39,8 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, export, faults, orphans, outputs, paperinputs, preflight, progress, provenance
+from sss_locus.pipeline import (atomic, export, faults, orphans, outputs, paperinputs, paramcell, preflight, progress,
+                                provenance)
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
 from sss_locus.pipeline.registry import NotebookEntry
@@ -153,15 +154,18 @@ class NotebookFailed(RuntimeError):
 
 def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any],
                          extra: dict[str, Any]) -> None:
-    """Tag papermill's injected-parameters cell so the book shows it as a collapsed block."""
+    """Show the run's values in the visible parameters cell (:mod:`.paramcell`) and tag papermill's
+    injected-parameters cell, which also names the data files read, so the book shows it collapsed."""
     nb = json.loads(executed.read_text(encoding="utf-8"))
+    paramcell.show_run_values(nb["cells"], parameters, f"# The values this run used (profile '{profile}'); "
+                              "defaults and ranges: `sss-locus params NOTEBOOK`\n")
     for cell in nb["cells"]:
         tags = cell.get("metadata", {}).get("tags", [])
         if "injected-parameters" in tags:
             cell["metadata"]["tags"] = sorted(set(tags) | {"hide-input"})
             cell["metadata"]["mystnb"] = {
-                "code_prompt_show": f"Show this run's parameters (profile '{profile}')",
-                "code_prompt_hide": "Hide this run's parameters",
+                "code_prompt_show": "Show the data files this run read and papermill's record of its parameters",
+                "code_prompt_hide": "Hide the data files and papermill's record",
             }
             source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
             header = f"# Parameters of this run (profile '{profile}'), injected by papermill\n"

@@ -151,3 +151,24 @@ def readable_table(frame: pd.DataFrame, *, caption: str = "", digits: int = 3,
     if text:
         styler.set_caption(text)
     return styler
+
+
+def key_caption(names: Mapping[str, str]) -> str:
+    """The caption line that names the platforms a table labels by key only (short row labels
+    instead of long names wrapping into tall rows).
+
+    >>> key_caption({"auv": "Torpedo AUV", "boat": "Surface boat"})
+    'Platforms by key: auv, Torpedo AUV; boat, Surface boat.'
+    """
+    if not names:
+        raise ValueError("key_caption needs at least one platform")
+    return "Platforms by key: " + "; ".join(f"{k}, {n}" for k, n in names.items()) + "."
+
+
+def files_note(label: str) -> str:
+    """The caption sentence that points to a published table's files (served beside the figures).
+
+    >>> files_note("tab-survey-peaks")
+    'Cite it with its files: figures/tab-survey-peaks.csv (values), .json (what it was computed from), .bib.'
+    """
+    return f"Cite it with its files: figures/{label}.csv (values), .json (what it was computed from), .bib."

@@ -1,0 +1,179 @@
+"""Findings of the survey-pass and three-view chapters generated from a run's own numbers.
+
+The counterpart of :mod:`sss_locus.report.pose_findings` for the chapters on passes: one
+paragraph per platform (or per study platform), computed from the curves and tables the chapter
+draws, for the cells tagged ``generated-findings``. Nothing here is typed for a particular platform.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import pandas as pd
+
+from ..experiments.planning import planning_bands
+from .text import fmt_bands, fmt_change, fmt_percent, fmt_sig
+
+OBLIQUE_MAX_DEG = 45.0
+"""A peak below this crossing angle counts as "at a moderate oblique angle" (the paper's shape)."""
+
+
+def curve_shape(curve: pd.DataFrame, peak_deg: float, prefer_below: float, avoid_above: float,
+                value: str = "locus_length_m") -> dict:
+    """The shape of one median curve against crossing angle, as flags.
+
+    Returns ``peak_deg``, ``where`` (``"oblique"`` below :data:`OBLIQUE_MAX_DEG`, ``"cross"`` up
+    to 135°, ``"near-reciprocal"`` beyond), ``ends_preferred`` (both 0° and 180° in a prefer band
+    of :func:`~sss_locus.experiments.planning.planning_bands`), ``ends_ratio`` (median at 180°
+    over that at 0°) and ``bands`` (the bands).
+    """
+    bands = planning_bands(curve, value, prefer_below=prefer_below, avoid_above=avoid_above)
+    c = curve.sort_values("crossing_angle_deg")
+    g, m = c["crossing_angle_deg"].to_numpy(float), c[f"{value}_median"].to_numpy(float)
+    pref = bands[bands["kind"] == "prefer"]
+
+    def preferred(a: float) -> bool:
+        return bool(((pref["lo_deg"] <= a + 1e-9) & (pref["hi_deg"] >= a - 1e-9)).any())
+
+    where = "oblique" if peak_deg < OBLIQUE_MAX_DEG else "cross" if peak_deg <= 135.0 else "near-reciprocal"
+    return {"peak_deg": float(peak_deg), "where": where, "bands": bands,
+            "ends_preferred": preferred(g[0]) and preferred(g[-1]),
+            "ends_ratio": float(m[-1] / m[0]) if m[0] > 0 else float("inf")}
+
+
+_WHERE = {"oblique": "at a moderate oblique angle, the paper's shape",
+          "cross": "near a cross-line, not at a moderate oblique angle",
+          "near-reciprocal": "close to an anti-parallel pass"}
+
+
+def curve_finding(cur, prefer_below: float, avoid_above: float) -> str:
+    """The main curve of one platform (a
+    :class:`~sss_locus.experiments.planning.CrossingAngleCurve`) in words: where the median
+    length peaks (with its bootstrap interval), its medians at 0°, 90° and 180°, the bands to
+    prefer and to avoid, and whether repeat and anti-parallel passes are the shortest."""
+    pk = cur.peak["locus_length_m"]
+    s = curve_shape(cur.curve, pk["angle_deg"], prefer_below, avoid_above)
+    at = {g: fmt_sig(cur.at(g)["median"], 2) for g in (0, 90, 180)}
+    ends = ("repeat and anti-parallel passes both fall in the preferred bands (the shortest loci), "
+            f"{'about equally short' if 0.8 <= s['ends_ratio'] <= 1.25 else 'though not equally short'} "
+            f"(180° over 0°: {fmt_sig(s['ends_ratio'], 2)})" if s["ends_preferred"] else
+            "repeat and anti-parallel passes are not both in the preferred bands")
+    mis = cur.peak["elevation_misalignment_deg"]
+    return (f"the median locus length is {at[0]} m at a repeat pass, peaks at γ = {pk['angle_deg']:.0f}° (95 % "
+            f"bootstrap interval {pk['ci_low_deg']:.0f}–{pk['ci_high_deg']:.0f}°), {_WHERE[s['where']]}, is {at[90]} m "
+            f"at 90° and {at[180]} m at 180°; {ends}. Prefer γ in {fmt_bands(s['bands'], 'prefer')}; avoid "
+            f"{fmt_bands(s['bands'], 'avoid')}. The median elevation misalignment peaks at {mis['angle_deg']:.0f}°.")
+
+
+def offset_models_finding(curves: Mapping[str, object]) -> str:
+    """One platform's curves under several offset models (label -> curve): each peak angle, and
+    which models give the paper's shape (a peak below :data:`OBLIQUE_MAX_DEG`)."""
+    if not curves:
+        raise ValueError("offset_models_finding needs at least one curve")
+    peaks = {label: c.peak["locus_length_m"]["angle_deg"] for label, c in curves.items()}
+    listed = "; ".join(f"{label}: {a:.0f}°" for label, a in peaks.items())
+    oblique = [label for label, a in peaks.items() if a < OBLIQUE_MAX_DEG]
+    said = (f"a peak at a moderate oblique angle (below {OBLIQUE_MAX_DEG:g}°) appears with "
+            + ", ".join(oblique) if oblique else
+            f"no offset model puts the peak below {OBLIQUE_MAX_DEG:g}°")
+    return f"the median length peaks at {listed}; {said}."
+
+
+def _effect(r) -> tuple[str, bool]:
+    """A ratio row as change text and whether its interval excludes no change."""
+    return fmt_change(r["ratio"], r["ratio_ci_low"], r["ratio_ci_high"]), not (r["ratio_ci_low"] <= 1 <= r["ratio_ci_high"])
+
+
+def pitch_depth_finding(pitch: pd.DataFrame, depth: pd.DataFrame | None, n_both: int,
+                        band: tuple[float, float]) -> str:
+    """Nose-up against nose-down and the altitude effect inside a band, for the study platform.
+
+    ``pitch``: ``n_both`` rows with both passes pitched, then the level-pass-1 rows turning to
+    port and starboard; ``depth`` (or None to leave it out): one row per altitude, the first the reference (both with
+    :func:`~sss_locus.experiments.planning.median_ratio` columns)."""
+    both = [_effect(pitch.iloc[i]) for i in range(n_both)]
+    clear = sum(flag for _, flag in both)
+    said = ("at every level the interval includes 0 %" if not clear else
+            f"at {clear} of {n_both} levels the interval excludes 0 %")
+    text = (f"inside γ = {band[0]:.0f}–{band[1]:.0f}°, nose-up against nose-down with both passes pitched changes "
+            f"the median length by {', '.join(t for t, _ in both)} ({said})")
+    if len(pitch) >= n_both + 2:
+        port, stbd = _effect(pitch.iloc[n_both]), _effect(pitch.iloc[n_both + 1])
+        text += f"; with pass 1 level, by {port[0]} turning toward port and {stbd[0]} toward starboard"
+    if depth is None:
+        return text + "."
+    hi, lo = depth.iloc[-1], depth.iloc[0]
+    eff, sure = _effect(hi)
+    norm = fmt_change(hi["norm_ratio"], hi["norm_ratio_ci_low"], hi["norm_ratio_ci_high"])
+    return (text + f". Flying both passes at {hi['altitude (m)']:g} m instead of {lo['altitude (m)']:g} m above the "
+            f"feature changes the median length by {eff}: {'a clear' if sure else 'no clear'} effect (per unit range "
+            f"{norm}).")
+
+
+def survey_summary(cur, prefer_below: float, avoid_above: float) -> str:
+    """One sentence per platform for the survey chapter's summary."""
+    pk = cur.peak["locus_length_m"]
+    s = curve_shape(cur.curve, pk["angle_deg"], prefer_below, avoid_above)
+    return (f"with the main offset model the median length peaks at {pk['angle_deg']:.0f}° "
+            f"({_WHERE[s['where']]}); prefer {fmt_bands(s['bands'], 'prefer')}, avoid {fmt_bands(s['bands'], 'avoid')}.")
+
+
+def closure_finding(summary: pd.DataFrame) -> str:
+    """Three-view closure of one platform: per pattern the share resolved to one point and left
+    two-fold ambiguous, the median plane angle and 95 % point error, and the best pattern.
+
+    ``summary``: the chapter's table restricted to one platform (columns ``pattern``,
+    ``resolved``, ``ambiguous``, ``none``, ``plane_angle_median_deg``, ``error_per_cm_median_m``,
+    ``error_full_median_m``)."""
+    if summary.empty:
+        raise ValueError("closure_finding needs the rows of one platform")
+    shares = "; ".join(f"{r.pattern}: {fmt_percent(r.resolved)} resolved, {fmt_percent(r.ambiguous)} ambiguous"
+                       + (f", {fmt_percent(r.none)} with no candidate" if r.none > 0 else "")
+                       for r in summary.itertuples())
+    best = summary.loc[summary["error_per_cm_median_m"].idxmin()]
+    worst = summary.loc[summary["error_per_cm_median_m"].idxmax()]
+    return (f"{shares}. The best-conditioned pattern is {best.pattern} (median plane angle "
+            f"{fmt_sig(best.plane_angle_median_deg, 2)}°, median 95 % point error {fmt_sig(best.error_per_cm_median_m, 2)} m "
+            f"with the range error alone), the worst {worst.pattern} ({fmt_sig(worst.plane_angle_median_deg, 2)}°, "
+            f"{fmt_sig(worst.error_per_cm_median_m, 2)} m); with the platform's full noise model the medians are "
+            f"{fmt_sig(best.error_full_median_m, 2)} m and {fmt_sig(worst.error_full_median_m, 2)} m.")
+
+
+def tilt_finding(rows: pd.DataFrame) -> str:
+    """Shares resolved per transducer tilt and pattern of one surface platform (the chapter's
+    tilt table restricted to it: ``tilt_deg``, ``pattern``, ``resolved``, ``ambiguous``)."""
+    parts = []
+    for tilt, g in rows.groupby("tilt_deg", sort=True):
+        parts.append(f"at {tilt:g}° tilt " + ", ".join(f"{fmt_percent(r.resolved)} ({r.pattern})" for r in g.itertuples()))
+    return "resolved " + "; ".join(parts) + "."
+
+
+def sweep_finding(sweep: pd.DataFrame) -> str:
+    """The heading sweep of one platform: best and worst cells by median 95 % point error and
+    the smallest share resolved in any cell (columns ``heading2_deg``, ``heading3_deg``,
+    ``point_error_q95_median_m``, ``resolved_fraction``)."""
+    best = sweep.loc[sweep["point_error_q95_median_m"].idxmin()]
+    worst = sweep.loc[sweep["point_error_q95_median_m"].idxmax()]
+    return (f"the worst cell is (h₂, h₃) = ({worst.heading2_deg:.0f}°, {worst.heading3_deg:.0f}°) with a median "
+            f"{fmt_sig(worst.point_error_q95_median_m, 2)} m, the best ({best.heading2_deg:.0f}°, "
+            f"{best.heading3_deg:.0f}°) with {fmt_sig(best.point_error_q95_median_m, 2)} m; "
+            + ("every configuration of every cell is resolved." if sweep["resolved_fraction"].min() >= 1.0 else
+               f"at least {fmt_percent(sweep['resolved_fraction'].min())} of the configurations are resolved "
+               "in every cell."))
+
+
+def tilt_markdown(rows: pd.DataFrame, titles: Mapping[str, str]) -> str:
+    """:func:`tilt_finding` of every platform in the tilt table ``rows`` (column ``platform``),
+    titled by ``titles`` (platform key -> title), or a sentence saying the table is empty."""
+    if rows.empty:
+        return "No platform of this run is a surface vessel: the tilt comparison is empty.\n"
+    return "".join(f"- **{titles[k]}**: {tilt_finding(g)}\n" for k, g in rows.groupby("platform", sort=False))
+
+
+def pattern_ranking(summary: pd.DataFrame) -> str:
+    """One platform's patterns from the smallest to the largest median 95 % point error with its
+    full noise model (``pattern``, ``error_full_median_m``), and the share resolved of each."""
+    s = summary.sort_values("error_full_median_m", kind="stable")
+    return ("with the platform's full noise model the median 95 % point error is "
+            + ", then ".join(f"{fmt_sig(r.error_full_median_m, 2)} m for {r.pattern}" for r in s.itertuples())
+            + f"; the smallest share resolved is {fmt_percent(summary['resolved'].min())}.")
