@@ -143,7 +143,7 @@ def _fail(source, line, column, message):
     raise ObservationError(f"{source} line {line}, column {column}: {message}")
 
 
-def _line(raw: pd.DataFrame, i: int) -> int:
+def line_of(raw: pd.DataFrame, i: int) -> int:
     """The file line of data row ``i`` (``raw.attrs["lines"]`` when comments were skipped)."""
     lines = raw.attrs.get("lines")
     return int(lines[i]) if lines is not None else i + 2
@@ -163,7 +163,7 @@ def _numbers(raw: pd.DataFrame, name: str, source: str, *, optional=False) -> np
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
         kind = "an integer" if name in ("sample", "n_samples") else "a finite number"
-        _fail(source, _line(raw, i), name, f"must be {kind} in [{lo:g}, {hi:g}]; got {raw[name].iloc[i]!r}")
+        _fail(source, line_of(raw, i), name, f"must be {kind} in [{lo:g}, {hi:g}]; got {raw[name].iloc[i]!r}")
     return values
 
 
@@ -204,15 +204,15 @@ def parse_sightings(raw: pd.DataFrame, source: str, *, missing_attitude: str = "
     for name in TEXT:
         text = raw[name].astype(str).str.strip()
         if (text == "").any():
-            _fail(source, _line(raw, int(np.flatnonzero(text == "")[0])), name, "must not be empty")
+            _fail(source, line_of(raw, int(np.flatnonzero(text == "")[0])), name, "must not be empty")
         out[name] = text.to_numpy()
     bad_side = ~np.isin(out["side"], SIDES)
     if bad_side.any():
         i = int(np.flatnonzero(bad_side)[0])
-        _fail(source, _line(raw, i), "side", f"must be one of {list(SIDES)}; got {out['side'][i]!r}")
+        _fail(source, line_of(raw, i), "side", f"must be one of {list(SIDES)}; got {out['side'][i]!r}")
     if len(set(out["platform"])) > 1:
         i = int(np.flatnonzero(out["platform"] != out["platform"][0])[0])
-        _fail(source, _line(raw, i), "platform", f"one platform per file; got {out['platform'][i]!r} after {out['platform'][0]!r}")
+        _fail(source, line_of(raw, i), "platform", f"one platform per file; got {out['platform'][i]!r} after {out['platform'][0]!r}")
     for name in ("lon_deg", "lat_deg") if geo else ("east_m", "north_m"):
         out[name] = _numbers(raw, name, source)
     for name in ("depth_m", "altitude_m", "heading_deg"):
@@ -237,7 +237,7 @@ def parse_sightings(raw: pd.DataFrame, source: str, *, missing_attitude: str = "
         past = s >= ns
         if past.any():
             i = int(np.flatnonzero(past)[0])
-            _fail(source, _line(raw, i), "sample", f"must be in [0, n_samples - 1] = [0, {ns[i] - 1:g}]; got {raw['sample'].iloc[i]!r}")
+            _fail(source, line_of(raw, i), "sample", f"must be in [0, n_samples - 1] = [0, {ns[i] - 1:g}]; got {raw['sample'].iloc[i]!r}")
         out["slant_range_m"] = slant_range_from_sample(s, rs, ns)
     sig = _numbers(raw, "range_sigma_m", source, optional=True) if "range_sigma_m" in cols else np.full(len(raw), np.nan)
     out["range_sigma_m"] = np.where(np.isnan(sig), float(range_sigma_m), sig)
@@ -247,7 +247,7 @@ def parse_sightings(raw: pd.DataFrame, source: str, *, missing_attitude: str = "
     out["grid_heading_deg"] = np.full(len(raw), np.nan)
     out["attitude_assumed"] = assumed
     out["source"] = source
-    out["line"] = [_line(raw, i) for i in range(len(raw))]
+    out["line"] = [line_of(raw, i) for i in range(len(raw))]
     return pd.DataFrame({c: out[c] for c in COLUMNS})
 
 

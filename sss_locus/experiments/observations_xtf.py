@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .observations import ObservationError, _line, parse_sightings
+from .observations import ObservationError, line_of, parse_sightings
 
 MATCH_COLUMNS = ("feature", "platform", "file", "ping", "channel", "sample")
 _SONAR = 0  # XTFHeaderType.sonar
@@ -96,7 +96,7 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse",
     files: dict[str, tuple] = {}
     rows = []
     for i in range(len(raw)):
-        line = _line(raw, i)
+        line = line_of(raw, i)
         name = str(raw["file"].iloc[i]).strip()
         if name not in files:
             files[name] = read_pings(matches_path.parent / name)
