@@ -179,20 +179,21 @@ def parse_sightings(raw: pd.DataFrame, source: str, *, missing_attitude: str = "
     if not (isinstance(range_sigma_m, (int, float)) and math.isfinite(range_sigma_m) and range_sigma_m > 0):
         raise ValueError(f"range_sigma_m must be a finite number > 0; got {range_sigma_m!r}")
     cols = [str(c).strip() for c in raw.columns]
-    lines = raw.attrs.get("lines")
+    attrs = dict(raw.attrs)
     raw = raw.set_axis(cols, axis=1)
-    raw.attrs["lines"] = lines
+    raw.attrs.update(attrs)
+    hdr = attrs.get("header_line", 1)
     for c in cols:
         base = c.rsplit("_", 1)[0]
         if c not in NUMBERS and c not in TEXT and base in _QUANTITIES:
-            _fail(source, 1, c, f"wrong unit: expected {_QUANTITIES[base]!r}")
+            _fail(source, hdr, c, f"wrong unit: expected {_QUANTITIES[base]!r}")
     if len(raw) == 0:
         raise ObservationError(f"{source}: no sightings (only a header)")
 
     def need(*names, why=""):
         for name in names:
             if name not in cols:
-                _fail(source, 1, name, f"missing{why}; the header has {cols}")
+                _fail(source, hdr, name, f"missing{why}; the header has {cols}")
 
     need(*TEXT, "depth_m", "altitude_m", "heading_deg")
     geo = "lon_deg" in cols or "lat_deg" in cols
@@ -221,7 +222,7 @@ def parse_sightings(raw: pd.DataFrame, source: str, *, missing_attitude: str = "
     for name in ATTITUDE:
         if name not in cols:
             if missing_attitude == "refuse":
-                _fail(source, 1, name, "missing; give it, or run with missing_attitude='level' to take the vehicle as level")
+                _fail(source, hdr, name, "missing; give it, or run with missing_attitude='level' to take the vehicle as level")
             out[name] = np.zeros(len(raw))
             assumed[:] = True
             continue
@@ -285,6 +286,7 @@ def read_table(path: Path) -> pd.DataFrame:
     except (pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
         raise ObservationError(f"{path.name}: not a readable CSV file: {str(exc).strip().splitlines()[-1]}") from None
     raw.attrs["lines"] = [k for k, _ in kept[1:]]
+    raw.attrs["header_line"] = kept[0][0]
     return raw
 
 

@@ -92,7 +92,7 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse",
     src = matches_path.name
     for c in MATCH_COLUMNS:
         if c not in raw.columns:
-            raise ObservationError(f"{src} line 1, column {c}: missing; an XTF matches file needs {list(MATCH_COLUMNS)}")
+            raise ObservationError(f"{src} line {raw.attrs.get('header_line', 1)}, column {c}: missing; an XTF matches file needs {list(MATCH_COLUMNS)}")
     files: dict[str, tuple] = {}
     rows = []
     for i in range(len(raw)):
@@ -136,7 +136,7 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse",
             "time_s": f(ping_time_s(ping)),
         })
     table = pd.DataFrame(rows, dtype=object)
-    table.attrs["lines"] = raw.attrs.get("lines")
+    table.attrs.update(raw.attrs)
     return parse_sightings(table, src, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
 
 
@@ -192,3 +192,18 @@ def write_xtf(path, pings: pd.DataFrame, *, nav_units: int = 3, note: str = "") 
         ping.NumBytesThisRecord = ctypes.sizeof(pyxtf.XTFPingHeader) + 2 * (ctypes.sizeof(pyxtf.XTFPingChanHeader) + 2 * n)
         out.append(ping.to_bytes())
     Path(path).write_bytes(b"".join(out))
+
+
+def read_observations(path, **kw) -> pd.DataFrame:
+    """A sightings CSV file, or an XTF matches file (a CSV with ``file`` and ``ping`` columns):
+    the validated sightings table either way (keywords as :func:`read_xtf_sightings`)."""
+    from .observations import read_sightings, read_table
+
+    path = Path(path)
+    if not path.is_file():
+        raise ObservationError(f"observations file {path} does not exist")
+    if path.suffix.lower() == ".xtf":
+        raise ObservationError(f"{path.name}: give the matches CSV (feature, platform, file, ping, channel, "
+                               "sample) that names the XTF file's pings, not the XTF file itself")
+    cols = set(read_table(path).columns.str.strip())
+    return read_xtf_sightings(path, **kw) if {"file", "ping"} <= cols else read_sightings(path, **kw)

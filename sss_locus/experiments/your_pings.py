@@ -32,6 +32,7 @@ Per feature (sightings in file order; **data association is the user's**):
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -168,6 +169,31 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
             tab[e.replace("east_m", "lon_deg")] = np.where(np.isfinite(tab[e]), lon, np.nan)
             tab[nn.replace("north_m", "lat_deg")] = np.where(np.isfinite(tab[nn]), lat, np.nan)
     return PingResults(features=feats, sightings=sights, locus=locus, frame=frame)
+
+
+def run(path, platform=None, origin: LocalFrame | None = None, *, missing_attitude: str = "refuse",
+        range_sigma_m: float = 0.1, **kw) -> PingResults:
+    """Read a sightings CSV or an XTF matches file (:func:`~sss_locus.experiments.observations_xtf.
+    read_observations`), put it in the local frame and :func:`analyse` it with ``platform``
+    (default: the file's platform key, from the data files)."""
+    from .observations import to_local_frame
+    from .observations_xtf import read_observations
+
+    table = read_observations(path, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
+    key = table["platform"].iloc[0]
+    if platform is None:
+        from .platforms import load_platforms
+
+        known = load_platforms()
+        if key not in known:
+            raise ValueError(f"{Path(path).name} line {table['line'].iloc[0]}, column platform: {key!r} is not a "
+                             f"platform of the data files (known: {sorted(known)}; add yours with --data)")
+        platform = known[key]
+    elif key != platform.key:
+        raise ValueError(f"{Path(path).name} line {table['line'].iloc[0]}, column platform: the run's platform is "
+                         f"{platform.key!r}; got {table['platform'].iloc[0]!r}")
+    table, frame = to_local_frame(table, origin)
+    return analyse(table, platform, frame, **kw)
 
 
 def locus_points(loc, W1, o1, names, has2, n_points: int) -> pd.DataFrame:

@@ -30,7 +30,8 @@ NOTICE = ("SYNTHETIC example made by sss-locus (experiments/your_pings_example.p
 
 
 def simulate(platform, terrain, layout: SurveyLayout, *, n_features: int, altitude_m: float, seed: int,
-             frame: LocalFrame, noise: bool = True, n_samples: int = 1000, surface_m: float | None = None):
+             frame: LocalFrame, noise: bool = True, n_samples: int = 1000, surface_m: float | None = None,
+             float32: bool = True):
     """Sightings (the CSV columns, numbers) and the truth of a simulated survey.
 
     Returns
@@ -38,8 +39,10 @@ def simulate(platform, terrain, layout: SurveyLayout, *, n_features: int, altitu
     sightings : pandas.DataFrame
         ``feature``, ``platform``, ``side``, ``lon_deg``, ``lat_deg``, ``depth_m``,
         ``altitude_m``, ``heading_deg``, ``pitch_deg``, ``roll_deg``, ``sample``,
-        ``range_setting_m``, ``n_samples``, ``range_sigma_m``, ``time_s``, and the true
-        ``east_m``, ``north_m``.
+        ``range_setting_m``, ``n_samples``, ``range_sigma_m``, ``time_s``; and, for checks, the
+        grid ``east_m``, ``north_m`` and ``grid_heading_deg`` the longitude, latitude and
+        heading were made from, and the ``slant_range_m`` before quantisation (with
+        ``float32=False`` nothing is rounded to float32).
     truth : pandas.DataFrame
         ``feature``, ``east_m``, ``north_m``, ``up_m`` (local frame, sea surface ``up = 0``).
     """
@@ -77,7 +80,7 @@ def simulate(platform, terrain, layout: SurveyLayout, *, n_features: int, altitu
     sigma = np.hypot(nav, R / n_samples / np.sqrt(12.0))
     grid = np.mod(90.0 - yaw, 360.0)
     lon, lat = frame.to_lonlat(ref[:, 0], ref[:, 1])
-    f32 = lambda a: np.asarray(a, np.float32).astype(float)  # noqa: E731
+    f32 = (lambda a: np.asarray(a, np.float32).astype(float)) if float32 else (lambda a: np.asarray(a, float))  # noqa: E731
     names = np.array([f"F{k + 1:02d}" for k in range(len(feats))])
     sights = pd.DataFrame({
         "feature": names[f], "platform": platform.key, "side": np.where(port, "port", "starboard"),
@@ -85,7 +88,7 @@ def simulate(platform, terrain, layout: SurveyLayout, *, n_features: int, altitu
         "heading_deg": f32(np.mod(grid + frame.convergence_deg(lon, lat), 360.0)), "pitch_deg": f32(pitch),
         "roll_deg": f32(roll), "sample": sample, "range_setting_m": f32(R), "n_samples": int(n_samples),
         "range_sigma_m": np.round(sigma, 4), "time_s": 36000.0 + 60.0 * line + f,
-        "east_m": ref[:, 0], "north_m": ref[:, 1]})
+        "east_m": ref[:, 0], "north_m": ref[:, 1], "grid_heading_deg": grid, "slant_range_m": r})
     order = np.lexsort((names[f], sights["time_s"].to_numpy()))
     sights = sights.iloc[order].reset_index(drop=True)
     truth = pd.DataFrame({"feature": names, "east_m": feats[:, 0], "north_m": feats[:, 1], "up_m": feats[:, 2] - top})
@@ -111,3 +114,37 @@ def xtf_tables(sights: pd.DataFrame, file_name: str) -> tuple[pd.DataFrame, pd.D
                             "ping": k, "channel": np.where(port, 0, 1), "sample": sights["sample"],
                             "range_sigma_m": sights["range_sigma_m"]})
     return pings, matches
+
+
+CHECK_COLUMNS = ("east_m", "north_m", "grid_heading_deg", "slant_range_m")
+"""Columns of :func:`simulate` that a user's file does not have (the simulator's own values)."""
+
+
+def write_csv(path, table: pd.DataFrame, notice: str = NOTICE) -> None:
+    """A CSV file headed by a ``# notice`` comment line (floats written exactly)."""
+    from pathlib import Path
+
+    Path(path).write_text(f"# {notice}\n" + table.to_csv(index=False))
+
+
+def write_example(folder, platform, terrain, layout: SurveyLayout, *, frame: LocalFrame, name: str = "example",
+                  **kw) -> dict:
+    """Write the worked example into ``folder``: ``<name>_sightings.csv``, ``<name>.xtf``,
+    ``<name>_xtf_matches.csv`` and ``<name>_truth.csv`` (each marked SYNTHETIC); return the
+    paths. Keywords go to :func:`simulate`."""
+    from pathlib import Path
+
+    from .observations_xtf import write_xtf
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    sights, truth = simulate(platform, terrain, layout, frame=frame, **kw)
+    paths = {k: folder / f"{name}{s}" for k, s in (("sightings", "_sightings.csv"), ("xtf", ".xtf"),
+                                                    ("matches", "_xtf_matches.csv"), ("truth", "_truth.csv"))}
+    write_csv(paths["sightings"], sights.drop(columns=list(CHECK_COLUMNS)))
+    pings, matches = xtf_tables(sights, paths["xtf"].name)
+    write_xtf(paths["xtf"], pings, note="SYNTHETIC: made by sss-locus over a simulated terrain")
+    write_csv(paths["matches"], matches)
+    write_csv(paths["truth"], truth, NOTICE + f"; true feature positions, local frame of lon0 {frame.lon0_deg} "
+                                              f"lat0 {frame.lat0_deg}, up from the sea surface")
+    return paths
