@@ -207,3 +207,24 @@ def read_observations(path, **kw) -> pd.DataFrame:
                                "sample) that names the XTF file's pings, not the XTF file itself")
     cols = set(read_table(path).columns.str.strip())
     return read_xtf_sightings(path, **kw) if {"file", "ping"} <= cols else read_sightings(path, **kw)
+
+
+def observation_files(path) -> list[Path]:
+    """The files an observations file stands for: itself and, for an XTF matches file, the XTF
+    files it names that exist (in order; a missing or unreadable file is left to the reader's
+    one-line error). ``[]`` when ``path`` is not a file."""
+    from .observations import read_table
+
+    path = Path(path)
+    if not path.is_file():
+        return []
+    out = [path]
+    try:
+        raw = read_table(path)
+    except ObservationError:
+        return out
+    if "file" in raw.columns:
+        for name in dict.fromkeys(raw["file"].astype(str).str.strip()):
+            if (path.parent / name).is_file():
+                out.append(path.parent / name)
+    return out

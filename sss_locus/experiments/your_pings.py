@@ -18,7 +18,8 @@ Per feature (sightings in file order; **data association is the user's**):
     would disagree by);
 ``two``
     with two or more sightings, the locus of the first two
-    (:func:`~sss_locus.geometry.locus.two_view_locus` with the platform's aperture): its arcs
+    (:func:`~sss_locus.geometry.locus.two_view_locus` with the platform's aperture and, with
+    ``sea_surface``, cropped to the water below the sea surface ``z = 0``): its arcs
     as points, total length and number of arcs, and the point of it nearest the mean of the two
     flat positions (:func:`~sss_locus.geometry.slant_range.nearest_locus_points`);
 ``nview``
@@ -37,7 +38,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..geometry import relative_pose, two_view_locus
+from ..geometry import relative_pose, sea_surface_half_space, two_view_locus
 from ..geometry.multiview_points import multiview_points
 from ..geometry.slant_range import flat_seafloor_points, nearest_locus_points
 from .observations import LocalFrame
@@ -85,7 +86,7 @@ def _ellipse(cov):
 
 
 def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
-            aperture_margin_deg: float = 2.0, below_sensors: bool = True,
+            aperture_margin_deg: float = 2.0, below_sensors: bool = True, sea_surface: bool = True,
             n_arc_points: int = 33) -> PingResults:
     """Per-feature results for a validated sightings table in the local frame
     (:func:`~sss_locus.experiments.observations.to_local_frame`); see the module docstring."""
@@ -126,7 +127,11 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
     # two views: the first two sightings of each feature
     has2 = count >= 2
     R, t = relative_pose(W[:, 0], o[:, 0], W[:, 1], o[:, 1])
-    loc = two_view_locus(R, t, r[:, 0], r[:, 1], aperture, aperture)
+    hs = {}
+    if sea_surface:  # the locus is cropped to the water: below the sea surface z = 0
+        normals, offsets = sea_surface_half_space(np.maximum(-o[:, 0, 2], 0.0), W[:, 0])
+        hs = dict(half_space_normals=normals, half_space_offsets=offsets)
+    loc = two_view_locus(R, t, r[:, 0], r[:, 1], aperture, aperture, **hs)
     prior1 = np.einsum("nji,nj->ni", W[:, 0], 0.5 * (fp[:, 0] + fp[:, 1]) - o[:, 0])
     near = nearest_locus_points(loc, prior1, r[:, 0])
     two = np.einsum("nij,nj->ni", W[:, 0], near["point"]) + o[:, 0]
