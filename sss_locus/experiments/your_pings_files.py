@@ -97,3 +97,26 @@ def against_truth(res: PingResults, truth: pd.DataFrame) -> pd.DataFrame:
         rows.append(pd.DataFrame({"feature": t["feature"][ok], "estimator": est, "n_sightings": t["n_sightings"][ok],
                                   "error_h_m": np.hypot(d[ok, 0], d[ok, 1]), "error_up_m": d[ok, 2]}))
     return pd.concat(rows, ignore_index=True)
+
+
+def read_truth(truth, observations) -> pd.DataFrame | None:
+    """Known feature positions (a CSV with ``feature``, ``east_m``, ``north_m``, ``up_m``, in the
+    local frame) to compare with, or ``None``: no ``truth`` given, or the shipped example's truth
+    with observations that are not the shipped example's (a user's own survey)."""
+    from pathlib import Path
+
+    from ..paths import DATA_DIR
+
+    if not truth:
+        return None
+    truth, observations = Path(truth), Path(observations)
+    example = (DATA_DIR / "examples" / "your_pings").resolve()
+    if truth.resolve().parent == example and observations.resolve().parent != example:
+        return None
+    if not truth.is_file():
+        raise ValueError(f"truth file {truth} does not exist")
+    table = pd.read_csv(truth, comment="#")
+    missing = [c for c in ("feature", "east_m", "north_m", "up_m") if c not in table.columns]
+    if missing:
+        raise ValueError(f"{truth.name}: missing column(s) {missing}")
+    return table.astype({"feature": str})
