@@ -3,6 +3,8 @@ simulator's truth, hand-built level passes on a flat seafloor, pyproj geodesics)
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -191,3 +193,83 @@ def test_malformed_xtf_refused_in_one_line(tmp_path, auv):
         ox.read_xtf_sightings(tmp_path / "m.csv")
     assert f"s.xtf: truncated at byte {len(data) - 100}: the packet at byte" in str(err.value)
     assert "\n" not in str(err.value)
+
+
+def test_observations_parameter_is_resolved_and_hashed(tmp_path, monkeypatch, auv):
+    """The runner's observations parameter: a path relative to the current directory or the
+    repository, and a hash that changes with the bytes of the file and of the XTF files it names."""
+    from sss_locus.pipeline.userfiles import observation_parameters
+
+    shipped = observation_parameters("data/examples/your_pings/example_sightings.csv")
+    assert shipped["observations"] == "data/examples/your_pings/example_sightings.csv"
+    sights, _ = _sim(auv, n_features=2)
+    pings, matches = ex.xtf_tables(sights, "s.xtf")
+    ox.write_xtf(tmp_path / "s.xtf", pings)
+    ex.write_csv(tmp_path / "m.csv", matches)
+    monkeypatch.chdir(tmp_path)
+    first = observation_parameters("m.csv")
+    assert observation_parameters('"m.csv"') == first  # the command line's quoted form
+    assert first["observations"] == str(tmp_path / "m.csv")
+    data = bytearray((tmp_path / "s.xtf").read_bytes())
+    data[-1] ^= 1
+    (tmp_path / "s.xtf").write_bytes(bytes(data))
+    assert observation_parameters("m.csv")["observations_sha256"] != first["observations_sha256"]
+
+
+def test_a_user_survey_is_not_the_reproduction():
+    from sss_locus.pipeline.areas import differs_from_paper
+    from sss_locus.pipeline.registry import load_registry
+
+    entry = load_registry()["your_pings"]
+    assert differs_from_paper(entry, {"observations": "data/examples/your_pings/example_sightings.csv"}) == []
+    why = differs_from_paper(entry, {"observations": "/somewhere/my_sightings.csv"})
+    assert why and "my_sightings.csv" in why[0]
+
+
+def test_geojson_loci_and_points(auv):
+    from sss_locus.experiments import your_pings_files as yf
+
+    sights, truth = _sim(auv, noise=False, float32=False)
+    table, frame = ob.to_local_frame(ob.parse_sightings(
+        sights.drop(columns=["sample", "range_setting_m", "n_samples", "east_m", "north_m", "grid_heading_deg"])
+        .astype(str), "sim"), FRAME)
+    res = yp.analyse(table, auv, frame)
+    doc = json.loads(yf.geojson_text(res, notice="synthetic"))
+    kinds = pd.Series([f["properties"]["kind"] for f in doc["features"]])
+    assert doc["description"] == "synthetic"
+    assert (kinds == "flat").sum() == len(sights) and (kinds == "flat_mean").sum() == len(truth)
+    lines = [f for f in doc["features"] if f["properties"]["kind"] == "locus"]
+    assert len(lines) == res.locus.groupby(["feature", "arc"]).ngroups > 0
+    for f in lines:  # every vertex back in the local frame lies on the feature's locus points
+        lon, lat, up = np.array(f["geometry"]["coordinates"]).T
+        e, n = FRAME.to_local(lon, lat)
+        part = res.locus[(res.locus.feature == f["properties"]["feature"]) & (res.locus.arc == f["properties"]["arc"])]
+        assert np.max(np.abs(e - part.east_m.to_numpy())) < 1e-3 and np.max(np.abs(up - part.up_m.to_numpy())) < 1e-3
+    nview = [f for f in doc["features"] if f["properties"]["kind"] == "nview"]
+    assert nview and all(f["properties"]["ellipse_major_m"] >= f["properties"]["ellipse_minor_m"] > 0 for f in nview)
+    with pytest.raises(ValueError, match="GeoJSON needs longitude/latitude"):
+        yf.geojson(yp.PingResults(res.features, res.sightings, res.locus, None))
+
+
+def test_export_records_input_files_and_attachments(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.pipeline import export
+    from sss_locus.pipeline.provenance import file_sha256
+
+    obs = tmp_path / "my_sightings.csv"
+    obs.write_text(GOOD)
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1])
+    m = export.export_figure(fig, "fig-test-pings", pd.DataFrame({"a": [1]}), caption="A test.", parameters={},
+                             out_dir=tmp_path / "figs", input_files=[obs], attachments={"geojson": '{"type": "x"}\n'})
+    assert {"path": "my_sightings.csv", "sha256": file_sha256(obs), "role": "observations"} in m["data_inputs"]["files"]
+    assert m["files"]["fig-test-pings.geojson"]["sha256"] == file_sha256(tmp_path / "figs" / "fig-test-pings.geojson")
+    assert "my\\_sightings.csv (sha256" in (tmp_path / "figs" / "fig-test-pings.bib").read_text()
+    with pytest.raises(ValueError, match="attachments keys"):
+        export.export_figure(fig, "fig-test-pings", pd.DataFrame({"a": [1]}), caption="A test.", parameters={},
+                             out_dir=tmp_path / "figs", attachments={"png": "x"})
+    plt.close(fig)

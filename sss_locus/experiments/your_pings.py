@@ -27,7 +27,11 @@ Per feature (sightings in file order; **data association is the user's**):
     sightings (prior the mean flat position; apertures widened by ``aperture_margin_deg``;
     with ``below_sensors`` only points below the lowest sensor are admitted), its status and
     covariance ``(J^T J)^-1`` from the range standard deviations alone (navigation and attitude
-    errors are not in it), as 1-sigma horizontal ellipse axes and a vertical sigma.
+    errors are not in it), as 1-sigma horizontal ellipse axes and a vertical sigma;
+``flat_minus_estimate``
+    the mean flat-seafloor position minus the best estimate (N views where estimated, else the
+    two-view point where the locus is not empty; NaN otherwise), horizontal distance and height:
+    how wrong the mosaic is, if the geometry is right.
 """
 
 from __future__ import annotations
@@ -156,7 +160,10 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
     feats["nview_cost"] = np.where(res.estimated, res.cost, np.nan)
     feats["ellipse_major_m"], feats["ellipse_minor_m"] = major, minor
     feats["ellipse_azimuth_deg"], feats["sigma_up_m"] = azimuth, sigma_up
-    best = np.where(res.estimated[:, None], nview, np.where(has2[:, None], two, np.nan))
+    # the best estimate: N views where estimated, else the two-view point where it lies on a
+    # non-empty locus (an empty locus means the two sightings do not agree within the beams)
+    on_locus = has2 & (near["status"] == 0)
+    best = np.where(res.estimated[:, None], nview, np.where(on_locus[:, None], two, np.nan))
     feats["flat_minus_estimate_h_m"] = np.hypot(*(mean_flat[:, :2] - best[:, :2]).T)
     feats["flat_minus_estimate_up_m"] = mean_flat[:, 2] - best[:, 2]
 

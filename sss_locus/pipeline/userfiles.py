@@ -10,11 +10,20 @@ from sss_locus import paths
 from sss_locus.pipeline import provenance
 
 
+def _unquote(text: str) -> str:
+    """``text`` without surrounding quotes (``-p observations '"my.csv"'``, a string literal)."""
+    text = str(text).strip()
+    if len(text) >= 2 and text[0] == text[-1] and text[0] in "\"'":
+        text = text[1:-1]
+    return text
+
+
 def _resolve(path: str) -> Path:
     """``path`` relative to the current directory, else to the repository (where the worked
     example lives): relative to the repository when inside it (the same on every checkout),
-    otherwise absolute; as given when not found (the reader then names it)."""
-    given = Path(str(path)).expanduser()
+    otherwise absolute; as given when not found (the reader then names it). Quotes around it
+    (``-p observations '"my.csv"'``, a Python string literal) are removed."""
+    given = Path(_unquote(path)).expanduser()
     found = next((p for p in (given, paths.REPO_ROOT / given) if p.is_file()), None)
     if found is None:
         return given
@@ -33,6 +42,9 @@ def observation_parameters(path: str, truth: str | None = None) -> dict[str, str
     found = _resolve(path)
     files = observation_files(paths.REPO_ROOT / found)
     out = {"observations": str(found)}
+    truth = _unquote(truth) if truth is not None else None
+    if truth is not None and not truth:
+        out["truth"] = ""
     if truth:  # the known positions a synthetic example is compared with
         out["truth"] = str(_resolve(truth))
         files += [paths.REPO_ROOT / out["truth"]] if (paths.REPO_ROOT / out["truth"]).is_file() else []
