@@ -273,3 +273,18 @@ def test_export_records_input_files_and_attachments(tmp_path):
         export.export_figure(fig, "fig-test-pings", pd.DataFrame({"a": [1]}), caption="A test.", parameters={},
                              out_dir=tmp_path / "figs", attachments={"png": "x"})
     plt.close(fig)
+
+
+def test_covariance_columns_agree_with_the_ellipse(auv):
+    """The ellipse's semi-axes are the square roots of the horizontal covariance's eigenvalues:
+    their squares sum to its trace and multiply to its determinant."""
+    sights, _ = _sim(auv)
+    table, frame = ob.to_local_frame(ob.parse_sightings(sights.drop(columns=list(ex.CHECK_COLUMNS)).astype(str), "sim"),
+                                     FRAME)
+    f = yp.analyse(table, auv, frame, aperture_margin_deg=10.0).features
+    f = f[np.isfinite(f["ellipse_major_m"])]
+    assert len(f)
+    ee, nn, en = f["cov_east_east_m2"], f["cov_north_north_m2"], f["cov_east_north_m2"]
+    np.testing.assert_allclose(f["ellipse_major_m"] ** 2 + f["ellipse_minor_m"] ** 2, ee + nn, rtol=1e-9)
+    np.testing.assert_allclose((f["ellipse_major_m"] * f["ellipse_minor_m"]) ** 2, ee * nn - en ** 2, rtol=1e-7)
+    np.testing.assert_allclose(f["sigma_up_m"] ** 2, f["cov_up_up_m2"], rtol=1e-12)

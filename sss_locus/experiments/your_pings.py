@@ -27,7 +27,8 @@ Per feature (sightings in file order; **data association is the user's**):
     sightings (prior the mean flat position; apertures widened by ``aperture_margin_deg``;
     with ``below_sensors`` only points below the lowest sensor are admitted), its status and
     covariance ``(J^T J)^-1`` from the range standard deviations alone (navigation and attitude
-    errors are not in it), as 1-sigma horizontal ellipse axes and a vertical sigma;
+    errors are not in it; columns ``cov_<a>_<b>_m2``), also as 1-sigma horizontal ellipse axes
+    and a vertical sigma;
 ``flat_minus_estimate``
     the mean flat-seafloor position minus the best estimate (N views where estimated, else the
     two-view point where the locus is not empty; NaN otherwise), horizontal distance and height:
@@ -158,6 +159,10 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
     for j, axis in enumerate(("east", "north", "up")):
         feats[f"nview_{axis}_m"] = nview[:, j]
     feats["nview_cost"] = np.where(res.estimated, res.cost, np.nan)
+    cov = np.where(res.estimated[:, None, None], res.covariance, np.nan)
+    for (i, a), (j, b) in ((ia, jb) for ia in enumerate(("east", "north", "up")) for jb in enumerate(("east", "north", "up"))):
+        if j >= i:  # the covariance's six entries, m^2
+            feats[f"cov_{a}_{b}_m2"] = cov[:, i, j]
     feats["ellipse_major_m"], feats["ellipse_minor_m"] = major, minor
     feats["ellipse_azimuth_deg"], feats["sigma_up_m"] = azimuth, sigma_up
     # the best estimate: N views where estimated, else the two-view point where it lies on a

@@ -139,6 +139,10 @@ def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
         text += " Against the truth, median horizontal / vertical errors: " + "; ".join(
             f"{ESTIMATES[k][0].split(',')[0].split(':')[0]} {fmt_sig(r.h)} m / {fmt_sig(r.v)} m ({int(r.n)} features)"
             for k, r in med.iterrows()) + "."
+        closest = med["h"].idxmin()
+        text += (f" Closest to the truth horizontally in this run: {ESTIMATES[closest][0].split(',')[0].split(':')[0]}"
+                 + (" (averaging the mosaic's positions beats the geometry here; the reconstruction chapter measures "
+                    "when)" if closest == "flat" else "") + ".")
     return text
 
 
@@ -167,7 +171,7 @@ def view_3d(res, *, truth: pd.DataFrame | None = None):
     traces.append(go.Scatter3d(x=xs, y=ys, z=zs, mode="lines", line=dict(color="crimson", width=6), name="two-view locus"))
     for key, (name, colour, _) in ESTIMATES.items():
         traces.append(go.Scatter3d(x=f[f"{key}_east_m"], y=f[f"{key}_north_m"], z=f[f"{key}_up_m"], mode="markers",
-                                   marker=dict(size=4, color=to_hex(colour)), name=name, text=f["feature"]))
+                                   marker=dict(size=4, color=to_hex(colour)), name=name.split(" (")[0], text=f["feature"]))
     if truth is not None:
         traces.append(go.Scatter3d(x=truth["east_m"], y=truth["north_m"], z=truth["up_m"], mode="markers",
                                    marker=dict(size=5, color="gold", symbol="diamond", line=dict(color="black", width=1)),
