@@ -288,3 +288,9 @@ def test_covariance_columns_agree_with_the_ellipse(auv):
     np.testing.assert_allclose(f["ellipse_major_m"] ** 2 + f["ellipse_minor_m"] ** 2, ee + nn, rtol=1e-9)
     np.testing.assert_allclose((f["ellipse_major_m"] * f["ellipse_minor_m"]) ** 2, ee * nn - en ** 2, rtol=1e-7)
     np.testing.assert_allclose(f["sigma_up_m"] ** 2, f["cov_up_up_m2"], rtol=1e-12)
+
+
+def test_an_unknown_platform_is_refused_naming_line_and_column(tmp_path):
+    (tmp_path / "s.csv").write_text(GOOD.replace("auv", "my_boat"))
+    with pytest.raises(ValueError, match=r"^s.csv line 2, column platform: platform must be one of \[.*'auv'.*got 'my_boat'"):
+        yp.run(tmp_path / "s.csv")

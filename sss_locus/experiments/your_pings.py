@@ -198,14 +198,14 @@ def run(path, platform=None, origin: LocalFrame | None = None, *, missing_attitu
 
     table = read_observations(path, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
     key = table["platform"].iloc[0]
-    if platform is None:
-        from .platforms import load_platforms
+    if platform is None:  # only this platform's data entries are read (a run is stale only when they change)
+        from .platforms import load_platform
 
-        known = load_platforms()
-        if key not in known:
-            raise ValueError(f"{Path(path).name} line {table['line'].iloc[0]}, column platform: {key!r} is not a "
-                             f"platform of the data files (known: {sorted(known)}; add yours with --data)")
-        platform = known[key]
+        try:
+            platform = load_platform(key)
+        except ValueError as exc:
+            raise ValueError(f"{Path(path).name} line {table['line'].iloc[0]}, column platform: {exc} "
+                             "(add yours with --data)") from None
     elif key != platform.key:
         raise ValueError(f"{Path(path).name} line {table['line'].iloc[0]}, column platform: the run's platform is "
                          f"{platform.key!r}; got {table['platform'].iloc[0]!r}")
