@@ -21,7 +21,8 @@ Per feature (sightings in file order; **data association is the user's**):
     (:func:`~sss_locus.geometry.locus.two_view_locus` with the platform's aperture and, with
     ``sea_surface``, cropped to the water below the sea surface ``z = 0``): its arcs
     as points, total length and number of arcs, and the point of it nearest the mean of the two
-    flat positions (:func:`~sss_locus.geometry.slant_range.nearest_locus_points`);
+    flat positions (:func:`~sss_locus.geometry.slant_range.two_view_points`, as the
+    reconstruction chapter's two-view estimator);
 ``nview``
     with three or more, :func:`~sss_locus.geometry.multiview_points.multiview_points` on all
     sightings (prior the mean flat position; apertures widened by ``aperture_margin_deg``;
@@ -43,9 +44,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..geometry import relative_pose, sea_surface_half_space, two_view_locus
+from ..geometry import sea_surface_half_space
 from ..geometry.multiview_points import multiview_points
-from ..geometry.slant_range import flat_seafloor_points, nearest_locus_points
+from ..geometry.slant_range import flat_seafloor_points, two_view_points
 from .observations import LocalFrame
 from .reconstruction import STATUS_NAMES
 
@@ -131,15 +132,12 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
 
     # two views: the first two sightings of each feature
     has2 = count >= 2
-    R, t = relative_pose(W[:, 0], o[:, 0], W[:, 1], o[:, 1])
     hs = {}
     if sea_surface:  # the locus is cropped to the water: below the sea surface z = 0
         normals, offsets = sea_surface_half_space(np.maximum(-o[:, 0, 2], 0.0), W[:, 0])
         hs = dict(half_space_normals=normals, half_space_offsets=offsets)
-    loc = two_view_locus(R, t, r[:, 0], r[:, 1], aperture, aperture, **hs)
-    prior1 = np.einsum("nji,nj->ni", W[:, 0], 0.5 * (fp[:, 0] + fp[:, 1]) - o[:, 0])
-    near = nearest_locus_points(loc, prior1, r[:, 0])
-    two = np.einsum("nij,nj->ni", W[:, 0], near["point"]) + o[:, 0]
+    loc, near, two = two_view_points(W[:, 0], o[:, 0], W[:, 1], o[:, 1], r[:, 0], r[:, 1], 0.5 * (fp[:, 0] + fp[:, 1]),
+                                     aperture, aperture, **hs)
 
     # N views: every sighting of each feature with three or more
     res = multiview_points(W, o, r, sig, mask, aperture, prior=mean_flat, aperture_margin_deg=aperture_margin_deg,
