@@ -15,7 +15,7 @@ estimates are computed from *estimated* poses and ranges (the noise chapter's mo
     the same from the feature's first view alone;
 ``two``
     views 1 and 2: the point of their locus nearest the mean of their two flat-seafloor
-    estimates (the stated prior), :func:`~sss_locus.geometry.slant_range.nearest_locus_points`;
+    estimates (the stated prior), :func:`~sss_locus.geometry.slant_range.two_view_points`;
 ``n<N>``
     views 1..N (N >= 3), :func:`~sss_locus.geometry.multiview_points.multiview_points` with the
     flat estimate as prior, the cost limit the 99.9 % chi-square quantile with ``N - 3`` degrees
@@ -39,9 +39,9 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ..geometry import Aperture, relative_pose, two_view_locus
+from ..geometry import Aperture
 from ..geometry.multiview_points import MultiViewStatus, multiview_points
-from ..geometry.slant_range import flat_seafloor_points, nearest_locus_points
+from ..geometry.slant_range import flat_seafloor_points, two_view_points
 from .noise import NoiseModel, noise_sigmas, perturb
 from .view_sets import Views
 
@@ -126,13 +126,10 @@ def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture
     add("flat1", flat[:, 0], any_seen, np.where(any_seen, "estimated", "unseen"), np.minimum(n_seen, 1))
 
     # two views and the prior: the locus point nearest the mean of their flat estimates
-    R, t = relative_pose(W_hat[:, 0], o_hat[:, 0], W_hat[:, 1], o_hat[:, 1])
     has2 = n_seen >= 2
     r1, r2 = np.where(has2, r_hat[:, 0], 1.0), np.where(has2, r_hat[:, 1], 1.0)
-    loc = two_view_locus(R, t, r1, r2, aperture, aperture)
-    prior1 = np.einsum("nji,nj->ni", W_hat[:, 0], 0.5 * (flat[:, 0] + flat[:, 1]) - o_hat[:, 0])
-    near = nearest_locus_points(loc, prior1, r1)
-    two = np.einsum("nij,nj->ni", W_hat[:, 0], near["point"]) + o_hat[:, 0]
+    _, near, two = two_view_points(W_hat[:, 0], o_hat[:, 0], W_hat[:, 1], o_hat[:, 1], r1, r2,
+                                   0.5 * (flat[:, 0] + flat[:, 1]), aperture, aperture)
     names = np.array(["locus", "circle", "sphere"])
     add("two", two, has2, np.where(has2, names[near["status"]], "too few views"), np.minimum(n_seen, 2),
         locus_length_m=np.where(has2, near["length_m"], np.nan))

@@ -142,3 +142,40 @@ def nearest_locus_points(locus: LocusResult, prior, r1) -> dict:
                       np.where(circle, TwoViewStatus.CIRCLE, TwoViewStatus.SPHERE)).astype(np.int8)
     return dict(point=point, status=status, length_m=locus.length)
 
+
+
+def two_view_points(W1, origin1, W2, origin2, r1, r2, prior, aperture1, aperture2, **locus_kw):
+    """Two views of each feature and a prior, in the world frame: the locus of the views
+    (:func:`~sss_locus.geometry.locus.two_view_locus`, ``outputs="all"``; ``locus_kw`` such as
+    half-spaces passed on) and the point of it nearest ``prior`` (:func:`nearest_locus_points`).
+
+    Parameters
+    ----------
+    W1, W2 : array_like, shape S + (3, 3)
+        Sensor-to-world rotations of the two views.
+    origin1, origin2 : array_like, shape S + (3,)
+        Sensor origins, world frame, metres.
+    r1, r2 : array_like, shape S
+        Ranges, metres.
+    prior : array_like, shape S + (3,)
+        Prior positions, world frame, metres.
+    aperture1, aperture2 : Aperture
+
+    Returns
+    -------
+    locus : LocusResult
+        In sensor 1's frame.
+    nearest : dict
+        :func:`nearest_locus_points`' result (``point`` in sensor 1's frame, ``status``, ``length_m``).
+    point : ndarray, shape S + (3,)
+        ``nearest["point"]`` in the world frame.
+    """
+    from .locus import two_view_locus
+    from .poses import relative_pose
+
+    W1, o1 = np.asarray(W1, float), np.asarray(origin1, float)
+    R, t = relative_pose(W1, o1, W2, origin2)
+    locus = two_view_locus(R, t, r1, r2, aperture1, aperture2, **locus_kw)
+    prior1 = np.einsum("...ji,...j->...i", W1, np.asarray(prior, float) - o1)
+    near = nearest_locus_points(locus, prior1, r1)
+    return locus, near, np.einsum("...ij,...j->...i", W1, near["point"]) + o1

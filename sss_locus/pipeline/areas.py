@@ -15,7 +15,8 @@ user's platform with the paper's never overwrites the paper's figure of that lab
 cache is shared, so the paper's platforms in a named run are cache hits.
 
 A run *into the reproduction* whose inputs are not the paper's (``--data``, ``--set``, or a
-``platforms`` list other than the notebook's default) would replace paper figures and, without a
+``platforms`` list other than the notebook's default, or a survey's ``observations`` file
+other than the worked example's) would replace paper figures and, without a
 paper platform, the claims table. :func:`check_reproduction` refuses it before anything starts,
 naming what it would replace, unless ``--replace-reproduction`` says to. Reruns of the paper's
 platforms with other parameters (sample sizes, seeds, profiles; the "Rerunning a notebook" page)
@@ -82,6 +83,13 @@ def differs_from_paper(entry: Any, parameters: Mapping[str, Any]) -> list[str]:
         out.append("reads data file(s) " + ", ".join(os.path.basename(f) for f in parameters["data_files"]))
     if parameters.get("data_set"):
         out.append("overrides " + ", ".join(parameters["data_set"]))
+    if "observations" in declared and "observations" in parameters:
+        from sss_locus.pipeline.userfiles import observation_parameters
+
+        default = observation_parameters(declared["observations"].default)["observations"]
+        if observation_parameters(parameters["observations"])["observations"] != default:
+            out.append(f"reads the observations {os.path.basename(str(parameters['observations']))} "
+                       "instead of the worked example")
     if "platforms" in declared:
         default, used = list(declared["platforms"].default), list(parameters.get("platforms", []))
         if used != default:

@@ -130,6 +130,19 @@ def data_inputs(parameters: Mapping[str, Any], platforms: Sequence[str] | None =
         return {"error": str(exc)}
 
 
+def _with_files(inputs: dict[str, Any], files: Sequence[Path]) -> dict[str, Any]:
+    """``inputs`` with ``files`` added to its ``files`` (name relative to the repository when
+    inside it, else the file name; SHA-256; role ``"observations"``)."""
+    extra = []
+    for f in files:
+        p = Path(f).resolve()
+        name = str(p.relative_to(paths.REPO_ROOT)) if p.is_relative_to(paths.REPO_ROOT) else p.name
+        extra.append({"path": name, "sha256": provenance.file_sha256(p), "role": "observations"})
+    if not extra:
+        return inputs
+    return {**inputs, "files": [*inputs.get("files", []), *extra]}
+
+
 def bibtex_entry(manifest: Mapping[str, Any]) -> str:
     """A ``@misc`` BibTeX entry citing one exported figure, from its manifest (every field valid
     LaTeX; see :func:`sss_locus.pipeline.citation.figure_bibtex`)."""
@@ -150,6 +163,8 @@ def export_figure(
     out_dir: Path | None = None,
     shown: list[bytes] | None = None,
     platforms: Sequence[str] | None = None,
+    input_files: Sequence[Path] = (),
+    attachments: Mapping[str, str] | None = None,
 ) -> dict[str, Any]:
     """Export one figure with its data, manifest and BibTeX entry; return the manifest.
 
@@ -186,6 +201,13 @@ def export_figure(
     platforms : sequence of str, optional
         The platforms the figure shows (its data inputs name exactly these, :func:`data_inputs`);
         default: every platform of ``parameters["platforms"]``.
+    input_files : sequence of path
+        Files of the user's the figure was computed from besides the TOML data (e.g. a survey's
+        sightings and XTF files): recorded in ``data_inputs["files"]`` with their SHA-256 and the
+        role ``"observations"`` (so the BibTeX note and the book name them).
+    attachments : mapping of str to str, optional
+        More result files written beside the figure, ``{suffix: text}`` as ``<label>.<suffix>``
+        (e.g. ``{"geojson": ...}``), listed with their SHA-256 in the manifest's files.
 
     Returns
     -------
@@ -238,8 +260,13 @@ def export_figure(
         "dpi": int(dpi),
         "text": text,  # smallest drawn text and picture width: readability on the page
         "run_key": os.environ.get(RUN_KEY_ENV),  # ties the figure to its executed copy
-        "data_inputs": data_inputs(params, platforms),
+        "data_inputs": _with_files(data_inputs(params, platforms), input_files),
     }
+    for suffix, text in (attachments or {}).items():
+        if not DATA_NAME_PATTERN.fullmatch(suffix) or suffix in ("png", "svg", "pdf", "bib", "json", "csv"):
+            raise ValueError(f"attachments keys must be new lower-case file suffixes; got {suffix!r}")
+        _write_atomic(out / f"{label}.{suffix}", text)
+        written.append(out / f"{label}.{suffix}")
     bib_path = out / f"{label}.bib"
     _write_atomic(bib_path, bibtex_entry(manifest))
     written.append(bib_path)

@@ -40,7 +40,7 @@ from typing import Any
 
 from sss_locus import paths
 from sss_locus.pipeline import (atomic, export, faults, orphans, outputs, paperinputs, paramcell, preflight, progress,
-                                provenance)
+                                provenance, userfiles)
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
 from sss_locus.pipeline.registry import NotebookEntry
@@ -116,6 +116,8 @@ def resolve_parameters(entry: NotebookEntry, profile: str, overrides: dict[str, 
     (``data``, a :class:`sss_locus.experiments.userdata.DataInputs` from ``--data``/``--set``)
     as the ``data_files``/``data_set`` parameters of a notebook that declares them."""
     parameters = entry.resolve(profile, overrides, from_text=from_text)
+    if "observations" in parameters and "observations_sha256" in parameters:
+        parameters.update(userfiles.observation_parameters(parameters["observations"], parameters.get("truth")))
     if data is not None and not data.is_default:
         for name, value in (("data_files", list(data.files)), ("data_set", list(data.sets))):
             if name in parameters and value:
@@ -152,8 +154,7 @@ class NotebookFailed(RuntimeError):
         self.kept = kept
 
 
-def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any],
-                         extra: dict[str, Any]) -> None:
+def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any], extra: dict[str, Any]) -> None:
     """Show the run's values in the visible parameters cell (:mod:`.paramcell`) and tag papermill's
     injected-parameters cell, which also names the data files read, so the book shows it collapsed."""
     nb = json.loads(executed.read_text(encoding="utf-8"))

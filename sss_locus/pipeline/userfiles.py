@@ -1,0 +1,55 @@
+"""A user's own files given as notebook parameters (not ``--data`` TOML files): resolved to
+absolute paths and hashed, so that a run's key changes when their bytes do."""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+
+from sss_locus import paths
+from sss_locus.pipeline import provenance
+
+
+def _unquote(text: str) -> str:
+    """``text`` without surrounding quotes (``-p observations '"my.csv"'``, a string literal)."""
+    text = str(text).strip()
+    if len(text) >= 2 and text[0] == text[-1] and text[0] in "\"'":
+        text = text[1:-1]
+    return text
+
+
+def _resolve(path: str) -> Path:
+    """``path`` relative to the current directory, else to the repository (where the worked
+    example lives): relative to the repository when inside it (the same on every checkout),
+    otherwise absolute; as given when not found (the reader then names it). Quotes around it
+    (``-p observations '"my.csv"'``, a Python string literal) are removed."""
+    given = Path(_unquote(path)).expanduser()
+    found = next((p for p in (given, paths.REPO_ROOT / given) if p.is_file()), None)
+    if found is None:
+        return given
+    found = found.resolve()
+    return found.relative_to(paths.REPO_ROOT) if found.is_relative_to(paths.REPO_ROOT) else found
+
+
+def observation_parameters(path: str, truth: str | None = None) -> dict[str, str]:
+    """A notebook's ``observations`` file (a user's sightings CSV or XTF matches file) as an
+    absolute path (relative to the current directory, else to the repository, where the worked
+    example lives) and ``observations_sha256``, the hash of its bytes and of the XTF files it
+    names (and of ``truth``, resolved the same way, when given): an edited file makes the run
+    stale, as an edited ``--data`` file does."""
+    from sss_locus.experiments.observations_xtf import observation_files
+
+    found = _resolve(path)
+    files = observation_files(paths.REPO_ROOT / found)
+    out = {"observations": str(found)}
+    truth = _unquote(truth) if truth is not None else None
+    if truth is not None and not truth:
+        out["truth"] = ""
+    if truth:  # the known positions a synthetic example is compared with
+        out["truth"] = str(_resolve(truth))
+        files += [paths.REPO_ROOT / out["truth"]] if (paths.REPO_ROOT / out["truth"]).is_file() else []
+    digest = hashlib.sha256()
+    for f in files:
+        digest.update(provenance.file_sha256(f).encode())
+    out["observations_sha256"] = digest.hexdigest()
+    return out

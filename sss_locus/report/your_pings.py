@@ -1,0 +1,183 @@
+"""Figures and sentences of the your-pings chapter (``notebooks/your_pings.ipynb``): a plan view
+of a user's sightings and estimates, the disagreement of the flat-seafloor positions, and an
+interactive 3-D view (plotly, offline). Inputs are the tables of
+:func:`sss_locus.experiments.your_pings.analyse` (local frame, metres)."""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.colors import to_hex
+from matplotlib.patches import Ellipse
+
+from .style import PAGE_WIDTH_IN, platform_title
+from .text import fmt_sig
+
+ESTIMATES = {"flat": ("flat seafloor, mean of the sightings", "black", "s"),
+             "two_view": ("two views: locus point nearest the flat mean", "tab:orange", "^"),
+             "nview": ("N views, least squares (1-sigma ellipse x 3)", "tab:blue", "D")}
+ELLIPSE_SCALE = 3.0
+"""The drawn ellipses are this many standard deviations (1-sigma ones would be invisible)."""
+
+
+def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str = ""):
+    """Left: the survey in plan (grid east/north): the sensors at each sighting and every
+    feature's estimates; right, per feature: the horizontal distance of each estimate from the
+    truth (with ``truth``) or of the flat-seafloor mean from the best estimate (N views, else two
+    views). Returns ``(fig, data)``."""
+    f, s = res.features, res.sightings
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(PAGE_WIDTH_IN, 4.2), width_ratios=(1.2, 1.0), layout="constrained")
+    ax.scatter(s["sensor_east_m"], s["sensor_north_m"], s=6, c="0.6", marker=".", label="sensor at each sighting")
+    for key, (name, colour, marker) in ESTIMATES.items():
+        ax.scatter(f[f"{key}_east_m"], f[f"{key}_north_m"], s=22, c=colour, marker=marker, label=name, zorder=3)
+    if truth is not None:
+        ax.scatter(truth["east_m"], truth["north_m"], s=40, c="gold", marker="*", edgecolors="k", linewidths=0.4,
+                   label="truth (synthetic example)", zorder=4)
+    for _, r in f.iterrows():
+        ax.annotate(r["feature"], (r["flat_east_m"], r["flat_north_m"]), xytext=(4, 4), textcoords="offset points",
+                    fontsize=8.5)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("grid east (m)")
+    ax.set_ylabel("grid north (m)")
+    data = _distances(res, truth)
+    y = np.arange(len(f))
+    keys = [k for k in ESTIMATES if k in set(data["estimator"])]
+    for j, key in enumerate(keys):
+        d = data[data["estimator"] == key].set_index("feature").reindex(f["feature"])
+        bx.barh(y + (j - (len(keys) - 1) / 2) * 0.8 / len(keys), d["distance_h_m"], height=0.8 / len(keys),
+                color=ESTIMATES[key][1])
+    bx.set_yticks(y, f["feature"])
+    bx.invert_yaxis()
+    bx.set_xlabel("horizontal error against the truth (m)" if truth is not None
+                  else "flat-seafloor mean minus best estimate (m)")
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncol=2, fontsize=8.5, frameon=False)
+    fig.suptitle(platform.name + (f" ({notice})" if notice else ""), fontsize=9.5)
+    return fig, data
+
+
+def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int = 12):
+    """One small plan view per feature (up to ``max_features``), centred on its flat-seafloor
+    mean: each sighting's flat-seafloor position, the two-view locus, the estimates, the N-view
+    ellipse (x3) and the truth. Returns ``(fig, data)`` (the positions drawn, relative)."""
+    f = res.features.head(max_features)
+    n = len(f)
+    cols = min(4, n)
+    rows = int(np.ceil(n / cols))
+    fig, axes = plt.subplots(rows, cols, figsize=(PAGE_WIDTH_IN, 1.95 * rows + 0.9), layout="constrained", squeeze=False)
+    out = []
+    for ax, (_, r) in zip(axes.ravel(), f.iterrows()):
+        e0, n0 = r["flat_east_m"], r["flat_north_m"]
+        sg = res.sightings[res.sightings["feature"] == r["feature"]]
+        ax.scatter(sg["flat_east_m"] - e0, sg["flat_north_m"] - n0, s=12, facecolors="none", edgecolors="0.3",
+                   linewidths=0.7, label="flat seafloor, each sighting")
+        for _, arc in res.locus[res.locus["feature"] == r["feature"]].groupby("arc"):
+            ax.plot(arc["east_m"] - e0, arc["north_m"] - n0, color="tab:red", lw=2)
+        for key, (name, colour, marker) in ESTIMATES.items():
+            ax.scatter([r[f"{key}_east_m"] - e0], [r[f"{key}_north_m"] - n0], s=28, c=colour, marker=marker, label=name,
+                       zorder=3)
+        if np.isfinite(r["ellipse_major_m"]):
+            ax.add_patch(Ellipse((r["nview_east_m"] - e0, r["nview_north_m"] - n0), 2 * ELLIPSE_SCALE * r["ellipse_major_m"],
+                                 2 * ELLIPSE_SCALE * r["ellipse_minor_m"], angle=90.0 - r["ellipse_azimuth_deg"],
+                                 fill=False, color="tab:blue", lw=0.8))
+        if truth is not None and r["feature"] in set(truth["feature"]):
+            t = truth.set_index("feature").loc[r["feature"]]
+            ax.scatter([t["east_m"] - e0], [t["north_m"] - n0], s=60, c="gold", marker="*", edgecolors="k",
+                       linewidths=0.4, label="truth (synthetic example)", zorder=4)
+        ax.set_title(f"{r['feature']}: {int(r['n_sightings'])} sightings, {r['nview_status']}", fontsize=8.5)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.tick_params(labelsize=8.5)
+        out.append(sg[["feature", "line", "flat_east_m", "flat_north_m"]].assign(flat_east_m=lambda d: d.flat_east_m - e0,
+                                                                              flat_north_m=lambda d: d.flat_north_m - n0))
+    for ax in axes.ravel()[n:]:
+        ax.set_visible(False)
+    for k, ax in enumerate(axes.ravel()[:n]):
+        if k + cols >= n:  # the lowest panel of its column
+            ax.set_xlabel("grid east (m)", fontsize=8.5)
+    fig.supylabel("grid north from the feature's flat-seafloor mean (m)", fontsize=9)
+    handles, labels = axes.ravel()[0].get_legend_handles_labels()
+    handles.insert(1, plt.Line2D([], [], color="tab:red", lw=2))
+    labels.insert(1, "two-view locus (first two sightings)")
+    fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=8.5, frameon=False)
+    return fig, pd.concat(out, ignore_index=True)
+
+
+def _distances(res, truth):
+    f = res.features
+    rows = []
+    if truth is not None:
+        t = f.merge(truth, on="feature", suffixes=("", "_true"))
+        for key in ESTIMATES:
+            d = np.hypot(t[f"{key}_east_m"] - t["east_m"], t[f"{key}_north_m"] - t["north_m"])
+            rows.append(pd.DataFrame({"feature": t["feature"], "estimator": key, "distance_h_m": d,
+                                      "distance_up_m": t[f"{key}_up_m"] - t["up_m"]}))
+    else:
+        rows.append(pd.DataFrame({"feature": f["feature"], "estimator": "flat",
+                                  "distance_h_m": f["flat_minus_estimate_h_m"],
+                                  "distance_up_m": f["flat_minus_estimate_up_m"]}))
+    out = pd.concat(rows, ignore_index=True)
+    return out[np.isfinite(out["distance_h_m"])]
+
+
+def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
+    """What the run found, in numbers: features, sightings, statuses, the flat-seafloor spread and,
+    with ``errors`` (:func:`~sss_locus.experiments.your_pings_files.against_truth`), the median
+    errors of each estimator."""
+    f = res.features
+    st = f["nview_status"].value_counts()
+    parts = [f"{len(f)} features from {len(res.sightings)} sightings",
+             f"N-view positions for {int(st.get('resolved', 0))} (resolved) and {int(st.get('ambiguous', 0))} "
+             f"(ambiguous) of the {int((f['n_sightings'] >= 3).sum())} seen three or more times",
+             f"{int((f['locus_arcs'] > 0).sum())} of {int((f['n_sightings'] >= 2).sum())} two-view loci non-empty "
+             f"(median length {fmt_sig(np.nanmedian(f['locus_length_m']) if (f['n_sightings'] >= 2).any() else np.nan)} m)",
+             f"the flat-seafloor positions of one feature disagree by up to {fmt_sig(f['flat_spread_m'].max())} m "
+             f"(median over features {fmt_sig(f['flat_spread_m'].median())} m)"]
+    text = "; ".join(parts) + "."
+    if errors is not None and len(errors):
+        med = errors.groupby("estimator", sort=False).agg(h=("error_h_m", "median"), v=("error_up_m", lambda x: x.abs().median()),
+                                                          n=("feature", "size"))
+        text += " Against the truth, median horizontal / vertical errors: " + "; ".join(
+            f"{ESTIMATES[k][0].split(',')[0].split(':')[0]} {fmt_sig(r.h)} m / {fmt_sig(r.v)} m ({int(r.n)} features)"
+            for k, r in med.iterrows()) + "."
+        closest = med["h"].idxmin()
+        text += (f" Closest to the truth horizontally in this run: {ESTIMATES[closest][0].split(',')[0].split(':')[0]}"
+                 + (" (averaging the mosaic's positions beats the geometry here; the reconstruction chapter measures "
+                    "when)" if closest == "flat" else "") + ".")
+    return text
+
+
+def view_3d(res, *, truth: pd.DataFrame | None = None):
+    """The sensors, each sighting's line of sight to its flat-seafloor position, the loci and
+    the estimates in 3-D (grid east, north, up; plotly figure, drag to rotate)."""
+    import plotly.graph_objects as go
+
+    s, f, loc = res.sightings, res.features, res.locus
+    sens = s[["sensor_east_m", "sensor_north_m", "sensor_up_m"]].to_numpy()
+    flat = s[["flat_east_m", "flat_north_m", "flat_up_m"]].to_numpy()
+    seg = [v for a, b in zip(sens, flat) for v in (a, b, [None] * 3)]
+    seg = np.array(seg, dtype=object)
+    traces = [go.Scatter3d(x=s["sensor_east_m"], y=s["sensor_north_m"], z=s["sensor_up_m"], mode="markers",
+                           marker=dict(size=2, color="grey"), name="sensor at each sighting",
+                           text=s["feature"] + " line " + s["line"].astype(str)),
+              go.Scatter3d(x=seg[:, 0], y=seg[:, 1], z=seg[:, 2], mode="lines", line=dict(color="lightgrey", width=1),
+                           name="slant range to the flat-seafloor position", hoverinfo="skip"),
+              go.Scatter3d(x=s["flat_east_m"], y=s["flat_north_m"], z=s["flat_up_m"], mode="markers",
+                           marker=dict(size=3, color="black", symbol="circle-open"), name="flat seafloor, each sighting",
+                           text=s["feature"])]
+    xs, ys, zs = [], [], []
+    for _, arc in loc.groupby(["feature", "arc"], sort=False):
+        for v, c in zip((xs, ys, zs), ("east_m", "north_m", "up_m")):
+            v.extend([*arc[c].tolist(), None])
+    traces.append(go.Scatter3d(x=xs, y=ys, z=zs, mode="lines", line=dict(color="crimson", width=6), name="two-view locus"))
+    for key, (name, colour, _) in ESTIMATES.items():
+        traces.append(go.Scatter3d(x=f[f"{key}_east_m"], y=f[f"{key}_north_m"], z=f[f"{key}_up_m"], mode="markers",
+                                   marker=dict(size=4, color=to_hex(colour)), name=name.split(" (")[0], text=f["feature"]))
+    if truth is not None:
+        traces.append(go.Scatter3d(x=truth["east_m"], y=truth["north_m"], z=truth["up_m"], mode="markers",
+                                   marker=dict(size=5, color="gold", symbol="diamond", line=dict(color="black", width=1)),
+                                   name="truth (synthetic example)", text=truth["feature"]))
+    fig = go.Figure(traces)
+    fig.update_layout(scene=dict(xaxis_title="grid east (m)", yaxis_title="grid north (m)", zaxis_title="up (m)",
+                                 aspectmode="manual", aspectratio=dict(x=1, y=1, z=0.35)),
+                      legend=dict(orientation="h", yanchor="top", y=-0.02), margin=dict(l=0, r=0, t=10, b=0), height=620)
+    return fig
