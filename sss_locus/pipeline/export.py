@@ -52,6 +52,8 @@ from sss_locus.pipeline import atomic, citation, provenance, readability
 # Used with fullmatch: the whole string must match (``$`` alone would accept a trailing newline).
 LABEL_PATTERN = re.compile(r"fig-[a-z0-9]+(?:-[a-z0-9]+)*")
 DATA_NAME_PATTERN = re.compile(r"[a-z0-9]+(?:[_-][a-z0-9]+)*")
+#: Names of attached files (e.g. ``mission.plan``): a data name and an extension.
+ATTACHMENT_PATTERN = re.compile(r"[a-z0-9]+(?:[_-][a-z0-9]+)*\.[a-z0-9]+")
 #: Set by the runner: the folder a run exports into, and the run key recorded in each manifest.
 FIGURES_DIR_ENV = "SSS_LOCUS_FIGURES_DIR"
 RUN_KEY_ENV = "SSS_LOCUS_RUN_KEY"
@@ -147,6 +149,7 @@ def export_figure(
     out_dir: Path | None = None,
     shown: list[bytes] | None = None,
     platforms: Sequence[str] | None = None,
+    attachments: Mapping[str, str] | None = None,
 ) -> dict[str, Any]:
     """Export one figure with its data, manifest and BibTeX entry; return the manifest.
 
@@ -183,6 +186,10 @@ def export_figure(
     platforms : sequence of str, optional
         The platforms the figure shows (its data inputs name exactly these, :func:`data_inputs`);
         default: every platform of ``parameters["platforms"]``.
+    attachments : mapping of str to str, optional
+        Other files computed with the figure (e.g. the mission files of a survey plan), by name
+        (``mission.plan``: :data:`ATTACHMENT_PATTERN`) to text; written as ``<label>--<name>``
+        and listed in the manifest like the data, so they are cited and replaced with the figure.
 
     Returns
     -------
@@ -199,6 +206,10 @@ def export_figure(
     if not isinstance(dpi, (int, np.integer)) or dpi < MIN_DPI:
         raise ValueError(f"dpi must be an integer >= {MIN_DPI}, got {dpi!r}")
     frames = _normalise_data(label, data)
+    for name, text in (attachments or {}).items():
+        if not isinstance(name, str) or not ATTACHMENT_PATTERN.fullmatch(name) or not isinstance(text, str):
+            raise ValueError(f"attachments must map names like 'mission.plan' (pattern {ATTACHMENT_PATTERN.pattern}) "
+                             f"to text; got {name!r}")
     params = json.loads(json.dumps(dict(parameters), default=provenance.json_default))
     if seed is None and "seed" in params:
         seed = params["seed"]
@@ -219,6 +230,9 @@ def export_figure(
         index = not isinstance(frame.index, pd.RangeIndex)
         _save_atomic(out / name, lambda tmp, frame=frame, index=index: frame.to_csv(tmp, index=index))
         written.append(out / name)
+    for name, text in (attachments or {}).items():
+        _write_atomic(out / f"{label}--{name}", text)
+        written.append(out / f"{label}--{name}")
 
     manifest: dict[str, Any] = {
         "label": label,

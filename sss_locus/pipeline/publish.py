@@ -65,7 +65,8 @@ def run_parameters() -> dict[str, Any]:
 
 
 def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame], *,
-            caption: str, platforms: Sequence[str] | None = None) -> None:
+            caption: str, platforms: Sequence[str] | None = None,
+            attachments: Mapping[str, str] | None = None) -> None:
     """Export ``fig`` as a citable figure, glue it and its caption, and close it.
 
     Parameters
@@ -82,6 +83,9 @@ def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame
         The platforms the figure shows, when not every platform of the run (a figure per
         platform, or one drawn from the first platform only): its manifest and BibTeX name exactly
         these platforms and the data they read.
+    attachments : mapping of str to str, optional
+        Files computed with the figure (name -> text, e.g. ``{"mission.plan": ...}``), published
+        beside it as ``<label>--<name>`` under the same manifest and BibTeX entry.
     """
     import matplotlib.pyplot as plt
     from IPython.display import Markdown
@@ -94,7 +98,7 @@ def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame
     cell = getattr(shell, "execution_count", None) if shell is not None else None
     shown: list[bytes] = []  # the chapter's picture, drawn from the exported files' layout
     export.export_figure(fig, label, data, caption=caption, parameters=run_parameters(), cell=cell,
-                         shown=shown, platforms=platforms)
+                         shown=shown, platforms=platforms, attachments=attachments)
     display(HTML(f'<span id="{label}-source" class="figure-source-anchor"></span>'))
     glue(label, Image(data=shown[0], format="png"), display=False)
     glue(f"{label}-caption", Markdown(caption), display=False)
