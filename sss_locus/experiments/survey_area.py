@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -84,12 +84,15 @@ class SurveyArea:
     name : str
     source : str
         Where it was read from (a file path, or ``"vertices"``).
+    sha256 : str
+        SHA-256 of the file it was read from (``""`` if none).
     """
 
     polygon: object
     origin_lonlat: tuple[float, float] | None = None
     name: str = "survey area"
     source: str = "vertices"
+    sha256: str = ""
 
     @property
     def area_m2(self) -> float:
@@ -107,7 +110,7 @@ class SurveyArea:
     def key(self) -> dict:
         """A JSON-able description (for caches and manifests)."""
         return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
-                "source": self.source}
+                "source": self.source, "sha256": self.sha256}
 
 
 def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str = "survey area",
@@ -172,16 +175,26 @@ def _from_geojson(doc, source: str) -> SurveyArea:
 
 def load_area(path: str | Path) -> SurveyArea:
     """Read a survey area from a TOML or GeoJSON file (see the module docstring). A relative path
-    not found from the working directory is looked up from the repository's root (so the shipped
-    ``data/examples/survey_area.toml`` is found from any run)."""
-    from ..paths import REPO_ROOT
+    is looked up from the working directory, then from the folder the ``sss-locus`` command was
+    started in (:data:`sss_locus.paths.CALLER_DIR_ENV`), then from the repository's root (so the
+    shipped ``data/examples/survey_area.toml`` is found from any run). The area records the
+    file's SHA-256 (``sha256``)."""
+    import hashlib
+    import os
+
+    from ..paths import CALLER_DIR_ENV, REPO_ROOT
 
     p = Path(path).expanduser()
-    if not p.is_absolute() and not p.is_file():
-        p = REPO_ROOT / p
+    if not p.is_absolute():
+        tries = [Path.cwd(), Path(os.environ.get(CALLER_DIR_ENV) or Path.cwd()), REPO_ROOT]
+        p = next((d / p for d in tries if (d / p).is_file()), p)
     if not p.is_file():
         raise ValueError(f"area file {path} does not exist")
-    source = str(path)
+    area = _load_area(p, str(path))
+    return replace(area, sha256=hashlib.sha256(p.read_bytes()).hexdigest())
+
+
+def _load_area(p: Path, source: str) -> SurveyArea:
     if p.suffix.lower() in (".geojson", ".json"):
         try:
             doc = json.loads(p.read_text(encoding="utf-8-sig"))
@@ -213,9 +226,10 @@ def area_from_key(key: dict) -> SurveyArea:
     import shapely
 
     poly = shapely.from_wkt(key["wkt"])
-    return area_from_vertices(np.asarray(poly.exterior.coords), origin_lonlat=key.get("origin_lonlat"),
+    area = area_from_vertices(np.asarray(poly.exterior.coords), origin_lonlat=key.get("origin_lonlat"),
                               holes_m=[np.asarray(r.coords) for r in poly.interiors],
                               name=key.get("name", "survey area"), source=key.get("source", "vertices"))
+    return replace(area, sha256=key.get("sha256", ""))
 
 
 def principal_heading_deg(area: SurveyArea) -> float:

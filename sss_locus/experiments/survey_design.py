@@ -297,3 +297,18 @@ def seed_stability(platform, area_key: dict, terrain: str, plans: pd.DataFrame, 
                      "recommended_value": rec[col] if rec is not None else math.nan, "standard_value": std,
                      "ratio": (rec[col] / std) if rec is not None and std > 0 else math.nan})
     return pd.DataFrame(rows)
+
+
+def by_crossing_angle(plans: pd.DataFrame, objective: str) -> pd.DataFrame:
+    """The searched eligible plans grouped by their second line set: ``second_set`` (``"none"``,
+    ``"repeat"`` for an offset repeat at 0°, else ``"cross <angle>°"``), ``crossing_deg`` (NaN
+    for none), the number of plans, the best and the median objective, and the median crossing
+    angle of the features' best pairs."""
+    col = OBJECTIVES[objective]
+    t = plans[(plans.kind == "search") & plans.eligible].copy()
+    t["second_set"] = [("none" if math.isnan(g) else "repeat" if g % 180 == 0 else f"cross {g:g}°")
+                       for g in t.crossing_deg]
+    out = t.groupby("second_set", sort=False).agg(
+        crossing_deg=("crossing_deg", "first"), n_plans=(col, "size"), best=(col, "min"),
+        median=(col, "median"), best_pair_angle_median_deg=("best_pair_angle_median_deg", "median"))
+    return out.reset_index().sort_values("crossing_deg", na_position="first", kind="stable").reset_index(drop=True)

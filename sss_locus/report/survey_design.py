@@ -29,7 +29,7 @@ BASELINES = {"standard": ("standard plan (NOAA-style, 200 %)", "*", "tab:red", 1
 
 def plan_label(row) -> str:
     """A plan in words: ``"0° lines 120 m apart + cross lines at 90°, 240 m; altitude 21 m"``."""
-    text = f"{row['heading_deg'] % 180:g}° lines {row['spacing_m']:.0f} m apart"
+    text = f"{round(row['heading_deg'] % 180, 1):g}° lines {row['spacing_m']:.0f} m apart"
     if not math.isnan(row["crossing_deg"]):
         what = "offset repeat" if row["crossing_deg"] % 180 == 0 else f"cross lines at {row['crossing_deg']:g}°"
         text += f" + {what}, {row['cross_spacing_m']:.0f} m"
