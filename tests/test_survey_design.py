@@ -182,3 +182,28 @@ def test_bad_design_inputs_are_refused_before_work(tmp_path):
     tiny = area_from_vertices([[0, 0], [100, 0], [100, 20], [0, 20]])
     with pytest.raises(ValueError, match="too small for one line"):
         sd.design(auv, tiny, "flat", grid=SMALL_GRID, n_features=20)
+
+
+def test_search_finds_the_best_crossing_angle_of_the_survey_chapters_curve():
+    """Constructed case: main lines and cross lines so far apart (4 x the range) that a feature
+    is seen by at most one of each, so its best pair crosses at the plan's angle. The survey
+    chapter's Monte Carlo curve (simulate_passes, offsets uniform over the swath, the same
+    altitude, level) gives the median locus at each angle independently; the search must rank
+    the angles as the curve does, pick the curve's best angle, and agree in value."""
+    from sss_locus.experiments.envelopes import OffsetModel, load_envelope
+    from sss_locus.experiments.survey_passes import simulate_passes
+
+    auv = load_platform("auv")
+    angles = [20.0, 45.0, 90.0]
+    env = load_envelope("auv").with_pitch(0.0, 0.0).with_altitude(21.0, 21.0)
+    samples, _ = simulate_passes(auv, env, OffsetModel("independent"), angles, 512, 0)
+    curve = samples.groupby("crossing_angle_deg").locus_length_m.median()
+    square = area_from_vertices([[0, 0], [1000, 0], [1000, 1000], [0, 1000]])
+    grid = dict(headings_deg=[0.0], spacing_fractions=[4.0], crossing_angles_deg=angles,
+                cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
+    t = sd.design(auv, square, "flat", grid=grid, n_features=300, seed=0, grid_m=100.0).plans
+    found = t[t.kind == "search"].set_index("crossing_deg")
+    assert list(found.best_pair_angle_median_deg) == angles  # one main and one cross line per feature
+    assert found.locus_median_m.idxmin() == curve.idxmin()
+    assert list(found.locus_median_m.sort_values().index) == list(curve.sort_values().index)
+    assert np.allclose(found.locus_median_m[angles], curve[angles], rtol=0.3)
