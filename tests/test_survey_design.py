@@ -179,6 +179,10 @@ def test_bad_design_inputs_are_refused_before_work(tmp_path):
     import dataclasses
     with pytest.raises(ValueError, match=r"platforms\.auv\.mission\.turn_radius_m is needed"):
         sd.design(dataclasses.replace(auv, turn_radius_m=None), area, "flat", grid=SMALL_GRID, n_features=20)
+    with pytest.raises(ValueError, match="spacing_fractions must be a non-empty list of numbers in"):
+        sd.design(auv, area, "flat", grid={**SMALL_GRID, "spacing_fractions": [0.0]}, n_features=20)
+    with pytest.raises(ValueError, match="grid must be a dict with exactly the keys"):
+        sd.design(auv, area, "flat", grid={"headings_deg": [0.0]}, n_features=20)
     tiny = area_from_vertices([[0, 0], [100, 0], [100, 20], [0, 20]])
     with pytest.raises(ValueError, match="too small for one line"):
         sd.design(auv, tiny, "flat", grid=SMALL_GRID, n_features=20)

@@ -92,6 +92,20 @@ def _floats(name, values, lo=-math.inf, hi=math.inf, allow_nan=False):
     return [float(x) for x in a]
 
 
+GRID_KEYS = {"headings_deg": (-360.0, 360.0), "spacing_fractions": (1e-3, 10.0), "crossing_angles_deg": (0.0, 180.0),
+             "cross_spacing_factors": (1e-3, 10.0), "altitude_fractions": (1e-3, 0.999), "pitches_deg": (-90.0, 90.0)}
+"""The plan grid's keys and the range of their values (``crossing_angles_deg`` may hold NaN: no cross lines)."""
+
+
+def check_grid(grid) -> dict:
+    """Refuse a plan grid with a missing or unknown key or a value out of range, in one line."""
+    if not isinstance(grid, dict) or set(grid) != set(GRID_KEYS):
+        got = sorted(grid) if isinstance(grid, dict) else type(grid).__name__
+        raise ValueError(f"grid must be a dict with exactly the keys {sorted(GRID_KEYS)}; got {got}")
+    return {k: _floats(k, v, lo, hi, allow_nan=k == "crossing_angles_deg") for k, (lo, hi) in GRID_KEYS.items()
+            for v in [grid[k]]}
+
+
 def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: int, seed: int,
                  grid_m: float, settings: dict | None = None) -> Setting:
     """Validate the inputs and draw the features (module docstring)."""
@@ -190,6 +204,7 @@ def search(s: Setting, objective: str, grid: dict, *, noise=None, progress=None)
     plus ``kind`` (``search``/``standard``/``lawnmower``), ``eligible`` and ``front``."""
     if objective not in OBJECTIVES:
         raise ValueError(f"objective must be one of {list(OBJECTIVES)}; got {objective!r}")
+    grid = check_grid(grid)
     if objective == "reconstruction" and noise is None:
         raise ValueError("objective 'reconstruction' needs noise (a NoiseModel)")
     std = standard_plan(s.platform, s.area, s.terrain, s.settings, s.heights_m)
@@ -224,6 +239,9 @@ def search(s: Setting, objective: str, grid: dict, *, noise=None, progress=None)
 def design(platform, area: SurveyArea, terrain: str, *, objective: str = "locus", grid: dict,
            n_features: int = 300, seed: int = 0, grid_m: float = 10.0, noise=None) -> DesignResult:
     """The whole design (module docstring): search, front, recommended plan."""
+    if objective not in OBJECTIVES:
+        raise ValueError(f"objective must be one of {list(OBJECTIVES)}; got {objective!r}")
+    check_grid(grid)
     s = make_setting(platform, area, terrain, n_features=n_features, seed=seed, grid_m=grid_m)
     table = search(s, objective, grid, noise=noise)
     std = float(table.loc[table.kind == "standard", "total_m"].iloc[0])
