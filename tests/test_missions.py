@@ -94,6 +94,7 @@ def test_geographic_formats_need_an_origin():
     area = area_from_vertices(VERTS)
     lines = Plan(0.0, 150.0, math.nan, 150.0, 20.0).lines(area)
     only_csv = mission_files(area, lines, depth_m=0.0, submerged=False, speed_m_s=1.0)
+    assert "-0.0" not in only_csv["mission.csv"]
     assert list(only_csv) == ["mission.csv"]
     assert list(pd.read_csv(__import__("io").StringIO(only_csv["mission.csv"])).columns) == [
         "seq", "set", "line", "segment", "point", "east_m", "north_m", "depth_m"]
@@ -118,6 +119,7 @@ def test_attachments_are_listed_in_the_figure_manifest(tmp_path):
                              parameters={}, out_dir=tmp_path, attachments={"mission.plan": "{}\n"})
     plt.close(fig)
     entry = manifest["files"]["fig-mission-test--mission.plan"]
+    assert isinstance(manifest["text"], dict) and manifest["text"]["min_size_pt"] > 0  # readability kept
     assert entry["sha256"] == hashlib.sha256(b"{}\n").hexdigest()
     with pytest.raises(ValueError, match="attachments must map"):
         export_figure(fig, "fig-mission-test", pd.DataFrame({"a": [1]}), caption="A test.", parameters={},

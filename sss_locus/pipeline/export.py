@@ -206,8 +206,8 @@ def export_figure(
     if not isinstance(dpi, (int, np.integer)) or dpi < MIN_DPI:
         raise ValueError(f"dpi must be an integer >= {MIN_DPI}, got {dpi!r}")
     frames = _normalise_data(label, data)
-    for name, text in (attachments or {}).items():
-        if not isinstance(name, str) or not ATTACHMENT_PATTERN.fullmatch(name) or not isinstance(text, str):
+    for name, body in (attachments or {}).items():
+        if not isinstance(name, str) or not ATTACHMENT_PATTERN.fullmatch(name) or not isinstance(body, str):
             raise ValueError(f"attachments must map names like 'mission.plan' (pattern {ATTACHMENT_PATTERN.pattern}) "
                              f"to text; got {name!r}")
     params = json.loads(json.dumps(dict(parameters), default=provenance.json_default))
@@ -230,8 +230,8 @@ def export_figure(
         index = not isinstance(frame.index, pd.RangeIndex)
         _save_atomic(out / name, lambda tmp, frame=frame, index=index: frame.to_csv(tmp, index=index))
         written.append(out / name)
-    for name, text in (attachments or {}).items():
-        _write_atomic(out / f"{label}--{name}", text)
+    for name, body in (attachments or {}).items():
+        _write_atomic(out / f"{label}--{name}", body)
         written.append(out / f"{label}--{name}")
 
     manifest: dict[str, Any] = {

@@ -94,9 +94,9 @@ def plan_text(area, points: pd.DataFrame, *, submerged: bool, speed_m_s: float) 
     """QGroundControl ``.plan`` JSON (module docstring)."""
     _need_origin(area, "plan")
     home = [float(points.lat.iloc[0]), float(points.lon.iloc[0]), 0.0]
-    items = [{"AMSLAltAboveTerrain": None, "Altitude": -float(p.depth_m), "AltitudeMode": 1, "autoContinue": True,
+    items = [{"AMSLAltAboveTerrain": None, "Altitude": 0.0 - float(p.depth_m), "AltitudeMode": 1, "autoContinue": True,
               "command": NAV_WAYPOINT, "doJumpId": i + 1, "frame": 3,
-              "params": [0, 0, 0, None, float(p.lat), float(p.lon), -float(p.depth_m)], "type": "SimpleItem"}
+              "params": [0, 0, 0, None, float(p.lat), float(p.lon), 0.0 - float(p.depth_m)], "type": "SimpleItem"}
              for i, p in enumerate(points.itertuples())]
     ring = np.asarray(area.polygon.exterior.coords)[:-1]
     lon, lat = area.to_lonlat(ring[:, 0], ring[:, 1])
@@ -114,7 +114,7 @@ def waypoints_text(area, points: pd.DataFrame) -> str:
     """``QGC WPL 110`` text (module docstring); row 0 is home at the first waypoint, at the surface."""
     _need_origin(area, "waypoints")
     rows = [(0, 1, 0, NAV_WAYPOINT, 0, 0, 0, 0, points.lat.iloc[0], points.lon.iloc[0], 0.0, 1)]
-    rows += [(i + 1, 0, 3, NAV_WAYPOINT, 0, 0, 0, 0, p.lat, p.lon, -p.depth_m, 1)
+    rows += [(i + 1, 0, 3, NAV_WAYPOINT, 0, 0, 0, 0, p.lat, p.lon, 0.0 - p.depth_m, 1)
              for i, p in enumerate(points.itertuples())]
     fmt = lambda v: f"{v:.8f}" if isinstance(v, float) else str(v)  # noqa: E731
     return "QGC WPL 110\n" + "".join("\t".join(fmt(v) for v in row) + "\n" for row in rows)
