@@ -121,7 +121,7 @@ def comparison_sentence(t: pd.DataFrame, objective: str, platform) -> str:
         return f"For the {name}, no plan searched shows as many features twice as the standard plan."
     r = rec.iloc[0]
     unit = " m" if col.endswith("_m") else ""
-    show = (lambda v: fmt_sig(v, 2) + unit) if unit else fmt_percent
+    show = (lambda v: fmt_sig(v, 3) + unit) if unit else fmt_percent
     if r.name == std.name or (r[col] >= std[col] and r.total_m >= std.total_m):
         return (f"For the {name}, no searched plan as short as the standard plan ({std.total_m / 1e3:.2f} km) "
                 f"does better on this objective: the standard plan ({show(std[col])}) is kept.")
