@@ -57,7 +57,7 @@ lock:
 	$(PYTHON) -m venv _build/lock-tools
 	_build/lock-tools/bin/pip install --quiet uv
 	_build/lock-tools/bin/uv pip compile --quiet --universal --generate-hashes --python-version 3.11 \
-	  pyproject.toml --extra book --extra test --extra scale --extra bootstrap -o environment.lock
+	  pyproject.toml --extra book --extra test --extra scale --extra survey --extra bootstrap -o environment.lock
 
 clean:
 	rm -rf _build

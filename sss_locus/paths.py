@@ -62,6 +62,9 @@ BUILD_DIR_ENV = "SSS_LOCUS_BUILD_DIR"
 #: (``_build/NAME``), not the reproduction (see :mod:`sss_locus.pipeline.areas`).
 BUILD_NAME_ENV = "SSS_LOCUS_BUILD_NAME"
 CACHE_DIR_ENV = "SSS_LOCUS_CACHE_DIR"
+#: Set by ``sss-locus run``/``book`` for the kernels: the folder the command was started in, so a
+#: relative input path given as a parameter (a survey area file) means what the user typed.
+CALLER_DIR_ENV = "SSS_LOCUS_CALLER_DIR"
 
 #: Folder names inside the build area (also used in ``_toc.yml`` and ``_config.yml``).
 SOURCE_SUBDIR = "source"

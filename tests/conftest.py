@@ -108,6 +108,7 @@ def _shared_fixtures(item) -> list[str]:
                   and fixturedefs[-1].scope != "function")
 
 
+@pytest.hookimpl(tryfirst=True)  # before xdist's own, which reads the xdist_group marks
 def pytest_collection_modifyitems(config, items):
     """Tests of the built book run last (the order is otherwise kept), so the background build
     overlaps everything else; among them, those sharing an expensive fixture (the your-hardware

@@ -303,7 +303,11 @@ def user_book(quick_book, tmp_path_factory):
             "my_auv": area / "my_auv", "beside": area / "beside"}
 
 
-def test_the_page_runs_a_quick_answer_runs_and_a_book_each_into_its_own_area(user_book):
+def test_the_page_runs_a_quick_answer_runs_and_a_book_each_into_its_own_area(user_book, request):
+    if getattr(request.config.option, "loadgroup", False):  # set in xdist's workers
+        # under `make test` (pytest-xdist, --dist loadgroup) this module's user_book tests form one
+        # group (conftest.py), so the page's commands run on one worker only, once
+        assert request.node.nodeid.endswith("@user_book"), request.node.nodeid
     commands = [argv[:2] for argv, _ in user_book["outputs"]]
     assert ["sss-locus", "answer"] in commands and ["sss-locus", "book"] in commands
     assert all("--name" in argv for argv, _ in user_book["outputs"] if argv[1] in ("run", "book"))

@@ -265,11 +265,11 @@ def test_export_records_input_files_and_attachments(tmp_path):
     fig, ax = plt.subplots()
     ax.plot([0, 1], [0, 1])
     m = export.export_figure(fig, "fig-test-pings", pd.DataFrame({"a": [1]}), caption="A test.", parameters={},
-                             out_dir=tmp_path / "figs", input_files=[obs], attachments={"geojson": '{"type": "x"}\n'})
+                             out_dir=tmp_path / "figs", input_files=[obs], attachments={"results.geojson": '{"type": "x"}\n'})
     assert {"path": "my_sightings.csv", "sha256": file_sha256(obs), "role": "observations"} in m["data_inputs"]["files"]
-    assert m["files"]["fig-test-pings.geojson"]["sha256"] == file_sha256(tmp_path / "figs" / "fig-test-pings.geojson")
+    assert m["files"]["fig-test-pings--results.geojson"]["sha256"] == file_sha256(tmp_path / "figs" / "fig-test-pings--results.geojson")
     assert "my\\_sightings.csv (sha256" in (tmp_path / "figs" / "fig-test-pings.bib").read_text()
-    with pytest.raises(ValueError, match="attachments keys"):
+    with pytest.raises(ValueError, match="attachments must map"):
         export.export_figure(fig, "fig-test-pings", pd.DataFrame({"a": [1]}), caption="A test.", parameters={},
                              out_dir=tmp_path / "figs", attachments={"png": "x"})
     plt.close(fig)

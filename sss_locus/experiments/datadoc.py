@@ -21,10 +21,11 @@ from .inputs import read_toml, suggestion
 #: Platform, sonar, envelope and noise keys (``_`` becomes ``-`` in figure labels and glue keys).
 KEY_PATTERN = re.compile(r"[a-z][a-z0-9_]*")
 #: Shipped files, in merge order, and the top-level tables a user file may hold.
-SHIPPED_FILES: tuple[str, ...] = ("platforms.toml", "survey.toml", "noise.toml", "terrain.toml")
-USER_TABLES: tuple[str, ...] = ("sonars", "platforms", "envelopes", "offset_models", "noise", "terrain", "survey")
+SHIPPED_FILES: tuple[str, ...] = ("platforms.toml", "survey.toml", "noise.toml", "terrain.toml", "survey_design.toml")
+USER_TABLES: tuple[str, ...] = ("sonars", "platforms", "envelopes", "offset_models", "noise", "terrain", "survey",
+                                 "survey_design")
 #: Tables whose numbers sit one level down (``survey.area_m``), not two (``noise.auv.range_m``).
-FLAT_TABLES: tuple[str, ...] = ("survey",)
+FLAT_TABLES: tuple[str, ...] = ("survey", "survey_design")
 SET_NOTE = "user override: --set "
 
 

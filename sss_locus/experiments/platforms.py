@@ -159,7 +159,9 @@ class Platform:
     surface; a platform with ``depth_min_m == depth_max_m`` (a surface vessel) keeps it fixed, so
     two poses of it share the same draft exactly. ``provenance`` maps each key path of the TOML
     (e.g. ``"platforms.auv.transducers.port.tilt_deg"``) to ``"source: ..."`` or
-    ``"assumption: ..."``.
+    ``"assumption: ..."``. ``turn_radius_m`` and ``speed_m_s`` (the ``mission`` table: minimum
+    turning radius, m, and survey speed, m/s) are read by the survey design; ``None`` when the
+    platform's file does not give them.
     """
 
     key: str
@@ -173,6 +175,8 @@ class Platform:
     length_m: float | None = None
     reference_point: str = ""
     altitude_fraction_of_range: float | None = None
+    turn_radius_m: float | None = None
+    speed_m_s: float | None = None
     provenance: Mapping[str, str] = field(default_factory=dict, compare=False, repr=False)
 
     @property
@@ -246,6 +250,7 @@ def _platform(key: str, doc: Mapping[str, Any], sonars: Mapping[str, Sonar],
     if depth_max < depth_min:
         raise ValueError(f"{path}.depth_m.max must be >= {path}.depth_m.min")
     survey = doc.get("survey", {})
+    mission = doc.get("mission", {})
     return Platform(
         key=key,
         name=string(doc, "name", path),
@@ -260,6 +265,10 @@ def _platform(key: str, doc: Mapping[str, Any], sonars: Mapping[str, Sonar],
         altitude_fraction_of_range=(
             sourced(survey, "altitude_fraction_of_range", f"{path}.survey", provenance, lo=0.0)
             if "altitude_fraction_of_range" in survey else None),
+        turn_radius_m=(sourced(mission, "turn_radius_m", f"{path}.mission", provenance, lo=0.0, hi=1e4)
+                       if "turn_radius_m" in mission else None),
+        speed_m_s=(sourced(mission, "speed_m_s", f"{path}.mission", provenance, lo=1e-3, hi=100.0)
+                   if "speed_m_s" in mission else None),
         provenance={k: v for k, v in provenance.items() if k.startswith(path + ".")
                     or k.startswith(f"sonars.{sonar_key}.")},
     )

@@ -10,7 +10,8 @@ Each (feature, line) pair is observed at the ping of :func:`~sss_locus.experimen
 observe_pass` (the exact in-beam ping, platform frames as in the other chapters), with
 
 * the observing side the one the feature lies on, its ground offset the across-track distance;
-* the vehicle level (pitch 0; a terrain-following AUV would pitch on slopes, left out) at a
+* the vehicle level (pitch 0, or a constant ``pitch_deg``; a terrain-following AUV would
+  pitch on slopes, left out) at a
   height set by the seafloor: for a platform whose envelope holds one altitude
   (``same_altitude``, the surface boat) the reference point is at ``altitude_m`` above the mean
   seafloor ``z = 0`` (the water depth), otherwise (the AUV, terrain following) ``altitude_m``
@@ -76,7 +77,8 @@ class SurveyLayout:
 
 
 def observe_features(platform, terrain: Terrain, features, layout: SurveyLayout, altitude_m: float,
-                     same_altitude: bool, seed: int, shadowing: str = "off") -> tuple[Views, np.ndarray, dict]:
+                     same_altitude: bool, seed: int, shadowing: str = "off",
+                     pitch_deg: float = 0.0) -> tuple[Views, np.ndarray, dict]:
     """Every line of ``layout`` against every feature.
 
     Parameters
@@ -94,6 +96,9 @@ def observe_features(platform, terrain: Terrain, features, layout: SurveyLayout,
     seed : int
         Seed of the in-beam elevations.
     shadowing : {"off", "on"}
+    pitch_deg : float
+        Vehicle pitch on every line, degrees, positive nose-up (default 0: level; the survey
+        design lets a vehicle that can choose it hold another).
 
     Returns
     -------
@@ -130,7 +135,7 @@ def observe_features(platform, terrain: Terrain, features, layout: SurveyLayout,
     phi = (2 * rng.random((n, L)) - 1) * math.radians(platform.sonar.elevation_deg / 2)
     head = np.broadcast_to(heading, (n, L))
     ob = observe_pass(platform, (across > 0).ravel(), head.ravel(), np.abs(across).ravel(),
-                      (vehicle_z - f[:, None, 2]).ravel(), 0.0, phi.ravel())
+                      (vehicle_z - f[:, None, 2]).ravel(), float(pitch_deg), phi.ravel())
     W = ob["W"].reshape(n, L, 3, 3)
     origin = ob["origin"].reshape(n, L, 3) + f[:, None, :]
     reason = ob["reason"].reshape(n, L).astype(np.int8)
@@ -143,7 +148,7 @@ def observe_features(platform, terrain: Terrain, features, layout: SurveyLayout,
         shadowed[i, j] = ray_blocked(terrain, origin[i, j], f[i])
         reason = np.where(shadowed, np.int8(4), reason)
         seen &= ~shadowed
-    V = vehicle_attitude(head.ravel(), np.zeros(n * L), np.zeros(n * L)).as_matrix().reshape(n, L, 3, 3)
+    V = vehicle_attitude(head.ravel(), np.full(n * L, float(pitch_deg)), np.zeros(n * L)).as_matrix().reshape(n, L, 3, 3)
     height = origin[..., 2] - terrain.height_m(origin[..., 0], origin[..., 1])
     views = Views(W=W, origin=origin, vehicle=V, feature=f)
     return views, seen, dict(reason=reason, shadowed=shadowed, heading_deg=heading, sensor_height_m=height)

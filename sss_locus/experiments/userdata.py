@@ -147,6 +147,10 @@ def record(platform_keys: Iterable[str] = (), inputs: DataInputs | None = None) 
             "values": resolved_values(platform_keys, inputs)}
 
 
+#: Tables read whole (not per platform); a figure's record names them when its run read them.
+WHOLE_TABLES = ("terrain", "survey", "survey_design")
+
+
 def figure_record(platform_keys: Iterable[str], inputs: DataInputs | None = None,
                   read: Iterable[str] | None = None) -> dict[str, Any]:
     """The data one figure was computed from: exactly the platforms it shows, with their entries.
@@ -168,7 +172,8 @@ def figure_record(platform_keys: Iterable[str], inputs: DataInputs | None = None
     dict
         ``platforms`` (the keys), ``entries`` (each dotted data entry with the SHA-256 of its merged
         value: ``platforms.<key>``, ``sonars.<sonar>``, ``envelopes.<key>``, ``noise.<key>``,
-        ``offset_models.<model>``), ``files`` (the data files that define any of these entries,
+        ``offset_models.<model>``, and the whole tables of :data:`WHOLE_TABLES` the run read),
+        ``files`` (the data files that define any of these entries,
         ``{"path", "sha256", "role"}``), ``overrides`` (the ``--set`` values inside them) and
         ``values`` (:func:`resolved_values` of the platforms).
     """
@@ -187,6 +192,7 @@ def figure_record(platform_keys: Iterable[str], inputs: DataInputs | None = None
                for e in (f"platforms.{k}", f"sonars.{v['sonar']['key']}", f"envelopes.{k}", f"noise.{k}")
                if e.startswith(("platforms.", "sonars.")) or wanted(e)]
     entries += sorted(e for e in (read or ()) if e.startswith("offset_models.") and values)
+    entries += sorted(e for e in (read or ()) if e in WHOLE_TABLES and e in doc)
     hashes = datadoc.entries_sha256(entries, inputs)
 
     def defines(path: str) -> bool:
@@ -194,7 +200,8 @@ def figure_record(platform_keys: Iterable[str], inputs: DataInputs | None = None
             own = datadoc.read_toml(datadoc.DATA_DIR / path.removeprefix("data/") if path.startswith("data/") else path)
         except (OSError, ValueError):
             return True  # unreadable now: keep it listed rather than hide an input
-        return any(e.partition(".")[2] in (own.get(e.partition(".")[0]) or {}) for e in entries)
+        return any((e in own) if "." not in e else e.partition(".")[2] in (own.get(e.partition(".")[0]) or {})
+                   for e in entries)
 
     def inside(override: str) -> bool:
         key = override.split("=", 1)[0].strip()

@@ -301,9 +301,8 @@ def cite_block(manifest: Mapping[str, Any], bibtex: str, *, site_root: str = "..
     data = [f'<a href="{site_root}/{manifest["files"][n]["url"]}" download>'
             f'{n.removeprefix(label).lstrip("-") if n != f"{label}.csv" else "CSV"}</a>'
             for n in files if n.endswith(".csv")]
-    # other result files attached to the figure (e.g. ``<label>.geojson``): by their suffix
-    data += [f'<a href="{site_root}/{manifest["files"][n]["url"]}" download>{Path(n).suffix.lstrip(".")}</a>'
-             for n in files if Path(n).suffix not in (*kinds, ".csv", ".bib", ".json")]
+    data += [f'<a href="{site_root}/{manifest["files"][n]["url"]}" download>{n.removeprefix(label).lstrip("-")}</a>'
+             for n in files if Path(n).suffix not in (*kinds, ".csv", ".bib")]  # attachments (mission files)
     meta = [f'<a href="{site_root}/{paths.FIGURES_SUBDIR}/{label}.json">manifest</a>',
             f'<a href="{site_root}/{paths.FIGURES_SUBDIR}/{label}.bib" download>BibTeX</a>']
     notebook = str(manifest["notebook"])

@@ -55,6 +55,8 @@ TABLE_LABEL_PATTERN = re.compile(r"tab-[a-z0-9]+(?:-[a-z0-9]+)*")
 #: Label prefixes of exported items: figures, and tables (:func:`export_table`).
 KINDS = ("fig", "tab")
 DATA_NAME_PATTERN = re.compile(r"[a-z0-9]+(?:[_-][a-z0-9]+)*")
+#: Names of attached files (e.g. ``mission.plan``): a data name and an extension.
+ATTACHMENT_PATTERN = re.compile(r"[a-z0-9]+(?:[_-][a-z0-9]+)*\.[a-z0-9]+")
 #: Set by the runner: the folder a run exports into, and the run key recorded in each manifest.
 FIGURES_DIR_ENV = "SSS_LOCUS_FIGURES_DIR"
 RUN_KEY_ENV = "SSS_LOCUS_RUN_KEY"
@@ -206,8 +208,9 @@ def export_figure(
         sightings and XTF files): recorded in ``data_inputs["files"]`` with their SHA-256 and the
         role ``"observations"`` (so the BibTeX note and the book name them).
     attachments : mapping of str to str, optional
-        More result files written beside the figure, ``{suffix: text}`` as ``<label>.<suffix>``
-        (e.g. ``{"geojson": ...}``), listed with their SHA-256 in the manifest's files.
+        Other files computed with the figure (e.g. the mission files of a survey plan), by name
+        (``mission.plan``: :data:`ATTACHMENT_PATTERN`) to text; written as ``<label>--<name>``
+        and listed in the manifest like the data, so they are cited and replaced with the figure.
 
     Returns
     -------
@@ -224,6 +227,10 @@ def export_figure(
     if not isinstance(dpi, (int, np.integer)) or dpi < MIN_DPI:
         raise ValueError(f"dpi must be an integer >= {MIN_DPI}, got {dpi!r}")
     frames = _normalise_data(label, data)
+    for name, body in (attachments or {}).items():
+        if not isinstance(name, str) or not ATTACHMENT_PATTERN.fullmatch(name) or not isinstance(body, str):
+            raise ValueError(f"attachments must map names like 'mission.plan' (pattern {ATTACHMENT_PATTERN.pattern}) "
+                             f"to text; got {name!r}")
     params = json.loads(json.dumps(dict(parameters), default=provenance.json_default))
     if seed is None and "seed" in params:
         seed = params["seed"]
@@ -244,6 +251,9 @@ def export_figure(
         index = not isinstance(frame.index, pd.RangeIndex)
         _save_atomic(out / name, lambda tmp, frame=frame, index=index: frame.to_csv(tmp, index=index))
         written.append(out / name)
+    for name, body in (attachments or {}).items():
+        _write_atomic(out / f"{label}--{name}", body)
+        written.append(out / f"{label}--{name}")
 
     manifest: dict[str, Any] = {
         "label": label,
@@ -262,11 +272,6 @@ def export_figure(
         "run_key": os.environ.get(RUN_KEY_ENV),  # ties the figure to its executed copy
         "data_inputs": _with_files(data_inputs(params, platforms), input_files),
     }
-    for suffix, text in (attachments or {}).items():
-        if not DATA_NAME_PATTERN.fullmatch(suffix) or suffix in ("png", "svg", "pdf", "bib", "json", "csv"):
-            raise ValueError(f"attachments keys must be new lower-case file suffixes; got {suffix!r}")
-        _write_atomic(out / f"{label}.{suffix}", text)
-        written.append(out / f"{label}.{suffix}")
     bib_path = out / f"{label}.bib"
     _write_atomic(bib_path, bibtex_entry(manifest))
     written.append(bib_path)

@@ -73,6 +73,8 @@ def hermetic_env() -> dict[str, str]:
         # Children (kernels, jupyter-book) must see the same build area and cache.
         paths.BUILD_DIR_ENV: str(paths.build_dir()),
         paths.CACHE_DIR_ENV: str(paths.cache_dir()),
+        # Relative paths among the parameters are the user's: kept from the outermost command.
+        paths.CALLER_DIR_ENV: os.environ.get(paths.CALLER_DIR_ENV) or os.getcwd(),
     }
     for key in ("IPYTHONDIR", "JUPYTER_DATA_DIR", "JUPYTER_RUNTIME_DIR", "JUPYTER_CONFIG_DIR", "MPLCONFIGDIR"):
         Path(env[key]).mkdir(parents=True, exist_ok=True)

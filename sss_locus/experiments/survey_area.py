@@ -1,0 +1,241 @@
+"""The survey area of the survey-design chapter: a polygon in local metres, with an optional
+geographic origin.
+
+Frames
+------
+Local frame: ``x`` east, ``y`` north, metres (the frame of :mod:`sss_locus.experiments.terrain`
+and :mod:`sss_locus.experiments.terrain_survey`). An area given in longitude/latitude (WGS 84,
+degrees) is projected to it with ``pyproj`` by an azimuthal equidistant projection centred on
+the area's ``origin`` (distances from the origin exact; a few-kilometre area is distorted by
+well under a millimetre per metre). An area given in metres may carry an origin too; without
+one, the formats that need longitude/latitude are refused (:meth:`SurveyArea.to_lonlat`).
+
+Files (:func:`load_area`)
+-------------------------
+TOML::
+
+    [area]
+    name = "Harbour approach"
+    vertices_m = [[0, 0], [800, 0], [800, 500], [0, 500]]    # or:
+    # vertices_lonlat = [[-111.80, 40.25], ...]              # WGS 84 degrees, lon first
+    origin_lonlat = [-111.80, 40.25]                         # optional with vertices_m
+
+GeoJSON (RFC 7946: longitude/latitude, WGS 84): a ``Polygon``, or a ``Feature`` /
+``FeatureCollection`` whose first polygon is the area; its origin is the polygon's first vertex
+unless the feature's properties give ``origin_lonlat``. Holes (inner rings) are kept.
+
+Validation: every ring closed or not, at least three distinct vertices, a valid polygon
+(:func:`shapely.is_valid`: no self-intersection) and an area of at least :data:`MIN_AREA_M2`;
+each refused in one line naming the file and the rule.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from .inputs import read_toml
+
+MIN_AREA_M2 = 100.0
+"""Smallest area accepted, m^2 (10 m x 10 m): smaller is taken for a unit mistake."""
+
+
+def _projection(origin_lonlat):
+    from pyproj import Transformer
+
+    lon, lat = origin_lonlat
+    local = f"+proj=aeqd +lat_0={lat} +lon_0={lon} +datum=WGS84 +units=m +no_defs"
+    fwd = Transformer.from_crs("EPSG:4326", local, always_xy=True)
+    inv = Transformer.from_crs(local, "EPSG:4326", always_xy=True)
+    return fwd, inv
+
+
+def _check_origin(origin, where: str):
+    if origin is None:
+        return None
+    o = np.asarray(origin, float) if _numeric(origin) else None
+    if o is None or o.shape != (2,) or not np.all(np.isfinite(o)) or abs(o[0]) > 180 or abs(o[1]) > 90:
+        raise ValueError(f"{where}: origin_lonlat must be [longitude, latitude] in degrees "
+                         f"(|lon| <= 180, |lat| <= 90); got {origin!r}")
+    return (float(o[0]), float(o[1]))
+
+
+def _numeric(value) -> bool:
+    try:
+        return np.asarray(value, float).dtype.kind == "f"
+    except (TypeError, ValueError):
+        return False
+
+
+@dataclass(frozen=True)
+class SurveyArea:
+    """A survey area (see the module docstring).
+
+    Attributes
+    ----------
+    polygon : shapely.Polygon
+        In the local frame, metres.
+    origin_lonlat : tuple of float or None
+        Longitude, latitude (degrees, WGS 84) of the local origin; ``None``: metres only.
+    name : str
+    source : str
+        Where it was read from (a file path, or ``"vertices"``).
+    sha256 : str
+        SHA-256 of the file it was read from (``""`` if none).
+    """
+
+    polygon: object
+    origin_lonlat: tuple[float, float] | None = None
+    name: str = "survey area"
+    source: str = "vertices"
+    sha256: str = ""
+
+    @property
+    def area_m2(self) -> float:
+        return float(self.polygon.area)
+
+    def to_lonlat(self, x, y) -> tuple[np.ndarray, np.ndarray]:
+        """Local east/north metres to longitude/latitude degrees; refused without an origin."""
+        if self.origin_lonlat is None:
+            raise ValueError(f"area {self.name!r} has no origin: longitude/latitude outputs need "
+                             "origin_lonlat = [lon, lat] in the area file")
+        _, inv = _projection(self.origin_lonlat)
+        lon, lat = inv.transform(np.asarray(x, float), np.asarray(y, float))
+        return np.asarray(lon), np.asarray(lat)
+
+    def key(self) -> dict:
+        """A JSON-able description (for caches and manifests)."""
+        return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
+                "source": self.source, "sha256": self.sha256}
+
+
+def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str = "survey area",
+                       source: str = "vertices") -> SurveyArea:
+    """A :class:`SurveyArea` from local vertices (metres, ``(k, 2)``), validated."""
+    import shapely
+
+    where = source if source != "vertices" else "area"
+    rings = [vertices_m, *holes_m]
+    clean = []
+    for ring in rings:
+        v = np.asarray(ring, float) if _numeric(ring) else None
+        if v is None or v.ndim != 2 or v.shape[1] != 2 or not np.all(np.isfinite(v)):
+            raise ValueError(f"{where}: vertices must be a list of [x, y] pairs of finite numbers; got {ring!r:.80}")
+        if len(v) > 1 and np.array_equal(v[0], v[-1]):
+            v = v[:-1]
+        if len(np.unique(v, axis=0)) < 3:
+            raise ValueError(f"{where}: a polygon needs at least 3 distinct vertices; got {len(np.unique(v, axis=0))}")
+        clean.append(v)
+    poly = shapely.Polygon(clean[0], holes=clean[1:])
+    if not poly.is_valid:
+        raise ValueError(f"{where}: the polygon is not valid ({shapely.is_valid_reason(poly)}); "
+                         "vertices must go round the boundary once without crossing it")
+    if poly.area < MIN_AREA_M2:
+        raise ValueError(f"{where}: the polygon's area is {poly.area:.3g} m^2, below {MIN_AREA_M2:g} m^2 "
+                         "(are the vertices in metres?)")
+    return SurveyArea(poly, _check_origin(origin_lonlat, where), str(name), source)
+
+
+def area_from_lonlat(vertices_lonlat, origin_lonlat=None, *, holes_lonlat=(), name: str = "survey area",
+                     source: str = "vertices") -> SurveyArea:
+    """A :class:`SurveyArea` from longitude/latitude vertices (degrees); the origin defaults to
+    the first vertex."""
+    rings = []
+    for ring in (vertices_lonlat, *holes_lonlat):
+        v = np.asarray(ring, float) if _numeric(ring) else None
+        if v is None or v.ndim != 2 or v.shape[1] != 2 or np.any(np.abs(v) > [180, 90]):
+            raise ValueError(f"{source}: vertices_lonlat must be [longitude, latitude] pairs in degrees; "
+                             f"got {ring!r:.80}")
+        rings.append(v)
+    origin = _check_origin(rings[0][0] if origin_lonlat is None else origin_lonlat, source)
+    fwd, _ = _projection(origin)
+    local = [np.stack(fwd.transform(r[:, 0], r[:, 1]), -1) for r in rings]
+    return area_from_vertices(local[0], origin_lonlat=origin, holes_m=local[1:], name=name, source=source)
+
+
+def _from_geojson(doc, source: str) -> SurveyArea:
+    geom, props = doc, {}
+    if doc.get("type") == "FeatureCollection":
+        polys = [f for f in doc.get("features", []) if (f.get("geometry") or {}).get("type") == "Polygon"]
+        if not polys:
+            raise ValueError(f"{source}: the FeatureCollection holds no Polygon feature")
+        doc = polys[0]
+    if doc.get("type") == "Feature":
+        geom, props = doc.get("geometry") or {}, doc.get("properties") or {}
+    if geom.get("type") != "Polygon" or not geom.get("coordinates"):
+        raise ValueError(f"{source}: expected a GeoJSON Polygon (or a Feature of one); got type {geom.get('type')!r}")
+    rings = geom["coordinates"]
+    return area_from_lonlat(rings[0], props.get("origin_lonlat"), holes_lonlat=rings[1:],
+                            name=str(props.get("name", Path(source).stem)), source=source)
+
+
+def load_area(path: str | Path) -> SurveyArea:
+    """Read a survey area from a TOML or GeoJSON file (see the module docstring). A relative path
+    is looked up from the working directory, then from the folder the ``sss-locus`` command was
+    started in (:data:`sss_locus.paths.CALLER_DIR_ENV`), then from the repository's root (so the
+    shipped ``data/examples/survey_area.toml`` is found from any run). The area records the
+    file's SHA-256 (``sha256``)."""
+    import hashlib
+    import os
+
+    from ..paths import CALLER_DIR_ENV, REPO_ROOT
+
+    p = Path(path).expanduser()
+    if not p.is_absolute():
+        tries = [Path.cwd(), Path(os.environ.get(CALLER_DIR_ENV) or Path.cwd()), REPO_ROOT]
+        p = next((d / p for d in tries if (d / p).is_file()), p)
+    if not p.is_file():
+        raise ValueError(f"area file {path} does not exist")
+    area = _load_area(p, str(path))
+    return replace(area, sha256=hashlib.sha256(p.read_bytes()).hexdigest())
+
+
+def _load_area(p: Path, source: str) -> SurveyArea:
+    if p.suffix.lower() in (".geojson", ".json"):
+        try:
+            doc = json.loads(p.read_text(encoding="utf-8-sig"))
+        except ValueError as exc:
+            raise ValueError(f"{source} is not valid JSON: {exc}") from None
+        if not isinstance(doc, dict):
+            raise ValueError(f"{source}: a GeoJSON object is expected")
+        return _from_geojson(doc, source)
+    doc = read_toml(p)
+    area = doc.get("area")
+    if not isinstance(area, dict):
+        raise ValueError(f"{source}: missing table [area] (with vertices_m or vertices_lonlat)")
+    unknown = set(area) - {"name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "source",
+                           "assumption"}
+    if unknown:
+        raise ValueError(f"{source}: unknown keys in [area]: {sorted(unknown)} (allowed: name, vertices_m, "
+                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption)")
+    if ("vertices_m" in area) == ("vertices_lonlat" in area):
+        raise ValueError(f"{source}: [area] needs exactly one of vertices_m or vertices_lonlat")
+    name = str(area.get("name", p.stem))
+    if "vertices_m" in area:
+        return area_from_vertices(area["vertices_m"], origin_lonlat=area.get("origin_lonlat"),
+                                  holes_m=area.get("holes_m", ()), name=name, source=source)
+    return area_from_lonlat(area["vertices_lonlat"], area.get("origin_lonlat"), name=name, source=source)
+
+
+def area_from_key(key: dict) -> SurveyArea:
+    """The area of :meth:`SurveyArea.key` (its polygon from the WKT), validated again."""
+    import shapely
+
+    poly = shapely.from_wkt(key["wkt"])
+    area = area_from_vertices(np.asarray(poly.exterior.coords), origin_lonlat=key.get("origin_lonlat"),
+                              holes_m=[np.asarray(r.coords) for r in poly.interiors],
+                              name=key.get("name", "survey area"), source=key.get("source", "vertices"))
+    return replace(area, sha256=key.get("sha256", ""))
+
+
+def principal_heading_deg(area: SurveyArea) -> float:
+    """Heading (degrees from east, counter-clockwise, in [0, 180)) of the long side of the area's
+    minimum rotated rectangle: the direction of the fewest, longest lines."""
+    rect = np.asarray(area.polygon.minimum_rotated_rectangle.exterior.coords)[:4]
+    sides = np.diff(np.vstack([rect, rect[:1]]), axis=0)
+    long = sides[np.argmax(np.hypot(sides[:, 0], sides[:, 1]))]
+    return float(math.degrees(math.atan2(long[1], long[0])) % 180.0)

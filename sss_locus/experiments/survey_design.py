@@ -1,0 +1,332 @@
+"""Survey design: which lines to run for a sonar, a vehicle and an area, and how much better that
+is than the standard sidescan plan (the survey-design chapter).
+
+Typical use::
+
+    from sss_locus.experiments import survey_design as sd
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.survey_area import load_area
+
+    result = sd.design(load_platform("auv"), load_area("data/examples/survey_area.toml"), "flat")
+    result.plans            # every plan searched, with cost, coverage and objectives
+    result.recommended      # the recommended plan's row
+
+Pieces: :mod:`~sss_locus.experiments.survey_area` (the polygon), :mod:`~sss_locus.experiments.
+survey_lines` (lines and turns), :mod:`~sss_locus.experiments.survey_coverage` (who sees what),
+:mod:`~sss_locus.experiments.survey_objectives` (locus, closure, reconstruction),
+:mod:`~sss_locus.experiments.survey_plans` (plan space, limits, baselines).
+
+Evaluation (:func:`evaluate`): ``n_features`` features uniform over the area (seeded), on the
+terrain, observed by every segment of the plan; cost from the track (lines and turns) and the
+platform's speed; coverage measured on a grid; the objectives of every feature seen twice.
+Every plan is evaluated on the same features (common random numbers), so plans are compared
+on equal terms.
+
+Objectives (:data:`OBJECTIVES`; all minimised): ``"locus"`` the median best-pair locus length
+of the features seen by two or more lines; ``"three_view"`` the share of features *not*
+resolved by three views; ``"reconstruction"`` the median 3-D error, under the noise model of
+``data/noise.toml``, of the reconstruction chapter's two-view estimate (the locus point nearest
+the flat-seafloor prior; the N-view estimate ``all`` is reported too, but it needs three views
+off one plane and leaves most features of a surface vessel unestimated).
+
+Front and recommendation (the rule): a plan is *eligible* when it shows at least
+``min(min_two_view_share, the standard plan's share)`` of the features to two or more lines (no
+worse a two-view survey than the standard, nor than the data file's target); the Pareto front
+is the eligible plans no other eligible plan beats in both track length and objective. The
+**recommended plan** is the eligible plan with the smallest objective among those whose track is
+no longer than the standard plan's (ties: the shorter track); when no eligible plan is that
+short, the shortest plan on the front (and the chapter says how much longer it is). The front and the baselines are then evaluated under the noise model
+(:func:`with_noise`). Seed stability (:func:`seed_stability`): the whole search rerun on other
+seeds (other features and in-beam elevations), the recommendation compared.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from .survey_area import SurveyArea, area_from_key
+from .survey_coverage import coverage, observe_lines
+from .survey_lines import track_length
+from .survey_objectives import pair_loci, reconstruction_errors, three_view_closure
+from .survey_plans import (Plan, check_mission, lawnmower_plan, load_settings, plan_grid, plan_ok,
+                           standard_plan)
+from .terrain import KINDS, load_terrain_config, terrain_from_config
+
+OBJECTIVES = {"locus": "locus_median_m", "three_view": "unresolved_share", "reconstruction": "error_two_median_m"}
+"""Objective name -> the column of the plans table it minimises."""
+
+
+@dataclass(frozen=True)
+class Setting:
+    """What every plan is evaluated against."""
+
+    platform: object
+    area: SurveyArea
+    terrain: object
+    settings: dict
+    xy: np.ndarray          # features, area frame (n, 2)
+    heights_m: np.ndarray   # seafloor heights over the area (for the depth limits)
+    centre: tuple[float, float]
+    grid_m: float
+    seed: int
+
+
+def _ints(name, v, lo):
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < lo:
+        raise ValueError(f"{name} must be an integer >= {lo}; got {v!r}")
+    return int(v)
+
+
+def _floats(name, values, lo=-math.inf, hi=math.inf, allow_nan=False):
+    try:
+        a = np.atleast_1d(np.asarray(values, float))
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a non-empty list of numbers; got {values!r}") from None
+    bad = ~np.isfinite(a) & ~(np.isnan(a) if allow_nan else False)
+    if a.ndim != 1 or a.size == 0 or bad.any() or np.any((a[~np.isnan(a)] < lo) | (a[~np.isnan(a)] > hi)):
+        raise ValueError(f"{name} must be a non-empty list of numbers in [{lo:g}, {hi:g}]; got {values!r}")
+    return [float(x) for x in a]
+
+
+GRID_KEYS = {"headings_deg": (-360.0, 360.0), "spacing_fractions": (1e-3, 10.0), "crossing_angles_deg": (0.0, 180.0),
+             "cross_spacing_factors": (1e-3, 10.0), "altitude_fractions": (1e-3, 0.999), "pitches_deg": (-90.0, 90.0)}
+"""The plan grid's keys and the range of their values (``crossing_angles_deg`` may hold NaN: no cross lines)."""
+
+
+def check_grid(grid) -> dict:
+    """Refuse a plan grid with a missing or unknown key or a value out of range, in one line."""
+    if not isinstance(grid, dict) or set(grid) != set(GRID_KEYS):
+        got = sorted(grid) if isinstance(grid, dict) else type(grid).__name__
+        raise ValueError(f"grid must be a dict with exactly the keys {sorted(GRID_KEYS)}; got {got}")
+    return {k: _floats(k, v, lo, hi, allow_nan=k == "crossing_angles_deg") for k, (lo, hi) in GRID_KEYS.items()
+            for v in [grid[k]]}
+
+
+def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: int, seed: int,
+                 grid_m: float, settings: dict | None = None) -> Setting:
+    """Validate the inputs and draw the features (module docstring)."""
+    import shapely
+
+    if not isinstance(area, SurveyArea):
+        raise ValueError(f"area must be a SurveyArea (sss_locus.experiments.survey_area.load_area); got {type(area).__name__}")
+    if terrain_kind not in KINDS:
+        raise ValueError(f"terrain must be one of {list(KINDS)}; got {terrain_kind!r}")
+    check_mission(platform)
+    n = _ints("n_features", n_features, 10)
+    seed = _ints("seed", seed, 0)
+    grid_m = _floats("grid_m", grid_m, 1e-3)[0]
+    settings = load_settings() if settings is None else settings
+    c = area.polygon.centroid
+    x0, y0, x1, y1 = area.polygon.bounds
+    terrain = terrain_from_config(terrain_kind, load_terrain_config(),
+                                  extent_m=2.5 * max(x1 - x0, y1 - y0), seed=seed)
+    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(2801,)))
+    xy = np.zeros((0, 2))
+    while len(xy) < n:
+        cand = np.column_stack([rng.uniform(x0, x1, 4 * n), rng.uniform(y0, y1, 4 * n)])
+        xy = np.vstack([xy, cand[shapely.contains_xy(area.polygon, cand[:, 0], cand[:, 1])]])
+    edge = np.asarray(area.polygon.exterior.coords)
+    probe = np.vstack([edge, xy])
+    heights = terrain.height_m(probe[:, 0] - c.x, probe[:, 1] - c.y)
+    return Setting(platform, area, terrain, settings, xy[:n], heights, (c.x, c.y), grid_m, seed)
+
+
+def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dict:
+    """Cost, coverage and objectives of one plan (module docstring); with ``noise`` also the
+    reconstruction errors under it."""
+    p = s.platform
+    lines = plan.lines(s.area)
+    if lines.empty:
+        raise ValueError(f"plan {plan} leaves no line inside the area")
+    cost = track_length(lines, p.turn_radius_m)
+    same = p.fixed_depth
+    seed = s.seed + seed_offset
+    cov = coverage(p, s.terrain, s.area, lines, plan.altitude_m, plan.pitch_deg, same, grid_m=s.grid_m,
+                   seed=seed, centre=s.centre)
+    views, seen, info = observe_lines(p, s.terrain, s.xy, lines, plan.altitude_m, plan.pitch_deg, same,
+                                      seed, s.centre)
+    ap = p.sonar.aperture()
+    pairs = pair_loci(views, seen, ap, lines["heading_deg"].to_numpy())
+    two = pairs["n_seen"] >= 2
+    closed = three_view_closure(views, seen, ap)
+    row = {**plan.row(), "n_segments": cost["n_segments"], "lines_m": cost["lines_m"], "turns_m": cost["turns_m"],
+           "total_m": cost["total_m"], "time_h": cost["total_m"] / p.speed_m_s / 3600.0,
+           "covered_once": cov["once"], "covered_twice": cov["twice"], "holes": cov["holes"],
+           "n_holes": cov["n_holes"], "nadir_gap_m": cov["nadir_gap_m"],
+           "two_view_share": float(two.mean()), "three_view_share": float(closed.mean()),
+           "unresolved_share": float(1.0 - closed.mean()),
+           "locus_median_m": float(np.nanmedian(pairs["locus_length_m"])) if two.any() else math.nan,
+           "best_pair_angle_median_deg": float(np.nanmedian(pairs["crossing_angle_deg"])) if two.any() else math.nan}
+    if noise is not None:
+        err = reconstruction_errors(views, seen, info["sensor_height_m"], noise, ap, seed)
+        row["error_all_median_m"] = float(err["error_all_m"].median())
+        row["error_two_median_m"] = float(err["error_two_m"].median())
+        row["estimated_share"] = float(err["error_all_m"].notna().mean())
+    return row
+
+
+def pareto_front(cost, value, eligible) -> np.ndarray:
+    """Boolean mask: eligible rows that no other eligible row beats (<= in both, < in one)."""
+    c, v, e = (np.asarray(a) for a in (cost, value, eligible))
+    ok = e & np.isfinite(v)
+    front = np.zeros(c.size, bool)
+    for i in np.flatnonzero(ok):
+        dominated = ok & (c <= c[i]) & (v <= v[i]) & ((c < c[i]) | (v < v[i]))
+        front[i] = not dominated.any()
+    return front
+
+
+def recommend(plans: pd.DataFrame, objective: str, standard_total_m: float) -> int | None:
+    """Index of the recommended plan (module docstring's rule), or ``None`` (no eligible plan)."""
+    col = OBJECTIVES[objective]
+    cand = plans[plans["eligible"] & (plans["total_m"] <= standard_total_m) & plans[col].notna()]
+    if cand.empty:
+        front = plans[plans["front"]]
+        return None if front.empty else int(front.sort_values(["total_m", col], kind="stable").index[0])
+    return int(cand.sort_values([col, "total_m"], kind="stable").index[0])
+
+
+@dataclass(frozen=True)
+class DesignResult:
+    plans: pd.DataFrame        # every plan searched (+ the baselines, kind column)
+    recommended: int | None    # index into plans
+    objective: str
+    setting: Setting
+
+
+def search(s: Setting, objective: str, grid: dict, *, noise=None, progress=None) -> pd.DataFrame:
+    """Every plan of ``grid`` (:func:`~sss_locus.experiments.survey_plans.plan_grid` keywords),
+    the standard plan and the equal-length lawnmower, evaluated; columns of :func:`evaluate`
+    plus ``kind`` (``search``/``standard``/``lawnmower``), ``eligible`` and ``front``."""
+    if objective not in OBJECTIVES:
+        raise ValueError(f"objective must be one of {list(OBJECTIVES)}; got {objective!r}")
+    grid = check_grid(grid)
+    if objective == "reconstruction" and noise is None:
+        raise ValueError("objective 'reconstruction' needs noise (a NoiseModel)")
+    std = standard_plan(s.platform, s.area, s.terrain, s.settings, s.heights_m)
+    if not plan_ok(s.platform, s.settings, s.heights_m, std):
+        raise ValueError(f"no altitude of platform {s.platform.key!r} fits water_depth_m = "
+                         f"{s.settings['water_depth_m']:g} m over this terrain (depth rating "
+                         f"{s.platform.depth_min_m:g}-{s.platform.depth_max_m:g} m)")
+    if std.lines(s.area).empty:
+        x0, y0, x1, y1 = s.area.polygon.bounds
+        raise ValueError(f"area {s.area.name!r} is too small for one line of the standard plan: its lines are "
+                         f"{std.spacing_m:.0f} m apart (standard_spacing_fraction x the range scale) and the first "
+                         f"lies half a spacing inside the area, which spans {x1 - x0:.0f} m x {y1 - y0:.0f} m")
+    plans = [(std, "standard"), (lawnmower_plan(s.platform, s.area, std), "lawnmower")]
+    same = lambda a, b: {**a.row(), "name": ""} == {**b.row(), "name": ""}  # noqa: E731
+    plans += [(p, "search") for p in plan_grid(s.platform, s.area, s.terrain, s.settings, s.heights_m, **grid)
+              if not any(same(p, q) for q, _ in plans)]
+    rows = []
+    for k, (plan, kind) in enumerate(plans):
+        if plan.lines(s.area).empty:
+            continue
+        rows.append({**evaluate(s, plan, noise=noise if objective == "reconstruction" else None), "kind": kind})
+        if progress is not None:
+            progress(k + 1, len(plans))
+    table = pd.DataFrame(rows)
+    need = min(s.settings["min_two_view_share"], float(table.loc[table.kind == "standard", "two_view_share"].iloc[0]))
+    table["eligible"] = table["two_view_share"] >= need
+    col = OBJECTIVES[objective]
+    table["front"] = pareto_front(table["total_m"], table[col], table["eligible"])
+    return table
+
+
+def design(platform, area: SurveyArea, terrain: str, *, objective: str = "locus", grid: dict,
+           n_features: int = 300, seed: int = 0, grid_m: float = 10.0, noise=None) -> DesignResult:
+    """The whole design (module docstring): search, front, recommended plan."""
+    if objective not in OBJECTIVES:
+        raise ValueError(f"objective must be one of {list(OBJECTIVES)}; got {objective!r}")
+    check_grid(grid)
+    s = make_setting(platform, area, terrain, n_features=n_features, seed=seed, grid_m=grid_m)
+    table = search(s, objective, grid, noise=noise)
+    std = float(table.loc[table.kind == "standard", "total_m"].iloc[0])
+    return DesignResult(table, recommend(table, objective, std), objective, s)
+
+
+def search_plans(platform, area_key: dict, terrain: str, objective: str, grid: dict, n_features: int,
+                 seed: int, grid_m: float, noise=None) -> pd.DataFrame:
+    """:func:`design`'s plans table, with the area given by :meth:`SurveyArea.key` (plain data, so
+    the call can be cached: ``cached(search_plans)(...)``); the recommended plan is the row with
+    ``recommended`` True."""
+    res = design(platform, area_from_key(area_key), terrain, objective=objective, grid=grid,
+                 n_features=n_features, seed=seed, grid_m=grid_m, noise=noise)
+    return res.plans.assign(recommended=res.plans.index == res.recommended)
+
+
+def with_noise(platform, area_key: dict, terrain: str, plans: pd.DataFrame, noise, *, n_features: int,
+               seed: int, grid_m: float) -> pd.DataFrame:
+    """The front, the baselines and the recommended plan of ``plans`` (:func:`search_plans`)
+    re-evaluated on the same features with the noise model ``noise``: their rows with
+    ``error_all_median_m``, ``error_two_median_m``, ``estimated_share`` and ``plan_index``."""
+    s = make_setting(platform, area_from_key(area_key), terrain, n_features=n_features, seed=seed, grid_m=grid_m)
+    pick = plans.front | (plans.kind != "search")
+    if "recommended" in plans:
+        pick |= plans.recommended
+    return pd.DataFrame([{**evaluate(s, plan_from_row(r), noise=noise), "kind": r["kind"], "plan_index": i}
+                         for i, r in plans[pick].iterrows()])
+
+
+def plan_from_row(row) -> Plan:
+    """The :class:`~sss_locus.experiments.survey_plans.Plan` of a row of the plans table."""
+    return Plan(**{k: row[k] for k in Plan.__dataclass_fields__})
+
+
+def plan_coverage(platform, area: SurveyArea, terrain: str, row, *, grid_m: float, seed: int):
+    """A plan's segments (from its row of the plans table) and its measured coverage
+    (:func:`~sss_locus.experiments.survey_coverage.coverage`) on the design's terrain."""
+    s = make_setting(platform, area, terrain, n_features=10, seed=seed, grid_m=grid_m)
+    plan = plan_from_row(row)
+    lines = plan.lines(area)
+    cov = coverage(platform, s.terrain, area, lines, plan.altitude_m, plan.pitch_deg, platform.fixed_depth,
+                   grid_m=grid_m, seed=seed, centre=s.centre)
+    return lines, cov
+
+
+def seed_stability(platform, area_key: dict, terrain: str, plans: pd.DataFrame, *, objective: str,
+                   seeds, n_features: int, grid_m: float) -> pd.DataFrame:
+    """The recommendation redone on other seeds (other features, in-beam elevations, coverage
+    grid draws). Only the plans the rule can pick are re-evaluated: the baselines, the front and
+    every plan no longer than the standard plan (the rule depends on no other). One row per seed:
+    the recommended plan, its objective, the standard plan's and their ratio, and whether it is
+    the plan recommended on the first seed (``same``)."""
+    col = OBJECTIVES[objective]
+    std_total = float(plans.loc[plans.kind == "standard", "total_m"].iloc[0])
+    pick = plans[(plans.kind != "search") | plans.front | (plans.total_m <= std_total)]
+    first = plans.index[plans["recommended"]] if "recommended" in plans else []
+    area = area_from_key(area_key)
+    rows = []
+    for sd in seeds:
+        s = make_setting(platform, area, terrain, n_features=n_features, seed=int(sd), grid_m=grid_m)
+        t = pd.DataFrame([{**evaluate(s, plan_from_row(r)), "kind": r["kind"]} for _, r in pick.iterrows()],
+                         index=pick.index)
+        need = min(s.settings["min_two_view_share"], float(t.loc[t.kind == "standard", "two_view_share"].iloc[0]))
+        t["eligible"] = t["two_view_share"] >= need
+        t["front"] = pareto_front(t["total_m"], t[col], t["eligible"])
+        k = recommend(t, objective, float(t.loc[t.kind == "standard", "total_m"].iloc[0]))
+        std = float(t.loc[t.kind == "standard", col].iloc[0])
+        rec = t.loc[k] if k is not None else None
+        rows.append({"seed": int(sd), "plan_index": k, "same": k is not None and k in list(first),
+                     **{c: (rec[c] if rec is not None else math.nan) for c in Plan.__dataclass_fields__ if c != "name"},
+                     "recommended_value": rec[col] if rec is not None else math.nan, "standard_value": std,
+                     "ratio": (rec[col] / std) if rec is not None and std > 0 else math.nan})
+    return pd.DataFrame(rows)
+
+
+def by_crossing_angle(plans: pd.DataFrame, objective: str) -> pd.DataFrame:
+    """The searched eligible plans grouped by their second line set: ``second_set`` (``"none"``,
+    ``"repeat"`` for an offset repeat at 0°, else ``"cross <angle>°"``), ``crossing_deg`` (NaN
+    for none), the number of plans, the best and the median objective, and the median crossing
+    angle of the features' best pairs."""
+    col = OBJECTIVES[objective]
+    t = plans[(plans.kind == "search") & plans.eligible].copy()
+    t["second_set"] = [("none" if math.isnan(g) else "repeat" if g % 180 == 0 else f"cross {g:g}°")
+                       for g in t.crossing_deg]
+    out = t.groupby("second_set", sort=False).agg(
+        crossing_deg=("crossing_deg", "first"), n_plans=(col, "size"), best=(col, "min"),
+        median=(col, "median"), best_pair_angle_median_deg=("best_pair_angle_median_deg", "median"))
+    return out.reset_index().sort_values("crossing_deg", na_position="first", kind="stable").reset_index(drop=True)

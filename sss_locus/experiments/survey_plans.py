@@ -1,0 +1,188 @@
+"""Survey plans: the plan space searched by the survey design, the platform's limits on it, and
+the baselines a hydrographer runs today.
+
+A :class:`Plan` is a set of main lines (heading, spacing), optionally a set of cross lines at a
+``crossing_deg`` to them (0: a repeat of the main lines offset by half a spacing, the standard
+second coverage) with their own spacing, and the vehicle's altitude and pitch on every line.
+
+Limits (:func:`plan_limits`, each plan outside them is left out of the search, never clipped):
+the altitude must leave a swath (``altitude < range``, above the transducer) and put the vehicle
+within its depth rating (``depth_m.min <= water depth - seafloor height - altitude <=
+depth_m.max`` over the whole area, the seafloor height from the terrain); a platform of fixed
+depth (a surface vessel) flies at the one altitude the water depth gives; ``|pitch|`` within
+the platform's pitch limit. Turns use the platform's ``mission.turn_radius_m``
+(:mod:`sss_locus.experiments.survey_lines`).
+
+Baselines (:func:`standard_plan`, :func:`lawnmower_plan`), values in ``data/survey_design.toml``
+with their sources:
+
+``standard``
+    the standard sidescan plan: lines ``standard_spacing_fraction`` (1.6) x the range scale
+    apart, 200 % coverage by a second set offset by ``standard_offset_fraction`` of a spacing,
+    altitude the middle of ``[standard_altitude_min_fraction, standard_altitude_max_fraction]`` x
+    the range scale (clipped to the platform's limits; a surface vessel: the water depth), lines
+    perpendicular to the depth contours on a slope (along its azimuth), else along the area's
+    long axis;
+``lawnmower``
+    one set of lines at the standard heading and altitude, spaced so that its track is as long
+    as the standard plan's (bisection on the spacing; lines come in whole numbers, so the
+    longest track not longer than the standard's): the same effort spent on plain parallel
+    lines.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+import pandas as pd
+
+from . import datadoc
+from .inputs import sourced, table
+from .survey_area import SurveyArea, principal_heading_deg
+from .survey_lines import line_set, track_length
+
+SETTINGS = (("range_scale_fraction", 1e-3, 10.0), ("standard_spacing_fraction", 1e-3, 10.0),
+            ("standard_offset_fraction", 0.0, 1.0), ("standard_altitude_min_fraction", 0.0, 1.0),
+            ("standard_altitude_max_fraction", 0.0, 1.0), ("water_depth_m", 0.0, 12000.0),
+            ("min_two_view_share", 0.0, 1.0))
+
+
+def load_settings(doc=None) -> dict:
+    """The ``survey_design`` table (``data/survey_design.toml`` merged with the active user data,
+    or of ``doc``), validated: values by key plus ``provenance`` (key -> source/assumption)."""
+    if doc is None:
+        datadoc.note_read("survey_design")
+        doc = datadoc.document()
+    t = table(doc, "survey_design", "")
+    unknown = set(t) - {k for k, _, _ in SETTINGS}
+    if unknown:
+        raise ValueError(f"survey_design.{sorted(unknown)[0]} is not a survey-design key; allowed: "
+                         f"{[k for k, _, _ in SETTINGS]}")
+    prov: dict[str, str] = {}
+    out = {k: sourced(t, k, "survey_design", prov, lo=lo, hi=hi) for k, lo, hi in SETTINGS}
+    if out["standard_altitude_min_fraction"] > out["standard_altitude_max_fraction"]:
+        raise ValueError("survey_design.standard_altitude_min_fraction must not exceed standard_altitude_max_fraction")
+    out["provenance"] = prov
+    return out
+
+
+@dataclass(frozen=True)
+class Plan:
+    """One survey plan (see the module docstring); angles in degrees, lengths in metres.
+    ``crossing_deg`` NaN: no cross lines."""
+
+    heading_deg: float
+    spacing_m: float
+    crossing_deg: float
+    cross_spacing_m: float
+    altitude_m: float
+    pitch_deg: float = 0.0
+    name: str = ""
+
+    def lines(self, area: SurveyArea) -> pd.DataFrame:
+        """The plan's segments in run order: main lines, then cross lines."""
+        main = line_set(area, self.heading_deg, self.spacing_m, name="main")
+        if math.isnan(self.crossing_deg):
+            return main
+        offset = 0.5 if self.crossing_deg % 180.0 == 0.0 else 0.0
+        cross = line_set(area, (self.heading_deg + self.crossing_deg) % 360.0, self.cross_spacing_m,
+                         offset=offset, name="cross")
+        return pd.concat([main, cross], ignore_index=True)
+
+    def row(self) -> dict:
+        return asdict(self)
+
+
+def range_scale_m(platform, settings) -> float:
+    return platform.sonar.max_range_m * settings["range_scale_fraction"]
+
+
+def check_mission(platform) -> None:
+    """Refuse a platform without the ``mission`` values the design needs, in one line."""
+    for name in ("turn_radius_m", "speed_m_s"):
+        if getattr(platform, name, None) is None:
+            raise ValueError(f"platforms.{platform.key}.mission.{name} is needed by the survey design: add "
+                             f"[platforms.{platform.key}.mission] {name} = {{ value = ..., source|assumption = ... }}")
+
+
+def altitude_limits(platform, settings, heights_m) -> tuple[float, float]:
+    """The altitudes (above the local seafloor, m) the platform may fly over seafloor heights
+    ``heights_m`` (module docstring); ``lo > hi`` when none."""
+    water = settings["water_depth_m"]
+    hmin, hmax = float(np.min(heights_m)), float(np.max(heights_m))
+    t_depth = max(t.depth_m for t in platform.transducers.values())
+    lo = max(1e-6, t_depth + 1e-6, water - hmin - platform.depth_max_m)
+    hi = min(platform.sonar.max_range_m * 0.999, water - hmax - platform.depth_min_m)
+    return lo, hi
+
+
+def fixed_altitude_m(platform, settings) -> float | None:
+    """A platform of fixed depth flies at ``water depth - its depth`` above the mean seafloor."""
+    return settings["water_depth_m"] - platform.depth_min_m if platform.fixed_depth else None
+
+
+def plan_ok(platform, settings, heights_m, plan: Plan) -> bool:
+    """Whether ``plan`` is within the platform's limits (module docstring)."""
+    if abs(plan.pitch_deg) > platform.pitch_max_deg:
+        return False
+    fixed = fixed_altitude_m(platform, settings)
+    if fixed is not None:
+        return plan.altitude_m == fixed and fixed - float(np.max(heights_m)) > 0
+    lo, hi = altitude_limits(platform, settings, heights_m)
+    return lo <= plan.altitude_m <= hi
+
+
+def standard_heading_deg(area: SurveyArea, terrain) -> float:
+    if terrain.kind == "slope" and terrain.params.get("slope_deg", 0.0) > 0:
+        return float(terrain.params["azimuth_deg"] % 180.0)
+    return principal_heading_deg(area)
+
+
+def standard_plan(platform, area: SurveyArea, terrain, settings, heights_m) -> Plan:
+    """The standard sidescan plan (module docstring)."""
+    R = range_scale_m(platform, settings)
+    fixed = fixed_altitude_m(platform, settings)
+    if fixed is not None:
+        alt = fixed
+    else:
+        lo, hi = altitude_limits(platform, settings, heights_m)
+        mid = 0.5 * (settings["standard_altitude_min_fraction"] + settings["standard_altitude_max_fraction"]) * R
+        alt = float(np.clip(mid, lo, hi))
+    spacing = settings["standard_spacing_fraction"] * R
+    return Plan(standard_heading_deg(area, terrain), spacing, 0.0, spacing, alt, 0.0, "standard")
+
+
+def lawnmower_plan(platform, area: SurveyArea, standard: Plan) -> Plan:
+    """Parallel lines only, spaced so the track is as long as the standard plan's (bisection)."""
+    target = track_length(standard.lines(area), platform.turn_radius_m)["total_m"]
+    mk = lambda s: Plan(standard.heading_deg, s, math.nan, s, standard.altitude_m, 0.0, "lawnmower")  # noqa: E731
+    lo, hi = 1.0, standard.spacing_m * 4
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lines = mk(mid).lines(area)
+        total = track_length(lines, platform.turn_radius_m)["total_m"] if len(lines) else 0.0
+        lo, hi = (mid, hi) if total > target else (lo, mid)
+    return mk(hi)
+
+
+def plan_grid(platform, area: SurveyArea, terrain, settings, heights_m, *, headings_deg, spacing_fractions,
+              crossing_angles_deg, cross_spacing_factors, altitude_fractions, pitches_deg) -> list[Plan]:
+    """Every plan of the grid within the platform's limits. ``crossing_angles_deg`` may hold NaN
+    (no cross lines); spacings are fractions of the range scale, cross spacings factors of the
+    main spacing, altitudes fractions of the range scale (a fixed-depth platform: its one)."""
+    R = range_scale_m(platform, settings)
+    fixed = fixed_altitude_m(platform, settings)
+    alts = [fixed] if fixed is not None else [float(a) * R for a in altitude_fractions]
+    plans = []
+    for h in headings_deg:
+        for s in spacing_fractions:
+            for g in crossing_angles_deg:
+                for cf in ([1.0] if math.isnan(g) else cross_spacing_factors):
+                    for a in alts:
+                        for p in pitches_deg:
+                            plan = Plan(float(h), float(s) * R, float(g), float(s) * R * float(cf), float(a), float(p))
+                            if plan_ok(platform, settings, heights_m, plan):
+                                plans.append(plan)
+    return plans

@@ -1,0 +1,213 @@
+"""Survey design: lines, turns, coverage, limits, baselines and refusals, against hand
+calculations and independent references (pyproj's geodesic area, closed-form turns)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+pytest.importorskip("shapely")
+pytest.importorskip("pyproj")
+
+from sss_locus.experiments import survey_design as sd  # noqa: E402
+from sss_locus.experiments.platforms import load_platform  # noqa: E402
+from sss_locus.experiments.survey_area import area_from_vertices, load_area  # noqa: E402
+from sss_locus.experiments.survey_coverage import coverage  # noqa: E402
+from sss_locus.experiments.survey_lines import line_set, track_length, uturn_length_m  # noqa: E402
+from sss_locus.experiments.survey_plans import Plan, load_settings, plan_grid  # noqa: E402
+from sss_locus.experiments.terrain import flat_terrain  # noqa: E402
+
+RECT = [[0.0, 0.0], [800.0, 0.0], [800.0, 500.0], [0.0, 500.0]]
+SMALL_GRID = dict(headings_deg=[0.0, 90.0], spacing_fractions=[1.2], crossing_angles_deg=[math.nan, 90.0],
+                  cross_spacing_factors=[1.0], altitude_fractions=[0.08, 0.14, 0.5], pitches_deg=[0.0, 30.0, 60.0])
+
+
+def test_uturn_lengths_match_the_closed_forms():
+    R = 10.0
+    # d >= 2R: two quarter circles and a straight; d = 0: the omega turn of 7 pi R / 3
+    assert uturn_length_m(50.0, R) == pytest.approx(math.pi * R + 30.0)
+    assert uturn_length_m(2 * R, R) == pytest.approx(math.pi * R)
+    assert uturn_length_m(0.0, R) == pytest.approx(7 * math.pi * R / 3)
+    # continuous at d = 2R and never shorter than a semicircle
+    d = np.linspace(0, 4 * R, 81)
+    lengths = uturn_length_m(d, R)
+    assert np.all(lengths >= math.pi * R - 1e-9)
+    assert uturn_length_m(2 * R - 1e-9, R) == pytest.approx(math.pi * R, abs=1e-3)
+
+
+def test_lines_and_track_of_a_rectangle_by_hand():
+    area = area_from_vertices(RECT)
+    lines = line_set(area, 0.0, 100.0)
+    assert list(lines.y0_m) == [50.0, 150.0, 250.0, 350.0, 450.0]
+    assert list(lines.heading_deg) == [0.0, 180.0, 0.0, 180.0, 0.0]  # boustrophedon
+    cost = track_length(lines, 10.0)
+    assert cost["lines_m"] == pytest.approx(5 * 800.0)
+    assert cost["turns_m"] == pytest.approx(4 * (math.pi * 10.0 + 100.0 - 20.0))
+    # a concave area cuts a line in two, run in order along the line
+    notch = area_from_vertices([[0, 0], [800, 0], [800, 500], [400, 200], [0, 500]])
+    third = line_set(notch, 0.0, 100.0).query("line == 2")
+    assert len(third) == 2 and third.x0_m.iloc[0] < third.x0_m.iloc[1]
+
+
+def test_standard_plan_coverage_matches_a_hand_calculation():
+    """Boat on a flat floor, rectangle: each line sees the band near <= |y - y_line| <= far, with
+    near = lateral + H / tan(tilt + fan/2) and far = lateral + sqrt(range^2 - H^2)."""
+    boat = load_platform("boat")
+    area = area_from_vertices(RECT)
+    settings = load_settings()
+    water = settings["water_depth_m"]
+    plan = Plan(0.0, 240.0, 0.0, 240.0, water, 0.0, "standard")
+    lines = plan.lines(area)
+    grid_m = 10.0
+    cov = coverage(boat, flat_terrain(), area, lines, water, 0.0, True, grid_m=grid_m, seed=3)
+    t = boat.transducers["port"]
+    H = water - t.depth_m
+    near = t.lateral_offset_m + H / math.tan(math.radians(t.tilt_deg + boat.sonar.azimuth_deg / 2))
+    far = t.lateral_offset_m + math.sqrt(boat.sonar.max_range_m ** 2 - H ** 2)
+    assert cov["nadir_gap_m"] == pytest.approx(near)
+    y = (np.arange(50) + 0.5) * grid_m
+    d = np.abs(y[:, None] - lines.y0_m.to_numpy()[None, :])
+    n_lines = ((d >= near) & (d <= far)).sum(axis=1)
+    tol = 1.0 / len(y) + 1e-9  # one row of cells at a swath edge
+    assert cov["once"] == pytest.approx(np.mean(n_lines >= 1), abs=tol)
+    assert cov["twice"] == pytest.approx(np.mean(n_lines >= 2), abs=tol)
+    assert cov["holes"] == pytest.approx(np.mean(n_lines == 0), abs=tol)
+
+
+def test_every_plan_respects_the_platform_limits():
+    settings = load_settings()
+    area = area_from_vertices(RECT)
+    for key in ("auv", "boat"):
+        pf = load_platform(key)
+        heights = np.zeros(4)
+        plans = plan_grid(pf, area, flat_terrain(), settings, heights, **SMALL_GRID)
+        assert plans
+        for p in plans:
+            assert abs(p.pitch_deg) <= pf.pitch_max_deg
+            depth = settings["water_depth_m"] - p.altitude_m
+            assert pf.depth_min_m - 1e-9 <= depth <= pf.depth_max_m + 1e-9
+            assert p.altitude_m < pf.sonar.max_range_m
+        if key == "auv":  # 60 deg pitch is beyond the AUV's 45 deg; 0.5 x range is above the surface
+            assert {p.pitch_deg for p in plans} == {0.0, 30.0}
+            assert max(p.altitude_m for p in plans) < settings["water_depth_m"]
+        else:
+            assert {p.altitude_m for p in plans} == {settings["water_depth_m"]}
+
+
+def test_search_finds_the_cheapest_covering_heading_of_a_long_strip():
+    """A 2 km x 300 m strip: lines along it (heading 0) cover it with a fraction of the turns, so
+    the cheapest plan of the front and the recommended plan run along the strip."""
+    strip = area_from_vertices([[0, 0], [2000, 0], [2000, 300], [0, 300]], name="strip")
+    grid = dict(headings_deg=[0.0, 90.0], spacing_fractions=[0.8, 1.2], crossing_angles_deg=[math.nan],
+                cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
+    res = sd.design(load_platform("auv"), strip, "flat", grid=grid, n_features=40, seed=0, grid_m=40.0)
+    t = res.plans
+    front = t[t.front].sort_values("total_m")
+    assert front.heading_deg.iloc[0] % 180 == 0.0
+    assert t.loc[res.recommended, "heading_deg"] % 180 == 0.0
+    along, across = (t[(t.kind == "search") & (t.heading_deg == h)].total_m.min() for h in (0.0, 90.0))
+    assert along < across
+    # the lawn-mower is no longer than the standard plan, and one more line would make it longer
+    std, mow = (t[t.kind == k].total_m.iloc[0] for k in ("standard", "lawnmower"))
+    mow_plan = sd.plan_from_row(t[t.kind == "lawnmower"].iloc[0])
+    assert mow <= std
+    n = mow_plan.lines(strip).line.nunique()
+    denser = Plan(0.0, 300.0 / (n + 1), math.nan, 1.0, mow_plan.altitude_m)
+    assert denser.lines(strip).line.nunique() == n + 1
+    assert track_length(denser.lines(strip), 10.0)["total_m"] > std
+
+
+def test_pareto_front_and_rule_on_a_constructed_table():
+    cost = np.array([1.0, 2.0, 3.0, 2.5, 1.5])
+    value = np.array([5.0, 3.0, 1.0, 3.5, 6.0])
+    eligible = np.array([True, True, True, True, False])
+    assert list(sd.pareto_front(cost, value, eligible)) == [True, True, True, False, False]
+    t = pd.DataFrame({"total_m": cost, "locus_median_m": value, "eligible": eligible,
+                      "front": sd.pareto_front(cost, value, eligible)})
+    assert sd.recommend(t, "locus", 2.6) == 1       # best value within the standard's length
+    assert sd.recommend(t, "locus", 0.5) == 0       # none that short: the shortest on the front
+
+
+def test_geojson_area_matches_the_geodesic_area(tmp_path):
+    from pyproj import Geod
+
+    ring = [[-111.81, 40.234], [-111.80, 40.234], [-111.80, 40.239], [-111.81, 40.2385], [-111.81, 40.234]]
+    path = tmp_path / "area.geojson"
+    path.write_text(json.dumps({"type": "Feature", "properties": {"name": "lake"},
+                                "geometry": {"type": "Polygon", "coordinates": [ring]}}))
+    area = load_area(path)
+    lon, lat = zip(*ring)
+    geodesic, _ = Geod(ellps="WGS84").polygon_area_perimeter(lon, lat)
+    assert area.area_m2 == pytest.approx(abs(geodesic), rel=1e-3)
+    assert area.origin_lonlat == (-111.81, 40.234)
+    back = np.column_stack(area.to_lonlat(*np.asarray(area.polygon.exterior.coords).T))
+    assert np.allclose(back, ring, atol=1e-9)
+
+
+@pytest.mark.parametrize("doc, message", [
+    ("[area]\nvertices_m = [[0, 0], [100, 100], [100, 0], [0, 100]]\n", "not valid"),   # a bow tie
+    ("[area]\nvertices_m = [[0, 0], [100, 0]]\n", "at least 3 distinct vertices"),
+    ("[area]\nvertices_m = []\n", "vertices must be"),
+    ("[area]\nvertices_m = [[0, 0], [5, 0], [5, 5], [0, 5]]\n", "are the vertices in metres"),
+    ("[area]\nname = 'x'\n", "exactly one of vertices_m or vertices_lonlat"),
+    ("[area]\nvertices_m = [[0, 0], [90, 0], [90, 90]]\norigin_lonlat = [200, 0]\n", "origin_lonlat"),
+])
+def test_bad_areas_are_refused_in_one_line(tmp_path, doc, message):
+    path = tmp_path / "area.toml"
+    path.write_text(doc)
+    with pytest.raises(ValueError, match=message) as err:
+        load_area(path)
+    assert "\n" not in str(err.value)
+
+
+def test_bad_design_inputs_are_refused_before_work(tmp_path):
+    auv = load_platform("auv")
+    area = area_from_vertices(RECT)
+    for kwargs, message in ((dict(objective="shortest"), "objective must be one of"),):
+        with pytest.raises(ValueError, match=message):
+            sd.design(auv, area, "flat", grid=SMALL_GRID, n_features=20, **kwargs)
+    with pytest.raises(ValueError, match="terrain must be one of"):
+        sd.design(auv, area, "hilly", grid=SMALL_GRID, n_features=20)
+    with pytest.raises(ValueError, match="n_features must be an integer >= 10"):
+        sd.design(auv, area, "flat", grid=SMALL_GRID, n_features=3)
+    with pytest.raises(ValueError, match="has no origin"):
+        area.to_lonlat([0.0], [0.0])
+    import dataclasses
+    with pytest.raises(ValueError, match=r"platforms\.auv\.mission\.turn_radius_m is needed"):
+        sd.design(dataclasses.replace(auv, turn_radius_m=None), area, "flat", grid=SMALL_GRID, n_features=20)
+    with pytest.raises(ValueError, match="spacing_fractions must be a non-empty list of numbers in"):
+        sd.design(auv, area, "flat", grid={**SMALL_GRID, "spacing_fractions": [0.0]}, n_features=20)
+    with pytest.raises(ValueError, match="grid must be a dict with exactly the keys"):
+        sd.design(auv, area, "flat", grid={"headings_deg": [0.0]}, n_features=20)
+    tiny = area_from_vertices([[0, 0], [100, 0], [100, 20], [0, 20]])
+    with pytest.raises(ValueError, match="too small for one line"):
+        sd.design(auv, tiny, "flat", grid=SMALL_GRID, n_features=20)
+
+
+def test_search_finds_the_best_crossing_angle_of_the_survey_chapters_curve():
+    """Constructed case: main lines and cross lines so far apart (4 x the range) that a feature
+    is seen by at most one of each, so its best pair crosses at the plan's angle. The survey
+    chapter's Monte Carlo curve (simulate_passes, offsets uniform over the swath, the same
+    altitude, level) gives the median locus at each angle independently; the search must rank
+    the angles as the curve does, pick the curve's best angle, and agree in value."""
+    from sss_locus.experiments.envelopes import OffsetModel, load_envelope
+    from sss_locus.experiments.survey_passes import simulate_passes
+
+    auv = load_platform("auv")
+    angles = [20.0, 45.0, 90.0]
+    env = load_envelope("auv").with_pitch(0.0, 0.0).with_altitude(21.0, 21.0)
+    samples, _ = simulate_passes(auv, env, OffsetModel("independent"), angles, 512, 0)
+    curve = samples.groupby("crossing_angle_deg").locus_length_m.median()
+    square = area_from_vertices([[0, 0], [1000, 0], [1000, 1000], [0, 1000]])
+    grid = dict(headings_deg=[0.0], spacing_fractions=[4.0], crossing_angles_deg=angles,
+                cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
+    t = sd.design(auv, square, "flat", grid=grid, n_features=300, seed=0, grid_m=100.0).plans
+    found = t[t.kind == "search"].set_index("crossing_deg")
+    assert list(found.best_pair_angle_median_deg) == angles  # one main and one cross line per feature
+    assert found.locus_median_m.idxmin() == curve.idxmin()
+    assert list(found.locus_median_m.sort_values().index) == list(curve.sort_values().index)
+    assert np.allclose(found.locus_median_m[angles], curve[angles], rtol=0.3)
