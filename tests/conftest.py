@@ -101,9 +101,13 @@ def _uses_quick_book(item) -> bool:
 
 def _shared_fixtures(item) -> list[str]:
     """The project's own fixtures broader than one test (module or session scope) that ``item``
-    uses, the quick book aside: building one twice would double its cost."""
+    uses, the quick book aside, each with its parameter's index where it has one
+    (``comparison:2``; not in brackets, which xdist would read as a test's parameters): building
+    one twice would double its cost."""
     defs = getattr(getattr(item, "_fixtureinfo", None), "name2fixturedefs", {})
-    return sorted(name for name, fixturedefs in defs.items()
+    indices = getattr(getattr(item, "callspec", None), "indices", {})
+    return sorted(f"{name}:{indices[name]}" if name in indices else name
+                  for name, fixturedefs in defs.items()
                   if name != "quick_book" and fixturedefs and fixturedefs[-1].baseid
                   and fixturedefs[-1].scope != "function")
 
@@ -112,15 +116,14 @@ def _shared_fixtures(item) -> list[str]:
 def pytest_collection_modifyitems(config, items):
     """Tests of the built book run last (the order is otherwise kept), so the background build
     overlaps everything else; among them, those sharing an expensive fixture (the your-hardware
-    page's runs, the PDF) come first and, under pytest-xdist's ``--dist loadgroup``, form one
-    group each, so that fixture is built by one worker only."""
-    def key(item):
-        return (_uses_quick_book(item), not _shared_fixtures(item))
-
-    items.sort(key=key)
+    page's runs, the PDF) come first. Under pytest-xdist's ``--dist loadgroup`` the tests sharing
+    a module or session fixture of the project (with one parameter) form one group each, so that
+    fixture is built by one worker only."""
+    items.sort(key=lambda item: (_uses_quick_book(item), not _shared_fixtures(item)))
     for item in items:
-        if _uses_quick_book(item) and _shared_fixtures(item):
-            item.add_marker(pytest.mark.xdist_group("+".join(_shared_fixtures(item))))
+        shared = _shared_fixtures(item)
+        if shared:
+            item.add_marker(pytest.mark.xdist_group("+".join(shared)))
 
 
 def _quick_book(config):
@@ -129,11 +132,20 @@ def _quick_book(config):
     return QuickBook(shared_root(config._tmp_path_factory.getbasetemp()))
 
 
+#: Niceness an xdist worker takes once the quick book has started: the book is the start of the
+#: run's longest chain (the book, then the tests that read it), so it gets the cores first, the
+#: other tests what it leaves (about a quarter each while it runs, not nothing: nothing times out).
+WORKER_NICENESS = 5
+
+
 def pytest_collection_finish(session):
     """Start the quick book (once per run, whichever process gets here first) if a collected,
-    selected test uses it."""
+    selected test uses it; then an xdist worker lowers its own priority (and its children's)
+    below the book's."""
     if any(_uses_quick_book(item) for item in session.items):
         _quick_book(session.config).start()
+        if os.environ.get("PYTEST_XDIST_WORKER") and hasattr(os, "nice"):
+            os.nice(WORKER_NICENESS)
 
 
 def pytest_sessionfinish(session):

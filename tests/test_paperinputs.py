@@ -17,12 +17,17 @@ REGISTRY = load_registry()
 PLATFORM_NOTEBOOKS = [n for n, e in REGISTRY.items() if "platforms" in e.parameters()]
 
 
+# Chapters whose platform is named by their input file, not chosen by a parameter.
+PLATFORM_FROM_INPUT = {"your_pings": "each sighting of the observations file names its platform key"}
+
+
 def test_every_notebook_that_takes_platforms_selects_them_with_one_parameter():
     for name, entry in REGISTRY.items():
         names = set(entry.parameters())
         assert "sonar_platform" not in names, name
-        if names & {"data_files", "data_set"}:  # reads the platform data
+        if names & {"data_files", "data_set"} and name not in PLATFORM_FROM_INPUT:  # reads the platform data
             assert "platforms" in names, f"{name} reads data but does not take `platforms`"
+    assert "observations" in REGISTRY["your_pings"].parameters()
     assert {"concept", "rigs", "pose_space", "survey_passes", "planning", "three_views", "noise"} <= set(
         PLATFORM_NOTEBOOKS)
 

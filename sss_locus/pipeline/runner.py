@@ -1,12 +1,10 @@
 """Execute registered notebooks with papermill, hermetically, into their executed copies.
 
-* The kernel is this environment's Python, registered as kernel ``sss-locus`` in a
-  kernelspec folder inside the build area (a kernelspec in the home folder cannot shadow it).
-* ``IPYTHONDIR``, ``JUPYTER_DATA_DIR``, ``JUPYTER_RUNTIME_DIR`` and ``MPLCONFIGDIR`` point into
-  the build area, so runs neither read nor write the user's Jupyter/Matplotlib state.
+* The kernel is this environment's Python, kernel ``sss-locus`` of a kernelspec folder in the build
+  area; ``IPYTHONDIR``, ``JUPYTER_*_DIR`` and ``MPLCONFIGDIR`` point there too, so a kernelspec in
+  the home folder cannot shadow it and runs leave the user's Jupyter/Matplotlib state alone.
 * The kernel's working directory is the executed copy's folder (papermill ``--cwd``).
-* The cell papermill injects with the run's parameters is tagged ``hide-input`` and labelled,
-  so the book shows it as a small collapsed block.
+* The cell papermill injects with the run's parameters is a small collapsed block in the book.
 * Runs are atomic: papermill runs in a child process (its own session) into a private staging
   folder (``<build>/tmp/run-...``; a side run's beside its ``--output``) with the kernel's
   connection file in that folder too. Only a run that succeeds replaces the executed copy and
