@@ -244,8 +244,8 @@ EXAMPLE = paths.REPO_ROOT / "data" / "examples" / "my_auv.toml"
 PAGE = paths.BOOK_DIR / "your_hardware.md"
 
 
-def page_commands(kind: str = "bash") -> list[list[str]]:
-    """The ``sss-locus`` commands of the page's ``kind`` code blocks, in order, as argument lists
+def page_commands(kind: str = "bash", program: str = "sss-locus") -> list[list[str]]:
+    """The ``program`` commands of the page's ``kind`` code blocks, in order, as argument lists
     (``text`` blocks: the commands after a ``$`` prompt, shown there with their refusal)."""
     import re
     import shlex
@@ -256,7 +256,7 @@ def page_commands(kind: str = "bash") -> list[list[str]]:
             if kind == "text" and not line.startswith("$ "):
                 continue  # a command's output
             line = line.strip().removeprefix("$ ")
-            if line.startswith("sss-locus "):
+            if line.startswith(f"{program} "):
                 out.append(shlex.split(line, comments=True))
     return out
 
@@ -281,6 +281,8 @@ def user_book(quick_book, tmp_path_factory):
     shutil.copytree(quick_book["area"], area, ignore=shutil.ignore_patterns("jupyter-book"))
     user = work / "my_auv.toml"
     shutil.copy(EXAMPLE, user)
+    for _, source, target in page_commands(program="cp"):  # the files the page has you copy
+        shutil.copy(paths.REPO_ROOT / source, work / target)
     env = {**quick_book["env"], paths.BUILD_DIR_ENV: str(area)}
     before = _snapshot(area)
 
@@ -288,7 +290,7 @@ def user_book(quick_book, tmp_path_factory):
         argv = [str(user) if a == "data/examples/my_auv.toml" else a for a in argv[1:]]
         if argv[0] in ("run", "book") and "--profile" not in argv:
             argv += ["--profile", "quick"]
-        return subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli", *argv], env=env, cwd=paths.REPO_ROOT,
+        return subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli", *argv], env=env, cwd=work,
                               capture_output=True, text=True, timeout=TIMEOUT_S, stdin=subprocess.DEVNULL)
 
     refused = [run(argv) for argv in page_commands("text")]

@@ -217,3 +217,36 @@ def test_run_on_a_terminal_shows_bars(build_area, tmp_path):
     text = shown.decode("utf-8", "replace")
     assert re.search(r"notebooks: +100%\|", text) and re.search(r"start study_t \[quick\]", text)
     assert "study_t: sample_pose_space" in text  # the batch bar (it is removed when the study ends)
+
+
+def test_lines_written_from_many_threads_at_once_stay_whole(monkeypatch):
+    """``book --jobs`` logs each notebook's start from its worker thread while the main thread
+    logs results: every line must come out whole. The stream here yields to other threads inside
+    each write, as a busy pipe does, so text and newline written apart would be split."""
+    import threading
+
+    from sss_locus.pipeline.progress import NotebookBar
+
+    class YieldingStream(io.StringIO):
+        def write(self, text):
+            time.sleep(0.0005)
+            return super().write(text)
+
+    out = YieldingStream()
+    monkeypatch.setattr(sys, "stdout", out)
+    bar = NotebookBar(total=0, stream=io.StringIO())
+    barrier = threading.Barrier(4)
+
+    def writer(k: int) -> None:
+        barrier.wait()
+        for i in range(50):
+            bar.write(f"line {k} {i} end")
+
+    threads = [threading.Thread(target=writer, args=(k,)) for k in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    lines = out.getvalue().splitlines()
+    assert len(lines) == 4 * 50
+    assert all(re.fullmatch(r"line \d \d+ end", line) for line in lines)

@@ -163,6 +163,7 @@ class NotebookBar:
 
     def __init__(self, total: int, stream: Any = None) -> None:
         self.total, self.done, self.start = total, 0, time.perf_counter()
+        self._lock = threading.Lock()
         self.stream = sys.stderr if stream is None else stream
         self.bar = None
         if total and is_terminal(self.stream):
@@ -172,10 +173,15 @@ class NotebookBar:
                             dynamic_ncols=True)
 
     def write(self, line: str) -> None:
-        if self.bar is not None:
-            self.bar.write(line, file=sys.stdout)
-        else:
-            print(line, flush=True)
+        """One whole line, also from several threads at once (``book --jobs`` logs each start from
+        its worker thread): ``print`` writes the text and its newline separately, so two
+        threads' lines could run into one."""
+        with self._lock:
+            if self.bar is not None:
+                self.bar.write(line, file=sys.stdout)
+            else:
+                sys.stdout.write(line + "\n")
+                sys.stdout.flush()
 
     @contextmanager
     def timed(self, name: str) -> Iterator[None]:
