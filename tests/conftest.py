@@ -112,14 +112,27 @@ def _shared_fixtures(item) -> list[str]:
                   and fixturedefs[-1].scope != "function")
 
 
+#: Fixtures on the run's longest chain: the quick book, then the your-hardware page's commands on
+#: it (minutes). Their tests go first, so one worker waits for the book (asleep: the book gets its
+#: core) and starts them the moment it is built, while the other worker runs everything else.
+LONGEST_CHAIN = {"user_book"}
+
+
 @pytest.hookimpl(tryfirst=True)  # before xdist's own, which reads the xdist_group marks
 def pytest_collection_modifyitems(config, items):
     """Tests of the built book run last (the order is otherwise kept), so the background build
-    overlaps everything else; among them, those sharing an expensive fixture (the your-hardware
-    page's runs, the PDF) come first. Under pytest-xdist's ``--dist loadgroup`` the tests sharing
-    a module or session fixture of the project (with one parameter) form one group each, so that
-    fixture is built by one worker only."""
-    items.sort(key=lambda item: (_uses_quick_book(item), not _shared_fixtures(item)))
+    overlaps everything else; under pytest-xdist those of :data:`LONGEST_CHAIN` run first instead.
+    Among the others, those sharing an expensive fixture (the PDF) come first. Under pytest-xdist's
+    ``--dist loadgroup`` the tests sharing a module or session fixture of the project (with one
+    parameter) form one group each, so that fixture is built by one worker only."""
+    parallel = bool(os.environ.get("PYTEST_XDIST_WORKER"))
+
+    def order(item):
+        if parallel and _uses_quick_book(item) and set(_shared_fixtures(item)) & LONGEST_CHAIN:
+            return (0, 0)
+        return (1, _uses_quick_book(item), not _shared_fixtures(item))
+
+    items.sort(key=order)
     for item in items:
         shared = _shared_fixtures(item)
         if shared:

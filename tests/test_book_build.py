@@ -348,21 +348,31 @@ def test_claims_page_says_the_inputs_are_not_the_papers(user_book):
     assert "<table" not in claims, html  # verdicts written for the paper's inputs are not shown
 
 
+#: Whole tables of shipped data files a chapter reads, by entry, and their files.
+SHIPPED_TABLES = {"terrain": "data/terrain.toml", "survey": "data/terrain.toml",
+                  "survey_design": "data/survey_design.toml"}
+
+
 def test_user_figures_cite_only_the_users_platform_and_inputs(user_book):
     figures = user_book["my_auv"] / "source" / "_extra" / "figures"
     manifests = {m["label"]: m for m in load_manifests(figures)}
     assert {"fig-sensitivity-my-auv", "fig-survey-passes", "fig-noise-crossing", "fig-rigs"} <= set(manifests)
     for label, m in manifests.items():
         inputs = m["data_inputs"]
+        if Path(m["notebook"]).stem == "your_pings":  # its platform is named by its observations file
+            assert any(f.get("role") == "observations" for f in inputs["files"]), label
+            continue
         assert inputs["platforms"] == ["my_auv"] and list(inputs["values"]) == ["my_auv"], label
         values = inputs["values"]["my_auv"]
         assert values["sonar"]["azimuth_deg"] == 40.0 and values["tilt_deg"]["port"] == 15.0
         files = {f["path"] for f in inputs["files"]}
         assert str(user_book["user"]) in files, label
-        # a shipped file only for a shipped entry the figure read: the survey's offset models
+        # a shipped file only for a shipped entry the figure read: the survey's offset models, the
+        # seafloors and survey layout of the reconstruction, the survey-design conditions
         shipped = {e for e in inputs["entries"] if not e.endswith(("my_auv", "narrow_fan_450"))}
-        assert files - {str(user_book["user"])} == ({"data/survey.toml"} if shipped else set()), label
-        assert all(e.startswith("offset_models.") for e in shipped), label
+        assert all(e.startswith("offset_models.") or e in SHIPPED_TABLES for e in shipped), (label, shipped)
+        expected = {"data/survey.toml" if e.startswith("offset_models.") else SHIPPED_TABLES[e] for e in shipped}
+        assert files - {str(user_book["user"])} == expected, label
         bib = (figures / f"{label}.bib").read_text()
         assert "my\\_auv (Example AUV" in bib and "40 x 0.2 deg, 100 m, tilt 15 deg" in bib
         assert "edgetech" not in bib.lower() and "omniscan" not in bib.lower() and "platforms.toml" not in bib
@@ -400,7 +410,8 @@ def test_editing_one_user_value_makes_exactly_its_readers_stale(user_book):
     user = user_book["user"]
     text = user.read_text()
     user.write_text(text.replace("roll_sigma_deg = { value = 0.1", "roll_sigma_deg = { value = 0.2"))
-    assert stale() == {"noise", "reconstruction", "three_views"}  # the chapters that read noise models
+    # the chapters that read noise models (survey design re-evaluates its plans with noise)
+    assert stale() == {"noise", "reconstruction", "survey_design", "three_views"}
     user.write_text(text.replace("max_range_m = { value = 100.0", "max_range_m = { value = 90.0"))
     readers = {n for n, e in REGISTRY.items() if "platforms" in e.parameters()}
     assert stale() == readers  # every chapter that reads the platform
