@@ -41,13 +41,15 @@ import os
 import re
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 
 from sss_locus import paths
 from sss_locus.pipeline import atomic, citation, provenance, readability
+
+if TYPE_CHECKING:  # pandas is imported where a figure's data is written: the CLI starts without it
+    import pandas as pd
 
 # Used with fullmatch: the whole string must match (``$`` alone would accept a trailing newline).
 LABEL_PATTERN = re.compile(r"fig-[a-z0-9]+(?:-[a-z0-9]+)*")
@@ -76,6 +78,7 @@ def _check_label(label: str) -> None:
 
 def _normalise_data(label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
     """Map CSV file names to frames."""
+    import pandas as pd
     if isinstance(data, pd.DataFrame):
         return {f"{label}.csv": data}
     if isinstance(data, Mapping) and data:
@@ -247,6 +250,7 @@ def export_figure(
     with matplotlib.rc_context({"svg.hashsalt": label}):
         images, text = _save_images(fig, out, label, int(dpi), shown)
     written.extend(images)
+    import pandas as pd
     for name, frame in frames.items():
         index = not isinstance(frame.index, pd.RangeIndex)
         _save_atomic(out / name, lambda tmp, frame=frame, index=index: frame.to_csv(tmp, index=index))
