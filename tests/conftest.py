@@ -126,17 +126,17 @@ def pytest_collection_modifyitems(config, items):
     ``--dist loadgroup`` the tests sharing a module or session fixture of the project (with one
     parameter) form one group each, so that fixture is built by one worker only."""
     parallel = bool(os.environ.get("PYTEST_XDIST_WORKER"))
+    shared = {item.nodeid: _shared_fixtures(item) for item in items}
 
     def order(item):
-        if parallel and _uses_quick_book(item) and set(_shared_fixtures(item)) & LONGEST_CHAIN:
+        if parallel and _uses_quick_book(item) and set(shared[item.nodeid]) & LONGEST_CHAIN:
             return (0, 0)
-        return (1, _uses_quick_book(item), not _shared_fixtures(item))
+        return (1, _uses_quick_book(item), not shared[item.nodeid])
 
     items.sort(key=order)
     for item in items:
-        shared = _shared_fixtures(item)
-        if shared:
-            item.add_marker(pytest.mark.xdist_group("+".join(shared)))
+        if shared[item.nodeid]:
+            item.add_marker(pytest.mark.xdist_group("+".join(shared[item.nodeid])))
 
 
 def _quick_book(config):

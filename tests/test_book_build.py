@@ -21,6 +21,7 @@ import pytest
 pytest.importorskip("jupyter_book")
 
 from book_support import TIMEOUT_S  # noqa: E402  (the quick_book fixture is in conftest.py)
+from test_paperinputs import PLATFORM_FROM_INPUT  # noqa: E402
 from sss_locus import paths  # noqa: E402
 from sss_locus.pipeline import bookbuild
 from sss_locus.pipeline.export import load_manifests  # noqa: E402
@@ -359,7 +360,7 @@ def test_user_figures_cite_only_the_users_platform_and_inputs(user_book):
     assert {"fig-sensitivity-my-auv", "fig-survey-passes", "fig-noise-crossing", "fig-rigs"} <= set(manifests)
     for label, m in manifests.items():
         inputs = m["data_inputs"]
-        if Path(m["notebook"]).stem == "your_pings":  # its platform is named by its observations file
+        if Path(m["notebook"]).stem in PLATFORM_FROM_INPUT:  # its platform is named by its input file
             assert any(f.get("role") == "observations" for f in inputs["files"]), label
             continue
         assert inputs["platforms"] == ["my_auv"] and list(inputs["values"]) == ["my_auv"], label

@@ -58,7 +58,7 @@ TABLE_LABEL_PATTERN = re.compile(r"tab-[a-z0-9]+(?:-[a-z0-9]+)*")
 KINDS = ("fig", "tab")
 DATA_NAME_PATTERN = re.compile(r"[a-z0-9]+(?:[_-][a-z0-9]+)*")
 #: Names of attached files (e.g. ``mission.plan``): a data name and an extension.
-ATTACHMENT_PATTERN = re.compile(r"[a-z0-9]+(?:[_-][a-z0-9]+)*\.[a-z0-9]+")
+ATTACHMENT_PATTERN = re.compile(DATA_NAME_PATTERN.pattern + r"\.[a-z0-9]+")
 #: Set by the runner: the folder a run exports into, and the run key recorded in each manifest.
 FIGURES_DIR_ENV = "SSS_LOCUS_FIGURES_DIR"
 RUN_KEY_ENV = "SSS_LOCUS_RUN_KEY"
