@@ -54,3 +54,24 @@ def test_project_entry_carries_the_cff_address_and_doi():
     cff = {**citation.load_cff(), "doi": "10.5281/zenodo.123", "repository-code": "https://example.org/r#x"}
     fields = pybtex_database.parse_string(citation.project_bibtex(cff), "bibtex").entries["sss-locus"].fields
     assert fields["doi"] == "10.5281/zenodo.123" and fields["url"] == r"https://example.org/r\#x"
+
+
+def test_the_made_environment_carries_bytecode_for_what_notebooks_import():
+    """``make`` installs site-packages with their bytecode (``uv --compile-bytecode``): where
+    ``PYTHONDONTWRITEBYTECODE`` is set, Python never writes it, and each of the many processes of
+    a book or test run (CLI, papermill, kernel) would compile every module it imports again."""
+    import importlib
+    import importlib.util
+    import sys
+    from pathlib import Path
+
+    import pytest
+
+    if not list(Path(sys.prefix).glob(".installed-*")):
+        pytest.skip("this environment was not built by make from environment.lock")
+    missing = []
+    for name in ("numpy", "pandas", "scipy.stats", "matplotlib.pyplot", "seaborn", "papermill", "ipykernel.kernelapp"):
+        module = importlib.import_module(name)
+        if not Path(importlib.util.cache_from_source(module.__file__)).is_file():
+            missing.append(name)
+    assert not missing, f"no bytecode installed for {missing}"
