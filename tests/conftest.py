@@ -118,6 +118,12 @@ def _shared_fixtures(item) -> list[str]:
 LONGEST_CHAIN = {"user_book"}
 
 
+def pytest_configure(config):
+    # pytest-xdist declares the mark; without it (`pytest -p no:xdist`, one process)
+    # --strict-markers would refuse the marks pytest_collection_modifyitems adds
+    config.addinivalue_line("markers", "xdist_group(name): tests sharing a fixture, run by one worker")
+
+
 @pytest.hookimpl(tryfirst=True)  # before xdist's own, which reads the xdist_group marks
 def pytest_collection_modifyitems(config, items):
     """Tests of the built book run last (the order is otherwise kept), so the background build
