@@ -1,5 +1,6 @@
 """The whole book as one PDF (``make pdf``), printed from the quick book and read back: a page
-range per chapter, every figure embedded, the math typeset, and rendered pages that are not blank.
+range per chapter, every figure embedded, the math typeset, rendered pages that are not blank, and
+every table's column headers in the text of its chapter's pages.
 
 Needs headless Chromium and poppler-utils (``.ci/install-tools`` installs both); without them the
 tests are skipped and named at the end of the run, and in CI they fail (``conftest.py``).
@@ -63,7 +64,9 @@ def test_pdf_has_every_page_in_order_every_figure_and_typeset_math(quick_book, q
               if m["notebook"] in registered]
     assert len(placed) >= 10 and len(printed_figures) >= len(placed)
     assert "\\(" in quick_pdf["html"].read_text(encoding="utf-8")  # there is math to typeset
-    # ... and the PDF shows them: a page range per title, the figures, the math typeset, ink
+    # ... and the PDF shows them: a page range per title, the figures, the math typeset, ink, and
+    # every table's columns (the chapters print tables: a check that looks at none would pass)
+    assert sum(title in titles[1:] for title, _ in pdfcheck.printed_tables(quick_pdf["html"])) >= 30
     assert pdfcheck.problems(quick_pdf["pdf"], quick_pdf["html"]) == []
     texts = pdfcheck.page_texts(quick_pdf["pdf"])
     assert len(texts) > len(titles)
@@ -117,3 +120,48 @@ def test_contents_running_onto_a_second_page_is_not_a_chapter_start():
     assert [pdfcheck.is_contents_page(t, titles) for t in texts] == [True, True, False, False, False, False]
     assert pdfcheck.chapter_starts(texts, titles) == {  # the first page opens the book's first page
         "Book": [1], "Alpha": [3], "Beta chapter": [4], "Delta: a longer title of a chapter": [5], "Gamma, the last one": [6]}
+
+
+def test_table_check_finds_a_column_missing_from_its_pages_text():
+    """Headers wrapped over lines are found; a header found only on another page's range, or a
+    short header found elsewhere but not after the row's other headers, is not."""
+    texts = ["Alpha\nThe table lists n and all of it.\nplatform ends\nextent (m) oblique-\nband\nauv 1.0 2.0",
+             "Beta\nplatform\nvalue (m) n\nauv 3.0", "Gamma\nratio\nauv 4.0"]
+    starts = {"Alpha": [1], "Beta": [2], "Gamma": [3], "Delta": []}
+    tables = [("Alpha", ["platform", "ends extent (m)", "oblique-band"]), ("Beta", ["", "platform", "value (m)", "n"]),
+              ("Alpha", ["platform", "ends extent (m)", "n"]), ("Gamma", ["ratio", "value (m)"]),
+              ("Delta", ["anything"])]
+    assert pdfcheck.table_problems(texts, starts, tables) == [
+        "table 3 ('Alpha', pages 1-1): columns ['n'] are not in the PDF's text after ['platform', 'ends extent (m)']",
+        "table 4 ('Gamma', pages 3-3): columns ['value (m)'] are not in the PDF's text after ['ratio']",
+    ]
+
+
+def test_table_check_fails_on_a_printed_table_cut_off_at_its_edge(tmp_path, monkeypatch):
+    """A page printed by headless Chromium with a narrow table, a table too wide for the page
+    (its right-hand columns are clipped and never drawn) and a table in a closed <details> (not
+    printed, not looked for): the check names the wide table and the columns it lost, only those."""
+    _needs(browser=True)
+    import pandas as pd
+
+    from sss_locus.report.tables import readable_table
+
+    monkeypatch.setenv(paths.BUILD_DIR_ENV, str(tmp_path / "build"))  # the browser's profile folder
+    narrow = pd.DataFrame({"platform": ["auv"], "peak_deg": [1.0]})
+    wide = pd.DataFrame({f"quantity_{i}_longwordcolumnname_m": [1.0 + i] * 20 for i in range(14)})
+    wide.insert(0, "platform", ["auv", "boat"] * 10)  # many rows: shown as it is, not turned
+    html = tmp_path / "page.html"
+    html.write_text('<html><body><article class="bd-article"><section><h1>Alpha</h1>'
+                    + readable_table(narrow).to_html() + readable_table(wide).to_html()
+                    + "<details><summary>more</summary><table><thead><tr><th>hidden</th></tr></thead></table></details>"
+                    + "</section></article></body></html>", encoding="utf-8")
+    pdf = bookpdf.print_pdf(html, tmp_path / "page.pdf", bookpdf.find_browser())
+    tables = pdfcheck.printed_tables(html)
+    headers = ["platform", *(f"quantity {i} longwordcolumnname (m)" for i in range(14))]
+    assert tables == [("Alpha", ["platform", "peak (deg)"]), ("Alpha", headers)]
+    starts = pdfcheck.chapter_starts(pdfcheck.page_texts(pdf), ["Alpha"])
+    found = pdfcheck.table_problems(pdfcheck.page_texts(pdf, "-raw"), starts, tables)
+    assert len(found) == 1 and found[0].startswith("table 2 ('Alpha', pages 1-1): columns ['quantity ")
+    lost = headers[next(k for k in range(len(headers)) if f"columns [{headers[k]!r}" in found[0]):]
+    assert 1 < len(lost) < len(headers) - 1 and f"columns {lost} are not" in found[0]
+    assert pdfcheck.problems(pdf, html) == found  # and problems() reports it

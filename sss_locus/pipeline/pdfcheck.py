@@ -12,7 +12,11 @@ What a printed book must show, and :func:`problems` checks:
   extracted text beyond those the page shows in code blocks (a shell prompt, a BibTeX title);
 * **pages not blank**: the pages a stray page break would leave blank (the first two, the last,
   the page before each page title) and the first page with a figure, rendered by ``pdftoppm``,
-  each have at least :data:`MIN_INK` of their pixels inked.
+  each have at least :data:`MIN_INK` of their pixels inked;
+* **every table's columns printed**: the column headers of each table a page prints (outside a
+  closed ``<details>``) follow one another, in order, in the text of that page's range of the
+  PDF (:func:`table_problems`). A column cut off at the page's or the table's edge is not drawn,
+  and its header is missing from the text.
 """
 
 from __future__ import annotations
@@ -21,6 +25,7 @@ import re
 import shutil
 import subprocess
 import tempfile
+import unicodedata
 from html import unescape
 from html.parser import HTMLParser
 from pathlib import Path
@@ -49,11 +54,13 @@ def _run(cmd: list[str], timeout_s: float = 300) -> str:
 
 
 class _PrintedPage(HTMLParser):
-    """The page titles, the figure images and the code text of the printed single page.
+    """The page titles, the figure images, the code text and the tables' column headers of the
+    printed single page.
 
     A page title is the first heading of the first section of the article (the root page) and of
     each section that follows a ``<span id="document-...">`` (where the ``singlehtml`` builder
-    starts each other page of the book).
+    starts each other page of the book). A table belongs to the page whose title came last; tables
+    inside a closed ``<details>`` (collapsed blocks, which print closed) are left out.
     """
 
     def __init__(self) -> None:
@@ -66,6 +73,9 @@ class _PrintedPage(HTMLParser):
         self._title: list[str] | None = None
         self._heading_tag = ""
         self._figure_depth = self._skip_depth = self._code_depth = 0
+        self.tables: list[tuple[int, list[str]]] = []  # (index of the page's title, column headers)
+        self._closed_depth = self._head_depth = 0  # inside a closed <details>, a <thead>
+        self._header: list[str] | None = None
 
     def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
         attr = dict(attrs)
@@ -86,6 +96,14 @@ class _PrintedPage(HTMLParser):
             self.figure_images.append(attr.get("src") or "")
         elif tag in ("pre", "code"):
             self._code_depth += 1
+        elif tag == "details":
+            self._closed_depth += 1 if self._closed_depth or "open" not in attr else 0
+        elif tag == "table" and not self._closed_depth:
+            self.tables.append((len(self.titles) - 1, []))
+        elif tag == "thead" and self.tables and not self._closed_depth:
+            self._head_depth += 1
+        elif tag == "th" and self._head_depth:
+            self._header = []
 
     def handle_endtag(self, tag: str) -> None:
         if tag == self._heading_tag and self._title is not None:
@@ -97,8 +115,17 @@ class _PrintedPage(HTMLParser):
             self._figure_depth -= 1
         elif tag in ("pre", "code") and self._code_depth:
             self._code_depth -= 1
+        elif tag == "details" and self._closed_depth:
+            self._closed_depth -= 1
+        elif tag == "thead" and self._head_depth:
+            self._head_depth -= 1
+        elif tag == "th" and self._header is not None:
+            self.tables[-1][1].append(" ".join("".join(self._header).split()))
+            self._header = None
 
     def handle_data(self, data: str) -> None:
+        if self._header is not None:
+            self._header.append(data)
         if self._title is not None and not self._skip_depth:
             self._title.append(data)
         if self._code_depth:
@@ -108,9 +135,21 @@ class _PrintedPage(HTMLParser):
 def printed_page(html: Path) -> tuple[list[str], list[str], str]:
     """The page titles (in order), the sources of the figure images and the text of the code
     blocks (``<pre>``, ``<code>``) of a printed single page (or of one page of the site)."""
+    parser = _parsed(html)
+    return parser.titles, parser.figure_images, "".join(parser.code)
+
+
+def _parsed(html: Path) -> _PrintedPage:
     parser = _PrintedPage()
     parser.feed(html.read_text(encoding="utf-8"))
-    return parser.titles, parser.figure_images, "".join(parser.code)
+    return parser
+
+
+def printed_tables(html: Path) -> list[tuple[str, list[str]]]:
+    """``(page title, column headers)`` of every table the printed single page ``html`` shows
+    (in order; a header's text with its whitespace collapsed, empty for an unnamed column)."""
+    parser = _parsed(html)
+    return [(parser.titles[i] if i >= 0 else "", heads) for i, heads in parser.tables]
 
 
 def png_size(path: Path) -> tuple[int, int] | None:
@@ -125,9 +164,13 @@ def png_size(path: Path) -> tuple[int, int] | None:
     return int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
 
 
-def page_texts(pdf: Path) -> list[str]:
-    """The text of each page (``pdftotext -layout``)."""
-    pages = _run(["pdftotext", "-layout", "-enc", "UTF-8", str(pdf), "-"]).split("\f")
+def page_texts(pdf: Path, mode: str = "-layout") -> list[str]:
+    """The text of each page: ``pdftotext -layout`` (lines as laid out on the page), or with
+    ``mode="-raw"`` in the order the text is drawn (a table cell's wrapped lines one after the
+    other, the cells of a row in order)."""
+    if mode not in ("-layout", "-raw"):
+        raise ValueError(f"mode must be '-layout' or '-raw'; got {mode!r}")
+    pages = _run(["pdftotext", mode, "-enc", "UTF-8", str(pdf), "-"]).split("\f")
     return pages[:-1] if pages and not pages[-1].strip() else pages
 
 
@@ -166,6 +209,49 @@ def chapter_starts(texts: list[str], titles: list[str], head_lines: int = 3) -> 
              for i, text in enumerate(texts)]
     return {t: [i + 1 for i, head in enumerate(heads) if head is not None and head.startswith(_norm(t))]
             for t in titles}
+
+
+def squeezed(text: str) -> str:
+    """``text`` as compared by the table check: compatibility-normalised (NFKC: a ligature is its
+    letters), without zero-width spaces and soft hyphens (break opportunities the page adds) and
+    without whitespace, so a header the PDF wraps over lines (after a space or a hyphen) reads as
+    in the page. Every visible character stays, in order.
+
+    >>> squeezed("perpendicular\\nextent (m)") == squeezed("perpendicular extent (m)") == "perpendicularextent(m)"
+    True
+    """
+    text = unicodedata.normalize("NFKC", text).replace("\u200b", "").replace("\u00ad", "")
+    return "".join(text.split())
+
+
+def table_problems(texts: list[str], starts: dict[str, list[int]],
+                   tables: list[tuple[str, list[str]]]) -> list[str]:
+    """The tables whose columns are not all in the PDF's text of their page's range.
+
+    ``texts``: each PDF page's text in drawing order (:func:`page_texts` with ``"-raw"``);
+    ``starts``: the pages each page title opens (:func:`chapter_starts`; a title that does not open
+    exactly one page is reported by :func:`problems` and its tables are not looked for);
+    ``tables``: :func:`printed_tables`. A page's range runs from its first page to the page before
+    the next page's. Each table's headers (the unnamed ones left out) must follow one another in
+    order in that text (:func:`squeezed`): the headers of a row of short words ("n", "all") are
+    found only where the row is. A table whose columns are cut off at its right edge is reported
+    with the headers from the first one that does not follow on.
+    """
+    first = sorted((pages[0], title) for title, pages in starts.items() if len(pages) == 1)
+    ranges = {title: (page, first[i + 1][0] - 1 if i + 1 < len(first) else len(texts))
+              for i, (page, title) in enumerate(first)}
+    found = []
+    for number, (title, headers) in enumerate(tables, 1):
+        if title not in ranges:
+            continue
+        lo, hi = ranges[title]
+        text = squeezed(" ".join(texts[lo - 1:hi]))
+        heads = [h for h in headers if squeezed(h)]
+        shown = next((k for k in range(len(heads), 0, -1) if squeezed(" ".join(heads[:k])) in text), 0)
+        if shown < len(heads):
+            found.append(f"table {number} ({title!r}, pages {lo}-{hi}): columns {heads[shown:]} are not in the "
+                         f"PDF's text after {heads[:shown]}")
+    return found
 
 
 def ink_fraction(pdf: Path, page: int, dpi: int = RENDER_DPI) -> float:
@@ -209,6 +295,7 @@ def problems(pdf: Path, html: Path) -> list[str]:
         if text_count(texts, token) > code.count(token):
             found.append(f"math left as source: {text_count(texts, token)} {token!r} in the text "
                          f"(pages {pages}), {code.count(token)} in code blocks")
+    found += table_problems(page_texts(pdf, "-raw"), starts, printed_tables(html))
     # the pages a stray page break would leave blank (before each page title), and a figure's
     sample = {1, 2, len(texts), figures[0][0] if figures else 1}
     sample |= {pages[0] - 1 for pages in starts.values() if pages and pages[0] > 1}
