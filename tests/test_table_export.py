@@ -17,10 +17,10 @@ from sss_locus.pipeline.table_export import export_table
 EXAMPLE = REPO_ROOT / "data" / "examples" / "my_auv.toml"
 
 
-def _table(out, label, notebook="notebooks/x.ipynb", platforms=None, value=1.0):
+def _table(out, label, notebook="notebooks/x.ipynb", platforms=None, value=1.0, input_files=()):
     frame = pd.DataFrame({"platform": ["my_auv"], "peak_deg": [value]})
     return export_table(frame, label, caption="Peak angles.", parameters={"platforms": ["auv", "my_auv"], "seed": 3},
-                        notebook=notebook, out_dir=out, platforms=platforms)
+                        notebook=notebook, out_dir=out, platforms=platforms, input_files=input_files)
 
 
 def test_a_table_names_only_its_own_platforms_and_files(tmp_path):
@@ -45,6 +45,20 @@ def test_a_table_names_only_its_own_platforms_and_files(tmp_path):
     assert pd.read_csv(out / "tab-peaks.csv").to_dict("list") == {"platform": ["my_auv"], "peak_deg": [1.0]}
     assert export.load_manifests(out) == [] and [m["label"] for m in export.load_manifests(out, export.KINDS)] == [
         "tab-peaks"]  # the figure index and checks see figures only
+
+
+def test_a_table_from_a_users_own_file_names_it_with_its_hash(tmp_path):
+    """A table computed from a user's observations (the your-pings features table) names that
+    file beside the platform's data entries, with the file's own SHA-256."""
+    sightings = tmp_path / "my_sightings.csv"
+    sightings.write_text("feature,ping\nF01,1\n", encoding="utf-8")
+    manifest = _table(tmp_path / "figures", "tab-features", platforms=["auv"], input_files=[sightings])
+    inputs = manifest["data_inputs"]
+    assert inputs["platforms"] == ["auv"]
+    assert {"path": "my_sightings.csv", "sha256": hashlib.sha256(sightings.read_bytes()).hexdigest(),
+            "role": "observations"} in inputs["files"]
+    digest = hashlib.sha256(sightings.read_bytes()).hexdigest()[:12]
+    assert f"my\\_sightings.csv (sha256 {digest})" in (tmp_path / "figures" / "tab-features.bib").read_text()
 
 
 def test_a_bad_table_label_is_refused(tmp_path):

@@ -135,7 +135,7 @@ def data_inputs(parameters: Mapping[str, Any], platforms: Sequence[str] | None =
         return {"error": str(exc)}
 
 
-def _with_files(inputs: dict[str, Any], files: Sequence[Path]) -> dict[str, Any]:
+def with_files(inputs: dict[str, Any], files: Sequence[Path]) -> dict[str, Any]:
     """``inputs`` with ``files`` added to its ``files`` (name relative to the repository when
     inside it, else the file name; SHA-256; role ``"observations"``)."""
     extra = []
@@ -274,7 +274,7 @@ def export_figure(
         "dpi": int(dpi),
         "text": text,  # smallest drawn text and picture width: readability on the page
         "run_key": os.environ.get(RUN_KEY_ENV),  # ties the figure to its executed copy
-        "data_inputs": _with_files(data_inputs(params, platforms), input_files),
+        "data_inputs": with_files(data_inputs(params, platforms), input_files),
     }
     bib_path = out / f"{label}.bib"
     _write_atomic(bib_path, bibtex_entry(manifest))

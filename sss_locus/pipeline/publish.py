@@ -124,10 +124,13 @@ def place(key: str, labels: Sequence[str]) -> None:
     glue(key, Markdown("\n".join(figure_block(label) for label in labels)), display=False)
 
 
-def publish_table(frame: pd.DataFrame, label: str, *, caption: str, platforms: Sequence[str] | None = None) -> None:
+def publish_table(frame: pd.DataFrame, label: str, *, caption: str, platforms: Sequence[str] | None = None,
+                  input_files: Sequence[Any] = ()) -> None:
     """Export a table the chapter shows as a citable table (``tab-`` label, its CSV, manifest and
     BibTeX beside the figures, :func:`sss_locus.pipeline.table_export.export_table`) with the
-    run's parameters; ``platforms``: those its rows come from, when not every platform of the run."""
+    run's parameters; ``platforms``: those its rows come from, when not every platform of the run;
+    ``input_files``: a user's own input files it was computed from (as for :func:`publish`)."""
     from sss_locus.pipeline.table_export import export_table
 
-    export_table(frame, label, caption=caption, parameters=run_parameters(), platforms=platforms)
+    export_table(frame, label, caption=caption, parameters=run_parameters(), platforms=platforms,
+                 input_files=input_files)

@@ -27,12 +27,13 @@ from sss_locus.pipeline import atomic, citation, export, provenance
 
 def export_table(frame: pd.DataFrame, label: str, *, caption: str, parameters: Mapping[str, Any],
                  notebook: str | None = None, out_dir: Path | None = None,
-                 platforms: Sequence[str] | None = None) -> dict[str, Any]:
+                 platforms: Sequence[str] | None = None, input_files: Sequence[Path] = ()) -> dict[str, Any]:
     """Export one table with its manifest and BibTeX entry; return the manifest.
 
     ``label``: ``tab-`` and lower-case words joined by hyphens; ``platforms``: the platforms
-    the table's rows come from (default: every platform of ``parameters["platforms"]``); the
-    other arguments as for :func:`sss_locus.pipeline.export.export_figure`.
+    the table's rows come from (default: every platform of ``parameters["platforms"]``);
+    ``input_files``: a user's own input files it was computed from (recorded with their SHA-256);
+    the other arguments as for :func:`sss_locus.pipeline.export.export_figure`.
     """
     if not isinstance(label, str) or not export.TABLE_LABEL_PATTERN.fullmatch(label):
         raise ValueError(f"label must look like 'tab-some-name' (lower-case letters, digits, single hyphens); "
@@ -59,7 +60,7 @@ def export_table(frame: pd.DataFrame, label: str, *, caption: str, parameters: M
         "parameters": params, "seed": params.get("seed"), "git_commit": provenance.git_commit(),
         "lock_sha256": provenance.lock_sha256(), "package_version": provenance.package_version(),
         "run_time_utc": provenance.utc_now(), "run_key": os.environ.get(export.RUN_KEY_ENV),
-        "data_inputs": export.data_inputs(params, platforms),
+        "data_inputs": export.with_files(export.data_inputs(params, platforms), input_files),
     }
     bib = out / f"{label}.bib"
     atomic.write_atomic(bib, citation.figure_bibtex(manifest))
