@@ -35,14 +35,14 @@ NOT_APPLICABLE = "–"
 #: More columns than this, and fewer rows than columns, and the table is shown turned a quarter.
 WIDE = 7
 #: Unit suffixes of column names, and how the header writes them.
-UNITS = (("_deg", "deg"), ("_rad", "rad"), ("_pct", "%"), ("_m", "m"), ("_s", "s"))
+UNITS = (("_deg", "deg"), ("_rad", "rad"), ("_pct", "%"), ("_km", "km"), ("_m", "m"), ("_h", "h"), ("_s", "s"))
 
 
 def header(name: object) -> str:
     """A column name in words with its unit: ``"median_length_m"`` -> ``"median length (m)"``.
 
-    >>> header("ci_low_deg"), header("platform"), header(("rho", "seed 1"))
-    ('ci low (deg)', 'platform', 'rho seed 1')
+    >>> header("ci_low_deg"), header("platform"), header(("rho", "seed 1")), header("track_km"), header("time_h")
+    ('ci low (deg)', 'platform', 'rho seed 1', 'track (km)', 'time (h)')
     """
     if isinstance(name, tuple):
         return " ".join(header(part) for part in name if str(part))
