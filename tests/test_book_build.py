@@ -176,8 +176,8 @@ def test_each_figure_page_has_its_files_source_and_citation(quick_book):
 
 
 def test_every_figure_bibtex_entry_parses_and_compiles(quick_book, tmp_path):
-    """One LaTeX document cites every figure's entry and the project's own (from CITATION.cff);
-    pdflatex + bibtex compile it with no warning (``latex_check``)."""
+    """One LaTeX document cites every figure's and table's entry and the project's own (from
+    CITATION.cff); pdflatex + bibtex compile it with no warning (``latex_check``)."""
     pybtex_database = pytest.importorskip("pybtex.database")
     import sss_locus
     from sss_locus.pipeline import citation
@@ -185,6 +185,9 @@ def test_every_figure_bibtex_entry_parses_and_compiles(quick_book, tmp_path):
     figures = quick_book["area"] / "source" / "_extra" / "figures"
     bibs = sorted(figures.glob("fig-*.bib"))
     assert len(bibs) >= 10
+    tables = sorted(figures.glob("tab-*.bib"))
+    assert len(tables) >= 20
+    bibs += tables
     text = "\n".join(b.read_text(encoding="utf-8") for b in bibs)
     entries = pybtex_database.parse_string(text, "bibtex").entries
     assert len(entries) == len(bibs)
@@ -471,3 +474,26 @@ def test_chapter_tables_fit_the_text_column_in_a_browser(quick_book, tmp_path):
         problems += [f"{page.name}: {p}" for p in json.loads(html_unescape(found.group(1)))]
     assert tables >= 10
     assert not problems, "\n".join(problems)
+
+
+def test_every_published_table_is_shown_served_and_names_its_platforms(quick_book):
+    """Each citable table (``tab-`` label) is served with its CSV and BibTeX, its manifest names
+    platforms of its own run only, and the chapter that made it shows it under the caption its
+    manifest records (the table a reader cites is the table they read)."""
+    figures = quick_book["area"] / "source" / "_extra" / "figures"
+    tables = load_manifests(figures, ("tab",))
+    by_notebook = {entry.source_relative: entry for entry in REGISTRY.values()}
+    assert len(tables) >= 20 and {m["notebook"] for m in tables} <= set(by_notebook)
+    for m in tables:
+        label, inputs = m["label"], m["data_inputs"]
+        for entry in m["files"].values():
+            assert (quick_book["html"] / entry["url"]).is_file(), (label, entry)
+        assert sorted(m["files"]) == [f"{label}.bib", f"{label}.csv"]
+        if Path(m["notebook"]).stem in PLATFORM_FROM_INPUT:  # one platform, named by its input file
+            assert len(inputs["platforms"]) == 1 and any(f["role"] == "observations" for f in inputs["files"]), label
+        else:
+            assert inputs["platforms"] and set(inputs["platforms"]) <= set(m["parameters"]["platforms"]), label
+        assert f"figures/{label}.csv" in m["caption"]
+        page = quick_book["html"] / Path(by_notebook[m["notebook"]].executed).with_suffix(".html")
+        captions = [" ".join(c.split()) for c in re.findall(r"<caption>(.*?)</caption>", unescape(page.read_text()), re.S)]
+        assert " ".join(m["caption"].split()) in " ".join(captions), (label, page.name)
