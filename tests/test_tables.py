@@ -78,3 +78,16 @@ def test_a_wide_table_of_few_rows_is_turned_a_quarter():
     assert _cells(html, "td")[:6] == ["q0 (m)", "0", "0", "q1 (m)", "1.00", "2.00"]
     narrow = wide.iloc[:, :4]
     assert _cells(readable_table(narrow).to_html(), "th") == ["platform", "q0 (m)", "q1 (m)", "q2 (m)"]
+
+
+def test_a_turned_table_is_headed_by_its_row_labels_as_they_are():
+    """The platform key my_auv heads its column as the key (not "my auv"); a text column of results
+    next to the label (the top quantity of a run) joins the headers only when no labels are named."""
+    runs = pd.DataFrame({"run": ["my_auv, tilt 15 deg"], "top_raw": ["mean range"],
+                         **{f"q{i}_m": [float(i)] for i in range(8)}})
+    assert _cells(readable_table(runs).to_html(), "th") == ["quantity", "my_auv, tilt 15 deg, mean range"]
+    html = readable_table(runs, row_labels=["run"]).to_html()
+    assert _cells(html, "th") == ["quantity", "my_auv, tilt 15 deg"]
+    assert _cells(html, "td")[:2] == ["top raw", "mean range"]
+    with pytest.raises(ValueError, match="row_labels must be columns"):
+        readable_table(runs, row_labels=["platform"])

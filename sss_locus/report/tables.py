@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import hashlib
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -77,10 +77,12 @@ def cell(value: object, digits: int = 3) -> str:
     return str(value).replace("_", "_\u200b")  # long names may break after an underscore
 
 
-def _transposed(shown: pd.DataFrame) -> pd.DataFrame:
+def _transposed(shown: pd.DataFrame, row_labels=None) -> pd.DataFrame:
     """A wide table of few rows turned a quarter: one row per column, one column per row, headed
-    by the row's labels (its leading text columns)."""
-    labels = [c for c in shown.columns[:2] if not pd.api.types.is_numeric_dtype(shown[c])] or []
+    by the row's labels (``row_labels``, default its leading text columns, at most two), as they
+    are (a platform key stays a key)."""
+    labels = list(row_labels) if row_labels is not None else \
+        [c for c in shown.columns[:2] if not pd.api.types.is_numeric_dtype(shown[c])]
     heads = [", ".join(str(v) for v in row) for row in shown[labels].itertuples(index=False)] if labels \
         else [str(i + 1) for i in range(len(shown))]
     out = shown.drop(columns=labels).T
@@ -105,7 +107,7 @@ def _index_as_columns(frame: pd.DataFrame) -> pd.DataFrame:
 
 
 def readable_table(frame: pd.DataFrame, *, caption: str = "", digits: int = 3,
-                   headers: Mapping[str, str] | None = None):
+                   headers: Mapping[str, str] | None = None, row_labels: Sequence[str] | None = None):
     """``frame`` as a table a reader can read (module docstring); a pandas ``Styler`` to show.
 
     Parameters
@@ -119,13 +121,20 @@ def readable_table(frame: pd.DataFrame, *, caption: str = "", digits: int = 3,
         Significant figures of floating-point cells.
     headers : mapping, optional
         Headers to use instead of :func:`header` for some columns (by original name).
+    row_labels : sequence of str, optional
+        The columns that name a row, when a wide table is turned a quarter (default: its leading
+        text columns, at most two); their values head the turned table's columns.
     """
     if not isinstance(frame, pd.DataFrame):
         raise ValueError(f"frame must be a pandas DataFrame; got {type(frame).__name__}")
     shown = _index_as_columns(frame)
-    if shown.shape[1] > WIDE and shown.shape[0] < shown.shape[1] - 1:  # few rows, many columns
-        shown = _transposed(shown)
-    names = [(headers or {}).get(c, header(c)) if not isinstance(c, tuple) else header(c) for c in shown.columns]
+    if row_labels is not None and not set(row_labels) <= set(shown.columns):
+        raise ValueError(f"row_labels must be columns of frame ({list(shown.columns)}); got {list(row_labels)}")
+    turned = shown.shape[1] > WIDE and shown.shape[0] < shown.shape[1] - 1  # few rows, many columns
+    if turned:
+        shown = _transposed(shown, row_labels)
+    names = [str(c) if turned else (headers or {}).get(c, header(c)) if not isinstance(c, tuple) else header(c)
+             for c in shown.columns]
     numeric = [pd.api.types.is_numeric_dtype(shown[c]) and not pd.api.types.is_bool_dtype(shown[c])
                for c in shown.columns]
     body = pd.DataFrame({i: [cell(v, digits) for v in shown.iloc[:, i]] for i in range(shown.shape[1])})
