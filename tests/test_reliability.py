@@ -201,6 +201,18 @@ def test_problems_names_failed_stale_and_mixed_copies(area, tmp_path):
     assert "three (" in found and "stale" in found
 
 
+def test_a_copy_whose_table_is_missing_is_refused(area, tmp_path):
+    """A run records its tables with its figures: a table deleted after the run makes the copy
+    unusable, like a missing figure (the book would link a table that is not there)."""
+    body = BODY + 'from sss_locus.pipeline.publish import publish_table\npublish_table(frame, "tab-tiny-reliable", caption="The points.")\n'
+    entry = NotebookEntry("tiny", write_notebook(tmp_path / "tiny.ipynb", PARAMETERS, body), "executed/tiny.ipynb",
+                          {"book": {}, "quick": {}})
+    run_notebook(entry, "book", log=quiet)
+    assert outputs.problems([entry]) == []
+    (area / "source" / "_extra" / "figures" / "tab-tiny-reliable.csv").unlink()
+    assert "tab-tiny-reliable missing or modified" in "\n".join(outputs.problems([entry]))
+
+
 # -- 4. concurrency ------------------------------------------------------------------------------
 
 def test_two_runs_of_one_notebook_at_once(area, entry):

@@ -177,8 +177,8 @@ def problems(entries: Sequence[Any]) -> list[str]:
     """Why the executed copies of ``entries`` (registry entries) cannot make one book.
 
     Names each copy that is missing, failed, not made by ``sss-locus run``, stale (its notebook,
-    the code, ``data/`` or the environment changed since it ran), whose figures are missing or
-    from another run, or that was computed from another profile than the rest.
+    the code, ``data/`` or the environment changed since it ran), whose figures or tables are
+    missing or from another run, or that was computed from another profile than the rest.
     """
     found: list[str] = []
     profiles: dict[str, str] = {}
@@ -213,9 +213,9 @@ def problems(entries: Sequence[Any]) -> list[str]:
         absent = [label for label in ours.get("figures", []) if label not in mine]
         other = [label for label, m in mine.items() if m.get("run_key") != ours["run_key"]]
         if absent:
-            found.append(f"{name}: figure(s) {', '.join(absent)} missing or modified")
+            found.append(f"{name}: figure(s) or table(s) {', '.join(absent)} missing or modified")
         if other:
-            found.append(f"{name}: figure(s) {', '.join(sorted(other))} come from another run")
+            found.append(f"{name}: figure(s) or table(s) {', '.join(sorted(other))} come from another run")
     if len(set(profiles.values())) > 1:
         ranked = Counter(profiles.values()).most_common()
         tie = ranked[0][1] == ranked[1][1]

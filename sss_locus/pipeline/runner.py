@@ -299,7 +299,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
                     exc.kept = kept
                     exc.args = (f"{exc.args[0]}; the failed notebook is kept in {kept}",)
                 raise
-            exported = sorted(m["label"] for m in export.load_manifests(staging / "figures"))
+            exported = sorted(m["label"] for m in export.load_manifests(staging / "figures", export.KINDS))
             record = {"run_key": key, "figures": exported}
             if "data_files" in parameters:
                 from sss_locus.experiments import userdata
@@ -319,7 +319,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
         shutil.rmtree(staging, ignore_errors=True)
     log(f"ran {entry.name} [{profile}] in {time.perf_counter() - start:.1f} s -> {executed}")
     if exported:
-        log(f"  figures: {', '.join(exported)} -> {figures}")
+        log(f"  figures and tables: {', '.join(exported)} -> {figures}")
     return executed
 
 
