@@ -50,6 +50,37 @@ def test_user_inputs_and_other_platform_lists_differ_from_the_paper():
                                             "data_set": ["platforms.auv.transducers.port.tilt_deg=15"]})
 
 
+def test_a_survey_area_of_ones_own_differs_from_the_paper(tmp_path, monkeypatch):
+    """The survey-design chapter's area file is a user input like the observations of your_pings:
+    the shipped example however it is written, another file never."""
+    entry = REGISTRY["survey_design"]
+    monkeypatch.chdir(paths.REPO_ROOT / "data")
+    for same in ("examples/survey_area.toml", str(paths.REPO_ROOT / "data/examples/survey_area.toml")):
+        assert areas.differs_from_paper(entry, entry.resolve("quick", {"area": same})) == [], same
+    mine = tmp_path / "my_area.toml"
+    mine.write_bytes((paths.REPO_ROOT / "data/examples/survey_area.toml").read_bytes())
+    why = areas.differs_from_paper(entry, entry.resolve("quick", {"area": str(mine)}))
+    assert why and "my_area.toml" in why[0]
+
+
+def test_an_edited_area_file_makes_the_survey_design_run_stale(tmp_path, monkeypatch):
+    """The area file's bytes are part of the run's key (as the observations' are), so a book
+    never reuses a plan and mission files computed from another polygon."""
+    from sss_locus.pipeline.outputs import run_key
+    from sss_locus.pipeline.runner import resolve_parameters
+
+    entry = REGISTRY["survey_design"]
+    area = tmp_path / "my_area.toml"
+    area.write_text('[area]\nvertices_m = [[0, 0], [900, 0], [900, 400], [0, 400]]\n')
+    monkeypatch.chdir(tmp_path)
+    first = resolve_parameters(entry, "quick", {"area": "my_area.toml"}, from_text=True)
+    assert first["area"] == str(area)  # resolved where the command was typed
+    assert first["area_sha256"] == hashlib.sha256(area.read_bytes()).hexdigest()
+    area.write_text('[area]\nvertices_m = [[0, 0], [900, 0], [900, 500], [0, 400]]\n')
+    second = resolve_parameters(entry, "quick", {"area": "my_area.toml"}, from_text=True)
+    assert run_key(entry, "quick", second) != run_key(entry, "quick", first)
+
+
 def _paper_figure(label: str, notebook: str):
     """A real exported figure in the reproduction's figures folder, made by ``notebook``."""
     import matplotlib

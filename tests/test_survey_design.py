@@ -148,6 +148,30 @@ def test_geojson_area_matches_the_geodesic_area(tmp_path):
     assert np.allclose(back, ring, atol=1e-9)
 
 
+def test_the_area_file_is_recorded_in_the_plan_figures_manifest(tmp_path, monkeypatch):
+    """The area a plan was computed over is one of the figure's input files, with its SHA-256 and
+    the role "area", so the BibTeX entry names it as it names the data files."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.pipeline import export
+    from sss_locus.pipeline.provenance import file_sha256
+
+    path = tmp_path / "my_area.toml"
+    path.write_text("[area]\nname = 'mine'\nvertices_m = [[0, 0], [900, 0], [900, 400], [0, 400]]\n")
+    monkeypatch.chdir(tmp_path)
+    area = load_area("my_area.toml")
+    assert area.path == str(path) and area.sha256 == file_sha256(path)
+    fig, ax = plt.subplots()
+    m = export.export_figure(fig, "fig-test-plan", pd.DataFrame({"a": [1]}), caption="A plan.", parameters={},
+                             out_dir=tmp_path / "figs", input_files=[(area.path, "area")])
+    plt.close(fig)
+    assert {"path": "my_area.toml", "sha256": file_sha256(path), "role": "area"} in m["data_inputs"]["files"]
+    assert "my\\_area.toml (sha256" in (tmp_path / "figs" / "fig-test-plan.bib").read_text()
+
+
 @pytest.mark.parametrize("doc, message", [
     ("[area]\nvertices_m = [[0, 0], [100, 100], [100, 0], [0, 100]]\n", "not valid"),   # a bow tie
     ("[area]\nvertices_m = [[0, 0], [100, 0]]\n", "at least 3 distinct vertices"),

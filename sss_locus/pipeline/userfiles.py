@@ -53,3 +53,25 @@ def observation_parameters(path: str, truth: str | None = None) -> dict[str, str
         digest.update(provenance.file_sha256(f).encode())
     out["observations_sha256"] = digest.hexdigest()
     return out
+
+
+def area_parameters(path: str) -> dict[str, str]:
+    """A notebook's ``area`` file (the survey-design chapter's polygon, TOML or GeoJSON), found
+    like the observations (relative to the current directory, else to the repository), and
+    ``area_sha256``, the hash of its bytes ("" when there is no such file: the chapter's reader
+    names it): an edited area makes the run stale."""
+    found = _resolve(path)
+    full = paths.REPO_ROOT / found
+    return {"area": str(found), "area_sha256": provenance.file_sha256(full) if full.is_file() else ""}
+
+
+def file_parameters(parameters: dict) -> dict[str, str]:
+    """The parameters of a run that name a user's files (``observations``, ``area``, each with
+    its ``*_sha256`` parameter), resolved and hashed (:func:`observation_parameters`,
+    :func:`area_parameters`)."""
+    out = {}
+    if "observations" in parameters and "observations_sha256" in parameters:
+        out.update(observation_parameters(parameters["observations"], parameters.get("truth")))
+    if "area" in parameters and "area_sha256" in parameters:
+        out.update(area_parameters(parameters["area"]))
+    return out
