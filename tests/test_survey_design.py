@@ -235,3 +235,27 @@ def test_search_finds_the_best_crossing_angle_of_the_survey_chapters_curve():
     assert found.locus_median_m.idxmin() == curve.idxmin()
     assert list(found.locus_median_m.sort_values().index) == list(curve.sort_values().index)
     assert np.allclose(found.locus_median_m[angles], curve[angles], rtol=0.3)
+
+
+def test_the_front_of_one_platform_titles_it_on_one_line():
+    """A single panel spans the page: a name of 47 characters is not wrapped (it was cut at 45,
+    leaving one word on a line of its own); two panels still wrap at half the width."""
+    import dataclasses
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.report.survey_design import plot_front
+
+    pf = dataclasses.replace(load_platform("auv"), name="Petrel micro-AUV, dual Tern 900 kHz at 12° tilt")
+    t = pd.DataFrame(dict(kind=["standard", "lawnmower", "search"], total_m=[1000.0, 1000.0, 900.0],
+                          eligible=True, front=[False, False, True], recommended=[False, False, True],
+                          locus_median_m=[0.1, 0.2, 0.05]))
+    fig = plot_front({"auv": t}, "locus", {"auv": pf})
+    assert "\n" not in fig.axes[0].get_title()
+    plt.close(fig)
+    fig = plot_front({"auv": t, "boat": t}, "locus", {"auv": pf, "boat": pf})
+    assert "\n" in fig.axes[0].get_title()
+    plt.close(fig)

@@ -59,7 +59,7 @@ def plot_front(fronts: dict, objective: str, platforms: dict):
         ax.scatter(rec.total_m / 1e3, rec[col], s=220, facecolors="none", edgecolors="tab:green", lw=2.2,
                    label="recommended", zorder=5)
         ax.set_xlabel("track length incl. turns (km)")
-        ax.set_title(platform_title(platforms[key], width=45), fontsize=9)
+        ax.set_title(platform_title(platforms[key], width=90 // len(keys)), fontsize=9)  # a panel's width
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel(OBJECTIVE_LABELS[objective])
     handles, labels = axes[0][0].get_legend_handles_labels()
