@@ -259,3 +259,21 @@ def test_the_front_of_one_platform_titles_it_on_one_line():
     fig = plot_front({"auv": t, "boat": t}, "locus", {"auv": pf, "boat": pf})
     assert "\n" in fig.axes[0].get_title()
     plt.close(fig)
+
+
+def test_the_plan_caption_names_the_mission_files_and_why_some_are_missing():
+    """An area in metres without an origin gets the CSV only (the others need longitude/latitude):
+    the plan's caption says which files are beside it and why the others are not."""
+    from sss_locus.report.survey_design import plan_caption
+
+    pf = load_platform("auv")
+    row = pd.Series(dict(heading_deg=0.0, spacing_m=120.0, crossing_deg=math.nan, cross_spacing_m=120.0,
+                         altitude_m=15.0, pitch_deg=0.0, total_m=5000.0, time_h=0.9))
+    cov = dict(once=0.99, twice=0.5, n_holes=0)
+    area = area_from_vertices(RECT, name="mine")
+    local = plan_caption(pf, area, "my_area.toml", row, cov, ["mission.csv"])
+    assert "`mission.csv`" in local and "origin_lonlat" in local and "`mission.plan`" not in local
+    everything = plan_caption(pf, area_from_vertices(RECT, origin_lonlat=(-111.8, 40.2)), "my_area.toml", row, cov,
+                              ["mission.csv", "mission.geojson", "mission.plan", "mission.waypoints"])
+    assert "`mission.waypoints`" in everything and "origin_lonlat" not in everything
+    assert pf.name in everything and "5.00 km" in everything
