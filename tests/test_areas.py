@@ -50,6 +50,37 @@ def test_user_inputs_and_other_platform_lists_differ_from_the_paper():
                                             "data_set": ["platforms.auv.transducers.port.tilt_deg=15"]})
 
 
+def test_a_survey_area_of_ones_own_differs_from_the_paper(tmp_path, monkeypatch):
+    """The survey-design chapter's area file is a user input like the observations of your_pings:
+    the shipped example however it is written, another file never."""
+    entry = REGISTRY["survey_design"]
+    monkeypatch.chdir(paths.REPO_ROOT / "data")
+    for same in ("examples/survey_area.toml", str(paths.REPO_ROOT / "data/examples/survey_area.toml")):
+        assert areas.differs_from_paper(entry, entry.resolve("quick", {"area": same})) == [], same
+    mine = tmp_path / "my_area.toml"
+    mine.write_bytes((paths.REPO_ROOT / "data/examples/survey_area.toml").read_bytes())
+    why = areas.differs_from_paper(entry, entry.resolve("quick", {"area": str(mine)}))
+    assert why and "my_area.toml" in why[0]
+
+
+def test_an_edited_area_file_makes_the_survey_design_run_stale(tmp_path, monkeypatch):
+    """The area file's bytes are part of the run's key (as the observations' are), so a book
+    never reuses a plan and mission files computed from another polygon."""
+    from sss_locus.pipeline.outputs import run_key
+    from sss_locus.pipeline.runner import resolve_parameters
+
+    entry = REGISTRY["survey_design"]
+    area = tmp_path / "my_area.toml"
+    area.write_text('[area]\nvertices_m = [[0, 0], [900, 0], [900, 400], [0, 400]]\n')
+    monkeypatch.chdir(tmp_path)
+    first = resolve_parameters(entry, "quick", {"area": "my_area.toml"}, from_text=True)
+    assert first["area"] == str(area)  # resolved where the command was typed
+    assert first["area_sha256"] == hashlib.sha256(area.read_bytes()).hexdigest()
+    area.write_text('[area]\nvertices_m = [[0, 0], [900, 0], [900, 500], [0, 400]]\n')
+    second = resolve_parameters(entry, "quick", {"area": "my_area.toml"}, from_text=True)
+    assert run_key(entry, "quick", second) != run_key(entry, "quick", first)
+
+
 def _paper_figure(label: str, notebook: str):
     """A real exported figure in the reproduction's figures folder, made by ``notebook``."""
     import matplotlib
@@ -142,3 +173,52 @@ def test_answer_needs_one_known_platform(build_area, capsys):
     assert "'my_auv' is not allowed" in capsys.readouterr().err
     assert cli.main(["answer", "-p", "platform", "auv", "-p", "n_sampels", "5"]) == 2
     assert "unknown parameter(s) ['n_sampels']" in capsys.readouterr().err
+
+
+# -- a user's own files, read before a kernel starts ---------------------------------------------
+
+BAD_AREAS = {  # file name, contents, what the one-line refusal says
+    "bowtie.toml": ("[area]\nvertices_m = [[0, 0], [900, 400], [900, 0], [0, 400]]\n", "the polygon is not valid"),
+    "tiny.toml": ("[area]\nvertices_m = [[0, 0], [400, 0], [400, 12], [0, 12]]\n", "too small for one line"),
+    "bowtie.geojson": ('{"type": "Polygon", "coordinates": [[[-70.67, 41.51], [-70.66, 41.52], [-70.66, 41.51], '
+                       '[-70.67, 41.52], [-70.67, 41.51]]]}', "the polygon is not valid"),
+    "missing.toml": (None, "does not exist"),
+}
+
+
+@pytest.mark.parametrize("name", BAD_AREAS)
+def test_a_bad_area_is_refused_in_one_line_before_a_kernel_starts(name, build_area, tmp_path, capsys, monkeypatch):
+    text, message = BAD_AREAS[name]
+    if text is not None:
+        (tmp_path / name).write_text(text)
+    monkeypatch.chdir(tmp_path)
+    code = cli.main(["run", "survey_design", "--profile", "quick", "-p", "area", name, "--name", "mine"])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1, err
+    assert err.startswith("sss-locus run: error: -p area") and err.count(name) == 1 and message in err, err
+    assert not (build_area / "mine").exists()  # nothing started: no staging, no failed notebook
+
+
+BAD_SIGHTINGS = {  # a change to the worked example's sightings, what the refusal names
+    "missing column": (lambda t: "\n".join(",".join(c for i, c in enumerate(line.split(",")) if i != 9)
+                                           if not line.startswith("#") else line for line in t.splitlines()),
+                       "line 2, column roll_deg: missing"),  # line 1 is a comment
+    "wrong unit": (lambda t: t.replace("depth_m,", "depth_ft,"), "column depth_ft: wrong unit"),
+    "NaN": (lambda t: t.replace(",88.59339141845703,", ",NaN,"), "line 3, column heading_deg: must be a finite"),
+    "beyond the range": (lambda t: t.replace(",459,150.0,1000,", ",999,150.0,1000,").replace("150.0,", "300.0,"),
+                         "beyond the sonar's maximum range"),
+}
+
+
+@pytest.mark.parametrize("case", BAD_SIGHTINGS)
+def test_bad_sightings_are_refused_in_one_line_before_a_kernel_starts(case, build_area, tmp_path, capsys):
+    edit, message = BAD_SIGHTINGS[case]
+    shipped = (paths.REPO_ROOT / "data/examples/your_pings/example_sightings.csv").read_text()
+    bad = tmp_path / "my_sightings.csv"
+    bad.write_text(edit(shipped))
+    assert bad.read_text() != shipped
+    code = cli.main(["run", "your_pings", "-p", "observations", f'"{bad}"', "--name", "mine"])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1, err
+    assert err.startswith("sss-locus run: error: -p observations: my_sightings.csv line ") and message in err, err
+    assert not (build_area / "mine").exists()

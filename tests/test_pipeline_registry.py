@@ -100,6 +100,15 @@ def test_command_line_text_is_converted_to_the_declared_type(name, text, expecte
     assert value == expected and type(value) is type(expected)
 
 
+@pytest.mark.parametrize("text", ['"boat"', "'boat'", ' "boat" '])
+def test_a_quoted_string_on_the_command_line_is_the_string(text):
+    """``-p name '"boat"'`` (a string literal, as the chapters write it for file names and
+    choices) means ``boat``, like the unquoted form; quotes inside a value stay."""
+    spec = parse_parameters_source(CELL)
+    assert validate_parameters(spec, {"name": text}, notebook="d", from_text=True)["name"] == "boat"
+    assert validate_parameters(spec, {"name": 'say "hi"'}, notebook="d", from_text=True)["name"] == 'say "hi"'
+
+
 @pytest.mark.parametrize("name, text", [("n_points", "1.5"), ("n_points", "ten"), ("flag", "maybe"),
                                          ("sizes", "3")])
 def test_command_line_text_of_the_wrong_type_is_rejected(name, text):

@@ -56,3 +56,22 @@ def test_python_example_runs_and_prints_the_stated_length(tmp_path):
     length = float(run.stdout.split()[-1])
     stated = re.search(r"print\(locus\.length\)\s*#\s*([0-9.]+) m", blocks[0])
     assert stated and length > 0 and f"{length:.2f}" == stated.group(1)
+
+
+def test_the_chapters_user_run_commands_name_their_area():
+    """A command a chapter gives for the reader's own inputs (``--data``, ``--set``, an area or an
+    observations file) needs ``--name``: without it the command is refused (it would replace the
+    reproduction), so a chapter must not print it that way."""
+    import json
+
+    found = []
+    for path in sorted((paths.REPO_ROOT / "notebooks").glob("*.ipynb")):
+        cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+        text = "\n".join("".join(c["source"]) for c in cells if c["cell_type"] == "markdown")
+        blocks = [line for b in re.findall(r"```bash\n(.*?)```", text, re.S) for line in b.replace("\\\n", " ").splitlines()]
+        inline = [span.replace("\n", " ") for span in re.findall(r"`(sss-locus (?:run|book)[^`]*)`", text)]
+        for command in (c.strip() for c in blocks + inline if c.strip().startswith("sss-locus ")):
+            if re.search(r"--data|--set|-p (area|observations)\b", command):
+                found.append(command)
+                assert "--name" in command, f"{path.name}: {command}"
+    assert len(found) >= 2, found  # the chapters do give such commands

@@ -139,3 +139,90 @@ def test_paired_comparison_and_verdict_against_constructed_tables():
     assert "at no relief up to 2.0 m" in verdict_sentence(load_platform("auv"), c, alpha=0.01)
     loss = loss_sentence(load_platform("auv"), c, 0.01, 1.0)  # relief 2.0 m: now neither side
     assert "neither is significantly closer at" in loss and loss.endswith("2.0 m.")
+
+
+def _sweep_table(errors: dict, n: int = 5, n_views: int = 3):
+    """A per-feature table in the shape of relief_sweep's: ``errors`` maps (noise scale, relief,
+    estimator) to the error every feature of that case has (NaN: no estimate, status "too few
+    views", as for an estimator of more views than a feature has)."""
+    import pandas as pd
+
+    rows = []
+    for (k, r, est), e in errors.items():
+        ok = not math.isnan(e)
+        rows.append(pd.DataFrame(dict(feature=np.arange(n), estimator=est, noise_scale=k, rms_relief_m=r,
+                                      estimated=ok, status="resolved" if ok else "too few views",
+                                      error_3d_m=e, error_h_m=e, error_v_m=e, locus_length_m=np.nan,
+                                      n_views=n_views, n_seen=n_views)))
+    return pd.concat(rows, ignore_index=True)
+
+
+def _labels(ax) -> list[str]:
+    """The y tick labels drawn inside the axis' view (major and minor)."""
+    lo, hi = ax.get_ylim()
+    ticks = [t for t in ax.yaxis.get_major_ticks() + ax.yaxis.get_minor_ticks() if lo <= t.get_loc() <= hi]
+    return [t.label1.get_text() for t in ticks if t.label1.get_visible() and t.label1.get_text()]
+
+
+def test_relief_rows_of_less_than_a_decade_have_readable_error_axes():
+    """A row whose errors span 1.9 to 4.5 m (a user platform's full noise model) holds no power of
+    ten and no 5: its axis still shows at least three values."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.report.reconstruction import plot_relief
+
+    errors = {}
+    for k, (lo, hi) in ((0.0, (1e-4, 2.0)), (1.0, (1.9, 4.5))):
+        for i, r in enumerate((0.0, 1.0, 4.0)):
+            for est in ("flat1", "flat", "two", "n3", "all"):
+                errors[(k, r, est)] = lo + (hi - lo) * i / 2
+    fig = plot_relief([load_platform("auv")], {"auv": _sweep_table(errors)})
+    fig.canvas.draw()
+    narrow = fig.axes[1]
+    assert narrow.get_ylim()[0] > 1 and narrow.get_ylim()[1] < 5  # no major tick, no 5 inside
+    assert len(_labels(narrow)) >= 3, _labels(narrow)
+    plt.close(fig)
+
+
+def test_view_counts_no_feature_reaches_are_said_on_the_figure():
+    """When no feature is seen by 4 or 6 views (a short-range sonar on the chapter's line spacing)
+    the figure says so where those steps would be, instead of leaving them blank."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.report.reconstruction import plot_views
+
+    nan = math.nan
+    errors = {(k, 1.0, est): e for k in (0.0, 1.0)
+              for est, e in (("flat1", 1.0), ("flat", 0.8), ("two", 0.5), ("n3", 0.3), ("n4", nan), ("n6", nan),
+                             ("all", 0.3))}
+    fig = plot_views([load_platform("auv")], {"auv": _sweep_table(errors)}, 1.0)
+    fig.canvas.draw()
+    texts = [t.get_text() for ax in fig.axes for t in ax.texts]
+    assert any("no feature" in t and "4" in t for t in texts), texts
+    assert any("no feature" in t and "6" in t for t in texts), texts
+    plt.close(fig)
+
+
+def test_the_method_says_how_each_platform_of_the_run_flies(tmp_path):
+    """Whether a platform holds one height or follows the terrain comes from its envelope
+    (``same_altitude``), for any platform: the chapter's method says which, by the platform's name,
+    at the altitude the survey uses (the middle of the envelope's range)."""
+    import dataclasses
+
+    from sss_locus.experiments.reconstruction_study import survey_altitude_m
+    from sss_locus.report.reconstruction import height_sentence
+
+    boat, auv = load_platform("boat"), load_platform("auv")
+    eb, ea = load_envelope("boat"), load_envelope("auv")
+    assert survey_altitude_m(ea) == pytest.approx(0.5 * (ea.altitude_min_m + ea.altitude_max_m))
+    text = height_sentence([boat, auv], [eb, ea])
+    assert eb.same_altitude and not ea.same_altitude
+    assert f"the {boat.name} holds one height" in text and f"the {auv.name} follows the terrain" in text
+    flipped = height_sentence([auv], [dataclasses.replace(ea, same_altitude=True)])
+    assert f"the {auv.name} holds one height" in flipped and "follows" not in flipped

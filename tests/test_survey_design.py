@@ -148,6 +148,30 @@ def test_geojson_area_matches_the_geodesic_area(tmp_path):
     assert np.allclose(back, ring, atol=1e-9)
 
 
+def test_the_area_file_is_recorded_in_the_plan_figures_manifest(tmp_path, monkeypatch):
+    """The area a plan was computed over is one of the figure's input files, with its SHA-256 and
+    the role "area", so the BibTeX entry names it as it names the data files."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.pipeline import export
+    from sss_locus.pipeline.provenance import file_sha256
+
+    path = tmp_path / "my_area.toml"
+    path.write_text("[area]\nname = 'mine'\nvertices_m = [[0, 0], [900, 0], [900, 400], [0, 400]]\n")
+    monkeypatch.chdir(tmp_path)
+    area = load_area("my_area.toml")
+    assert area.path == str(path) and area.sha256 == file_sha256(path)
+    fig, ax = plt.subplots()
+    m = export.export_figure(fig, "fig-test-plan", pd.DataFrame({"a": [1]}), caption="A plan.", parameters={},
+                             out_dir=tmp_path / "figs", input_files=[(area.path, "area")])
+    plt.close(fig)
+    assert {"path": "my_area.toml", "sha256": file_sha256(path), "role": "area"} in m["data_inputs"]["files"]
+    assert "my\\_area.toml (sha256" in (tmp_path / "figs" / "fig-test-plan.bib").read_text()
+
+
 @pytest.mark.parametrize("doc, message", [
     ("[area]\nvertices_m = [[0, 0], [100, 100], [100, 0], [0, 100]]\n", "not valid"),   # a bow tie
     ("[area]\nvertices_m = [[0, 0], [100, 0]]\n", "at least 3 distinct vertices"),
@@ -211,3 +235,45 @@ def test_search_finds_the_best_crossing_angle_of_the_survey_chapters_curve():
     assert found.locus_median_m.idxmin() == curve.idxmin()
     assert list(found.locus_median_m.sort_values().index) == list(curve.sort_values().index)
     assert np.allclose(found.locus_median_m[angles], curve[angles], rtol=0.3)
+
+
+def test_the_front_of_one_platform_titles_it_on_one_line():
+    """A single panel spans the page: a name of 47 characters is not wrapped (it was cut at 45,
+    leaving one word on a line of its own); two panels still wrap at half the width."""
+    import dataclasses
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.report.survey_design import plot_front
+
+    pf = dataclasses.replace(load_platform("auv"), name="Petrel micro-AUV, dual Tern 900 kHz at 12° tilt")
+    t = pd.DataFrame(dict(kind=["standard", "lawnmower", "search"], total_m=[1000.0, 1000.0, 900.0],
+                          eligible=True, front=[False, False, True], recommended=[False, False, True],
+                          locus_median_m=[0.1, 0.2, 0.05]))
+    fig = plot_front({"auv": t}, "locus", {"auv": pf})
+    assert "\n" not in fig.axes[0].get_title()
+    plt.close(fig)
+    fig = plot_front({"auv": t, "boat": t}, "locus", {"auv": pf, "boat": pf})
+    assert "\n" in fig.axes[0].get_title()
+    plt.close(fig)
+
+
+def test_the_plan_caption_names_the_mission_files_and_why_some_are_missing():
+    """An area in metres without an origin gets the CSV only (the others need longitude/latitude):
+    the plan's caption says which files are beside it and why the others are not."""
+    from sss_locus.report.survey_design import plan_caption
+
+    pf = load_platform("auv")
+    row = pd.Series(dict(heading_deg=0.0, spacing_m=120.0, crossing_deg=math.nan, cross_spacing_m=120.0,
+                         altitude_m=15.0, pitch_deg=0.0, total_m=5000.0, time_h=0.9))
+    cov = dict(once=0.99, twice=0.5, n_holes=0)
+    area = area_from_vertices(RECT, name="mine")
+    local = plan_caption(pf, area, "my_area.toml", row, cov, ["mission.csv"])
+    assert "`mission.csv`" in local and "origin_lonlat" in local and "`mission.plan`" not in local
+    everything = plan_caption(pf, area_from_vertices(RECT, origin_lonlat=(-111.8, 40.2)), "my_area.toml", row, cov,
+                              ["mission.csv", "mission.geojson", "mission.plan", "mission.waypoints"])
+    assert "`mission.waypoints`" in everything and "origin_lonlat" not in everything
+    assert pf.name in everything and "5.00 km" in everything

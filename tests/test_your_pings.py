@@ -294,3 +294,16 @@ def test_an_unknown_platform_is_refused_naming_line_and_column(tmp_path):
     (tmp_path / "s.csv").write_text(GOOD.replace("auv", "my_boat"))
     with pytest.raises(ValueError, match=r"^s.csv line 2, column platform: platform must be one of \[.*'auv'.*got 'my_boat'"):
         yp.run(tmp_path / "s.csv")
+
+
+def test_the_map_caption_lists_only_the_files_written():
+    """Sightings in local metres without an origin get no GeoJSON (it needs longitude/latitude):
+    the caption says so and how to get one, instead of listing a file that is not there."""
+    from sss_locus.report.your_pings import map_caption
+
+    with_frame = map_caption(9, known=False, synthetic=False, geojson=True)
+    assert "`--results.geojson`" in with_frame and "Synthetic" not in with_frame
+    local = map_caption(9, known=False, synthetic=False, geojson=False)
+    assert "`--results.geojson`" not in local and "-p origin" in local
+    assert map_caption(9, known=True, synthetic=True, geojson=True).startswith("**Synthetic example**")
+    assert "from the true position" in map_caption(9, known=True, synthetic=False, geojson=True)

@@ -23,6 +23,13 @@ def _extent(layout: SurveyLayout, platform) -> float:
     return layout.area_m + 2.0 * (platform.sonar.max_range_m + layout.margin_m) + 10.0
 
 
+def survey_altitude_m(envelope) -> float:
+    """The altitude the chapter's survey flies: the middle of the envelope's altitude range (above
+    the mean seafloor for a platform holding one height, ``same_altitude``; above the local
+    seafloor otherwise)."""
+    return 0.5 * (envelope.altitude_min_m + envelope.altitude_max_m)
+
+
 def run_case(platform, envelope, noise, terrain, layout: SurveyLayout, *, n_features: int,
              noise_scale: float, seed: int, shadowing: str = "off", below_sensors: bool = True,
              margin_sigmas: float = 5.0, n_views=(3, 4, 6)) -> pd.DataFrame:
@@ -31,7 +38,7 @@ def run_case(platform, envelope, noise, terrain, layout: SurveyLayout, *, n_feat
     of views lost to shadowing (``n_shadowed``). The vehicle flies at the middle of the
     envelope's altitude range (above the mean seafloor for a fixed-height platform, above the
     local seafloor otherwise)."""
-    altitude = 0.5 * (envelope.altitude_min_m + envelope.altitude_max_m)
+    altitude = survey_altitude_m(envelope)
     f = place_features(terrain, n_features, layout.area_m, seed)
     views, seen, info = observe_features(platform, terrain, f, layout, altitude, envelope.same_altitude,
                                          seed + 1, shadowing)

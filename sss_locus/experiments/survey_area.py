@@ -86,6 +86,8 @@ class SurveyArea:
         Where it was read from (a file path, or ``"vertices"``).
     sha256 : str
         SHA-256 of the file it was read from (``""`` if none).
+    path : str
+        That file, found (:func:`load_area`; ``""`` if none).
     """
 
     polygon: object
@@ -93,6 +95,7 @@ class SurveyArea:
     name: str = "survey area"
     source: str = "vertices"
     sha256: str = ""
+    path: str = ""
 
     @property
     def area_m2(self) -> float:
@@ -178,7 +181,7 @@ def load_area(path: str | Path) -> SurveyArea:
     is looked up from the working directory, then from the folder the ``sss-locus`` command was
     started in (:data:`sss_locus.paths.CALLER_DIR_ENV`), then from the repository's root (so the
     shipped ``data/examples/survey_area.toml`` is found from any run). The area records the
-    file's SHA-256 (``sha256``)."""
+    file's SHA-256 (``sha256``) and where it was found (``path``)."""
     import hashlib
     import os
 
@@ -191,7 +194,7 @@ def load_area(path: str | Path) -> SurveyArea:
     if not p.is_file():
         raise ValueError(f"area file {path} does not exist")
     area = _load_area(p, str(path))
-    return replace(area, sha256=hashlib.sha256(p.read_bytes()).hexdigest())
+    return replace(area, sha256=hashlib.sha256(p.read_bytes()).hexdigest(), path=str(p.resolve()))
 
 
 def _load_area(p: Path, source: str) -> SurveyArea:

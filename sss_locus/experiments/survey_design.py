@@ -198,6 +198,22 @@ class DesignResult:
     setting: Setting
 
 
+def standard_for(s: Setting) -> Plan:
+    """The standard plan of setting ``s``; refused in one line when no altitude of the platform
+    fits or the area is too small for one of its lines (checked before any work by the runner)."""
+    std = standard_plan(s.platform, s.area, s.terrain, s.settings, s.heights_m)
+    if not plan_ok(s.platform, s.settings, s.heights_m, std):
+        raise ValueError(f"no altitude of platform {s.platform.key!r} fits water_depth_m = "
+                         f"{s.settings['water_depth_m']:g} m over this terrain (depth rating "
+                         f"{s.platform.depth_min_m:g}-{s.platform.depth_max_m:g} m)")
+    if std.lines(s.area).empty:
+        x0, y0, x1, y1 = s.area.polygon.bounds
+        raise ValueError(f"area {s.area.name!r} is too small for one line of the standard plan of {s.platform.key!r}: "
+                         f"its lines are {std.spacing_m:.0f} m apart (standard_spacing_fraction x the range scale) and "
+                         f"the first lies half a spacing inside the area, which spans {x1 - x0:.0f} m x {y1 - y0:.0f} m")
+    return std
+
+
 def search(s: Setting, objective: str, grid: dict, *, noise=None, progress=None) -> pd.DataFrame:
     """Every plan of ``grid`` (:func:`~sss_locus.experiments.survey_plans.plan_grid` keywords),
     the standard plan and the equal-length lawnmower, evaluated; columns of :func:`evaluate`
@@ -207,16 +223,7 @@ def search(s: Setting, objective: str, grid: dict, *, noise=None, progress=None)
     grid = check_grid(grid)
     if objective == "reconstruction" and noise is None:
         raise ValueError("objective 'reconstruction' needs noise (a NoiseModel)")
-    std = standard_plan(s.platform, s.area, s.terrain, s.settings, s.heights_m)
-    if not plan_ok(s.platform, s.settings, s.heights_m, std):
-        raise ValueError(f"no altitude of platform {s.platform.key!r} fits water_depth_m = "
-                         f"{s.settings['water_depth_m']:g} m over this terrain (depth rating "
-                         f"{s.platform.depth_min_m:g}-{s.platform.depth_max_m:g} m)")
-    if std.lines(s.area).empty:
-        x0, y0, x1, y1 = s.area.polygon.bounds
-        raise ValueError(f"area {s.area.name!r} is too small for one line of the standard plan: its lines are "
-                         f"{std.spacing_m:.0f} m apart (standard_spacing_fraction x the range scale) and the first "
-                         f"lies half a spacing inside the area, which spans {x1 - x0:.0f} m x {y1 - y0:.0f} m")
+    std = standard_for(s)
     plans = [(std, "standard"), (lawnmower_plan(s.platform, s.area, std), "lawnmower")]
     same = lambda a, b: {**a.row(), "name": ""} == {**b.row(), "name": ""}  # noqa: E731
     plans += [(p, "search") for p in plan_grid(s.platform, s.area, s.terrain, s.settings, s.heights_m, **grid)

@@ -186,27 +186,42 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
     return PingResults(features=feats, sightings=sights, locus=locus, frame=frame)
 
 
-def run(path, platform=None, origin: LocalFrame | None = None, *, missing_attitude: str = "refuse",
-        range_sigma_m: float = 0.1, **kw) -> PingResults:
-    """Read a sightings CSV or an XTF matches file (:func:`~sss_locus.experiments.observations_xtf.
-    read_observations`), put it in the local frame and :func:`analyse` it with ``platform``
-    (default: the file's platform key, from the data files)."""
-    from .observations import to_local_frame
+def read_checked(path, platform=None, *, missing_attitude: str = "refuse", range_sigma_m: float = 0.1):
+    """The validated sightings of a CSV or XTF matches file
+    (:func:`~sss_locus.experiments.observations_xtf.read_observations`) and the platform they
+    name (default: the file's platform key, from the data files); a slant range outside the
+    sonar's range limits is refused naming its line. Returns ``(table, platform)``."""
     from .observations_xtf import read_observations
 
     table = read_observations(path, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
-    key = table["platform"].iloc[0]
+    key, where = table["platform"].iloc[0], f"{Path(path).name} line {table['line'].iloc[0]}, column platform"
     if platform is None:  # only this platform's data entries are read (a run is stale only when they change)
         from .platforms import load_platform
 
         try:
             platform = load_platform(key)
         except ValueError as exc:
-            raise ValueError(f"{Path(path).name} line {table['line'].iloc[0]}, column platform: {exc} "
-                             "(add yours with --data)") from None
+            raise ValueError(f"{where}: {exc} (add yours with --data)") from None
     elif key != platform.key:
-        raise ValueError(f"{Path(path).name} line {table['line'].iloc[0]}, column platform: the run's platform is "
-                         f"{platform.key!r}; got {table['platform'].iloc[0]!r}")
+        raise ValueError(f"{where}: the run's platform is {platform.key!r}; got {key!r}")
+    sonar = platform.sonar
+    out = table[(table["slant_range_m"] > sonar.max_range_m) | (table["slant_range_m"] < sonar.min_range_m)]
+    if len(out):
+        r = out.iloc[0]
+        how = "beyond the sonar's maximum" if r["slant_range_m"] > sonar.max_range_m else "below the sonar's minimum"
+        raise ValueError(f"{Path(path).name} line {r['line']}: slant range {r['slant_range_m']:.6g} m is {how} range: "
+                         f"{platform.key!r} ({sonar.name}) sees [{sonar.min_range_m:g}, {sonar.max_range_m:g}] m "
+                         f"(sonars.{sonar.key} in the data files)")
+    return table, platform
+
+
+def run(path, platform=None, origin: LocalFrame | None = None, *, missing_attitude: str = "refuse",
+        range_sigma_m: float = 0.1, **kw) -> PingResults:
+    """Read a sightings CSV or an XTF matches file and check it (:func:`read_checked`), put it in
+    the local frame and :func:`analyse` it with ``platform`` (default: the file's platform key)."""
+    from .observations import to_local_frame
+
+    table, platform = read_checked(path, platform, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
     table, frame = to_local_frame(table, origin)
     return analyse(table, platform, frame, **kw)
 

@@ -15,8 +15,8 @@ user's platform with the paper's never overwrites the paper's figure of that lab
 cache is shared, so the paper's platforms in a named run are cache hits.
 
 A run *into the reproduction* whose inputs are not the paper's (``--data``, ``--set``, or a
-``platforms`` list other than the notebook's default, or a survey's ``observations`` file
-other than the worked example's) would replace paper figures and, without a
+``platforms`` list other than the notebook's default, a survey's ``observations`` file
+other than the worked example's, or a survey ``area`` other than the example area) would replace paper figures and, without a
 paper platform, the claims table. :func:`check_reproduction` refuses it before anything starts,
 naming what it would replace, unless ``--replace-reproduction`` says to. Reruns of the paper's
 platforms with other parameters (sample sizes, seeds, profiles; the "Rerunning a notebook" page)
@@ -75,7 +75,8 @@ def entered(name: str | None) -> Iterator[None]:
 
 def differs_from_paper(entry: Any, parameters: Mapping[str, Any]) -> list[str]:
     """How a run of ``entry`` (a registry entry) with ``parameters`` leaves the paper's inputs:
-    user data files, ``--set`` overrides, a ``platforms`` list other than the notebook's default.
+    user data files, ``--set`` overrides, a ``platforms`` list other than the notebook's default,
+    another observations or area file than the shipped example.
     Empty for the paper's inputs."""
     declared = entry.parameters()
     out = []
@@ -90,6 +91,11 @@ def differs_from_paper(entry: Any, parameters: Mapping[str, Any]) -> list[str]:
         if observation_parameters(parameters["observations"])["observations"] != default:
             out.append(f"reads the observations {os.path.basename(str(parameters['observations']))} "
                        "instead of the worked example")
+    if "area" in declared and "area" in parameters:
+        from sss_locus.pipeline.userfiles import area_parameters
+
+        if area_parameters(parameters["area"])["area"] != area_parameters(declared["area"].default)["area"]:
+            out.append(f"plans over the area {os.path.basename(str(parameters['area']))} instead of the example area")
     if "platforms" in declared:
         default, used = list(declared["platforms"].default), list(parameters.get("platforms", []))
         if used != default:

@@ -135,14 +135,14 @@ def data_inputs(parameters: Mapping[str, Any], platforms: Sequence[str] | None =
         return {"error": str(exc)}
 
 
-def with_files(inputs: dict[str, Any], files: Sequence[Path]) -> dict[str, Any]:
-    """``inputs`` with ``files`` added to its ``files`` (name relative to the repository when
-    inside it, else the file name; SHA-256; role ``"observations"``)."""
+def with_files(inputs: dict[str, Any], files: Sequence[Any]) -> dict[str, Any]:
+    """``inputs`` with ``files`` (paths, or ``(path, role)``) added to its ``files``: name relative
+    to the repository when inside it, else the file name; SHA-256; role (``"observations"``)."""
     extra = []
-    for f in files:
+    for f, role in (f if isinstance(f, tuple) else (f, "observations") for f in files):
         p = Path(f).resolve()
         name = str(p.relative_to(paths.REPO_ROOT)) if p.is_relative_to(paths.REPO_ROOT) else p.name
-        extra.append({"path": name, "sha256": provenance.file_sha256(p), "role": "observations"})
+        extra.append({"path": name, "sha256": provenance.file_sha256(p), "role": role})
     if not extra:
         return inputs
     return {**inputs, "files": [*inputs.get("files", []), *extra]}
@@ -168,7 +168,7 @@ def export_figure(
     out_dir: Path | None = None,
     shown: list[bytes] | None = None,
     platforms: Sequence[str] | None = None,
-    input_files: Sequence[Path] = (),
+    input_files: Sequence[Any] = (),
     attachments: Mapping[str, str] | None = None,
 ) -> dict[str, Any]:
     """Export one figure with its data, manifest and BibTeX entry; return the manifest.
@@ -206,10 +206,10 @@ def export_figure(
     platforms : sequence of str, optional
         The platforms the figure shows (its data inputs name exactly these, :func:`data_inputs`);
         default: every platform of ``parameters["platforms"]``.
-    input_files : sequence of path
-        Files of the user's the figure was computed from besides the TOML data (e.g. a survey's
-        sightings and XTF files): recorded in ``data_inputs["files"]`` with their SHA-256 and the
-        role ``"observations"`` (so the BibTeX note and the book name them).
+    input_files : sequence of path or of (path, role)
+        The user's files the figure was computed from besides the TOML data (a survey's sightings
+        and XTF files; ``(path, "area")``: a survey area), recorded in ``data_inputs["files"]``
+        with SHA-256 and role (default ``"observations"``) for the BibTeX note and the book.
     attachments : mapping of str to str, optional
         Other files computed with the figure (e.g. the mission files of a survey plan), by name
         (``mission.plan``: :data:`ATTACHMENT_PATTERN`) to text; written as ``<label>--<name>``

@@ -83,8 +83,9 @@ def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame
         The platforms the figure shows, when not every platform of the run (a figure per
         platform, or one drawn from the first platform only): its manifest and BibTeX name exactly
         these platforms and the data they read.
-    input_files : sequence of path, optional
-        A user's own input files (recorded with their SHA-256, :func:`sss_locus.pipeline.export.export_figure`).
+    input_files : sequence of path or of (path, role), optional
+        A user's own input files (recorded with their SHA-256 and role,
+        :func:`sss_locus.pipeline.export.export_figure`).
     attachments : mapping of str to str, optional
         Files computed with the figure (name -> text, e.g. ``{"mission.plan": ...}``), published
         beside it as ``<label>--<name>`` under the same manifest and BibTeX entry.

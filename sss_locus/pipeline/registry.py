@@ -178,8 +178,12 @@ def _coerce(param: Parameter, value: Any, from_text: bool) -> Any:
 
 def _from_text(param: Parameter, text: str) -> Any:
     """Command-line text converted to the parameter's type (checked by the caller)."""
-    if param.type == "str":
-        return text
+    if param.type == "str":  # a string literal (``-p area '"my.toml"'``) means the string itself
+        try:
+            literal = ast.literal_eval(text.strip())
+        except (ValueError, SyntaxError):
+            return text
+        return literal if isinstance(literal, str) else text
     if param.type == "bool":
         lowered = text.strip().lower()
         if lowered in ("true", "1", "yes"):

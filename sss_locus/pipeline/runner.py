@@ -116,8 +116,7 @@ def resolve_parameters(entry: NotebookEntry, profile: str, overrides: dict[str, 
     (``data``, a :class:`sss_locus.experiments.userdata.DataInputs` from ``--data``/``--set``)
     as the ``data_files``/``data_set`` parameters of a notebook that declares them."""
     parameters = entry.resolve(profile, overrides, from_text=from_text)
-    if "observations" in parameters and "observations_sha256" in parameters:
-        parameters.update(userfiles.observation_parameters(parameters["observations"], parameters.get("truth")))
+    parameters.update(userfiles.file_parameters(parameters))  # a user's observations or area file, read
     if data is not None and not data.is_default:
         for name, value in (("data_files", list(data.files)), ("data_set", list(data.sets))):
             if name in parameters and value:

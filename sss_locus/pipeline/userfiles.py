@@ -53,3 +53,55 @@ def observation_parameters(path: str, truth: str | None = None) -> dict[str, str
         digest.update(provenance.file_sha256(f).encode())
     out["observations_sha256"] = digest.hexdigest()
     return out
+
+
+def area_parameters(path: str) -> dict[str, str]:
+    """A notebook's ``area`` file (the survey-design chapter's polygon, TOML or GeoJSON), found
+    like the observations (relative to the current directory, else to the repository), and
+    ``area_sha256``, the hash of its bytes ("" when there is no such file: the chapter's reader
+    names it): an edited area makes the run stale."""
+    found = _resolve(path)
+    full = paths.REPO_ROOT / found
+    return {"area": str(found), "area_sha256": provenance.file_sha256(full) if full.is_file() else ""}
+
+
+def file_parameters(parameters: dict) -> dict[str, str]:
+    """The parameters of a run that name a user's files (``observations``, ``area``, each with
+    its ``*_sha256`` parameter), resolved and hashed (:func:`observation_parameters`,
+    :func:`area_parameters`), after reading the files as the chapter will (:func:`check_files`)."""
+    out = {}
+    if "observations" in parameters and "observations_sha256" in parameters:
+        out.update(observation_parameters(parameters["observations"], parameters.get("truth")))
+    if "area" in parameters and "area_sha256" in parameters:
+        out.update(area_parameters(parameters["area"]))
+    check_files({**parameters, **out})
+    return out
+
+
+def check_files(parameters: dict) -> None:
+    """Read the user's files of a run (:func:`file_parameters`) as its chapter will, before a
+    kernel starts: a bad area (not a valid polygon, too small for one line of a platform's
+    standard plan) or bad observations (a row, column or XTF byte offset) are refused in one line
+    naming the parameter. The data files (``--data``) must be in use (they define the platforms)."""
+    name = "area" if "area_sha256" in parameters else "observations" if "observations_sha256" in parameters else None
+    if name is None or name not in parameters:
+        return
+    given = Path(parameters[name])  # resolved (file_parameters), or as typed when not found
+    path = paths.REPO_ROOT / given if (paths.REPO_ROOT / given).is_file() else given
+    try:
+        if name == "area":
+            from sss_locus.experiments import survey_design as sd
+            from sss_locus.experiments.platforms import load_platform
+            from sss_locus.experiments.survey_area import load_area
+
+            area = load_area(path)
+            for key in parameters.get("platforms", []):
+                sd.standard_for(sd.make_setting(load_platform(key), area, parameters["terrain"], seed=parameters["seed"],
+                                                n_features=parameters["n_features"], grid_m=parameters["grid_m"]))
+        else:
+            from sss_locus.experiments.your_pings import read_checked
+
+            read_checked(path, missing_attitude=parameters["missing_attitude"], range_sigma_m=parameters["range_sigma_m"])
+    except ValueError as exc:
+        shown = path.name if path.name not in str(exc) else ""  # the file, once
+        raise ValueError(f"-p {name}{' ' + shown if shown else ''}: {exc}") from None

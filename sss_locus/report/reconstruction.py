@@ -47,6 +47,13 @@ def _plain_minor(value, _pos):
     return f"{value:g}" if np.isclose(mantissa, 2) or np.isclose(mantissa, 5) else ""
 
 
+def _label_minor(ax) -> None:
+    """Minor labels of a log error axis: every one on an axis of less than a decade (which may
+    hold no labelled major tick), 2 and 5 on one of less than two decades, none otherwise."""
+    lo, hi = ax.get_ylim()
+    ax.yaxis.set_minor_formatter(_plain if hi / lo < 10 else _plain_minor if hi / lo < 100 else plt.NullFormatter())
+
+
 def _mark_floor(ax) -> None:
     ax.annotate("< 1 mm, drawn at 1 mm", (0.98, FLOOR_M), xycoords=("axes fraction", "data"),
                 xytext=(0, 5), textcoords="offset points", ha="right", va="bottom",
@@ -58,6 +65,19 @@ def noise_label(scale: float) -> str:
     if scale == 0:
         return "noise-free"
     return "full noise model" if scale == 1 else f"noise model × {scale:g}"
+
+
+def height_sentence(platforms: Sequence, envelopes: Sequence) -> str:
+    """How each platform flies in the chapter's survey, from its envelope: one height above the
+    mean seafloor (``same_altitude``, e.g. a surface boat) or following the terrain, at
+    :func:`~sss_locus.experiments.reconstruction_study.survey_altitude_m`; Markdown, no final stop."""
+    from ..experiments.reconstruction_study import survey_altitude_m
+
+    return "; ".join(
+        f"the {pf.name} holds one height, {fmt_sig(survey_altitude_m(env), 2)} m above the mean seafloor "
+        "(its envelope's `same_altitude`)" if env.same_altitude else
+        f"the {pf.name} follows the terrain {fmt_sig(survey_altitude_m(env), 2)} m above the seafloor below it"
+        for pf, env in zip(platforms, envelopes, strict=True))
 
 
 def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
@@ -90,9 +110,8 @@ def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
                 ax.set_ylabel("median 3-D error (m)")
             if i == len(scales) - 1:
                 ax.set_xlabel("RMS seafloor relief (m)")
-    for ax in axs.flat:  # a row spanning less than two decades also labels 2 and 5
-        lo, hi = ax.get_ylim()
-        ax.yaxis.set_minor_formatter(_plain_minor if hi / lo < 100 else plt.NullFormatter())
+    for ax in axs.flat:  # a row spanning less than two decades also labels minor ticks
+        _label_minor(ax)
     handles, labels = axs[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=SMALL_FONT_PT, frameon=False)
     return fig
@@ -115,8 +134,13 @@ def plot_views(platforms: Sequence, tables: Mapping[str, pd.DataFrame], rms_reli
                            label=noise_label(k))
             axs[1, j].plot(x, d.estimated, "-o", color=color, ms=4, label=noise_label(k))
             axs[1, j].plot(x, d.ambiguous, ":", color=color, lw=1)
+        for i, (est, lab) in enumerate(VIEW_STEPS):  # a step no feature reaches: said, not left blank
+            if est not in set(s.estimator):
+                axs[1, j].text(x[i], 0.5, f"no feature\nseen by {lab}\nviews", ha="center", va="center",
+                               fontsize=SMALL_FONT_PT, color="0.35")
         axs[0, j].set_yscale("log")
         axs[0, j].yaxis.set_major_formatter(_plain)
+        _label_minor(axs[0, j])
         if (s.error_3d_median_m < FLOOR_M).any():
             _mark_floor(axs[0, j])
         axs[0, j].set_title(f"{platform_title(pf, 72 // len(platforms))}\n(a) median 3-D error", fontsize=10)

@@ -37,6 +37,20 @@ def plan_label(row) -> str:
     return text + (f", pitch {row['pitch_deg']:g}°" if row["pitch_deg"] else "")
 
 
+def plan_caption(platform, area, area_file: str, row, cov: dict, files) -> str:
+    """The caption of a recommended plan's figure: the plan, its cost and coverage (``cov`` of
+    :func:`sss_locus.experiments.survey_design.plan_coverage`), the area file with its SHA-256 and
+    the mission ``files`` beside the figure (without an origin only the CSV, and why)."""
+    names = ", ".join(f"`{n}`" for n in files)
+    why = ("" if area.origin_lonlat is not None else
+           " (the others need longitude/latitude: give the area file an `origin_lonlat`)")
+    return (f"Recommended plan for the {platform.name} over {area.name}: {plan_label(row)}; "
+            f"{row.total_m / 1e3:.2f} km including turns of radius {platform.turn_radius_m:g} m, "
+            f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "
+            f"{fmt_percent(cov['twice'])} of the area, holes: {cov['n_holes']}. Area file `{area_file}` "
+            f"(SHA-256 `{area.sha256[:12]}`); mission files beside the figure: {names}{why}.")
+
+
 def plot_front(fronts: dict, objective: str, platforms: dict):
     """Track length against the objective for every plan of each platform (one panel each):
     searched plans grey (hollow: not eligible), the Pareto front joined, the baselines marked,
@@ -59,7 +73,7 @@ def plot_front(fronts: dict, objective: str, platforms: dict):
         ax.scatter(rec.total_m / 1e3, rec[col], s=220, facecolors="none", edgecolors="tab:green", lw=2.2,
                    label="recommended", zorder=5)
         ax.set_xlabel("track length incl. turns (km)")
-        ax.set_title(platform_title(platforms[key], width=45), fontsize=9)
+        ax.set_title(platform_title(platforms[key], width=90 // len(keys)), fontsize=9)  # a panel's width
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel(OBJECTIVE_LABELS[objective])
     handles, labels = axes[0][0].get_legend_handles_labels()

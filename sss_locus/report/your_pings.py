@@ -119,6 +119,23 @@ def _distances(res, truth):
     return out[np.isfinite(out["distance_h_m"])]
 
 
+def map_caption(n_sightings: int, *, known: bool, synthetic: bool, geojson: bool) -> str:
+    """The caption of the chapter's map (:func:`plan_view`) of ``n_sightings``, against the truth
+    when ``known``, listing the result files written beside it (a GeoJSON file only with
+    ``geojson``: sightings in local metres without an origin have no longitude/latitude)."""
+    files = ("every feature's results (`--features.csv`), every sighting (`--sightings.csv`), the loci's "
+             "points (`--locus.csv`)")
+    return (("**Synthetic example** (made by the project's simulator over a known seafloor). " if synthetic else "")
+            + f"Left: the sensor at each of the {n_sightings} sightings and each feature's estimates (grid "
+            "east/north of the local frame). Right: the horizontal distance of each estimate from "
+            + ("the true position." if known else "the best estimate (flat-seafloor mean minus the N-view position, "
+               "else the two-view point on a non-empty locus).")
+            + f" The result files beside the figure: {files}"
+            + (" and all of it as GeoJSON (`--results.geojson`)." if geojson else
+               "; no GeoJSON, which needs longitude/latitude: the sightings are in local metres and the run "
+               "gave no origin (`-p origin '[lon, lat]'`)."))
+
+
 def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
     """What the run found, in numbers: features, sightings, statuses, the flat-seafloor spread and,
     with ``errors`` (:func:`~sss_locus.experiments.your_pings_files.against_truth`), the median
