@@ -4,6 +4,12 @@ Tables are the per-feature tables of :func:`sss_locus.experiments.reconstruction
 (one per platform key), summarised by :func:`sss_locus.experiments.reconstruction.summarise`.
 Platforms are :class:`~sss_locus.experiments.platforms.Platform` objects; their names come from
 the data.
+
+The figures are drawn in the book's seaborn theme (:func:`~sss_locus.report.style.theme`) with
+matplotlib's ``plot``, not ``seaborn.lineplot``: each point is a median
+:func:`~sss_locus.experiments.reconstruction.summarise` computed (the figures' CSV data, floored at
+:data:`FLOOR_M`), not a statistic for seaborn to estimate, and each estimator keeps its own line
+style, marker and marker fill (:data:`ESTIMATORS`), so lines that coincide stay visible.
 """
 
 from __future__ import annotations
@@ -15,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 from ..experiments.reconstruction import summarise
-from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title, themed
 from .text import fmt_percent, fmt_sig
 
 ESTIMATORS = {"flat1": ("flat seafloor, one view", "tab:gray", ":", "o"),
@@ -60,6 +66,7 @@ def noise_label(scale: float) -> str:
     return "full noise model" if scale == 1 else f"noise model × {scale:g}"
 
 
+@themed
 def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
     """Median 3-D error (log scale) against RMS relief, one column per platform and one row per
     noise scale (each row its own error axis, so the noisy rows are not squeezed by the
@@ -83,7 +90,7 @@ def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
                 _mark_floor(ax)
             ax.set_yscale("log")
             ax.yaxis.set_major_formatter(_plain)
-            ax.grid(alpha=0.3, which="both")
+            ax.grid(which="minor", linewidth=0.4)  # the theme draws the major lines
             ax.set_title(f"{platform_title(pf, 72 // len(platforms))}\n{noise_label(k)}" if i == 0
                          else noise_label(k), fontsize=10)
             if j == 0:
@@ -98,6 +105,7 @@ def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
     return fig
 
 
+@themed
 def plot_views(platforms: Sequence, tables: Mapping[str, pd.DataFrame], rms_relief_m: float):
     """At one RMS relief: (a) median 3-D error and (b) share of features with an estimate
     (resolved or ambiguous) among those seen by at least the views used, against the number of
@@ -125,7 +133,7 @@ def plot_views(platforms: Sequence, tables: Mapping[str, pd.DataFrame], rms_reli
         axs[1, j].set_xticks(x, [lab for _, lab in VIEW_STEPS])
         axs[1, j].set_xlabel("views used")
         for ax in axs[:, j]:
-            ax.grid(alpha=0.3, which="both")
+            ax.grid(which="minor", linewidth=0.4)  # the theme draws the major lines
     axs[0, 0].set_ylabel("median 3-D error (m)")
     axs[1, 0].set_ylabel("share of features")
     handles, labels = axs[0, 0].get_legend_handles_labels()
