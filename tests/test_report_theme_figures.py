@@ -16,6 +16,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import LogNorm, to_rgba  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
+from sss_locus.experiments.reconstruction import summarise  # noqa: E402
 from sss_locus.report.reconstruction import ESTIMATORS, FLOOR_M, VIEW_STEPS, plot_relief, plot_views  # noqa: E402
 from sss_locus.report.three_views import OUTCOMES, pattern_label, plot_heading_sweep, plot_patterns  # noqa: E402
 from sss_locus.report.water import PAPER_COLOR, WATER_COLOR, plot_crop_effects  # noqa: E402
@@ -164,9 +165,11 @@ def _reconstruction_table(seed: int) -> pd.DataFrame:
     return pd.concat(rows, ignore_index=True)
 
 
-def test_relief_lines_are_the_medians_floored_at_a_millimetre():
+def test_relief_lines_are_the_summary_medians_floored_at_a_millimetre():
     tables = {"a": _reconstruction_table(1), "b": _reconstruction_table(2)}
-    fig = plot_relief(PLATFORMS, tables)
+    summary = pd.concat([summarise(t, by=("noise_scale", "rms_relief_m", "estimator")).assign(platform=k)
+                         for k, t in tables.items()], ignore_index=True)
+    fig = plot_relief(PLATFORMS, summary.sample(frac=1.0, random_state=3))  # any row order
     axs = np.array(fig.axes).reshape(2, 2)
     for j, pf in enumerate(PLATFORMS):
         t = tables[pf.key]
@@ -174,7 +177,7 @@ def test_relief_lines_are_the_medians_floored_at_a_millimetre():
             ax = axs[i, j]
             lines = {ln.get_label(): ln for ln in ax.lines}
             for est, (label, *_) in ESTIMATORS.items():
-                d = t[(t.noise_scale == scale) & (t.estimator == est)]
+                d = t[(t.noise_scale == scale) & (t.estimator == est)]  # the raw table, not the summary
                 reliefs = np.unique(d.rms_relief_m)
                 medians = [np.nanmedian(d[d.rms_relief_m == r].error_3d_m) for r in reliefs]
                 assert np.allclose(lines[label].get_xdata(), reliefs)

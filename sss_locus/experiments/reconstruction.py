@@ -114,11 +114,11 @@ def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture
     sig_eff = np.sqrt(sig[..., 0] ** 2 + (sig[..., 1] * los[..., 0]) ** 2 + (sig[..., 2] * los[..., 1]) ** 2
                       + (sig[..., 3] * los[..., 2]) ** 2)
     sig_eff = np.where(sig_eff > 0, sig_eff, 1e-6)
-    rows = []
+    rows = []  # the columns of each estimator's rows, made into one table at the end
 
     def add(name, est, ok, status, used, **extra):
-        rows.append(pd.DataFrame(dict(feature=np.arange(n), estimator=name, n_views=used, n_seen=n_seen,
-                                      status=status, estimated=ok, **_errors(est, f, ok), **extra)))
+        rows.append(dict(feature=np.arange(n), estimator=np.full(n, name), n_views=used, n_seen=n_seen,
+                         status=status, estimated=ok, **_errors(est, f, ok), **extra))
 
     any_seen = n_seen >= 1
     mean_flat = np.einsum("nki,nk->ni", flat, mask) / np.maximum(n_seen, 1)[:, None]
@@ -160,7 +160,10 @@ def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture
         part = slice(i * n, (i + 1) * n)
         add("all" if k is None else f"n{k}", res.point[part], res.estimated[part], names[res.status[part]],
             used[part], predicted_3d_m=pred[part])
-    return pd.concat(rows, ignore_index=True)
+    # a column an estimator lacks is NaN in its rows (as pandas.concat of one table per estimator)
+    columns = list(dict.fromkeys(k for r in rows for k in r))
+    return pd.DataFrame({c: np.concatenate([np.broadcast_to(r.get(c, np.nan), (n,)) for r in rows])
+                         for c in columns})
 
 
 def summarise(table: pd.DataFrame, by=("estimator",)) -> pd.DataFrame:

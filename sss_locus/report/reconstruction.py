@@ -14,6 +14,7 @@ style, marker and marker fill (:data:`ESTIMATORS`), so lines that coincide stay 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 
 import matplotlib.pyplot as plt
@@ -49,8 +50,10 @@ def _plain(value, _pos):
 @plt.FuncFormatter
 def _plain_minor(value, _pos):
     """Minor labels 2 and 5 of each decade: an axis of less than two decades keeps readable values."""
-    mantissa = value / 10 ** np.floor(np.log10(value) + 1e-9)
-    return f"{value:g}" if np.isclose(mantissa, 2) or np.isclose(mantissa, 5) else ""
+    # plain floats, not numpy scalars: called for every minor tick of every draw
+    mantissa = value / 10 ** math.floor(math.log10(value) + 1e-9)
+    near = [abs(mantissa - m) <= 1e-8 + 1e-5 * m for m in (2, 5)]  # numpy.isclose's tolerances
+    return f"{value:g}" if any(near) else ""
 
 
 def _mark_floor(ax) -> None:
@@ -67,16 +70,17 @@ def noise_label(scale: float) -> str:
 
 
 @themed
-def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
+def plot_relief(platforms: Sequence, summary: pd.DataFrame):
     """Median 3-D error (log scale) against RMS relief, one column per platform and one row per
     noise scale (each row its own error axis, so the noisy rows are not squeezed by the
     noise-free row's rounding-level errors), one line per estimator of :data:`ESTIMATORS`;
-    returns the figure."""
-    scales = sorted(next(iter(tables.values())).noise_scale.unique())
+    returns the figure. ``summary`` is the figure's data: :func:`summarise` of each platform's
+    table by ``("noise_scale", "rms_relief_m", "estimator")`` with a column ``platform`` (its key)."""
+    scales = sorted(summary.noise_scale.unique())
     fig, axs = plt.subplots(len(scales), len(platforms), figsize=(PAGE_WIDTH_IN, 2.3 * len(scales) + 0.9),
                             constrained_layout=True, squeeze=False, sharex=True, sharey="row")
     for j, pf in enumerate(platforms):
-        s = summarise(tables[pf.key], by=("noise_scale", "rms_relief_m", "estimator"))
+        s = summary[summary.platform == pf.key]
         for i, k in enumerate(scales):
             ax = axs[i, j]
             floored = False
