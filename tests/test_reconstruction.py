@@ -87,6 +87,31 @@ def test_noise_free_estimates(terrain):
     assert set(s.estimator) == {"flat", "flat1", "two", "n3", "n4", "n6", "all"}
 
 
+def test_cases_solved_together_give_each_case_its_own_table(monkeypatch):
+    """reconstruct_many: the solver's rows are independent, so the tables of cases solved in one
+    call (and split into runs by the row limit or by their number of views) are exactly those of
+    one reconstruct per case."""
+    import pandas as pd
+
+    from sss_locus.experiments import reconstruction as rc
+
+    pf, env, noise = load_platform("auv"), load_envelope("auv"), load_noise_model("auv")
+    cases = []
+    for k, (layout, scale) in enumerate([(LAYOUT, 1.0), (LAYOUT, 0.1), (LAYOUT, 0.0),
+                                         (SurveyLayout(200.0, 60.0, 50.0, 50.0), 1.0), (LAYOUT, 2.0)]):
+        ter = random_terrain(1.0 + k, 25.0, 800.0, 2.5, seed=k)
+        f = place_features(ter, 60, layout.area_m, seed=20 + k)
+        views, seen, info = observe_features(pf, ter, f, layout, 15.0, env.same_altitude, seed=30 + k)
+        cases.append(dict(views=views, seen=seen, sensor_height_m=info["sensor_height_m"], noise=noise.scaled(scale),
+                          seed=40 + k, below_sensors=k != 1))
+    assert len({c["seen"].shape[1] for c in cases}) == 2  # two numbers of views: two solver runs at least
+    alone = [reconstruct(aperture=pf.sonar.aperture(), **c) for c in cases]
+    for limit in (rc.SOLVER_ROWS, 500):  # all in as few calls as the views allow; runs of about two cases
+        monkeypatch.setattr(rc, "SOLVER_ROWS", limit)
+        for table, reference in zip(rc.reconstruct_many(cases, pf.sonar.aperture()), alone, strict=True):
+            pd.testing.assert_frame_equal(table, reference, check_exact=True)
+
+
 def test_statuses_are_never_silent_nan():
     pf, env, noise = load_platform("boat"), load_envelope("boat"), load_noise_model("boat")
     ter = random_terrain(1.0, 25.0, 800.0, 2.5, seed=9)

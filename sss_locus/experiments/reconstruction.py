@@ -36,6 +36,9 @@ tells why: the table is meant for statistics, its NaN are never silent.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
+from dataclasses import fields, replace
+
 import numpy as np
 import pandas as pd
 
@@ -46,6 +49,10 @@ from .noise import NoiseModel, noise_sigmas, perturb
 from .view_sets import Views
 
 CHI2_LEVEL = 0.999
+SOLVER_ROWS = 32_768
+"""Most rows (features times N-view variants) :func:`reconstruct_many` gives one solver call: the
+quick profile's cases (a few hundred rows each) share one call, the book profile's (8,000 rows
+each) four at a time, larger cases go alone, so memory stays that of the largest case or this."""
 STATUS_NAMES = {int(s): s.name.lower().replace("_", " ") for s in MultiViewStatus}
 
 
@@ -93,10 +100,53 @@ def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture
         ``error_3d_m``, ``error_h_m``, ``error_v_m``, ``locus_length_m`` (``two`` only),
         ``predicted_3d_m`` (``sqrt(trace(covariance))``, N-view only).
     """
-    seen = np.asarray(seen, bool)
-    n, L = seen.shape
+    return reconstruct_many([dict(views=views, seen=seen, sensor_height_m=sensor_height_m, noise=noise, seed=seed,
+                                  below_sensors=below_sensors)], aperture, n_views=n_views,
+                            margin_sigmas=margin_sigmas)[0]
+
+
+def reconstruct_many(cases: Sequence[Mapping], aperture: Aperture, *, n_views=(3, 4, 6),
+                     margin_sigmas: float = 5.0) -> list[pd.DataFrame]:
+    """:func:`reconstruct` of each case (a mapping of its ``views``, ``seen``,
+    ``sensor_height_m``, ``noise``, ``seed`` and ``below_sensors``): the same tables, with one
+    N-view solver call for consecutive cases with the same number of views, up to
+    :data:`SOLVER_ROWS` rows (only their intermediate arrays are held at once). The solver's
+    rows are independent, and its per-iteration overhead (its iterations run until the slowest
+    row of the call stops) is paid once per call instead of once per case."""
     if any(int(k) < 3 for k in n_views):
         raise ValueError(f"n_views must be integers >= 3; got {list(n_views)}")
+    tables: list[pd.DataFrame] = []
+    run: list = []  # the (step, solver inputs) of consecutive cases solved together
+
+    def solve() -> None:
+        inputs = [x for _, x in run]
+        res = multiview_points(aperture=aperture, **{key: np.concatenate([x[key] for x in inputs]) for key in inputs[0]})
+        sizes = [len(x["mask"]) for x in inputs]
+        for (step, _), end, size in zip(run, np.cumsum(sizes), sizes):
+            try:
+                step.send(replace(res, **{f.name: getattr(res, f.name)[end - size:end] for f in fields(res)}))
+            except StopIteration as done:
+                tables.append(done.value)
+        run.clear()
+
+    for case in cases:
+        step = _estimates(aperture=aperture, n_views=n_views, margin_sigmas=margin_sigmas, **case)
+        x = next(step)
+        if run and (x["mask"].shape[1] != run[0][1]["mask"].shape[1]
+                    or sum(len(y["mask"]) for _, y in run) + len(x["mask"]) > SOLVER_ROWS):
+            solve()
+        run.append((step, x))
+    if run:
+        solve()
+    return tables
+
+
+def _estimates(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture: Aperture, *, n_views, seed: int,
+               margin_sigmas: float, below_sensors: bool):
+    """:func:`reconstruct` of one case, in two steps: yields the N-view solver's inputs, is sent
+    its result for them, and returns the table."""
+    seen = np.asarray(seen, bool)
+    n, L = seen.shape
     from scipy.stats import chi2
 
     rng = np.random.default_rng(seed)
@@ -114,11 +164,11 @@ def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture
     sig_eff = np.sqrt(sig[..., 0] ** 2 + (sig[..., 1] * los[..., 0]) ** 2 + (sig[..., 2] * los[..., 1]) ** 2
                       + (sig[..., 3] * los[..., 2]) ** 2)
     sig_eff = np.where(sig_eff > 0, sig_eff, 1e-6)
-    rows = []
+    rows = []  # the columns of each estimator's rows, made into one table at the end
 
     def add(name, est, ok, status, used, **extra):
-        rows.append(pd.DataFrame(dict(feature=np.arange(n), estimator=name, n_views=used, n_seen=n_seen,
-                                      status=status, estimated=ok, **_errors(est, f, ok), **extra)))
+        rows.append(dict(feature=np.arange(n), estimator=np.full(n, name), n_views=used, n_seen=n_seen,
+                         status=status, estimated=ok, **_errors(est, f, ok), **extra))
 
     any_seen = n_seen >= 1
     mean_flat = np.einsum("nki,nk->ni", flat, mask) / np.maximum(n_seen, 1)[:, None]
@@ -149,10 +199,10 @@ def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture
     used = use.sum(axis=1)
     limit = np.where(used > 3, chi2.ppf(CHI2_LEVEL, np.maximum(used - 3, 1)), np.inf)
     o_all = tile(o_hat)
-    res = multiview_points(tile(W_hat), o_all, np.where(use, tile(r_hat), 1.0), tile(sig_eff), use, aperture,
-                           prior=tile(mean_flat), cost_limit=limit, aperture_margin_deg=tile(margin),
-                           ceiling_m=np.min(np.where(use, o_all[..., 2], np.inf), axis=1)
-                           if below_sensors else np.inf)
+    res = yield dict(W=tile(W_hat), origin=o_all, ranges=np.where(use, tile(r_hat), 1.0), sigmas=tile(sig_eff),
+                     mask=use, prior=tile(mean_flat), cost_limit=limit, aperture_margin_deg=tile(margin),
+                     ceiling_m=np.min(np.where(use, o_all[..., 2], np.inf), axis=1) if below_sensors
+                     else np.full(len(use), np.inf))
     names = np.array([STATUS_NAMES[int(s)] for s in range(len(STATUS_NAMES))])
     tr = np.trace(np.where(res.estimated[:, None, None], res.covariance, 0.0), axis1=1, axis2=2)
     pred = np.sqrt(np.where(res.estimated, tr, np.nan))
@@ -160,7 +210,10 @@ def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture
         part = slice(i * n, (i + 1) * n)
         add("all" if k is None else f"n{k}", res.point[part], res.estimated[part], names[res.status[part]],
             used[part], predicted_3d_m=pred[part])
-    return pd.concat(rows, ignore_index=True)
+    # a column an estimator lacks is NaN in its rows (as pandas.concat of one table per estimator)
+    columns = list(dict.fromkeys(k for r in rows for k in r))
+    return pd.DataFrame({c: np.concatenate([np.broadcast_to(r.get(c, np.nan), (n,)) for r in rows])
+                         for c in columns})
 
 
 def summarise(table: pd.DataFrame, by=("estimator",)) -> pd.DataFrame:

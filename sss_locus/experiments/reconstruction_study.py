@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .reconstruction import reconstruct
+from .reconstruction import reconstruct_many
 from .terrain import Terrain, place_features, random_terrain, terrain_from_config
 from .terrain_survey import SurveyLayout, observe_features
 
@@ -38,15 +38,28 @@ def run_case(platform, envelope, noise, terrain, layout: SurveyLayout, *, n_feat
     of views lost to shadowing (``n_shadowed``). The vehicle flies at the middle of the
     envelope's altitude range (above the mean seafloor for a fixed-height platform, above the
     local seafloor otherwise)."""
+    return run_cases(platform, envelope, noise, [(terrain, noise_scale)], layout, n_features=n_features, seed=seed,
+                     shadowing=shadowing, below_sensors=below_sensors, margin_sigmas=margin_sigmas,
+                     n_views=n_views)[0]
+
+
+def run_cases(platform, envelope, noise, cases, layout: SurveyLayout, *, n_features: int, seed: int,
+              shadowing: str = "off", below_sensors: bool = True, margin_sigmas: float = 5.0,
+              n_views=(3, 4, 6)) -> list[pd.DataFrame]:
+    """:func:`run_case` of each ``(terrain, noise_scale)`` of ``cases``, the same tables, the
+    cases' N-view estimates solved together
+    (:func:`~sss_locus.experiments.reconstruction.reconstruct_many`)."""
     altitude = survey_altitude_m(envelope)
-    f = place_features(terrain, n_features, layout.area_m, seed)
-    views, seen, info = observe_features(platform, terrain, f, layout, altitude, envelope.same_altitude,
-                                         seed + 1, shadowing)
-    tab = reconstruct(views, seen, info["sensor_height_m"], noise.scaled(noise_scale),
-                      platform.sonar.aperture(), n_views=n_views, seed=seed + 2,
-                      margin_sigmas=margin_sigmas, below_sensors=below_sensors)
-    lost = info["shadowed"].sum(axis=1)
-    return tab.assign(n_shadowed=lost[tab.feature.to_numpy()])
+    observed, jobs = [], []
+    for terrain, noise_scale in cases:
+        f = place_features(terrain, n_features, layout.area_m, seed)
+        views, seen, info = observe_features(platform, terrain, f, layout, altitude, envelope.same_altitude,
+                                             seed + 1, shadowing)
+        observed.append(info["shadowed"].sum(axis=1))
+        jobs.append(dict(views=views, seen=seen, sensor_height_m=info["sensor_height_m"],
+                         noise=noise.scaled(noise_scale), seed=seed + 2, below_sensors=below_sensors))
+    tables = reconstruct_many(jobs, platform.sonar.aperture(), n_views=n_views, margin_sigmas=margin_sigmas)
+    return [tab.assign(n_shadowed=lost[tab.feature.to_numpy()]) for tab, lost in zip(tables, observed)]
 
 
 def relief_sweep(platform, envelope, noise, config: dict, rms_values, noise_scales, *,
@@ -57,15 +70,13 @@ def relief_sweep(platform, envelope, noise, config: dict, rms_values, noise_scal
     rc = config["random"]
     base = random_terrain(1.0, rc["correlation_length_m"], _extent(layout, platform),
                           rc["grid_spacing_m"], seed)
-    out = []
-    for rms in rms_values:
-        x0, y0, dx, h = base.grid
-        ter = Terrain("random", {**base.params, "rms_relief_m": float(rms)}, grid=(x0, y0, dx, h * rms))
-        for k in noise_scales:
-            t = run_case(platform, envelope, noise, ter, layout, n_features=n_features, noise_scale=k,
-                         seed=seed + 10, **choices)
-            out.append(t.assign(rms_relief_m=float(rms), noise_scale=float(k)))
-    return pd.concat(out, ignore_index=True)
+    x0, y0, dx, h = base.grid
+    keys = [(float(rms), float(k)) for rms in rms_values for k in noise_scales]
+    cases = [(Terrain("random", {**base.params, "rms_relief_m": rms}, grid=(x0, y0, dx, h * rms)), k)
+             for rms, k in keys]
+    tables = run_cases(platform, envelope, noise, cases, layout, n_features=n_features, seed=seed + 10, **choices)
+    return pd.concat([t.assign(rms_relief_m=rms, noise_scale=k) for t, (rms, k) in zip(tables, keys)],
+                     ignore_index=True)
 
 
 def shape_cases(platform, envelope, noise, config: dict, noise_scales, *, n_features: int, seed: int,
@@ -73,14 +84,14 @@ def shape_cases(platform, envelope, noise, config: dict, noise_scales, *, n_feat
     """:func:`run_case` on the analytic terrains of ``config`` (flat, slope, mound, step) and on
     its random terrain, for each noise scale; column ``terrain`` added."""
     layout = SurveyLayout(**config["survey"])
-    out = []
-    for kind in ("flat", "slope", "mound", "step", "random"):
-        ter = terrain_from_config(kind, config, extent_m=_extent(layout, platform), seed=seed)
-        for k in noise_scales:
-            t = run_case(platform, envelope, noise, ter, layout, n_features=n_features, noise_scale=k,
-                         seed=seed + 10, **choices)
-            out.append(t.assign(terrain=kind, noise_scale=float(k)))
-    return pd.concat(out, ignore_index=True)
+    kinds = ("flat", "slope", "mound", "step", "random")
+    terrains = {kind: terrain_from_config(kind, config, extent_m=_extent(layout, platform), seed=seed)
+                for kind in kinds}
+    keys = [(kind, float(k)) for kind in kinds for k in noise_scales]
+    tables = run_cases(platform, envelope, noise, [(terrains[kind], k) for kind, k in keys], layout,
+                       n_features=n_features, seed=seed + 10, **choices)
+    return pd.concat([t.assign(terrain=kind, noise_scale=k) for t, (kind, k) in zip(tables, keys)],
+                     ignore_index=True)
 
 
 def paired_comparison(table: pd.DataFrame, a: str, b: str, by=()) -> pd.DataFrame:

@@ -26,7 +26,7 @@ from urllib.parse import unquote, urlsplit
 from sss_locus import paths
 from sss_locus.pipeline import citation, claimsindex, export, outputs, paperinputs, provenance
 from sss_locus.pipeline.buildlog import ANSI, StagingPathFilter
-from sss_locus.pipeline.runner import hermetic_env
+from sss_locus.pipeline.kernels import hermetic_env
 
 FIGURES_PAGE = "figures.md"
 CLAIMS_PAGE = "claims.md"

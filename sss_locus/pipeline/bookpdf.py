@@ -22,7 +22,7 @@ from pathlib import Path
 
 from sss_locus import paths
 from sss_locus.pipeline import bookbuild, pdfcheck
-from sss_locus.pipeline.runner import hermetic_env
+from sss_locus.pipeline.kernels import hermetic_env
 
 PDF_NAME = "sss-locus-book.pdf"
 BROWSERS = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable", "chrome")

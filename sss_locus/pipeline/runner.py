@@ -37,63 +37,12 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import (atomic, export, faults, orphans, outputs, paperinputs, paramcell, preflight, progress,
-                                provenance, userfiles)
+from sss_locus.pipeline import (atomic, export, faults, kernels, orphans, outputs, paperinputs, paramcell, preflight,
+                                progress, provenance, userfiles)
+from sss_locus.pipeline.kernels import KERNEL_NAME, hermetic_env, install_kernelspec
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
 from sss_locus.pipeline.registry import NotebookEntry
-
-KERNEL_NAME = "sss-locus"
-
-
-#: Threads of the BLAS/OpenMP libraries in a notebook's kernel. One: OpenBLAS splits a matrix
-#: product by its thread count, so the last bits of e.g. a Spearman rho (2.8e-17 measured) would
-#: depend on the machine's cores and on how many notebooks run at once; and two notebooks run side
-#: by side (``sss-locus book --jobs 2``) with two BLAS threads each made the bootstrap's matrix
-#: products (when the intervals were bootstrapped) 10-20x slower on 2 cores. Dask's workers run with one thread too.
-KERNEL_BLAS_THREADS = "1"
-
-
-def hermetic_env() -> dict[str, str]:
-    """Environment variables that keep kernels' state inside the build area and their numbers
-    independent of the machine's core count (:data:`KERNEL_BLAS_THREADS`)."""
-    root = paths.jupyter_dir()
-    env = {
-        **{var: KERNEL_BLAS_THREADS for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")},
-        "IPYTHONDIR": str(root / "ipython"),
-        "JUPYTER_DATA_DIR": str(root / "data"),
-        "JUPYTER_RUNTIME_DIR": str(root / "runtime"),
-        "JUPYTER_CONFIG_DIR": str(root / "config"),
-        "MPLCONFIGDIR": str(root / "matplotlib"),
-        "MPLBACKEND": "Agg",
-        "JUPYTER_PLATFORM_DIRS": "1",
-        "PYDEVD_DISABLE_FILE_VALIDATION": "1",
-        # Children (kernels, jupyter-book) must see the same build area and cache.
-        paths.BUILD_DIR_ENV: str(paths.build_dir()),
-        paths.CACHE_DIR_ENV: str(paths.cache_dir()),
-        # Relative paths among the parameters are the user's: kept from the outermost command.
-        paths.CALLER_DIR_ENV: os.environ.get(paths.CALLER_DIR_ENV) or os.getcwd(),
-    }
-    for key in ("IPYTHONDIR", "JUPYTER_DATA_DIR", "JUPYTER_RUNTIME_DIR", "JUPYTER_CONFIG_DIR", "MPLCONFIGDIR"):
-        Path(env[key]).mkdir(parents=True, exist_ok=True)
-    return env
-
-
-def install_kernelspec() -> Path:
-    """Write the kernelspec of this Python as ``sss-locus`` under ``$JUPYTER_DATA_DIR/kernels``."""
-    folder = paths.jupyter_dir() / "data" / "kernels" / KERNEL_NAME
-    folder.mkdir(parents=True, exist_ok=True)
-    spec = {
-        "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
-        "display_name": "Python 3 (sss-locus)",
-        "language": "python",
-        "metadata": {"debugger": False},
-    }
-    tmp = folder / f".kernel.json.{os.getpid()}"
-    tmp.write_text(json.dumps(spec, indent=1) + "\n", encoding="utf-8")
-    os.replace(tmp, folder / "kernel.json")  # atomic: parallel runs may install at once
-    return folder
-
 
 @contextmanager
 def patched_environ(values: dict[str, str]) -> Iterator[None]:
@@ -186,7 +135,7 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
     executed.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
 
 
-_CHILD = "import json, sys, papermill; papermill.execute_notebook(**json.load(open(sys.argv[1])))"
+_CHILD = kernels.PAPERMILL_CHILD  # a name of its own: the tests replace it
 
 
 #: Errors of a kernel that never started (no cell ran): jupyter_client picks free ports and

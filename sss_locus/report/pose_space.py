@@ -22,7 +22,7 @@ from matplotlib.colors import to_rgba
 from matplotlib.ticker import MaxNLocator
 
 from ..experiments.pose_stats import HEATMAP_PANELS, TARGETS, median_grid, stable_to
-from .style import PAGE_WIDTH_IN, QUANTITY_LABELS, SMALL_FONT_PT, themed
+from .style import PAGE_WIDTH_IN, QUANTITY_LABELS, SMALL_FONT_PT, themed, upward_heatmap
 from .text import fmt_sig, plain_label
 
 PANEL_TITLES = {
@@ -94,21 +94,14 @@ def _heatmap(ax, xe: np.ndarray, ye: np.ndarray, z: np.ndarray) -> None:
     heatmap's own ticks name its cells; these bins are intervals of numbers). Cells are drawn
     of equal size, so the axes are linear for equal-width bins (those of
     :func:`~sss_locus.experiments.pose_stats.panel_edges`)."""
-    fig = ax.figure
-    layout = fig.get_layout_engine()
-    fig.set_layout_engine("none")  # seaborn draws the figure once per heatmap: without the layout
-    sns.heatmap(z, mask=np.isnan(z), cmap="viridis", ax=ax, cbar=False)  # pass, a fraction of the time
-    fig.set_layout_engine(layout)
-    fig.colorbar(ax.collections[0], ax=ax, pad=0.02).outline.set_linewidth(0)
-    ax.invert_yaxis()
-    ax.set_facecolor("0.85")
-    ax.grid(False)
+    mesh = upward_heatmap(ax, z, cmap="viridis")
+    ax.figure.colorbar(mesh, ax=ax, pad=0.02).outline.set_linewidth(0)
     for axis, e in ((ax.xaxis, xe), (ax.yaxis, ye)):  # data values -> cell positions
         values = [v for v in MaxNLocator(nbins=7, steps=[1, 2, 2.5, 5, 10]).tick_values(e[0], e[-1])
                   if e[0] <= v <= e[-1]]
         axis.set_ticks(np.interp(values, e, np.arange(len(e))),  # edge k at cell position k
                        [f"{v:g}".replace("-", "\N{MINUS SIGN}") for v in values], rotation=0)
-    ax.collections[0].colorbar.ax.set_title("m", fontsize=plt.rcParams["axes.labelsize"])  # the title names it
+    mesh.colorbar.ax.set_title("m", fontsize=plt.rcParams["axes.labelsize"])  # the title names it
 
 
 @themed

@@ -4,10 +4,17 @@ Tables are the per-feature tables of :func:`sss_locus.experiments.reconstruction
 (one per platform key), summarised by :func:`sss_locus.experiments.reconstruction.summarise`.
 Platforms are :class:`~sss_locus.experiments.platforms.Platform` objects; their names come from
 the data.
+
+The figures are drawn in the book's seaborn theme (:func:`~sss_locus.report.style.theme`) with
+matplotlib's ``plot``, not ``seaborn.lineplot``: each point is a median
+:func:`~sss_locus.experiments.reconstruction.summarise` computed (the figures' CSV data, floored at
+:data:`FLOOR_M`), not a statistic for seaborn to estimate, and each estimator keeps its own line
+style, marker and marker fill (:data:`ESTIMATORS`), so lines that coincide stay visible.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 
 import matplotlib.pyplot as plt
@@ -15,7 +22,7 @@ import numpy as np
 import pandas as pd
 
 from ..experiments.reconstruction import summarise
-from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title, themed
 from .text import fmt_percent, fmt_sig
 
 ESTIMATORS = {"flat1": ("flat seafloor, one view", "tab:gray", ":", "o"),
@@ -43,8 +50,10 @@ def _plain(value, _pos):
 @plt.FuncFormatter
 def _plain_minor(value, _pos):
     """Minor labels 2 and 5 of each decade: an axis of less than two decades keeps readable values."""
-    mantissa = value / 10 ** np.floor(np.log10(value) + 1e-9)
-    return f"{value:g}" if np.isclose(mantissa, 2) or np.isclose(mantissa, 5) else ""
+    # plain floats, not numpy scalars: called for every minor tick of every draw
+    mantissa = value / 10 ** math.floor(math.log10(value) + 1e-9)
+    near = [abs(mantissa - m) <= 1e-8 + 1e-5 * m for m in (2, 5)]  # numpy.isclose's tolerances
+    return f"{value:g}" if any(near) else ""
 
 
 def _label_minor(ax) -> None:
@@ -80,16 +89,18 @@ def height_sentence(platforms: Sequence, envelopes: Sequence) -> str:
         for pf, env in zip(platforms, envelopes, strict=True))
 
 
-def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
+@themed
+def plot_relief(platforms: Sequence, summary: pd.DataFrame):
     """Median 3-D error (log scale) against RMS relief, one column per platform and one row per
     noise scale (each row its own error axis, so the noisy rows are not squeezed by the
     noise-free row's rounding-level errors), one line per estimator of :data:`ESTIMATORS`;
-    returns the figure."""
-    scales = sorted(next(iter(tables.values())).noise_scale.unique())
+    returns the figure. ``summary`` is the figure's data: :func:`summarise` of each platform's
+    table by ``("noise_scale", "rms_relief_m", "estimator")`` with a column ``platform`` (its key)."""
+    scales = sorted(summary.noise_scale.unique())
     fig, axs = plt.subplots(len(scales), len(platforms), figsize=(PAGE_WIDTH_IN, 2.3 * len(scales) + 0.9),
                             constrained_layout=True, squeeze=False, sharex=True, sharey="row")
     for j, pf in enumerate(platforms):
-        s = summarise(tables[pf.key], by=("noise_scale", "rms_relief_m", "estimator"))
+        s = summary[summary.platform == pf.key]
         for i, k in enumerate(scales):
             ax = axs[i, j]
             floored = False
@@ -103,7 +114,7 @@ def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
                 _mark_floor(ax)
             ax.set_yscale("log")
             ax.yaxis.set_major_formatter(_plain)
-            ax.grid(alpha=0.3, which="both")
+            ax.grid(which="minor", linewidth=0.4)  # the theme draws the major lines
             ax.set_title(f"{platform_title(pf, 72 // len(platforms))}\n{noise_label(k)}" if i == 0
                          else noise_label(k), fontsize=10)
             if j == 0:
@@ -117,6 +128,7 @@ def plot_relief(platforms: Sequence, tables: Mapping[str, pd.DataFrame]):
     return fig
 
 
+@themed
 def plot_views(platforms: Sequence, tables: Mapping[str, pd.DataFrame], rms_relief_m: float):
     """At one RMS relief: (a) median 3-D error and (b) share of features with an estimate
     (resolved or ambiguous) among those seen by at least the views used, against the number of
@@ -149,7 +161,7 @@ def plot_views(platforms: Sequence, tables: Mapping[str, pd.DataFrame], rms_reli
         axs[1, j].set_xticks(x, [lab for _, lab in VIEW_STEPS])
         axs[1, j].set_xlabel("views used")
         for ax in axs[:, j]:
-            ax.grid(alpha=0.3, which="both")
+            ax.grid(which="minor", linewidth=0.4)  # the theme draws the major lines
     axs[0, 0].set_ylabel("median 3-D error (m)")
     axs[1, 0].set_ylabel("share of features")
     handles, labels = axs[0, 0].get_legend_handles_labels()

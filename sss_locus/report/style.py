@@ -6,27 +6,28 @@ Nothing here is keyed by a platform's key: a platform's display name is its ``na
 every chapter draws the same platform in the same colour and a new platform needs no code.
 
 The statistical figures are drawn inside :func:`theme`, the one seaborn theme of the book
-(seaborn's ``whitegrid`` style with matplotlib's font sizes, for which the figures are laid out):
-the pose-space heatmaps of binned medians and its scatter coloured by a category with seaborn
-itself, the median curves with interquartile bands of the survey-pass, planning and noise
-chapters with matplotlib in the same theme. The theme is applied per figure (a context manager,
-or the :func:`themed` decorator), never globally: importing this module changes no matplotlib
-setting.
+(seaborn's ``whitegrid`` style with matplotlib's font sizes, for which the figures are laid out).
+With seaborn itself: the heatmaps (binned medians of the pose-space chapter, the heading sweep of
+:mod:`.three_views`; both through :func:`upward_heatmap`), the pose-space scatter coloured by a
+category and the three-view distributions (``seaborn.boxplot``). With matplotlib in the same
+theme, where a seaborn function would be less clear or would compute the numbers again:
 
-Where plain matplotlib is clearer than a seaborn function, the figures keep it:
-
-- the rig drawings (:mod:`.rigs`), the 3-D locus concept (:mod:`.concept`) and the terrain
-  profiles (:mod:`.reconstruction`) are drawings of geometry, not statistics;
 - the median curves with interquartile bands (:mod:`.survey_passes`, :mod:`.planning`,
-  :mod:`.noise`) and the bars with intervals (Spearman's rho in :mod:`.pose_space`, the crop
-  effects in :mod:`.water`, the stacked shares of :mod:`.three_views`) draw numbers the
-  experiments layer computed (the quantiles and replicate intervals that are also each figure's
-  CSV data): ``seaborn.lineplot(errorbar=("pi", 50))`` or ``seaborn.barplot`` would compute
-  them a second time, from raw samples, in the report layer;
-- the heading sweep of :mod:`.three_views` is a grid of computed values on a logarithmic colour
-  scale with headings as numeric axes, which ``pcolormesh`` draws directly;
+  :mod:`.noise`), the median curves of :mod:`.reconstruction` and the bars with intervals
+  (Spearman's rho in :mod:`.pose_space`, the crop effects in :mod:`.water`) draw numbers the
+  experiments layer computed (the quantiles, medians and replicate intervals that are also each
+  figure's CSV data): ``seaborn.lineplot(errorbar=("pi", 50))`` or ``seaborn.barplot`` would
+  compute them a second time, from raw samples, in the report layer;
+- the stacked outcome shares of :mod:`.three_views` (seaborn has no stacked bar of given shares);
 - the noise check's scatter (:mod:`.noise`) shares one legend below four panels, which one
-  ``ax.scatter`` per platform gives directly.
+  ``ax.scatter`` per platform gives directly; the survey-design front (:mod:`.survey_design`)
+  gives each kind of plan its own marker, size and fill, not one hue.
+
+The theme is applied per figure (a context manager, or the :func:`themed` decorator), never
+globally: importing this module changes no matplotlib setting. Drawings of geometry stay plain
+matplotlib, outside the theme (a statistical grid would only clutter them): the rig drawings
+(:mod:`.rigs`), the 3-D locus concept (:mod:`.concept`), the survey plan map of
+:mod:`.survey_design` and the maps of a user's survey (:mod:`.your_pings`).
 """
 
 from __future__ import annotations
@@ -128,3 +129,25 @@ def themed(fn):
         with theme():
             return fn(*args, **kwargs)
     return wrapper
+
+
+def upward_heatmap(ax, z, **kwargs):
+    """``seaborn.heatmap`` of ``z`` (shape ``(n_y, n_x)``, NaN cells blank on grey) on ``ax`` with
+    row 0 at the bottom (``y`` increasing upwards, as on a numeric axis) and no grid, without a
+    colour bar (add one with ``fig.colorbar(mesh, ax=ax)``); returns the mesh. Cell ``(j, i)``
+    spans ``[i, i + 1] x [j, j + 1]``: the caller puts ticks at the values its cells stand for.
+    ``kwargs`` go to ``seaborn.heatmap`` (``cmap``, ``norm``, ``square``, ...)."""
+    import numpy as np
+    import seaborn as sns
+
+    fig = ax.figure
+    layout = fig.get_layout_engine()
+    fig.set_layout_engine("none")  # seaborn draws the figure once per heatmap: without the layout
+    try:  # pass, a fraction of the time
+        sns.heatmap(z, mask=np.isnan(z), ax=ax, cbar=False, **kwargs)
+    finally:
+        fig.set_layout_engine(layout)
+    ax.invert_yaxis()
+    ax.set_facecolor("0.85")
+    ax.grid(False)
+    return ax.collections[-1]

@@ -4,6 +4,12 @@ Inputs are the tables of :mod:`sss_locus.experiments.survey_design` (the plans t
 ``search_plans``, its noise re-evaluation, the seed-stability table) and, for the plan drawing,
 the area, the plan's segments and the coverage grid of
 :func:`sss_locus.experiments.survey_coverage.coverage`.
+
+The Pareto front (:func:`plot_front`) is drawn in the book's seaborn theme
+(:func:`~sss_locus.report.style.theme`) with ``ax.scatter`` per kind of plan: each kind has its own
+marker, size and fill (hollow: not eligible; the recommended plan circled over its point), which
+one ``seaborn.scatterplot`` hue does not give. The plan (:func:`plot_plan`) is a map, drawn in
+plain matplotlib: a grid over the coverage cells would hide them.
 """
 
 from __future__ import annotations
@@ -17,7 +23,7 @@ from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.patches import Polygon as PolygonPatch
 
 from ..experiments.survey_design import OBJECTIVES
-from .style import PAGE_WIDTH_IN, platform_title
+from .style import PAGE_WIDTH_IN, platform_title, themed
 from .text import fmt_percent, fmt_sig
 
 OBJECTIVE_LABELS = {"locus": "median best-pair locus length (m)",
@@ -51,6 +57,7 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files) -> str:
             f"(SHA-256 `{area.sha256[:12]}`); mission files beside the figure: {names}{why}.")
 
 
+@themed
 def plot_front(fronts: dict, objective: str, platforms: dict):
     """Track length against the objective for every plan of each platform (one panel each):
     searched plans grey (hollow: not eligible), the Pareto front joined, the baselines marked,
@@ -74,7 +81,6 @@ def plot_front(fronts: dict, objective: str, platforms: dict):
                    label="recommended", zorder=5)
         ax.set_xlabel("track length incl. turns (km)")
         ax.set_title(platform_title(platforms[key], width=90 // len(keys)), fontsize=9)  # a panel's width
-        ax.grid(alpha=0.3)
     axes[0][0].set_ylabel(OBJECTIVE_LABELS[objective])
     handles, labels = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=8.5, frameon=False)

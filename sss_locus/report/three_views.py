@@ -5,19 +5,27 @@ Tables are those of :func:`sss_locus.experiments.three_view_patterns.three_view_
 platform key and pattern name) and
 :func:`sss_locus.experiments.three_view_patterns.heading_sweep` (per platform key). Platforms are
 :class:`~sss_locus.experiments.platforms.Platform` objects; their names come from the data.
+
+Both figures are drawn in the book's seaborn theme (:func:`~sss_locus.report.style.theme`): the
+distributions of plane angle and conditioning with ``seaborn.boxplot`` (quartiles and 5-95 %
+whiskers of each pattern's configurations), the heading sweep with ``seaborn.heatmap`` (one cell
+per heading pair, the cells' headings on the axes). The outcome shares of panel (a) stay stacked
+``barh``: seaborn has no stacked bar of precomputed shares.
 """
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping, Sequence
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+import seaborn as sns
 from matplotlib.colors import LogNorm
 from matplotlib.ticker import NullFormatter
 
-from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title, themed, upward_heatmap
 
 PATTERN_TAGS = {"repeat + reciprocal": "rr", "two lines + cross line": "cross",
                 "three headings 60 deg apart": "sixty"}
@@ -34,6 +42,7 @@ def pattern_label(name: str) -> str:
     return name.replace(" + ", " +\n").replace(" 60 deg apart", "\n60° apart")
 
 
+@themed
 def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.DataFrame]],
                   range_sigma_m: float):
     """Three panels per platform (one column each); returns the figure.
@@ -42,7 +51,8 @@ def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.Data
     planes (box: quartiles, whiskers: 5-95 %, log scale); (c) first-order 95 % point error for a
     ``range_sigma_m`` range error (``point_error_q95_m``, log scale).
     ``tables[platform.key][pattern]`` is a three-view table. Rows (a), (b), (c); columns the
-    platforms; the pattern names label the rows of the left column only (shared).
+    platforms; the patterns, in the tables' order from the top, label the rows of the left
+    column only (shared).
     """
     n = len(platforms)
     fig, axs = plt.subplots(3, n, figsize=(PAGE_WIDTH_IN, 6.4), constrained_layout=True,
@@ -51,27 +61,31 @@ def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.Data
         by_pattern = tables[pf.key]
         short = [pattern_label(name) for name in by_pattern]
         fr = np.array([[(t.n_valid == v).mean() for _, v, _ in OUTCOMES] for t in by_pattern.values()])
-        left, pos = np.zeros(len(short)), np.arange(1, len(short) + 1)  # the boxplots' positions
-        for j, (lab, _, color) in enumerate(OUTCOMES):
-            col[0].barh(pos, fr[:, j], left=left, color=color, label=lab)
+        left = np.zeros(len(short))
+        for j, (lab, _, color) in enumerate(OUTCOMES):  # the patterns as categories, as seaborn's
+            col[0].barh(short, fr[:, j], left=left, color=color, label=lab, height=0.8)
             left += fr[:, j]
-        col[0].set_yticks(pos, short)
-        col[0].set_ylim(0.4, len(short) + 0.6)
         col[0].set_xlim(0, 1)
         col[0].set_xlabel("fraction of configurations")
         col[0].set_title(platform_title(pf, 72 // n) + "\n(a) outcome", fontsize=10)  # 36 a column for two
         for ax, column, xlabel in (
                 (col[1], "plane_angle_deg", "angle between the two planes (deg)"),
                 (col[2], "point_error_q95_m", f"95 % point error per {100 * range_sigma_m:g} cm\nrange error (m)")):
-            ax.boxplot([t[column].to_numpy() for t in by_pattern.values()], orientation="horizontal",
-                       tick_labels=short, whis=(5, 95), showfliers=False)
+            long = pd.DataFrame({"pattern": np.repeat(short, [len(t) for t in by_pattern.values()]),
+                                 column: np.concatenate([t[column].to_numpy() for t in by_pattern.values()])})
+            # quartiles of the values themselves (the axis turns logarithmic after, not before)
+            with warnings.catch_warnings():  # seaborn 0.13.2 passes Axes.bxp the vert= of matplotlib < 3.11
+                warnings.filterwarnings("ignore", message="vert: bool", category=DeprecationWarning)
+                sns.boxplot(long, x=column, y="pattern", order=short, whis=(5, 95), showfliers=False, ax=ax,
+                            color="0.92", linecolor="0.2", medianprops={"color": "tab:orange", "linewidth": 2})
             ax.set_xscale("log")
             ax.xaxis.set_minor_formatter(NullFormatter())
             ax.set_xlabel(xlabel)
+            ax.set_ylabel("")
         col[1].set_title("(b) plane angle", fontsize=10)
         col[2].set_title("(c) conditioning, first order", fontsize=10)
         for ax in col:
-            ax.grid(alpha=0.3, axis="x")
+            ax.grid(axis="y", visible=False)  # no line through the bars and boxes
     handles, labels = axs[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=len(OUTCOMES), fontsize=SMALL_FONT_PT,
                frameon=False)
@@ -79,46 +93,45 @@ def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.Data
 
 
 def sym_grid(sweep: pd.DataFrame, value: str) -> tuple[np.ndarray, np.ndarray]:
-    """Cell edges and a symmetric square grid of ``sweep[value]`` over the headings.
+    """The headings and a symmetric square grid of ``sweep[value]`` over them.
 
     The sweep holds one row per pair ``heading2_deg <= heading3_deg``; swapping passes 2 and 3
     changes nothing, so each value fills both ``z[i, j]`` and ``z[j, i]`` (NaN where no pair
-    was run). Edges are half a grid step either side of each heading (for ``pcolormesh``).
+    was run): row ``j`` is heading ``h[j]`` of pass 3, column ``i`` heading ``h[i]`` of pass 2.
     """
     h = np.unique(np.concatenate([sweep.heading2_deg, sweep.heading3_deg]))
     z = np.full((h.size, h.size), np.nan)
     i, j = np.searchsorted(h, sweep.heading2_deg), np.searchsorted(h, sweep.heading3_deg)
     z[i, j] = sweep[value].to_numpy()
     z[j, i] = sweep[value].to_numpy()
-    step = h[1] - h[0] if h.size > 1 else 1.0
-    edges = np.concatenate([h - step / 2, [h[-1] + step / 2]])
-    return edges, z
+    return h, z
 
 
+@themed
 def plot_heading_sweep(platforms: Sequence, sweeps: Mapping[str, pd.DataFrame], range_sigma_m: float):
     """Median plane angle (left) and median first-order 95 % point error for a ``range_sigma_m``
     range error (right, log colour scale) against the headings of passes 2 and 3, one row per
-    platform; returns the figure. ``sweeps[platform.key]`` is a heading sweep with noise."""
+    platform, one ``seaborn.heatmap`` cell per heading pair (:func:`sym_grid`); returns the
+    figure. ``sweeps[platform.key]`` is a heading sweep with noise."""
     fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 3.5 * len(platforms)), constrained_layout=True,
                             squeeze=False)
     for row, pf in zip(axs, platforms):
         sweep = sweeps[pf.key]
-        e, z = sym_grid(sweep, "plane_angle_median_deg")
-        m = row[0].pcolormesh(e, e, z, cmap="viridis", shading="flat")
-        fig.colorbar(m, ax=row[0], label="plane angle (deg)", shrink=0.8)
-        e, z = sym_grid(sweep, "point_error_q95_median_m")
-        m = row[1].pcolormesh(e, e, z, cmap="magma_r", norm=LogNorm(), shading="flat")
-        fig.colorbar(m, ax=row[1], label="95 % point error (m)", shrink=0.8)
+        for ax, value, style, label in (
+                (row[0], "plane_angle_median_deg", {"cmap": "viridis"}, "plane angle (deg)"),
+                (row[1], "point_error_q95_median_m", {"cmap": "magma_r", "norm": LogNorm()}, "95 % point error (m)")):
+            h, z = sym_grid(sweep, value)
+            mesh = upward_heatmap(ax, z, square=True, **style)
+            fig.colorbar(mesh, ax=ax, label=label, shrink=0.8).outline.set_linewidth(0)
         ticks = np.unique(sweep.heading2_deg)
         ticks = ticks if ticks.size <= 7 else ticks[::2]
+        at = np.searchsorted(h, ticks) + 0.5  # the centres of their cells
         for ax, t in zip(row, ("median plane angle", f"median error per {100 * range_sigma_m:g} cm range error")):
             ax.set_xlabel("heading of pass 2, $h_2$ (deg)")
-            if ax is row[0]:
-                ax.set_ylabel("heading of pass 3, $h_3$ (deg)")
+            ax.set_ylabel("heading of pass 3, $h_3$ (deg)" if ax is row[0] else "")
             ax.set_title(f"{platform_title(pf, 32)}:\n{t}", fontsize=10)
-            ax.set_aspect("equal")
-            ax.set_xticks(ticks)
-            ax.set_yticks(ticks)
+            ax.set_xticks(at, [f"{v:g}" for v in ticks], rotation=0)
+            ax.set_yticks(at, [f"{v:g}" for v in ticks], rotation=0)
     return fig
 
 

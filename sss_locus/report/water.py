@@ -1,6 +1,11 @@
 """Figure and glued texts of the water chapter (``notebooks/water.ipynb``).
 
 Input: the long table of :func:`sss_locus.experiments.water_study.crop_effects`.
+
+The figure is drawn in the book's seaborn theme (:func:`~sss_locus.report.style.theme`) with
+matplotlib's ``barh``, not ``seaborn.barplot``: its bars and 95 % intervals are the estimates and
+replicate-batch intervals :func:`~sss_locus.experiments.water.crop_effect` computed (the figure's
+CSV data), which ``seaborn.barplot`` would compute a second time, with its own bootstrap.
 """
 
 from __future__ import annotations
@@ -10,6 +15,8 @@ import textwrap
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+
+from .style import themed
 
 PAPER_COLOR, WATER_COLOR = "tab:gray", "tab:blue"
 
@@ -55,6 +62,7 @@ CROP_TEXT = {"surface": ("cropped to the water", "(b) length below the surface")
 """Legend entry and panel (b) title of :func:`plot_crop_effects` for each ``crop``."""
 
 
+@themed
 def plot_crop_effects(effects: pd.DataFrame, crop: str = "surface"):
     """(a) Share of fragmented loci without and with the crop; (b) share of the total locus
     length the crop keeps; one row per condition whose ``crop`` column is ``crop`` (all
@@ -100,7 +108,7 @@ def plot_crop_effects(effects: pd.DataFrame, crop: str = "surface"):
     axs[0].set_yticks(y, [textwrap.fill(lab, 28) for lab in labels], fontsize=9)
     for ax in axs:
         ax.tick_params(labelsize=9)
-        ax.grid(axis="x", alpha=0.3)
+        ax.grid(axis="y", visible=False)  # no line through the bars
     handles, names = axs[0].get_legend_handles_labels()  # below the panels: never over a bar
     fig.legend(handles, names, loc="outside lower center", ncol=2, fontsize=9, frameon=False)
     return fig

@@ -1,7 +1,12 @@
 """Figures and sentences of the your-pings chapter (``notebooks/your_pings.ipynb``): a plan view
 of a user's sightings and estimates, the disagreement of the flat-seafloor positions, and an
 interactive 3-D view (plotly, offline). Inputs are the tables of
-:func:`sss_locus.experiments.your_pings.analyse` (local frame, metres)."""
+:func:`sss_locus.experiments.your_pings.analyse` (local frame, metres).
+
+Plain matplotlib, outside the book's seaborn theme: the figures are maps of one survey's sensors,
+sightings, loci and estimates in metres, drawings of geometry like the rigs
+(:mod:`sss_locus.report.rigs`), where each feature is named beside its own marks; the bars of
+the plan view's right panel share its legend and belong with the map."""
 
 from __future__ import annotations
 
