@@ -138,7 +138,8 @@ def test_with_derived_adds_magnitudes():
 def test_claim_metrics_on_synthetic_structure():
     """A table built with known structure: length grows with both ranges, peaks at yaw = +-60
     and at (theta1, theta2) = (10, -20), is larger at zero elevation; the metrics find it."""
-    from sss_locus.experiments.pose_stats import HEATMAP_PANELS, claim_metrics, heatmaps
+    from sss_locus.experiments.pose_claims import claim_metrics
+    from sss_locus.experiments.pose_stats import HEATMAP_PANELS, heatmaps
     from sss_locus.experiments.platforms import load_platform
 
     pf = load_platform("auv")

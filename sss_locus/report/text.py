@@ -46,6 +46,34 @@ def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> s
     return f"{fmt_sig(estimate['median'], digits)}{sep}{unit} (95 % CI {lo}–{hi}{sep}{unit})"
 
 
+def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool = False) -> str:
+    """A ratio or share with its 95 % interval, each to ``digits`` significant figures; with
+    ``percent`` the numbers are percentages (a share of 0 with an interval of 0 reads ``"0 %"``).
+
+    >>> fmt_ci(4.1514, 4.110, 4.1927), fmt_ci(0.0088, 0.00853, 0.00908, percent=True)
+    ('4.2 (95 % CI 4.1–4.2)', '0.88 % (95 % CI 0.85–0.91 %)')
+    >>> fmt_ci(0.0, 0.0, 0.0, percent=True)
+    '0 %'
+    """
+    scale, unit = (100.0, " %") if percent else (1.0, "")
+    if percent and value == low == high == 0:
+        return "0 %"
+    v, lo, hi = (fmt_sig(scale * x, digits) for x in (value, low, high))
+    return f"{v}{unit} (95 % CI {lo}–{hi}{unit})"
+
+
+def fmt_span(low: float, high: float) -> str:
+    """A span of bin centres in whole degrees, one angle if it is one bin.
+
+    >>> fmt_span(-85.0, -75.0), fmt_span(78.75, 78.75)
+    ('-85° to -75°', '79°')
+    """
+    def deg(x: float) -> str:
+        return f"{x:.0f}°"
+
+    return deg(low) if round(low) == round(high) else f"{deg(low)} to {deg(high)}"
+
+
 def fmt_percent(fraction: float) -> str:
     """A fraction as a percentage with enough digits to tell it from 0 % and 100 %.
 
