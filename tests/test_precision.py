@@ -25,8 +25,10 @@ def _t_interval(full: float, per_batch) -> tuple[float, float]:
     return full - half, full + half
 
 
-def _table(n: int, seed: int, yaw_peaks=(60.0,)) -> pd.DataFrame:
-    """A pose-space-like table whose length peaks at |yaw| in ``yaw_peaks`` (equal heights)."""
+def _table(n: int, seed: int, yaw_peaks=(60.0,), hotspot: bool = False):
+    """A pose-space-like table of the AUV's apertures whose length grows with both ranges and
+    peaks at |yaw| in ``yaw_peaks`` (equal heights); with ``hotspot`` also at (theta1, theta2) =
+    (10, -20) and at zero elevation. Returns the table and the platform."""
     from sss_locus.experiments.platforms import load_platform
 
     pf = load_platform("auv")
@@ -39,10 +41,38 @@ def _table(n: int, seed: int, yaw_peaks=(60.0,)) -> pd.DataFrame:
         "yaw2_deg": rng.uniform(-180, 180, n), "pitch2_deg": rng.uniform(-45, 45, n),
         "n_arcs": np.where(rng.random(n) < 0.01, 2, 1),
     })
-    bump = sum(np.exp(-((np.abs(df.yaw2_deg) - p) / 25.0) ** 2) for p in yaw_peaks)
-    df["locus_length_m"] = (df.r1_m + df.r2_m) * (0.2 + np.minimum(bump, 1.0)) * rng.lognormal(0, 0.3, n)
+    bump = np.minimum(sum(np.exp(-((np.abs(df.yaw2_deg) - p) / 25.0) ** 2) for p in yaw_peaks), 1.0)
+    if hotspot:
+        az_bump = np.exp(-(((df.azimuth1_deg - 10) / 8) ** 2 + ((df.azimuth2_deg + 20) / 8) ** 2))
+        el_bump = np.exp(-((df.elevation1_deg / half_el) ** 2 + (df.elevation2_deg / half_el) ** 2))
+        df["locus_length_m"] = (df.r1_m + df.r2_m) * (0.2 + bump + 3 * az_bump) * el_bump
+    else:
+        df["locus_length_m"] = (df.r1_m + df.r2_m) * (0.2 + bump) * rng.lognormal(0, 0.3, n)
     df["locus_length_normalized"] = df.locus_length_m / (df.r1_m + df.r2_m) * 2
     return df, pf
+
+
+def test_claim_metrics_on_synthetic_structure():
+    """A table built with known structure: length grows with both ranges, peaks at yaw = +-60
+    and at (theta1, theta2) = (10, -20), is larger at zero elevation; the metrics find it, and
+    each located peak's region holds the true peak."""
+    from sss_locus.experiments.pose_stats import HEATMAP_PANELS
+
+    df, pf = _table(200_000, 0, hotspot=True)
+    rho = spearman_table(df, ["r1_m", "yaw2_deg"])
+    maps = heatmaps(df, pf, n_bins=26, min_count=30)
+    assert set(maps) == {p for p, _, _ in HEATMAP_PANELS}
+    m = claim_metrics(df, rho, maps)
+    assert m["range_far_over_near_ratio"] > 2.5 and m["range_r1_rho"] > 0.3
+    assert abs(m["azimuth_peak_theta1_deg"] - 10) <= 5 and abs(m["azimuth_peak_theta2_deg"] + 20) <= 5
+    assert m["elevation_centre_over_corner_ratio"] > 1.5
+    assert abs(m["yaw_peak_neg_deg"] + 60) <= 10 and abs(m["yaw_peak_pos_deg"] - 60) <= 10
+    assert m["yaw_peak_neg_lo_deg"] - 5 <= -60 <= m["yaw_peak_neg_hi_deg"] + 5
+    assert m["yaw_peak_pos_lo_deg"] - 5 <= 60 <= m["yaw_peak_pos_hi_deg"] + 5
+    assert m["yaw_near0_over_peak_ratio"] < 0.5 and m["yaw_near180_over_peak_ratio"] < 0.5
+    assert m["multi_arc_fraction"] == pytest.approx(0.01, abs=0.002)
+    assert m["multi_arc_fraction_ci_low"] < 0.01 < m["multi_arc_fraction_ci_high"]
+    assert m["top_raw"] == "r1_m"
 
 
 def test_ratio_and_share_intervals_match_batches_dealt_by_hand():
