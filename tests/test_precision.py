@@ -170,3 +170,13 @@ def test_quoted_ranks_are_the_ranks_the_book_quotes():
         p.read_text() for p in (root / "book").glob("*.md"))
     quoted = set(re.findall(r"ps-(?:auv|boat)-([a-z0-9_]+_rank)", text))
     assert quoted == set(QUOTED_RANKS)
+
+
+def test_share_interval_against_scipy_binomtest():
+    from sss_locus.experiments.three_view_patterns import share_interval
+
+    for count, n in ((0, 4000), (16, 4000), (3990, 4000), (4000, 4000), (7, 20)):
+        ref = stats.binomtest(count, n).proportion_ci(0.95, method="exact")
+        assert share_interval(count, n) == pytest.approx((ref.low, ref.high), abs=1e-12)
+    with pytest.raises(ValueError, match="count"):
+        share_interval(5, 4)

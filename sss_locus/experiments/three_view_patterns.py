@@ -127,3 +127,16 @@ def cells_within(sweep: pd.DataFrame, best: str = "min", value: str = "point_err
     if best == "min":
         return sweep[v <= max(v[i], sweep.loc[i, value[:-2] + "_ci_high_m"])]
     return sweep[v >= min(v[i], sweep.loc[i, value[:-2] + "_ci_low_m"])]
+
+
+def share_interval(count: int, n: int, confidence_level: float = 0.95) -> tuple[float, float]:
+    """Two-sided exact (Clopper-Pearson) interval of a share ``count / n``: the ``(1 - level)
+    / 2`` and ``(1 + level) / 2`` quantiles of Beta(count, n - count + 1) and Beta(count + 1,
+    n - count), 0 and 1 at the ends. Checks its arguments like :func:`share_upper_bound`."""
+    from scipy.special import betaincinv
+
+    share_upper_bound(count, n, confidence_level)  # the same argument checks
+    a = (1.0 - confidence_level) / 2.0
+    lo = 0.0 if count == 0 else float(betaincinv(count, n - count + 1, a))
+    hi = 1.0 if count == n else float(betaincinv(count + 1, n - count, 1.0 - a))
+    return lo, hi

@@ -17,7 +17,7 @@ import pandas as pd
 from matplotlib.colors import LogNorm
 from matplotlib.ticker import NullFormatter
 
-from ..experiments.three_view_patterns import cells_within, share_upper_bound
+from ..experiments.three_view_patterns import cells_within, share_interval, share_upper_bound
 from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
 from .text import fmt_interval, fmt_percent, fmt_span
 
@@ -167,3 +167,14 @@ def sweep_texts(sweep: pd.DataFrame) -> dict[str, str]:
     for name, cells in (("spread-err", spread), ("parallel-err", diagonal)):
         out[name] = err(cells.loc[cells[v].idxmax()]) if len(cells) else "n/a"
     return out
+
+
+def share_text(share: float, n: int) -> str:
+    """A share of ``n`` configurations with its exact 95 % interval
+    (:func:`~sss_locus.experiments.three_view_patterns.share_interval`).
+
+    >>> share_text(0.996, 4000)
+    '99.6 % (95 % CI 99.4–99.8 %)'
+    """
+    lo, hi = share_interval(int(round(share * n)), int(n))
+    return f"{fmt_percent(share)} (95 % CI {fmt_percent(lo)[:-2]}–{fmt_percent(hi)})"
