@@ -135,13 +135,6 @@ def test_with_derived_adds_magnitudes():
     assert list(out["abs_yaw2_deg"]) == [170.0, 20.0] and list(out["abs_psi1_deg"]) == [3.0, 4.0]
 
 
-def test_stable_to():
-    from sss_locus.experiments.pose_stats import stable_to
-
-    assert stable_to(0.4449, 0.4401) and stable_to(0.441, 0.445) and not stable_to(0.44, 0.4456)
-    assert stable_to(1234.0, 1280.0) and not stable_to(1200.0, 1300.0)
-
-
 def test_plain_label():
     from sss_locus.report.text import plain_label
 

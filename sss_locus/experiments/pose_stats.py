@@ -317,13 +317,3 @@ def heatmaps(df: pd.DataFrame, platform, *, n_bins: int = 24, min_count: int = 3
     return {p: binned_median(df, x, y, value, x_edges=panel_edges(x, platform, n_bins),
                              y_edges=panel_edges(y, platform, n_bins), min_count=min_count)
             for p, x, y in HEATMAP_PANELS}
-
-
-def stable_to(a, b, digits: int = 2) -> np.ndarray:
-    """Whether two estimates agree to ``digits`` significant figures in the sense that they
-    differ by at most half a unit of the ``digits``-th significant figure of the larger one."""
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    big = np.maximum(np.abs(a), np.abs(b))
-    with np.errstate(divide="ignore"):
-        unit = 10.0 ** (np.floor(np.log10(np.where(big > 0, big, 1.0))) - (digits - 1))
-    return np.abs(a - b) <= 0.5 * unit
