@@ -180,3 +180,23 @@ def test_share_interval_against_scipy_binomtest():
         assert share_interval(count, n) == pytest.approx((ref.low, ref.high), abs=1e-12)
     with pytest.raises(ValueError, match="count"):
         share_interval(5, 4)
+
+
+def test_seed_comparison_tool_compares_printed_texts():
+    """tools/compare_seed_outputs.py: which pairs of glued texts count as agreeing."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "tools" / "compare_seed_outputs.py"
+    spec = importlib.util.spec_from_file_location("compare_seed_outputs", path)
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    agree = tool.agree
+    assert agree("'0.55'", "'0.54'")[0] and not agree("'0.55'", "'0.53'")[0]  # one unit: a straddle
+    assert agree("'2.1 (95 % CI 2.1–2.2)'", "'2.0 (95 % CI 2.0–2.1)'") == (True, "intervals overlap")
+    assert not agree("'0.40 m (95 % CI 0.39–0.41 m)'", "'0.37 m (95 % CI 0.36–0.38 m)'")[0]
+    assert agree("'[-0.050, -0.044]'", "'[-0.047, -0.042]'")[0] and agree("'-85° to -75°'", "'-75°'")[0]
+    assert agree("'5.3e-11'", "'5.4e-11'") == (True, "rounding level")
+    assert agree("'-12 % (95 % CI -13 % to -11 %)'", "'-11 % (95 % CI -11 % to -10 %)'")[0]
+    assert agree("'5 of 12'", "'6 of 12'") == (False, "texts differ")
+    assert ("pose_space", "ps-stable-count") in tool.quoted_keys()
