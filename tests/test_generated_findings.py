@@ -152,7 +152,7 @@ def test_sweep_finding_finds_the_extreme_cells():
     text = pf.sweep_finding(sweep)
     # the worst cells: the four corners, all at 1.1 (equal or reciprocal headings); the best: every
     # cell with a heading of 90° (0.1), within 0.01 of each other
-    assert "the worst cells are 4 cells with h₂ 0° to 180° and h₃ 0° to 180°, with a median up to 1.1 m" in text
+    assert "the worst cells are 4 cells with h₂ 0° to 180° and h₃ 0° to 180°, with a median up to 1.10 m (95 % CI 1.09–1.11 m)" in text
     assert "the best are 13 cells" in text and "down to 0.10 m (95 % CI 0.090–0.11 m)" in text
     n_all, unresolved = 100 * len(h2), 10  # one cell at 90 %
     assert f"{fmt_percent(1 - unresolved / n_all)} of the configurations over all cells are resolved" in text

@@ -171,10 +171,14 @@ def sweep_texts(sweep: pd.DataFrame) -> dict[str, str]:
 
 def share_text(share: float, n: int) -> str:
     """A share of ``n`` configurations with its exact 95 % interval
-    (:func:`~sss_locus.experiments.three_view_patterns.share_interval`).
+    (:func:`~sss_locus.experiments.three_view_patterns.share_interval`), in percent with one
+    decimal, or more while the interval's ends would print alike.
 
-    >>> share_text(0.996, 4000)
-    '99.6 % (95 % CI 99.4–99.8 %)'
+    >>> share_text(0.996, 4000), share_text(1.0, 4000), share_text(0.0, 4000)
+    ('99.6 % (95 % CI 99.4–99.8 %)', '100.0 % (95 % CI 99.9–100.0 %)', '0.0 % (95 % CI 0.0–0.1 %)')
     """
     lo, hi = share_interval(int(round(share * n)), int(n))
-    return f"{fmt_percent(share)} (95 % CI {fmt_percent(lo)[:-2]}–{fmt_percent(hi)})"
+    dec = 1
+    while dec < 3 and f"{100 * lo:.{dec}f}" == f"{100 * hi:.{dec}f}":
+        dec += 1
+    return f"{100 * share:.{dec}f} % (95 % CI {100 * lo:.{dec}f}–{100 * hi:.{dec}f} %)"
