@@ -182,8 +182,8 @@ def test_share_interval_against_scipy_binomtest():
         share_interval(5, 4)
 
 
-def test_seed_comparison_tool_compares_printed_texts():
-    """tools/compare_seed_outputs.py: which pairs of glued texts count as agreeing."""
+def _seed_tool():
+    """tools/compare_seed_outputs.py, imported from its file."""
     import importlib.util
     from pathlib import Path
 
@@ -191,6 +191,12 @@ def test_seed_comparison_tool_compares_printed_texts():
     spec = importlib.util.spec_from_file_location("compare_seed_outputs", path)
     tool = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(tool)
+    return tool
+
+
+def test_seed_comparison_tool_compares_printed_texts():
+    """tools/compare_seed_outputs.py: which pairs of glued texts count as agreeing."""
+    tool = _seed_tool()
     agree = tool.agree
     assert agree("'0.55'", "'0.54'")[0] and not agree("'0.55'", "'0.53'")[0]  # one unit: a straddle
     assert agree("'2.1 (95 % CI 2.1–2.2)'", "'2.0 (95 % CI 2.0–2.1)'") == (True, "intervals overlap")
@@ -200,3 +206,13 @@ def test_seed_comparison_tool_compares_printed_texts():
     assert agree("'-12 % (95 % CI -13 % to -11 %)'", "'-11 % (95 % CI -11 % to -10 %)'")[0]
     assert agree("'5 of 12'", "'6 of 12'") == (False, "texts differ")
     assert ("pose_space", "ps-stable-count") in tool.quoted_keys()
+
+
+def test_seed_comparison_tool_compares_regions():
+    tool = _seed_tool()
+    agree = tool.agree
+    assert agree("'θ₁ -28° to -20°, θ₂ -28° to -20°'", "'θ₁ -37° to -12°, θ₂ -28°'") == (True, "regions overlap")
+    assert not agree("'θ₁ -28° to -20°, θ₂ -28° to -20°'", "'θ₁ -37° to -30°, θ₂ -28°'")[0]
+    assert agree("'6 cells with h₂ 45° to 75° and h₃ 105° to 135°'", "'12 cells with h₂ 45° to 90° and h₃ 90° to 150°'")[0]
+    assert agree("'(180°, 180°)'", "'(0°, 0°), (0°, 180°), (180°, 180°)'") == (True, "regions overlap")
+    assert not agree("'(180°, 180°)'", "'(0°, 0°), (0°, 180°)'")[0]

@@ -122,8 +122,9 @@ def hotspot_check(binned: pd.DataFrame, targeted: pd.DataFrame, *, value: str = 
         ``still_peak`` (1.0 if the targeted interval lies above the runner-up's median, else 0.0).
         With ``batch_meds``, the bins' medians in the replicate batches of the samples behind
         ``binned`` (:func:`~sss_locus.experiments.pose_claims.batch_medians`, in ``binned``'s
-        row order), also the runner-up's interval ``runner_up_ci_low``/``runner_up_ci_high``,
-        and ``still_peak`` asks that the targeted interval lie above that whole interval.
+        row order), also the intervals of the peak bin's and the runner-up's medians
+        (``median_ci_low``/``_high``, ``runner_up_ci_low``/``_high``), and ``still_peak`` asks
+        that the targeted interval lie above the runner-up's whole interval.
     """
     shown = binned[~binned["masked"]].sort_values("median", ascending=False)
     if len(shown) < 2:
@@ -143,7 +144,9 @@ def hotspot_check(binned: pd.DataFrame, targeted: pd.DataFrame, *, value: str = 
            "runner_up_x_mid": float(second.x_mid), "runner_up_y_mid": float(second.y_mid),
            "still_peak": float(lo > second["median"])}
     if batch_meds is not None:
-        i = binned.index.get_loc(second.name)
-        r_lo, r_hi = replicate_interval(second["median"], np.asarray(batch_meds, float)[:, i], confidence_level)
-        out.update(runner_up_ci_low=float(r_lo), runner_up_ci_high=float(r_hi), still_peak=float(lo > r_hi))
+        meds = np.asarray(batch_meds, float)
+        for name, row in (("median", top), ("runner_up", second)):
+            r_lo, r_hi = replicate_interval(row["median"], meds[:, binned.index.get_loc(row.name)], confidence_level)
+            out[f"{name}_ci_low"], out[f"{name}_ci_high"] = float(r_lo), float(r_hi)
+        out["still_peak"] = float(lo > out["runner_up_ci_high"])
     return out

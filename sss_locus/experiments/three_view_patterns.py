@@ -140,3 +140,15 @@ def share_interval(count: int, n: int, confidence_level: float = 0.95) -> tuple[
     lo = 0.0 if count == 0 else float(betaincinv(count, n - count + 1, a))
     hi = 1.0 if count == n else float(betaincinv(count + 1, n - count, 1.0 - a))
     return lo, hi
+
+
+def median_intervals(table: pd.DataFrame, columns, n_batches: int = N_BATCHES) -> dict[str, dict[str, float]]:
+    """Per column of ``table`` (the rows i.i.d. configurations), its median and 95 %
+    replicate-batch interval (:func:`~sss_locus.experiments.replicates.median_with_interval`,
+    NaN rows left out): ``{column: {"median", "ci_low", "ci_high"}}``."""
+    out = {}
+    for c in columns:
+        v = table[c].to_numpy(float)
+        med, lo, hi = median_with_interval(v[~np.isnan(v)], n_batches)
+        out[c] = {"median": med, "ci_low": lo, "ci_high": hi}
+    return out

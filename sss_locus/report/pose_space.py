@@ -344,7 +344,10 @@ def hotspot_texts(prefix: str, check: Mapping[str, float]) -> dict[str, str]:
     p = f"{prefix}-hotspot"
     return {
         f"{p}-bin": f"({check['x_mid']:.0f}°, {check['y_mid']:.0f}°)",
-        f"{p}-count": f"{check['count']:,.0f}", f"{p}-median": fmt_sig(check["median"], 2),
+        f"{p}-count": f"{check['count']:,.0f}",
+        f"{p}-median": (fmt_interval({"median": check["median"], "ci_low": check["median_ci_low"],
+                                      "ci_high": check["median_ci_high"]}, "m")
+                        if "median_ci_low" in check else f"{fmt_sig(check['median'], 2)} m"),
         f"{p}-target-count": f"{check['target_count']:,.0f}",
         f"{p}-target-median": (f"{fmt_sig(check['target_median'], 2)} m (95 % CI "
                                f"{fmt_sig(check['target_ci_low'], 3)}–{fmt_sig(check['target_ci_high'], 3)} m)"),
