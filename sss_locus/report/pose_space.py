@@ -186,7 +186,7 @@ def printed_metric(name: str, metrics: Mapping[str, float | str]) -> tuple[str, 
     if name.endswith("_deg") and f"{base}_lo_deg" in metrics:
         lo, hi = float(metrics[f"{base}_lo_deg"]), float(metrics[f"{base}_hi_deg"])
         return fmt_span(lo, hi), "span", (lo, hi)
-    if name.endswith(("_rank", "_count")):
+    if name.endswith(("_rank", "_count")) or name.startswith("n_"):
         return f"{v:,.0f}", "unit", 1.0
     if name.endswith("_rho"):
         return fmt_rho(v), "unit", 0.01
