@@ -296,7 +296,7 @@ def _heatmap_rows(key: str, a: Mapping, b: Mapping, sa: str, sb: str) -> list[di
         x, y = ma["median"].to_numpy()[both], mb["median"].to_numpy()[both]
         row = {"platform": key, "quantity": f"heatmap ({p}): bins shown in both seeds", sa: None, sb: None,
                "stable": None, "median relative difference": float(np.median(np.abs(x - y) / x)),
-               "rule": "share of bins whose 95 % intervals overlap"}
+               "rule": "bins' 95 % intervals overlap"}
         if "map_ci" in a and "map_ci" in b:
             (la, ha), (lb, hb) = a["map_ci"][p], b["map_ci"][p]
             row["bins agreeing (share)"] = float(np.mean(np.maximum(la, lb)[both] <= np.minimum(ha, hb)[both]))
