@@ -320,7 +320,8 @@ def check_row(run: str, metrics: Mapping[str, float | str]) -> dict:
                                             round(m["azimuth_region_theta2_hi_deg"])),
             "hotspot region at equal azimuths": bool(m["azimuth_region_equal"]),
             "yaw 0 / peak": m["yaw_near0_over_peak_ratio"],
-            "yaw 0 / peak CI": (m["yaw_near0_over_peak_ratio_ci_low"], m["yaw_near0_over_peak_ratio_ci_high"]),
+            "yaw 0 / peak CI": (round(m["yaw_near0_over_peak_ratio_ci_low"], 3),
+                                round(m["yaw_near0_over_peak_ratio_ci_high"], 3)),
             "fragmented (port-port)": m["multi_arc_fraction"]}
 
 
