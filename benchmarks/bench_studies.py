@@ -69,7 +69,11 @@ def measure_studies(quick: bool) -> dict:
     from sss_locus.experiments import noise, planning, pose_space, survey_passes
     from sss_locus.experiments.envelopes import OffsetModel, load_envelope
     from sss_locus.experiments.platforms import load_platform
-    from sss_locus.experiments.pose_stats import claim_metrics, heatmaps, spearman_table, with_derived
+    from sss_locus.experiments.pose_stats import heatmaps, spearman_table, with_derived
+    try:
+        from sss_locus.experiments.pose_claims import claim_metrics
+    except ImportError:  # a baseline tree from before pose_claims
+        from sss_locus.experiments.pose_stats import claim_metrics
 
     spent = _timed_kernel([pose_space, survey_passes, noise])
     out = {}

@@ -135,48 +135,6 @@ def test_with_derived_adds_magnitudes():
     assert list(out["abs_yaw2_deg"]) == [170.0, 20.0] and list(out["abs_psi1_deg"]) == [3.0, 4.0]
 
 
-def test_claim_metrics_on_synthetic_structure():
-    """A table built with known structure: length grows with both ranges, peaks at yaw = +-60
-    and at (theta1, theta2) = (10, -20), is larger at zero elevation; the metrics find it."""
-    from sss_locus.experiments.pose_stats import HEATMAP_PANELS, claim_metrics, heatmaps
-    from sss_locus.experiments.platforms import load_platform
-
-    pf = load_platform("auv")
-    rng = np.random.default_rng(0)
-    n = 200_000
-    half_az, half_el = pf.sonar.azimuth_deg / 2, pf.sonar.elevation_deg / 2
-    df = pd.DataFrame({
-        "r1_m": rng.uniform(0, 150, n), "r2_m": rng.uniform(0, 150, n),
-        "azimuth1_deg": rng.uniform(-half_az, half_az, n), "azimuth2_deg": rng.uniform(-half_az, half_az, n),
-        "elevation1_deg": rng.uniform(-half_el, half_el, n), "elevation2_deg": rng.uniform(-half_el, half_el, n),
-        "yaw2_deg": rng.uniform(-180, 180, n), "pitch2_deg": rng.uniform(-45, 45, n),
-        "n_arcs": np.where(rng.random(n) < 0.01, 2, 1),
-    })
-    yaw_bump = np.exp(-((np.abs(df.yaw2_deg) - 60.0) / 25.0) ** 2)
-    az_bump = np.exp(-(((df.azimuth1_deg - 10) / 8) ** 2 + ((df.azimuth2_deg + 20) / 8) ** 2))
-    el_bump = np.exp(-((df.elevation1_deg / half_el) ** 2 + (df.elevation2_deg / half_el) ** 2))
-    df["locus_length_m"] = (df.r1_m + df.r2_m) * (0.2 + yaw_bump + 3 * az_bump) * el_bump
-    df["locus_length_normalized"] = df.locus_length_m / (df.r1_m + df.r2_m) * 2
-    rho = spearman_table(df, ["r1_m", "yaw2_deg"])
-    maps = heatmaps(df, pf, n_bins=26, min_count=30)
-    assert set(maps) == {p for p, _, _ in HEATMAP_PANELS}
-    m = claim_metrics(df, rho, maps)
-    assert m["range_far_over_near_ratio"] > 2.5 and m["range_r1_rho"] > 0.3
-    assert abs(m["azimuth_peak_theta1_deg"] - 10) <= 5 and abs(m["azimuth_peak_theta2_deg"] + 20) <= 5
-    assert m["elevation_centre_over_corner_ratio"] > 1.5
-    assert abs(m["yaw_peak_neg_deg"] + 60) <= 10 and abs(m["yaw_peak_pos_deg"] - 60) <= 10
-    assert m["yaw_near0_over_peak_ratio"] < 0.5 and m["yaw_near180_over_peak_ratio"] < 0.5
-    assert m["multi_arc_fraction"] == pytest.approx(0.01, abs=0.002)
-    assert m["top_raw"] == "r1_m"
-
-
-def test_stable_to():
-    from sss_locus.experiments.pose_stats import stable_to
-
-    assert stable_to(0.4449, 0.4401) and stable_to(0.441, 0.445) and not stable_to(0.44, 0.4456)
-    assert stable_to(1234.0, 1280.0) and not stable_to(1200.0, 1300.0)
-
-
 def test_plain_label():
     from sss_locus.report.text import plain_label
 

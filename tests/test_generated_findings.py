@@ -147,12 +147,15 @@ def test_sweep_finding_finds_the_extreme_cells():
     h2, h3 = (a.ravel() for a in np.meshgrid(h, h))
     err = 0.1 + np.cos(np.radians(h2)) ** 2 * np.cos(np.radians(h3)) ** 2
     sweep = pd.DataFrame({"heading2_deg": h2, "heading3_deg": h3, "point_error_q95_median_m": err,
-                          "resolved_fraction": np.linspace(0.9, 1.0, len(h2))})
+                          "point_error_q95_median_ci_low_m": err - 0.01, "point_error_q95_median_ci_high_m": err + 0.01,
+                          "resolved_fraction": np.where(np.arange(len(h2)) == 3, 0.9, 1.0), "n": 100})
     text = pf.sweep_finding(sweep)
-    worst = sweep.loc[err.argmax()]
-    assert f"worst cell is (h₂, h₃) = ({worst.heading2_deg:.0f}°, {worst.heading3_deg:.0f}°)" in text
-    assert f"at least {fmt_percent(0.9)} of the configurations" in text
-    assert "every configuration of every cell is resolved" in pf.sweep_finding(sweep.assign(resolved_fraction=1.0))
+    # the worst cells: the four corners, all at 1.1 (equal or reciprocal headings); the best: every
+    # cell with a heading of 90° (0.1), within 0.01 of each other
+    assert "the worst cells are 4 cells with h₂ 0° to 180° and h₃ 0° to 180°, with a median up to 1.10 m (95 % CI 1.09–1.11 m)" in text
+    assert "the best are 13 cells" in text and "down to 0.10 m (95 % CI 0.090–0.11 m)" in text
+    n_all, unresolved = 100 * len(h2), 10  # one cell at 90 %
+    assert f"{fmt_percent(1 - unresolved / n_all)} of the configurations over all cells are resolved" in text
 
 
 def test_tilt_markdown_is_explicit_when_no_platform_is_a_surface_vessel():
@@ -169,9 +172,14 @@ def test_panels_hotspot_and_choices_follow_their_numbers():
          "azimuth_peak_count": 1234.0, "elevation_centre_over_corner_ratio": 2.0, "yaw_peak_neg_deg": -65.0,
          "yaw_peak_pos_deg": 55.0, "yaw_near0_over_peak_ratio": 0.39, "yaw_near180_over_peak_ratio": 0.28,
          "multi_arc_fraction": 0.017, "top_norm": "elevation_misalignment_deg",
-         "norm_elevation_misalignment_deg_rho": 0.54}
+         "norm_elevation_misalignment_deg_rho": 0.54, "yaw_peak_neg_lo_deg": -75.0, "yaw_peak_neg_hi_deg": -65.0,
+         "yaw_peak_pos_lo_deg": 55.0, "yaw_peak_pos_hi_deg": 55.0}
+    for name in ("range_far_over_near_ratio", "elevation_centre_over_corner_ratio", "yaw_near0_over_peak_ratio",
+                 "yaw_near180_over_peak_ratio", "multi_arc_fraction"):
+        m[f"{name}_ci_low"], m[f"{name}_ci_high"] = 0.9 * m[name], 1.1 * m[name]
     text = ps.panels_finding(m)
-    assert "0.50 times" in text and "shorter far out" in text and "≈ 12°, -8°" in text and "1,234 samples" in text
+    assert "0.50 (95 % CI 0.45–0.55) times" in text and "shorter far out" in text and "≈ 12°, -8°" in text
+    assert "1,234 samples" in text and "peaks at -75° to -65° and 55°" in text and "1.7 % (95 % CI 1.5–1.9 %)" in text
     check = {"x_mid": 10.0, "y_mid": 20.0, "count": 50, "median": 2.0, "target_count": 2000, "target_median": 1.9,
              "target_ci_low": 1.8, "target_ci_high": 2.0, "runner_up_median": 1.95, "runner_up_x_mid": 5.0,
              "runner_up_y_mid": 20.0, "still_peak": False}

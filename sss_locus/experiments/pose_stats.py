@@ -15,7 +15,7 @@ import pandas as pd
 from scipy.stats import binned_statistic_dd
 
 from .replicates import (N_BATCHES, batch_count, centred_from, check_confidence, fisher_z_interval,
-                         rank_correlation, replicate_interval, spearman_rho)
+                         rank_correlation, replicate_interval)
 from .rowstats import average_ranks
 
 TARGETS = ("locus_length_m", "locus_length_normalized")
@@ -317,81 +317,3 @@ def heatmaps(df: pd.DataFrame, platform, *, n_bins: int = 24, min_count: int = 3
     return {p: binned_median(df, x, y, value, x_edges=panel_edges(x, platform, n_bins),
                              y_edges=panel_edges(y, platform, n_bins), min_count=min_count)
             for p, x, y in HEATMAP_PANELS}
-
-
-def _peak(binned: pd.DataFrame) -> pd.Series:
-    shown = binned[~binned["masked"]]
-    return shown.loc[shown["median"].idxmax()]
-
-
-def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFrame], *,
-                  yaw_bin_deg: float = 10.0, min_count: int = 30) -> dict[str, float | str]:
-    """The measured numbers behind each claim of the paper's Sec. IV-B and IV-C.
-
-    ``df`` is the table the heatmaps were made from (feature on the port side), ``rho`` the
-    :func:`spearman_table` of the whole table, ``maps`` the :func:`heatmaps` of ``df``.
-    Keys ending in ``_rho`` are Spearman correlations; ``*_ratio`` are ratios of medians.
-    ``multi_arc_fraction`` is the share of the rows of ``df`` (not of the whole table: in the
-    pose-space chapter ``df`` is the heatmap subset, sensor 2 on the port side like sensor 1)
-    whose locus has more than one arc.
-    """
-    m: dict[str, float | str] = {}
-    for target, tag in (("locus_length_m", "raw"), ("locus_length_normalized", "norm")):
-        tab = rho[rho["target"] == target].reset_index(drop=True)
-        m[f"top_{tag}"] = tab.loc[0, "quantity"]
-        for _, row in tab.iterrows():
-            m[f"{tag}_{row.quantity}_rho"] = row.rho
-            m[f"{tag}_{row.quantity}_rank"] = float(_ + 1)
-    m["multi_arc_fraction"] = float((df["n_arcs"] > 1).mean())  # of the rows of df (see above)
-    # (a) range x range: median length with both ranges above half the maximum over the median
-    # with both below it (from the samples, not from bin medians)
-    half_r = maps["a"]["x_hi"].max() / 2
-    far = df[(df.r1_m > half_r) & (df.r2_m > half_r)]["locus_length_m"].median()
-    near = df[(df.r1_m <= half_r) & (df.r2_m <= half_r)]["locus_length_m"].median()
-    m["range_far_over_near_ratio"] = float(far / near)
-    m["range_r1_rho"] = spearman_rho(df["r1_m"].to_numpy(), df["locus_length_m"].to_numpy())
-    m["range_r2_rho"] = spearman_rho(df["r2_m"].to_numpy(), df["locus_length_m"].to_numpy())
-    # (b) azimuth x azimuth: where the largest bin median is
-    pk = _peak(maps["b"])
-    m["azimuth_peak_theta1_deg"], m["azimuth_peak_theta2_deg"] = float(pk.x_mid), float(pk.y_mid)
-    m["azimuth_peak_count"] = float(pk["count"])  # samples behind the peak bin's median
-    m["norm_azimuth_max_rho2_fraction"] = max(  # share of rank variance the azimuths explain
-        m.get(f"norm_{q}_rho", 0.0) ** 2 for q in ("azimuth1_deg", "azimuth2_deg"))
-    # (c) elevation x elevation: median with both |phi| in the inner third of the half-aperture
-    # over the median with both in the outer third (from the samples)
-    third = maps["c"]["x_hi"].max() / 3
-    e1, e2 = df["elevation1_deg"].abs(), df["elevation2_deg"].abs()
-    inner = df[(e1 < third) & (e2 < third)]["locus_length_m"].median()
-    outer = df[(e1 > 2 * third) & (e2 > 2 * third)]["locus_length_m"].median()
-    m["elevation_centre_over_corner_ratio"] = float(inner / outer)
-    # (d, e) yaw: profile of the median over yaw
-    prof = binned_profile(df, "yaw2_deg", edges=np.arange(-180.0, 180.0 + yaw_bin_deg, yaw_bin_deg),
-                          min_count=min_count)
-    shown = prof[~prof.masked]
-    neg, pos = shown[shown.mid < 0], shown[shown.mid > 0]
-    m["yaw_peak_neg_deg"] = float(neg.loc[neg["median"].idxmax(), "mid"])
-    m["yaw_peak_pos_deg"] = float(pos.loc[pos["median"].idxmax(), "mid"])
-    peak = float(shown["median"].max())
-    m["yaw_peak_median_m"] = peak
-    m["yaw_near0_over_peak_ratio"] = float(shown[shown.mid.abs() < yaw_bin_deg]["median"].mean() / peak)
-    m["yaw_near180_over_peak_ratio"] = float(
-        shown[shown.mid.abs() > 180 - yaw_bin_deg]["median"].mean() / peak)
-    m["yaw_peak_over_near0_ratio"] = 1.0 / m["yaw_near0_over_peak_ratio"]  # the yaw contrast
-    m["yaw_peak_asymmetry_ratio"] = float(neg["median"].max() / pos["median"].max())
-    e = maps["e"]
-    for half, sel in (("neg", e.x_mid < 0), ("pos", e.x_mid > 0)):
-        pk = _peak(e[sel])
-        m[f"azimuth2_yaw_peak_{half}_yaw_deg"] = float(pk.x_mid)
-        m[f"azimuth2_yaw_peak_{half}_theta2_deg"] = float(pk.y_mid)
-    m["n_heatmap_samples"] = float(len(df))
-    return m
-
-
-def stable_to(a, b, digits: int = 2) -> np.ndarray:
-    """Whether two estimates agree to ``digits`` significant figures in the sense that they
-    differ by at most half a unit of the ``digits``-th significant figure of the larger one."""
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    big = np.maximum(np.abs(a), np.abs(b))
-    with np.errstate(divide="ignore"):
-        unit = 10.0 ** (np.floor(np.log10(np.where(big > 0, big, 1.0))) - (digits - 1))
-    return np.abs(a - b) <= 0.5 * unit

@@ -13,6 +13,7 @@ import pandas as pd
 
 from ..geometry import Aperture, three_view_points
 from .noise import first_order, gaussian_norm_quantile
+from .replicates import N_BATCHES, median_with_interval
 from .view_sets import Views, draw_pattern
 
 PATTERNS = {
@@ -61,12 +62,14 @@ def three_view_table(views: Views, aperture, noise=None) -> pd.DataFrame:
 
 
 def heading_sweep(platform, envelope, headings2_deg, headings3_deg, n: int, seed: int,
-                  noise=None) -> pd.DataFrame:
+                  noise=None, n_batches: int = N_BATCHES) -> pd.DataFrame:
     """Three passes at headings (0, h2, h3) for every pair of the two grids (``h3 >= h2``).
 
     Returns one row per pair: ``heading2_deg``, ``heading3_deg``, ``resolved_fraction``,
     ``ambiguous_fraction``, ``plane_angle_median_deg``, ``tangency_margin_median``, ``n`` and,
-    with ``noise``, ``point_error_q95_median_m`` (see :func:`three_view_table`). Each pair is
+    with ``noise``, ``point_error_q95_median_m`` (see :func:`three_view_table`) with its 95 %
+    replicate-batch interval ``point_error_q95_median_ci_low_m``/``_ci_high_m`` (``n_batches``
+    batches, :func:`~sss_locus.experiments.replicates.median_with_interval`). Each pair is
     drawn with its own seed (``seed`` plus the pair's index in the grid).
     """
     rows, i = [], 0
@@ -76,7 +79,11 @@ def heading_sweep(platform, envelope, headings2_deg, headings3_deg, n: int, seed
                 continue
             views, _ = draw_pattern(platform, envelope, (0.0, h2, h3), n, seed + i)
             tab = three_view_table(views, platform.sonar.aperture(), noise)
-            extra = {} if noise is None else {"point_error_q95_median_m": float(tab.point_error_q95_m.median())}
+            extra = {}
+            if noise is not None:
+                med, lo, hi = median_with_interval(tab.point_error_q95_m.to_numpy(), n_batches)
+                extra = {"point_error_q95_median_m": med, "point_error_q95_median_ci_low_m": lo,
+                         "point_error_q95_median_ci_high_m": hi}
             rows.append({**extra, "heading2_deg": h2, "heading3_deg": h3,
                          "resolved_fraction": float((tab.n_valid == 1).mean()),
                          "ambiguous_fraction": float((tab.n_valid == 2).mean()),
@@ -104,3 +111,44 @@ def share_upper_bound(count: int, n: int, confidence_level: float = 0.95) -> flo
     if not 0.0 < confidence_level < 1.0:
         raise ValueError(f"confidence_level must be in (0, 1); got {confidence_level!r}")
     return 1.0 if count == n else float(betaincinv(count + 1, n - count, confidence_level))
+
+
+def cells_within(sweep: pd.DataFrame, best: str = "min", value: str = "point_error_q95_median_m") -> pd.DataFrame:
+    """The cells of a :func:`heading_sweep` (with noise) that the sampling cannot tell from its
+    best (``best="min"``) or worst (``"max"``) cell: those whose median ``value`` lies inside the
+    95 % interval (``value`` with its ending ``_m`` read as ``_ci_low_m``/``_ci_high_m``) of the
+    smallest (largest) median, that cell always among them."""
+    if best not in ("min", "max"):
+        raise ValueError(f"best must be 'min' or 'max'; got {best!r}")
+    if not value.endswith("_m"):
+        raise ValueError(f"value must name a column in metres (ending in _m); got {value!r}")
+    v = sweep[value]
+    i = v.idxmin() if best == "min" else v.idxmax()
+    if best == "min":
+        return sweep[v <= max(v[i], sweep.loc[i, value[:-2] + "_ci_high_m"])]
+    return sweep[v >= min(v[i], sweep.loc[i, value[:-2] + "_ci_low_m"])]
+
+
+def share_interval(count: int, n: int, confidence_level: float = 0.95) -> tuple[float, float]:
+    """Two-sided exact (Clopper-Pearson) interval of a share ``count / n``: the ``(1 - level)
+    / 2`` and ``(1 + level) / 2`` quantiles of Beta(count, n - count + 1) and Beta(count + 1,
+    n - count), 0 and 1 at the ends. Checks its arguments like :func:`share_upper_bound`."""
+    from scipy.special import betaincinv
+
+    share_upper_bound(count, n, confidence_level)  # the same argument checks
+    a = (1.0 - confidence_level) / 2.0
+    lo = 0.0 if count == 0 else float(betaincinv(count, n - count + 1, a))
+    hi = 1.0 if count == n else float(betaincinv(count + 1, n - count, 1.0 - a))
+    return lo, hi
+
+
+def median_intervals(table: pd.DataFrame, columns, n_batches: int = N_BATCHES) -> dict[str, dict[str, float]]:
+    """Per column of ``table`` (the rows i.i.d. configurations), its median and 95 %
+    replicate-batch interval (:func:`~sss_locus.experiments.replicates.median_with_interval`,
+    NaN rows left out): ``{column: {"median", "ci_low", "ci_high"}}``."""
+    out = {}
+    for c in columns:
+        v = table[c].to_numpy(float)
+        med, lo, hi = median_with_interval(v[~np.isnan(v)], n_batches)
+        out[c] = {"median": med, "ci_low": lo, "ci_high": hi}
+    return out

@@ -24,6 +24,7 @@ import numpy as np
 import pandas as pd
 
 from .planning import planning_bands
+from .replicates import N_BATCHES, batch_count, replicate_interval
 
 ENDS_DEG = (0.0, 180.0)
 """The two ends of the crossing-angle range: an exact repeat and an anti-parallel pass."""
@@ -125,3 +126,27 @@ def advice_verdict(curve: pd.DataFrame, value: str = "locus_length_m", *,
     oblique, perp = (float(np.median(m[band])) if band.any() else float("nan")), _at(g, m, 90.0)
     return {"ends": ends, "oblique": oblique, "perpendicular": perp,
             "holds": bool(ends <= oblique and ends <= perp)}
+
+
+def over_peak(cur, gamma_deg: float, value: str = "locus_length_m", *, n_batches: int = N_BATCHES,
+              confidence_level: float = 0.95) -> dict[str, float]:
+    """The median of ``value`` at grid angle ``gamma_deg`` over the largest median of the curve
+    (the peak angle chosen on the whole curve), with its 95 % replicate-batch interval: each
+    batch (every angle's rows dealt ``i mod k``) gives the ratio of its medians at the two
+    angles. ``cur`` is a :class:`~sss_locus.experiments.planning.CrossingAngleCurve` (its
+    ``curve`` and ``samples``). Returns ``median`` (the ratio), ``ci_low``, ``ci_high``."""
+    c, s = cur.curve, cur.samples
+    angles = c["crossing_angle_deg"].to_numpy()
+    peak = float(angles[int(np.argmax(c[f"{value}_median"].to_numpy()))])
+    if not np.isclose(angles, gamma_deg).any():
+        raise ValueError(f"gamma_deg {gamma_deg} is not on the grid")
+
+    def rows(g: float) -> np.ndarray:
+        return s.loc[np.isclose(s["crossing_angle_deg"], g), value].to_numpy(float)
+
+    at, top = rows(gamma_deg), rows(peak)
+    k = batch_count(min(at.size, top.size), n_batches)
+    ratio = float(np.median(at) / np.median(top))
+    per_batch = [np.median(at[j::k]) / np.median(top[j::k]) for j in range(k)]
+    lo, hi = replicate_interval(ratio, per_batch, confidence_level, bounds=(0.0, np.inf))
+    return {"median": ratio, "ci_low": float(lo), "ci_high": float(hi)}

@@ -13,6 +13,7 @@ import pandas as pd
 
 from ..experiments.planning import planning_bands
 from .text import fmt_bands, fmt_change, fmt_percent, fmt_sig
+from .three_views import sweep_texts
 
 OBLIQUE_MAX_DEG = 45.0
 """A peak below this crossing angle counts as "at a moderate oblique angle" (the paper's shape)."""
@@ -149,17 +150,14 @@ def tilt_finding(rows: pd.DataFrame) -> str:
 
 
 def sweep_finding(sweep: pd.DataFrame) -> str:
-    """The heading sweep of one platform: best and worst cells by median 95 % point error and
-    the smallest share resolved in any cell (columns ``heading2_deg``, ``heading3_deg``,
-    ``point_error_q95_median_m``, ``resolved_fraction``)."""
-    best = sweep.loc[sweep["point_error_q95_median_m"].idxmin()]
-    worst = sweep.loc[sweep["point_error_q95_median_m"].idxmax()]
-    return (f"the worst cell is (h₂, h₃) = ({worst.heading2_deg:.0f}°, {worst.heading3_deg:.0f}°) with a median "
-            f"{fmt_sig(worst.point_error_q95_median_m, 2)} m, the best ({best.heading2_deg:.0f}°, "
-            f"{best.heading3_deg:.0f}°) with {fmt_sig(best.point_error_q95_median_m, 2)} m; "
-            + ("every configuration of every cell is resolved." if sweep["resolved_fraction"].min() >= 1.0 else
-               f"at least {fmt_percent(sweep['resolved_fraction'].min())} of the configurations are resolved "
-               "in every cell."))
+    """The heading sweep of one platform: its worst and best cells by median 95 % point error
+    (the cells within the interval of the largest and smallest median, with that median and its
+    interval) and the share resolved over all cells
+    (:func:`~sss_locus.report.three_views.sweep_texts`)."""
+    t = sweep_texts(sweep)
+    return (f"the worst cells are {t['worst']}, with a median up to {t['worst-err']}; the best are {t['best']}, "
+            f"down to {t['best-err']}; {t['resolved']} of the configurations over all cells are resolved "
+            f"(unresolved: at most {t['unresolved-upper']} at 95 % confidence).")
 
 
 def tilt_markdown(rows: pd.DataFrame, titles: Mapping[str, str]) -> str:

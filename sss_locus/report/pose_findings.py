@@ -13,7 +13,7 @@ from collections.abc import Mapping
 
 import pandas as pd
 
-from .text import fmt_sig, plain_label
+from .text import fmt_ci, fmt_sig, fmt_span, plain_label
 
 RAW, NORM = "locus_length_m", "locus_length_normalized"
 """The two targets of :func:`~sss_locus.experiments.pose_stats.spearman_table`."""
@@ -93,30 +93,40 @@ def drivers_finding(rho: pd.DataFrame, top: int = 3) -> str:
     return " ".join(out)
 
 
+def _ci(m: Mapping[str, float], name: str, percent: bool = False) -> str:
+    return fmt_ci(m[name], m[f"{name}_ci_low"], m[f"{name}_ci_high"], percent=percent)
+
+
+def _span(m: Mapping[str, float], name: str) -> str:
+    return fmt_span(m[f"{name}_lo_deg"], m[f"{name}_hi_deg"])
+
+
 def panels_finding(metrics: Mapping[str, float]) -> str:
     """Where long loci occur for one platform: the heatmap panels read with their numbers.
 
-    ``metrics``: :func:`~sss_locus.experiments.pose_stats.claim_metrics` of the platform.
+    ``metrics``: :func:`~sss_locus.experiments.pose_claims.claim_metrics` of the platform (ratios
+    and shares with their intervals, the yaw peaks as the spans of their peak regions).
     """
     m = metrics
     far = m["range_far_over_near_ratio"]
     el = m["elevation_centre_over_corner_ratio"]
     return (
-        f"with both ranges above half the maximum the median length is {fmt_sig(far, 2)} times that with both "
-        f"below ({'longer far out' if far > 1 else 'shorter far out'}); the largest median over the two azimuths "
-        f"sits at θ₁, θ₂ ≈ {m['azimuth_peak_theta1_deg']:.0f}°, {m['azimuth_peak_theta2_deg']:.0f}° (bin centres, "
-        f"{m['azimuth_peak_count']:,.0f} samples in that bin); at the centre of the elevation square the median is "
-        f"{fmt_sig(el, 2)} times the corners' ({'longer' if el > 1 else 'shorter'} with the feature near the centre of both "
-        f"beams); over vehicle 2's yaw the median peaks at {m['yaw_peak_neg_deg']:.0f}° and "
-        f"{m['yaw_peak_pos_deg']:.0f}°, and is {fmt_sig(m['yaw_near0_over_peak_ratio'], 2)} of the peak near yaw 0 "
-        f"(parallel headings) and {fmt_sig(m['yaw_near180_over_peak_ratio'], 2)} near ±180° (reciprocal). "
-        f"{100 * m['multi_arc_fraction']:.2g} % of its port–port loci are fragmented (more than one arc).")
+        f"with both ranges above half the maximum the median length is {_ci(m, 'range_far_over_near_ratio')} times "
+        f"that with both below ({'longer far out' if far > 1 else 'shorter far out'}); the largest median over the "
+        f"two azimuths sits at θ₁, θ₂ ≈ {m['azimuth_peak_theta1_deg']:.0f}°, {m['azimuth_peak_theta2_deg']:.0f}° (bin "
+        f"centres, {m['azimuth_peak_count']:,.0f} samples in that bin); at the centre of the elevation square the "
+        f"median is {_ci(m, 'elevation_centre_over_corner_ratio')} times the corners' "
+        f"({'longer' if el > 1 else 'shorter'} with the feature near the centre of both beams); over vehicle 2's "
+        f"yaw the median peaks at {_span(m, 'yaw_peak_neg')} and {_span(m, 'yaw_peak_pos')} (the bins whose 95 % "
+        f"interval reaches that of each half's largest median), and is {_ci(m, 'yaw_near0_over_peak_ratio')} of the peak near "
+        f"yaw 0 (parallel headings) and {_ci(m, 'yaw_near180_over_peak_ratio')} near ±180° (reciprocal). "
+        f"{_ci(m, 'multi_arc_fraction', percent=True)} of its port–port loci are fragmented (more than one arc).")
 
 
 def choices_finding(main: Mapping[str, float], checks: pd.DataFrame, key: str) -> str:
     """How the open modelling choices change one platform's headline numbers.
 
-    ``main``: :func:`~sss_locus.experiments.pose_stats.claim_metrics` of the main run;
+    ``main``: :func:`~sss_locus.experiments.pose_claims.claim_metrics` of the main run;
     ``checks``: the modelling-choice table (rows of
     :func:`~sss_locus.report.pose_space.check_row`, ``run`` labels starting with ``key + ", "``).
     """
@@ -145,8 +155,8 @@ def reading_finding(effect: pd.DataFrame) -> str:
         raise ValueError("effect needs the 'magnitude' and 'signed' readings of the normalised length")
     mag, sig = norm.loc["magnitude"], norm.loc["signed"]
     same = int(mag["rank"]) == int(sig["rank"])
-    return (f"the normalised ρ of elevation misalignment is {fmt_sig(mag['rho'], 2)} (rank {int(mag['rank'])}) "
-            f"read as magnitudes and {fmt_sig(sig['rho'], 2)} (rank {int(sig['rank'])}; "
+    return (f"the normalised ρ of elevation misalignment is {fmt_rho(mag['rho'])} (rank {int(mag['rank'])}) "
+            f"read as magnitudes and {fmt_rho(sig['rho'])} (rank {int(sig['rank'])}; "
             f"{plain_label(str(sig['top']))} first) read as signed angles: "
             + ("the reading does not change its rank." if same else "the reading changes its rank."))
 
@@ -171,10 +181,12 @@ def hotspot_finding(check: Mapping[str, float]) -> str:
     c = check
     verdict = ("its targeted interval lies above the runner-up, so the bin is still the peak" if c["still_peak"]
                else "its targeted interval does not lie above the runner-up, so the peak bin is not settled")
+    runner = (fmt_ci(c["runner_up_median"], c["runner_up_ci_low"], c["runner_up_ci_high"]).replace(" (", " m (", 1)
+              .replace(")", " m)") if "runner_up_ci_low" in c else f"{fmt_sig(c['runner_up_median'], 2)} m")
     return (f"the peak bin ({c['x_mid']:.0f}°, {c['y_mid']:.0f}°) holds {c['count']:,.0f} samples of the main run "
             f"(median {fmt_sig(c['median'], 2)} m); {c['target_count']:,.0f} targeted samples give "
             f"{fmt_sig(c['target_median'], 2)} m (95 % CI {fmt_sig(c['target_ci_low'], 3)}–"
-            f"{fmt_sig(c['target_ci_high'], 3)} m) against the runner-up's {fmt_sig(c['runner_up_median'], 2)} m "
+            f"{fmt_sig(c['target_ci_high'], 3)} m) against the runner-up's {runner} "
             f"at ({c['runner_up_x_mid']:.0f}°, {c['runner_up_y_mid']:.0f}°): {verdict}.")
 
 
@@ -183,5 +195,5 @@ def pose_summary(rho: pd.DataFrame, metrics: Mapping[str, float]) -> str:
     (raw, _), (norm, _) = ranked(rho, RAW, 1)[0], ranked(rho, NORM, 1)[0]
     return (f"the raw locus length ranks {plain_label(raw)} first and the range-normalised length "
             f"{plain_label(norm)}; the longest loci sit at azimuths θ₁, θ₂ ≈ {metrics['azimuth_peak_theta1_deg']:.0f}°, "
-            f"{metrics['azimuth_peak_theta2_deg']:.0f}° and at vehicle-2 yaws near {metrics['yaw_peak_neg_deg']:.0f}° "
-            f"and {metrics['yaw_peak_pos_deg']:.0f}°.")
+            f"{metrics['azimuth_peak_theta2_deg']:.0f}° and at vehicle-2 yaws of {_span(metrics, 'yaw_peak_neg')} "
+            f"and {_span(metrics, 'yaw_peak_pos')}.")

@@ -11,6 +11,7 @@ the bars of rho keep ``barh`` because their intervals are the replicate-batch in
 
 from __future__ import annotations
 
+import math
 import textwrap
 from collections.abc import Mapping, Sequence
 
@@ -21,9 +22,10 @@ import seaborn as sns
 from matplotlib.colors import to_rgba
 from matplotlib.ticker import MaxNLocator
 
-from ..experiments.pose_stats import HEATMAP_PANELS, TARGETS, median_grid, stable_to
+from ..experiments.pose_stats import HEATMAP_PANELS, TARGETS, median_grid
 from .style import PAGE_WIDTH_IN, QUANTITY_LABELS, SMALL_FONT_PT, themed, upward_heatmap
-from .text import fmt_sig, plain_label
+from .pose_findings import fmt_rho
+from .text import fmt_ci, fmt_interval, fmt_sig, fmt_span, plain_label
 
 PANEL_TITLES = {
     "a": "(a) range vs range", "b": "(b) azimuth vs azimuth", "c": "(c) elevation vs elevation",
@@ -132,96 +134,188 @@ def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
 
 
 def fmt_metric(name: str, v) -> str:
-    """One claim metric of :func:`~sss_locus.experiments.pose_stats.claim_metrics` as prose,
+    """One claim metric of :func:`~sss_locus.experiments.pose_claims.claim_metrics` as prose,
     by the kind its name ends in: quantity names as plain text, ranks as integers, rank
-    correlations and ratios to two significant figures, fractions in percent, angles in whole
-    degrees.
+    correlations to two decimals, ratios to two significant figures, fractions in percent and
+    angles in whole degrees (without the intervals and peak regions of :func:`printed_metric`).
 
     >>> fmt_metric("top_raw", "mean_range_m"), fmt_metric("raw_baseline_m_rank", 3.0)
     ('mean range', '3')
-    >>> fmt_metric("norm_azimuth1_deg_rho", 0.1234), fmt_metric("multi_arc_fraction", 0.0123)
-    ('0.12', '1.2 %')
+    >>> fmt_metric("norm_azimuth1_deg_rho", -0.0569), fmt_metric("multi_arc_fraction", 0.0123)
+    ('-0.06', '1.2 %')
     >>> fmt_metric("yaw_peak_neg_deg", -95.0), fmt_metric("range_far_over_near_ratio", 2.345)
     ('-95', '2.3')
     """
+    return printed_metric(name, {name: v})[0]
+
+
+def _sig_unit(x: float, digits: int = 2) -> float:
+    """A unit of the last of ``digits`` significant figures of ``x``."""
+    return 10.0 ** (math.floor(math.log10(abs(x))) - (digits - 1)) if x and math.isfinite(x) else 0.0
+
+
+def printed_metric(name: str, metrics: Mapping[str, float | str]) -> tuple[str, str, object]:
+    """How the chapter prints claim metric ``name`` of ``metrics`` and what two seeds must share
+    for it to count as stable at what is printed: ``(text, kind, what)``.
+
+    ``kind`` is ``"text"`` (a quantity name: equal names), ``"unit"`` (``what`` the unit of the
+    last printed digit: the seeds differ by at most half of it), ``"interval"`` (a ratio or
+    share printed with its 95 % replicate interval ``what = (low, high)``: the seeds' intervals
+    overlap) or ``"span"`` (a peak printed as the span ``what = (low, high)`` of its peak region,
+    :func:`~sss_locus.experiments.pose_claims.peak_region`: the seeds' spans overlap).
+
+    >>> printed_metric("x_ratio", {"x_ratio": 2.13, "x_ratio_ci_low": 2.07, "x_ratio_ci_high": 2.19})
+    ('2.1 (95 % CI 2.1–2.2)', 'interval', (2.07, 2.19))
+    >>> printed_metric("p_deg", {"p_deg": -75.0, "p_lo_deg": -85.0, "p_hi_deg": -75.0})[:2]
+    ('-85° to -75°', 'span')
+    """
+    v = metrics[name]
     if isinstance(v, str):
-        return plain_label(v)
-    if name.endswith(("_rank", "_count")):
-        return f"{v:,.0f}"
+        return plain_label(v), "text", v
+    if f"{name}_ci_low" in metrics:
+        lo, hi = float(metrics[f"{name}_ci_low"]), float(metrics[f"{name}_ci_high"])
+        return fmt_ci(v, lo, hi, percent=name.endswith("_fraction")), "interval", (lo, hi)
+    base = name[:-len("_deg")]
+    if name.endswith("_deg") and f"{base}_lo_deg" in metrics:
+        lo, hi = float(metrics[f"{base}_lo_deg"]), float(metrics[f"{base}_hi_deg"])
+        return fmt_span(lo, hi), "span", (lo, hi)
+    if name.endswith(("_rank", "_count")) or name.startswith("n_"):
+        return f"{v:,.0f}", "unit", 1.0
     if name.endswith("_rho"):
-        return fmt_sig(v, 2)
+        return fmt_rho(v), "unit", 0.01
     if name.endswith("_fraction"):
-        return f"{100 * v:.2g} %"
+        return f"{fmt_sig(100 * v, 2)} %", "unit", _sig_unit(v)
     if name.endswith("_deg"):
-        return f"{v:.0f}"
-    return fmt_sig(v, 2)
+        return f"{v:.0f}", "unit", 1.0
+    return fmt_sig(v, 2), "unit", _sig_unit(v)
+
+
+def agree_at_print(kind: str, a, b) -> bool:
+    """Whether two seeds' ``what`` of :func:`printed_metric` (of one metric, same ``kind``)
+    agree at what the chapter prints: equal texts, a difference of at most half a unit of the
+    last printed digit (``a``, ``b`` are ``(value, unit)``; the larger unit counts), or
+    overlapping intervals or spans (``a``, ``b`` are ``(low, high)``).
+
+    >>> agree_at_print("unit", (-0.0569, 0.01), (-0.0582, 0.01)), agree_at_print("unit", (0.0569, 0.001), (0.0582, 0.001))
+    (True, False)
+    >>> agree_at_print("interval", (2.07, 2.19), (2.01, 2.12)), agree_at_print("span", (-85, -85), (-75, -65))
+    (True, False)
+    """
+    if kind == "text":
+        return a == b
+    if kind == "unit":
+        return bool(abs(a[0] - b[0]) <= 0.5 * max(a[1], b[1]) * (1 + 1e-9))
+    return bool(max(a[0], b[0]) <= min(a[1], b[1]))
+
+
+SKIPPED_SUFFIXES = ("_ci_low", "_ci_high", "_lo_deg", "_hi_deg", "_count", "_bins", "_equal", "_median_m")
+"""Metric names left out of the seed table: the parts of an interval or span (checked with
+their metric), sample counts (a description of the run, which grows with it) and values the
+chapter does not print."""
+
+QUOTED_RANKS = ("raw_baseline_m_rank", "raw_mean_range_m_rank")
+"""The ranks in the Spearman table that the book quotes (the chapter and the claims page; a
+test keeps this list in step with them): the only ranks the seed table compares. Other ranks
+of near-equal correlations (e.g. the AUV's two ranges) may swap between seeds, and are not
+printed."""
 
 
 def metric_texts(metrics: Mapping[str, float | str], rho: pd.DataFrame) -> dict[str, str]:
-    """Prose of every claim metric (:func:`fmt_metric`) plus the replicate interval of every
-    rank correlation, ``"<raw|norm>_<quantity>_ci"`` -> ``"[lo, hi]"`` (three decimals)."""
-    out = {name: fmt_metric(name, v) for name, v in metrics.items()}
+    """Prose of every claim metric (:func:`printed_metric`; a peak's span under
+    ``<name>_span`` besides the bin of its largest median under ``<name>``) plus the replicate
+    interval of every rank correlation, ``"<raw|norm>_<quantity>_ci"`` -> ``"[lo, hi]"`` (three
+    decimals)."""
+    out = {}
+    for name, v in metrics.items():
+        if name.endswith(SKIPPED_SUFFIXES[:4]):
+            continue
+        text, kind, _ = printed_metric(name, metrics)
+        if kind == "span":
+            out[f"{name[:-len('_deg')]}_span"] = text
+            text = f"{v:.0f}"
+        out[name] = text
     for row in rho.itertuples():
         tag = "raw" if row.target == TARGETS[0] else "norm"
         out[f"{tag}_{row.quantity}_ci"] = f"[{row.ci_low:.3f}, {row.ci_high:.3f}]"
     return out
 
 
-def seed_stability_table(runs: Mapping[str, tuple[Mapping, Mapping]], seeds: tuple[int, int],
-                         small_rho: float = 0.05) -> pd.DataFrame:
-    """Every rank correlation, claim metric and heatmap of two seeds side by side, with whether
-    they agree to two significant figures (:func:`~sss_locus.experiments.pose_stats.stable_to`).
+def seed_stability_table(runs: Mapping[str, tuple[Mapping, Mapping]], seeds: tuple[int, int]) -> pd.DataFrame:
+    """Every rank correlation and claim metric of two seeds side by side, with whether they
+    agree at what the chapter prints (:func:`printed_metric`, :func:`agree_at_print`), and
+    the heatmaps' bins.
 
-    ``runs`` maps a platform key to the two runs (dicts with ``rho``, ``metrics``, ``maps``)
-    of the seeds in ``seeds``. Correlations with ``|rho| < small_rho`` in both seeds count as
-    stable (noted). A heatmap row gives the share of bins shown in both runs that are stable
-    in ``bins stable (share)`` and the median relative difference of their medians in
-    ``median relative difference`` (seed columns and ``stable`` empty); both columns are empty
-    on the other rows.
+    ``runs`` maps a platform key to the two runs (dicts with ``rho``, ``metrics``, ``maps`` and
+    optionally ``map_ci``, :func:`~sss_locus.experiments.pose_claims.map_intervals`) of the
+    seeds in ``seeds``. Rank correlations are printed to two decimals. The seed columns hold the
+    printed texts, ``stable`` the verdict and ``rule`` what was compared. A heatmap row (one per
+    panel, ``stable`` empty: the bins are drawn, not printed) gives the share of bins shown in
+    both seeds whose 95 % intervals overlap (with ``map_ci``) in ``bins agreeing (share)`` and
+    the median relative difference of their medians in ``median relative difference``.
     """
     sa, sb = (f"seed {s}" for s in seeds)
+    rules = {"text": "same quantity", "unit": "within half a unit of the last printed digit",
+             "interval": "95 % intervals overlap", "span": "peak regions overlap"}
     rows = []
     for key, (a, b) in runs.items():
         ra = a["rho"].set_index(["target", "quantity"])["rho"]
         rb = b["rho"].set_index(["target", "quantity"])["rho"].reindex(ra.index)
         for (target, q), x in ra.items():
-            y = rb[(target, q)]
-            small = max(abs(x), abs(y)) < small_rho
+            y = float(rb[(target, q)])
             kind = "raw" if target == TARGETS[0] else "normalised"
-            rows.append({"platform": key, "quantity": f"rho {q} ~ {kind}", sa: x, sb: y,
-                         "stable": bool(small or stable_to(x, y)),
-                         "note": f"|rho| < {small_rho:g}" if small else ""})
-        for name, x in a["metrics"].items():
-            if (isinstance(x, str) or name.endswith("_rank") or name.startswith(("raw_", "norm_"))
-                    or name == "n_heatmap_samples" or name.endswith("_count")):
+            rows.append({"platform": key, "quantity": f"rho {q} ~ {kind}", sa: fmt_rho(x), sb: fmt_rho(y),
+                         "stable": agree_at_print("unit", (x, 0.01), (y, 0.01)), "rule": rules["unit"]})
+        for name in a["metrics"]:
+            if (name.endswith(SKIPPED_SUFFIXES) or name == "n_heatmap_samples"
+                    or (name.startswith(("raw_", "norm_")) and name.endswith("_rho"))
+                    or (name.endswith("_rank") and name not in QUOTED_RANKS)):
                 continue
-            y = b["metrics"][name]
-            rows.append({"platform": key, "quantity": name, sa: x, sb: y,
-                         "stable": bool(stable_to(x, y)), "note": ""})
-        for p, ma in a["maps"].items():
-            mb = b["maps"][p]
-            both = ~ma["masked"] & ~mb["masked"]
-            if not both.any():
-                continue
-            x, y = ma["median"][both], mb["median"][both]
-            rows.append({"platform": key, "quantity": f"heatmap ({p}): bins shown in both seeds",
-                         sa: None, sb: None, "stable": None,
-                         "bins stable (share)": stable_to(x, y).mean(),
-                         "median relative difference": (np.abs(x - y) / x).median(),
-                         "note": "share of bins whose medians agree to 2 s.f."})
+            (ta, kind, wa), (tb, _, wb) = printed_metric(name, a["metrics"]), printed_metric(name, b["metrics"])
+            if kind == "unit":
+                wa, wb = (a["metrics"][name], wa), (b["metrics"][name], wb)
+            rows.append({"platform": key, "quantity": name, sa: ta, sb: tb,
+                         "stable": agree_at_print(kind, wa, wb), "rule": rules[kind]})
+        rows += _heatmap_rows(key, a, b, sa, sb)
     return pd.DataFrame(rows)
 
 
+def _heatmap_rows(key: str, a: Mapping, b: Mapping, sa: str, sb: str) -> list[dict]:
+    rows = []
+    for p, ma in a["maps"].items():
+        mb = b["maps"][p]
+        both = (~ma["masked"] & ~mb["masked"]).to_numpy()
+        if not both.any():
+            continue
+        x, y = ma["median"].to_numpy()[both], mb["median"].to_numpy()[both]
+        row = {"platform": key, "quantity": f"heatmap ({p}): bins shown in both seeds", sa: None, sb: None,
+               "stable": None, "median relative difference": float(np.median(np.abs(x - y) / x)),
+               "rule": "bins' 95 % intervals overlap"}
+        if "map_ci" in a and "map_ci" in b:
+            (la, ha), (lb, hb) = a["map_ci"][p], b["map_ci"][p]
+            row["bins agreeing (share)"] = float(np.mean(np.maximum(la, lb)[both] <= np.minimum(ha, hb)[both]))
+        rows.append(row)
+    return rows
+
+
 def check_row(run: str, metrics: Mapping[str, float | str]) -> dict:
-    """One row of the modelling-choice table: the headline claim metrics of one run."""
-    return {"run": run, "top raw": plain_label(metrics["top_raw"]),
-            "top normalised": plain_label(metrics["top_norm"]),
-            "rho misalignment (norm.)": metrics["norm_elevation_misalignment_deg_rho"],
-            "rho theta1 (norm.)": metrics["norm_azimuth1_deg_rho"],
-            "hotspot theta1, theta2 (deg)": (round(metrics["azimuth_peak_theta1_deg"]),
-                                             round(metrics["azimuth_peak_theta2_deg"])),
-            "yaw 0 / peak": metrics["yaw_near0_over_peak_ratio"],
-            "fragmented (port-port)": metrics["multi_arc_fraction"]}
+    """One row of the modelling-choice table: the headline claim metrics of one run, with the
+    hotspot's peak region (bins whose median is within the interval of the largest, as spans of
+    bin centres and whether one has equal azimuths) and the interval of the yaw dip."""
+    m = metrics
+    return {"run": run, "top raw": plain_label(m["top_raw"]),
+            "top normalised": plain_label(m["top_norm"]),
+            "rho misalignment (norm.)": m["norm_elevation_misalignment_deg_rho"],
+            "rho theta1 (norm.)": m["norm_azimuth1_deg_rho"],
+            "hotspot theta1, theta2 (deg)": (round(m["azimuth_peak_theta1_deg"]), round(m["azimuth_peak_theta2_deg"])),
+            "hotspot region theta1 (deg)": (round(m["azimuth_region_theta1_lo_deg"]),
+                                            round(m["azimuth_region_theta1_hi_deg"])),
+            "hotspot region theta2 (deg)": (round(m["azimuth_region_theta2_lo_deg"]),
+                                            round(m["azimuth_region_theta2_hi_deg"])),
+            "hotspot region at equal azimuths": bool(m["azimuth_region_equal"]),
+            "yaw 0 / peak": m["yaw_near0_over_peak_ratio"],
+            "yaw 0 / peak CI": (round(m["yaw_near0_over_peak_ratio_ci_low"], 3),
+                                round(m["yaw_near0_over_peak_ratio_ci_high"], 3)),
+            "fragmented (port-port)": m["multi_arc_fraction"]}
 
 
 def reading_texts(prefix: str, effect: pd.DataFrame) -> dict[str, str]:
@@ -230,7 +324,7 @@ def reading_texts(prefix: str, effect: pd.DataFrame) -> dict[str, str]:
     out = {}
     for r in effect.itertuples():
         p = f"{prefix}-{r.reading}-{r.target}"
-        out[f"{p}-mis-rho"] = fmt_sig(r.rho, 2)
+        out[f"{p}-mis-rho"] = fmt_rho(r.rho)
         out[f"{p}-mis-rank"] = f"{r.rank:d}"
         out[f"{p}-top"] = plain_label(r.top)
     return out
@@ -239,17 +333,23 @@ def reading_texts(prefix: str, effect: pd.DataFrame) -> dict[str, str]:
 def hotspot_texts(prefix: str, check: Mapping[str, float]) -> dict[str, str]:
     """Glue texts of :func:`~sss_locus.experiments.choices.hotspot_check`, keyed
     ``<prefix>-hotspot-...``: the peak bin, its count and median, the targeted re-measurement
-    with its interval, the runner-up bin and whether the peak survives (``yes``/``no``)."""
+    with its interval, the runner-up bin (with its interval where the check has one) and whether
+    the peak survives (``yes``/``no``)."""
     p = f"{prefix}-hotspot"
     return {
         f"{p}-bin": f"({check['x_mid']:.0f}°, {check['y_mid']:.0f}°)",
-        f"{p}-count": f"{check['count']:,.0f}", f"{p}-median": fmt_sig(check["median"], 2),
+        f"{p}-count": f"{check['count']:,.0f}",
+        f"{p}-median": (fmt_interval({"median": check["median"], "ci_low": check["median_ci_low"],
+                                      "ci_high": check["median_ci_high"]}, "m")
+                        if "median_ci_low" in check else f"{fmt_sig(check['median'], 2)} m"),
         f"{p}-target-count": f"{check['target_count']:,.0f}",
         f"{p}-target-median": (f"{fmt_sig(check['target_median'], 2)} m (95 % CI "
                                f"{fmt_sig(check['target_ci_low'], 3)}–{fmt_sig(check['target_ci_high'], 3)} m)"),
-        f"{p}-runner-up": (f"{fmt_sig(check['runner_up_median'], 2)} m at "
-                           f"({check['runner_up_x_mid']:.0f}°, {check['runner_up_y_mid']:.0f}°), "
-                           f"{check['runner_up_count']:,.0f} samples"),
+        f"{p}-runner-up": ((fmt_interval({"median": check["runner_up_median"], "ci_low": check["runner_up_ci_low"],
+                                          "ci_high": check["runner_up_ci_high"]}, "m")
+                            if "runner_up_ci_low" in check else f"{fmt_sig(check['runner_up_median'], 2)} m")
+                           + f" at ({check['runner_up_x_mid']:.0f}°, {check['runner_up_y_mid']:.0f}°), "
+                             f"{check['runner_up_count']:,.0f} samples"),
         f"{p}-still-peak": "yes" if check["still_peak"] else "no",
     }
 

@@ -22,8 +22,9 @@ import pandas as pd
 from ..experiments.envelopes import OffsetModel, SurveyEnvelope
 from ..experiments.userdata import label_key
 from ..experiments.planning import VALUES, CrossingAngleCurve, curve_shape_rho, rejected_share
+from ..experiments.verdicts import over_peak
 from .style import AXIS_LABELS, PAGE_WIDTH_IN, SMALL_FONT_PT, platform_colors, platform_title, themed
-from .text import fmt_change, fmt_interval, fmt_sig
+from .text import fmt_change, fmt_ci, fmt_interval, fmt_sig
 
 UNITS = {"locus_length_m": "m", "elevation_misalignment_deg": "°"}
 """Prose unit of each curve quantity."""
@@ -116,9 +117,9 @@ def curve_texts(prefix: str, cur: CrossingAngleCurve) -> dict[str, str]:
             out[f"{prefix}-{tag}-{g}"] = fmt_interval(cur.at(g, v), unit)
         peak_med = c[f"{v}_median"].max()
         out[f"{prefix}-{tag}-peak-value"] = f"{fmt_sig(peak_med, 2)} {unit}"
-        out[f"{prefix}-{tag}-0-over-peak"] = fmt_sig(c[f"{v}_median"].iloc[0] / peak_med, 2)
-        out[f"{prefix}-{tag}-180-over-peak"] = fmt_sig(c[f"{v}_median"].iloc[-1] / peak_med, 2)
-        out[f"{prefix}-{tag}-90-over-peak"] = fmt_sig(cur.at(90, v)["median"] / peak_med, 2)
+        for g in GAMMAS:  # with its replicate interval
+            r = over_peak(cur, g, v)
+            out[f"{prefix}-{tag}-{g}-over-peak"] = fmt_ci(r["median"], r["ci_low"], r["ci_high"])
     rejected, rejected_max = rejected_share(cur.acceptance)
     out[f"{prefix}-rejected"] = f"{100 * rejected:.2g} %"
     out[f"{prefix}-rejected-max"] = f"{100 * rejected_max:.2g} %"
@@ -221,16 +222,19 @@ def offset_model_table(sensitivity: Mapping[tuple[str, str], CrossingAngleCurve]
 
 def offset_model_texts(sensitivity: Mapping[tuple[str, str], CrossingAngleCurve]) -> dict[str, str]:
     """Glue texts ``sp-<platform>-<model tag>-...`` of the offset-model curves: length and
-    misalignment peak angles, the length peak's interval, medians at 0/90/180° over the peak."""
+    misalignment peak angles with their bootstrap intervals, medians at 0/90/180° over the peak
+    (with their replicate intervals, :func:`~sss_locus.experiments.verdicts.over_peak`)."""
     out = {}
     for (k, spec), cur in sensitivity.items():
         p, pk = f"sp-{label_key(k)}-{model_tag(spec)}", cur.peak["locus_length_m"]
-        peak = cur.curve["locus_length_m_median"].max()
         out[f"{p}-len-peak-deg"] = f"{pk['angle_deg']:.0f}"
         out[f"{p}-len-peak-ci"] = f"{pk['ci_low_deg']:.0f}–{pk['ci_high_deg']:.0f}"
-        out[f"{p}-mis-peak-deg"] = f"{cur.peak['elevation_misalignment_deg']['angle_deg']:.0f}"
+        mis = cur.peak["elevation_misalignment_deg"]
+        out[f"{p}-mis-peak-deg"] = f"{mis['angle_deg']:.0f}"
+        out[f"{p}-mis-peak-ci"] = f"{mis['ci_low_deg']:.0f}–{mis['ci_high_deg']:.0f}"
         for g in GAMMAS:
-            out[f"{p}-len-{g}-over-peak"] = fmt_sig(cur.at(g)["median"] / peak, 2)
+            r = over_peak(cur, g)
+            out[f"{p}-len-{g}-over-peak"] = fmt_ci(r["median"], r["ci_low"], r["ci_high"])
     return out
 
 

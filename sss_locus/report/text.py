@@ -32,18 +32,65 @@ def fmt_sig(x: float, digits: int = 2) -> str:
     return f"{float(round_sig(x, digits)):.{decimals}f}"
 
 
+def interval_digits(low: float, high: float, digits: int = 2, most: int = 4) -> int:
+    """The significant figures to print an interval with: ``digits``, or more (up to ``most``)
+    while its two ends would print the same, so a printed interval always shows its width.
+
+    >>> interval_digits(2.9, 3.41), interval_digits(2.10, 2.14), interval_digits(0.1799, 0.1801, most=4)
+    (2, 3, 4)
+    """
+    d = digits
+    while d < most and math.isfinite(low) and math.isfinite(high) and fmt_sig(low, d) == fmt_sig(high, d):
+        d += 1
+    return d
+
+
 def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> str:
-    """A median and its 95 % interval: ``"3.1 m (95 % CI 2.9–3.4 m)"``.
+    """A median and its 95 % interval: ``"3.1 m (95 % CI 2.9–3.4 m)"``, with more significant
+    figures where ``digits`` would print both ends alike (:func:`interval_digits`).
 
     ``estimate`` holds ``median``, ``ci_low`` and ``ci_high``; a degree sign is written without a
     space (``"20° (95 % CI 18°–22°)"``).
 
     >>> fmt_interval({"median": 3.14, "ci_low": 2.9, "ci_high": 3.41}, "m")
     '3.1 m (95 % CI 2.9–3.4 m)'
+    >>> fmt_interval({"median": 0.1812, "ci_low": 0.1794, "ci_high": 0.1833}, "m")
+    '0.181 m (95 % CI 0.179–0.183 m)'
     """
     sep = "" if unit == "°" else " "
+    digits = interval_digits(estimate["ci_low"], estimate["ci_high"], digits)
     lo, hi = fmt_sig(estimate["ci_low"], digits), fmt_sig(estimate["ci_high"], digits)
     return f"{fmt_sig(estimate['median'], digits)}{sep}{unit} (95 % CI {lo}–{hi}{sep}{unit})"
+
+
+def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool = False) -> str:
+    """A ratio or share with its 95 % interval, each to ``digits`` significant figures, or more
+    where the ends would print alike (:func:`interval_digits`); with ``percent`` the numbers are
+    percentages (a share of 0 with an interval of 0 reads ``"0 %"``).
+
+    >>> fmt_ci(4.1514, 4.110, 4.1927), fmt_ci(2.1245, 2.1012, 2.1439), fmt_ci(0.0088, 0.00853, 0.00908, percent=True)
+    ('4.2 (95 % CI 4.1–4.2)', '2.12 (95 % CI 2.10–2.14)', '0.88 % (95 % CI 0.85–0.91 %)')
+    >>> fmt_ci(0.0, 0.0, 0.0, percent=True)
+    '0 %'
+    """
+    scale, unit = (100.0, " %") if percent else (1.0, "")
+    if percent and value == low == high == 0:
+        return "0 %"
+    digits = interval_digits(scale * low, scale * high, digits)
+    v, lo, hi = (fmt_sig(scale * x, digits) for x in (value, low, high))
+    return f"{v}{unit} (95 % CI {lo}–{hi}{unit})"
+
+
+def fmt_span(low: float, high: float) -> str:
+    """A span of bin centres in whole degrees, one angle if it is one bin.
+
+    >>> fmt_span(-85.0, -75.0), fmt_span(78.75, 78.75)
+    ('-85° to -75°', '79°')
+    """
+    def deg(x: float) -> str:
+        return f"{x:.0f}°"
+
+    return deg(low) if round(low) == round(high) else f"{deg(low)} to {deg(high)}"
 
 
 def fmt_percent(fraction: float) -> str:

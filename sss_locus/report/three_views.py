@@ -25,7 +25,9 @@ import seaborn as sns
 from matplotlib.colors import LogNorm
 from matplotlib.ticker import NullFormatter
 
+from ..experiments.three_view_patterns import cells_within, share_interval, share_upper_bound
 from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title, themed, upward_heatmap
+from .text import fmt_interval, fmt_percent, fmt_span
 
 PATTERN_TAGS = {"repeat + reciprocal": "rr", "two lines + cross line": "cross",
                 "three headings 60 deg apart": "sixty"}
@@ -135,10 +137,61 @@ def plot_heading_sweep(platforms: Sequence, sweeps: Mapping[str, pd.DataFrame], 
     return fig
 
 
-def parallel_pair_error(sweep: pd.DataFrame, value: str = "point_error_q95_median_m") -> float:
-    """Largest ``sweep[value]`` on the diagonal ``h2 = h3`` away from the corners: passes 2 and 3
-    parallel to each other but crossing pass 1 (heading not 0° or 180°). NaN if the grid has no
-    such cell."""
-    h2, h3 = sweep["heading2_deg"], sweep["heading3_deg"]
-    crossing = ~np.isclose(np.mod(h2, 180.0), 0.0)
-    return float(sweep.loc[np.isclose(h2, h3) & crossing, value].max())
+def cells_text(cells: pd.DataFrame) -> str:
+    """Cells of a heading sweep in words: each ``(h2, h3)`` when there are at most three, else
+    their number and the spans of their headings.
+
+    >>> cells_text(pd.DataFrame({"heading2_deg": [0.0, 180.0], "heading3_deg": [0.0, 180.0]}))
+    '(0°, 0°), (180°, 180°)'
+    >>> cells_text(pd.DataFrame({"heading2_deg": [45.0, 60, 90, 75], "heading3_deg": [90.0, 120, 135, 105]}))
+    '4 cells with h₂ 45° to 90° and h₃ 90° to 135°'
+    """
+    if len(cells) <= 3:
+        return ", ".join(f"({a:.0f}°, {b:.0f}°)" for a, b in zip(cells.heading2_deg, cells.heading3_deg))
+    return (f"{len(cells)} cells with h₂ {fmt_span(cells.heading2_deg.min(), cells.heading2_deg.max())} and "
+            f"h₃ {fmt_span(cells.heading3_deg.min(), cells.heading3_deg.max())}")
+
+
+def sweep_texts(sweep: pd.DataFrame) -> dict[str, str]:
+    """The heading sweep of one platform (with noise) as the chapter prints it, keyed by glue
+    suffix: ``best`` / ``worst``, the cells the sampling cannot tell from the smallest / largest
+    median error (:func:`~sss_locus.experiments.three_view_patterns.cells_within`), and
+    ``best-err`` / ``worst-err`` that median with its 95 % interval; ``spread-err`` and
+    ``parallel-err``, the largest median (with its interval) among the cells with the three
+    headings spread out (passes 2 and 3 each at least 45° from pass 1 and from each other,
+    within 45–135°) and on the diagonal away from the corners (``h2 = h3``, not 0° or 180°);
+    ``resolved``, the share resolved over all cells, and ``unresolved-upper``, the one-sided
+    exact 95 % bound of the share left unresolved over all cells."""
+    v = "point_error_q95_median_m"
+
+    def err(row) -> str:
+        return fmt_interval({"median": row[v], "ci_low": row[v[:-2] + "_ci_low_m"],
+                             "ci_high": row[v[:-2] + "_ci_high_m"]}, "m")
+
+    h2, h3 = sweep.heading2_deg, sweep.heading3_deg
+    spread = sweep[(h3 - h2 >= 45) & (h2 >= 45) & (h3 <= 135)]
+    diagonal = sweep[np.isclose(h2, h3) & ~np.isclose(np.mod(h2, 180.0), 0.0)]
+    n_all = float(sweep["n"].sum())
+    unresolved = int(round(float(((1.0 - sweep["resolved_fraction"]) * sweep["n"]).sum())))
+    out = {"best": cells_text(cells_within(sweep, "min")), "best-err": err(sweep.loc[sweep[v].idxmin()]),
+           "worst": cells_text(cells_within(sweep, "max")), "worst-err": err(sweep.loc[sweep[v].idxmax()]),
+           "resolved": fmt_percent(1.0 - unresolved / n_all),
+           "unresolved-upper": fmt_percent(share_upper_bound(unresolved, int(n_all)))}
+    for name, cells in (("spread-err", spread), ("parallel-err", diagonal)):
+        out[name] = err(cells.loc[cells[v].idxmax()]) if len(cells) else "n/a"
+    return out
+
+
+def share_text(share: float, n: int) -> str:
+    """A share of ``n`` configurations with its exact 95 % interval
+    (:func:`~sss_locus.experiments.three_view_patterns.share_interval`), in percent with one
+    decimal, or more while the interval's ends would print alike.
+
+    >>> share_text(0.996, 4000), share_text(1.0, 4000), share_text(0.0, 4000)
+    ('99.6 % (95 % CI 99.4–99.8 %)', '100.0 % (95 % CI 99.9–100.0 %)', '0.0 % (95 % CI 0.0–0.1 %)')
+    """
+    lo, hi = share_interval(int(round(share * n)), int(n))
+    dec = 1
+    while dec < 3 and f"{100 * lo:.{dec}f}" == f"{100 * hi:.{dec}f}":
+        dec += 1
+    return f"{100 * share:.{dec}f} % (95 % CI {100 * lo:.{dec}f}–{100 * hi:.{dec}f} %)"
