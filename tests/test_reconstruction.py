@@ -204,7 +204,8 @@ def test_relief_rows_of_less_than_a_decade_have_readable_error_axes():
         for i, r in enumerate((0.0, 1.0, 4.0)):
             for est in ("flat1", "flat", "two", "n3", "all"):
                 errors[(k, r, est)] = lo + (hi - lo) * i / 2
-    fig = plot_relief([load_platform("auv")], {"auv": _sweep_table(errors)})
+    summary = summarise(_sweep_table(errors), by=("noise_scale", "rms_relief_m", "estimator")).assign(platform="auv")
+    fig = plot_relief([load_platform("auv")], summary)
     fig.canvas.draw()
     narrow = fig.axes[1]
     assert narrow.get_ylim()[0] > 1 and narrow.get_ylim()[1] < 5  # no major tick, no 5 inside

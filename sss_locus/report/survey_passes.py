@@ -335,8 +335,8 @@ def near_end_caption(window_deg: float) -> str:
     """The caption sentence of a table of :func:`~sss_locus.experiments.verdicts.near_end_check`
     rows (one curve and end a row).
 
-    >>> near_end_caption(10.0)[:60]
-    'Each curve within 10° of each end: the median locus length (m'
+    >>> near_end_caption(10.0).split(":")[0]
+    'Each curve within 10° of each end'
     """
     return (f"Each curve within {window_deg:g}° of each end: the median locus length (m) at the end, the largest "
             f"median nearby and its angle, their ratio, the grid angles looked at, and whether every one of them "
