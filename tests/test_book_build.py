@@ -435,6 +435,10 @@ TABLE_CHECK = """<script>
     const box = table.parentElement.getBoundingClientRect(), own = table.getBoundingClientRect();
     if (own.right > box.right + 1 || table.scrollWidth > table.clientWidth + 1)
       found.push(`${name} is wider than the text column: ${table.scrollWidth} px in ${Math.round(box.width)} px`);
+    const caption = table.querySelector("caption");
+    if (caption && caption.textContent.trim().length > 120
+        && caption.getBoundingClientRect().width < Math.min(400, box.width - 1))
+      found.push(`${name}: its caption is squeezed to ${Math.round(caption.getBoundingClientRect().width)} px`);
     table.querySelectorAll("td, th").forEach(cell => {
       if (cell.scrollWidth > cell.clientWidth + 1)
         found.push(`${name}: cell "${cell.textContent.trim().slice(0, 40)}" is narrower than its text`);
@@ -450,7 +454,8 @@ TABLE_CHECK = """<script>
 
 def test_chapter_tables_fit_the_text_column_in_a_browser(quick_book, tmp_path):
     """Every table of every chapter, rendered by headless Chromium in a 1280 px window: none wider
-    than the text column, no cell narrower than its text."""
+    than the text column, no cell narrower than its text, no long caption squeezed to the width
+    of a narrow table's few columns."""
     import re
     from html import unescape as html_unescape
 

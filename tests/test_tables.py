@@ -80,6 +80,16 @@ def test_a_wide_table_of_few_rows_is_turned_a_quarter():
     assert _cells(readable_table(narrow).to_html(), "th") == ["platform", "q0 (m)", "q1 (m)", "q2 (m)"]
 
 
+def test_a_turned_table_keeps_whole_numbers_whole():
+    """A count beside measured values stays a count once the table is turned (a plain transpose
+    made it a float and printed 1.00 plans)."""
+    wide = pd.DataFrame({"kind": ["standard", "search"], "plan_index": [0, 3], "n_features": [60, 60],
+                         **{f"q{i}_m": [0.5 + i, 1.25 * i] for i in range(6)}})
+    cells = _cells(readable_table(wide).to_html(), "td")
+    assert cells[:6] == ["plan index", "0", "3", "n features", "60", "60"]
+    assert cells[6:9] == ["q0 (m)", "0.500", "0"]
+
+
 def test_a_turned_table_is_headed_by_its_row_labels_as_they_are():
     """The platform key my_auv heads its column as the key (not "my auv"); a text column of results
     next to the label (the top quantity of a run) joins the headers only when no labels are named."""

@@ -85,7 +85,7 @@ def _transposed(shown: pd.DataFrame, row_labels=None) -> pd.DataFrame:
         [c for c in shown.columns[:2] if not pd.api.types.is_numeric_dtype(shown[c])]
     heads = [", ".join(str(v) for v in row) for row in shown[labels].itertuples(index=False)] if labels \
         else [str(i + 1) for i in range(len(shown))]
-    out = shown.drop(columns=labels).T
+    out = shown.drop(columns=labels).astype(object).T  # as objects: a count stays a whole number
     out.columns = pd.Index(heads)
     out.index = pd.Index([header(c) for c in out.index], name="quantity")
     return _index_as_columns(out)
@@ -148,7 +148,9 @@ def readable_table(frame: pd.DataFrame, *, caption: str = "", digits: int = 3,
     styles = [
         {"selector": "", "props": "font-size: 0.8em; border-collapse: collapse; max-width: 100%; margin-bottom: 1em; "
                                   "display: block; overflow-x: auto;"},
-        {"selector": "caption", "props": "caption-side: top; text-align: left; font-size: 0.95em;"},
+        # a narrow table's caption as wide as a line of text, not as its few columns
+        {"selector": "caption", "props": "caption-side: top; text-align: left; font-size: 0.95em; "
+                                         "min-width: min(36em, 90vw);"},
         {"selector": "th", "props": "text-align: left; vertical-align: bottom; white-space: normal; "
                                     "word-break: normal; overflow-wrap: normal; padding: 0.2em 0.5em;"},
         {"selector": "td", "props": "vertical-align: top; white-space: normal; word-break: normal; "
