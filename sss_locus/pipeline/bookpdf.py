@@ -30,7 +30,8 @@ BROWSERS = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stab
 #: The first page is the theme's title page (the book's title and contents; the theme hides the
 #: root page's own title in print; no bottom margin, which would spill a blank page); the root
 #: page's text and each other page of the book (a section the singlehtml builder places after a
-#: ``<span id="document-...">``) start a new page.
+#: ``<span id="document-...">``) start a new page. A caption keeps the width of its table in print
+#: (the screen's line-wide caption of a narrow table left a blank page after the pose-space chapter).
 PRINT_CSS = """
 @media print {
   .bd-header, .bd-sidebar-primary, .bd-sidebar-secondary, .header-article, .prev-next-area,
@@ -41,6 +42,7 @@ PRINT_CSS = """
   #jb-print-docs-body { break-after: page; }
   #jb-print-toc { margin-bottom: 0 !important; }
   span[id^="document-"] + section { break-before: page; }
+  caption { min-width: 0 !important; }
 }
 """
 
