@@ -216,3 +216,39 @@ def test_science_fingerprint_covers_geometry_experiments_and_data_only(tmp_path,
         (root / rel).write_text("a = 3\n")
         assert provenance.science_sha256() != base, rel
         base = provenance.science_sha256()
+
+
+def test_a_hit_records_the_data_entries_its_computation_read(tmp_path, monkeypatch):
+    """A run records the data entries its loaders read (the figure's data files and what makes it
+    stale). A cached result read them only when it was computed: the entry keeps them and a hit
+    records them again, so the run of a warm cache names what the run of a cold one does."""
+    from sss_locus.experiments import datadoc
+    from sss_locus.experiments.platforms import load_platform
+
+    def compute():
+        load_platform("auv")  # a loader: notes platforms.auv and its sonar
+        return pd.DataFrame({"x": [1.0]})
+
+    def run(name):
+        record = tmp_path / name
+        monkeypatch.setenv(datadoc.READS_ENV, str(record))
+        cached_result(KEY, compute, cache_dir=tmp_path / "cache")
+        return set(record.read_text().split()) if record.exists() else set()
+
+    cold, warm = run("cold.txt"), run("warm.txt")
+    assert "platforms.auv" in cold and any(e.startswith("sonars.") for e in cold)
+    assert warm == cold
+    monkeypatch.delenv(datadoc.READS_ENV)
+    cached_result({**KEY, "seed": 9}, compute, cache_dir=tmp_path / "cache")  # outside a run: nothing noted
+    assert datadoc.READS_ENV not in __import__("os").environ
+
+
+def test_an_entry_without_its_data_reads_is_recomputed(tmp_path):
+    compute = Counter()
+    cached_result(KEY, compute, cache_dir=tmp_path)
+    manifest_path = entry_dir(cache_key(KEY), tmp_path) / cache.MANIFEST_NAME
+    manifest = json.loads(manifest_path.read_text())
+    del manifest["data_reads"]  # as an entry written before entries recorded them
+    manifest_path.write_text(json.dumps(manifest))
+    cached_result(KEY, compute, cache_dir=tmp_path)
+    assert compute.calls == 2

@@ -20,7 +20,8 @@ The seed is an argument like any other.
 Storage
 -------
 ``<cache>/frames/<key[:2]>/<key>/data-<i>.parquet`` (one file per returned frame) plus
-``manifest.json`` (key parts, SHA-256 and shape of each Parquet file, creation time). A new entry
+``manifest.json`` (key parts, SHA-256 and shape of each Parquet file, the data entries the
+computation read, creation time). A new entry
 is written complete into a private temporary folder (``.tmp-<key>-<pid>-<random>``) and renamed to
 its final name in one step, so an entry folder another process can see is always complete; if two
 processes compute one entry at once, the first rename wins and the other uses its own result.
@@ -33,7 +34,9 @@ no current input reaches (made by other code, data or package version: their key
 asked for again), broken entries, and temporary folders whose writer is gone.
 
 The returned frames are always the ones read back from Parquet, so a cache hit and a fresh
-computation give identical dtypes.
+computation give identical dtypes. A hit also records, for the run, the data entries its
+computation read (:func:`sss_locus.experiments.datadoc.note_read`): a figure computed from a
+cached result names the same data files (and goes stale on the same edits) as one computed afresh.
 """
 
 from __future__ import annotations
@@ -45,6 +48,7 @@ import inspect
 import json
 import os
 import shutil
+import tempfile
 import time
 import uuid
 from collections.abc import Callable, Mapping
@@ -55,9 +59,10 @@ import numpy as np
 import pandas as pd
 
 from sss_locus import paths
+from sss_locus.experiments import datadoc
 from sss_locus.pipeline import atomic, orphans, progress, provenance
 
-CACHE_FORMAT = 2
+CACHE_FORMAT = 3  # 3: entries record the data entries their computation read
 DATA_NAME = "data-{index}.parquet"
 MANIFEST_NAME = "manifest.json"
 
@@ -82,28 +87,49 @@ def entry_dir(key: str, cache_dir: Path | None = None) -> Path:
     return root / "frames" / key[:2] / key
 
 
-def _read_valid(folder: Path, key: str) -> tuple[bool, list[pd.DataFrame] | None]:
-    """``(is_tuple, frames)`` of a valid entry; ``frames`` is None when it is absent, partial or
-    corrupted."""
+def _read_valid(folder: Path, key: str) -> tuple[bool, list[pd.DataFrame] | None, list[str]]:
+    """``(is_tuple, frames, data_reads)`` of a valid entry; ``frames`` is None when it is absent,
+    partial or corrupted."""
     try:
         manifest = json.loads((folder / MANIFEST_NAME).read_text(encoding="utf-8"))
-        files = manifest["files"]
-        if not isinstance(manifest, dict) or not isinstance(files, list):
-            return False, None
+        files, reads = manifest["files"], manifest["data_reads"]
+        if not isinstance(manifest, dict) or not isinstance(files, list) or not isinstance(reads, list):
+            return False, None, []
         frames = []
         for index, entry in enumerate(files):
             path = folder / DATA_NAME.format(index=index)
             if hashlib.sha256(path.read_bytes()).hexdigest() != entry["sha256"]:
-                return False, None
+                return False, None, []
             frame = pd.read_parquet(path)
             if list(frame.shape) != entry["shape"]:
-                return False, None
+                return False, None, []
             frames.append(frame)
         if manifest.get("key") != key or not frames:
-            return False, None
-        return bool(manifest.get("is_tuple")), frames
+            return False, None, []
+        return bool(manifest.get("is_tuple")), frames, [str(r) for r in reads]
     except Exception:  # unreadable, not JSON, wrong shape, bad Parquet: the entry is unusable
-        return False, None
+        return False, None, []
+
+
+def _noting_reads(compute: Callable[[], Any]) -> tuple[Any, list[str]]:
+    """``compute()`` and the data entries its loaders read (:func:`sss_locus.experiments.datadoc.note_read`,
+    into a private file for the call), which are passed on to the run's own record, if any."""
+    run_record = os.environ.get(datadoc.READS_ENV)
+    handle, name = tempfile.mkstemp(prefix="sss-locus-reads-", suffix=".txt")  # a run's TMPDIR: its staging
+    os.close(handle)
+    private = Path(name)
+    os.environ[datadoc.READS_ENV] = str(private)
+    try:
+        result = compute()
+        reads = sorted(set(private.read_text(encoding="utf-8").split())) if private.exists() else []
+    finally:
+        if run_record is None:
+            os.environ.pop(datadoc.READS_ENV, None)
+        else:
+            os.environ[datadoc.READS_ENV] = run_record
+        private.unlink(missing_ok=True)
+    datadoc.note_read(*reads)
+    return result, reads
 
 
 def cached_result(
@@ -131,13 +157,14 @@ def cached_result(
     """
     key = cache_key(key_parts)
     folder = entry_dir(key, cache_dir)
-    is_tuple, frames = _read_valid(folder, key)
+    is_tuple, frames, reads = _read_valid(folder, key)
     if frames is not None:
+        datadoc.note_read(*reads)  # a hit read what its computation read: the run's record says so
         return tuple(frames) if is_tuple else frames[0]
     if folder.exists() or folder.is_symlink():
         _discard(folder)  # broken (complete entries appear in one rename): recompute
 
-    result = compute()
+    result, reads = _noting_reads(compute)
     is_tuple = isinstance(result, tuple)
     frames = list(result) if is_tuple else [result]
     if not frames or not all(isinstance(f, pd.DataFrame) for f in frames):
@@ -164,6 +191,7 @@ def cached_result(
             "package_version": provenance.package_version(),
             "is_tuple": is_tuple,
             "files": files,
+            "data_reads": reads,
             "created_utc": provenance.utc_now(),
         }
         (tmp / MANIFEST_NAME).write_text(json.dumps(manifest, indent=2, sort_keys=True) + "\n", encoding="utf-8")
