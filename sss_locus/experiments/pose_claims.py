@@ -25,7 +25,7 @@ from collections.abc import Callable
 import numpy as np
 import pandas as pd
 
-from .pose_stats import binned_median, binned_profile
+from .pose_stats import binned_profile, grouped_binned, grouped_binned_medians
 from .replicates import N_BATCHES, batch_count, check_confidence, replicate_interval, spearman_rho
 
 
@@ -44,15 +44,36 @@ def batch_medians(parts: list[pd.DataFrame], binned: pd.DataFrame) -> np.ndarray
     """The per-bin medians of each replicate batch in ``parts``, in the bins of ``binned`` (a
     :func:`~sss_locus.experiments.pose_stats.binned_median` or
     :func:`~sss_locus.experiments.pose_stats.binned_profile` table): shape ``(k, n_bins)``, NaN
-    where a batch has no row in a bin."""
+    where a batch has no row in a bin. The numbers of ``binned_median`` (``binned_profile``) of
+    each part, from one sort of all of them
+    (:func:`~sss_locus.experiments.pose_stats.grouped_binned_medians`)."""
+    a = binned.attrs
+    columns, edges = _binning(binned)
+    coords = np.column_stack([np.concatenate([p[c].to_numpy(float) for p in parts]) for c in columns])
+    v = np.concatenate([p[a["value"]].to_numpy(float) for p in parts])
+    groups = np.repeat(np.arange(len(parts)), [len(p) for p in parts])
+    ok = ~(np.isnan(coords).any(axis=1) | np.isnan(v))
+    _, med = grouped_binned_medians(coords[ok], v[ok], edges, groups[ok], len(parts))
+    return med.reshape(len(parts), -1)
+
+
+def dealt_batch_medians(df: pd.DataFrame, binned: pd.DataFrame, n_batches: int = N_BATCHES) -> np.ndarray:
+    """:func:`batch_medians` of ``batches(df, n_batches)`` (the same numbers), without cutting
+    ``df``: row ``i`` is in batch ``i mod k``, and the order of the values is shared with the
+    other binnings of ``df`` (:func:`~sss_locus.experiments.pose_stats.grouped_binned`)."""
+    k = batch_count(len(df), n_batches)
+    columns, edges = _binning(binned)
+    _, med, _ = grouped_binned(df, columns, edges, binned.attrs["value"], np.arange(len(df)) % k, k)
+    return med.reshape(k, -1)
+
+
+def _binning(binned: pd.DataFrame) -> tuple[list[str], list[np.ndarray]]:
+    """The columns and edges of a :func:`~sss_locus.experiments.pose_stats.binned_median` or
+    ``binned_profile`` table."""
     a = binned.attrs
     if "y" in a:
-        xe, ye = _edges(binned.x_lo, binned.x_hi), _edges(binned.y_lo, binned.y_hi)
-        return np.stack([binned_median(p, a["x"], a["y"], a["value"], x_edges=xe, y_edges=ye,
-                                       min_count=1)["median"].to_numpy() for p in parts])
-    e = _edges(binned.lo, binned.hi)
-    return np.stack([binned_profile(p, a["x"], a["value"], edges=e, min_count=1)["median"].to_numpy()
-                     for p in parts])
+        return [a["x"], a["y"]], [_edges(binned.x_lo, binned.x_hi), _edges(binned.y_lo, binned.y_hi)]
+    return [a["x"]], [_edges(binned.lo, binned.hi)]
 
 
 def peak_region(binned: pd.DataFrame, batch_meds: np.ndarray, select=None,
@@ -144,7 +165,7 @@ def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFr
     m["range_r2_rho"] = spearman_rho(df["r2_m"].to_numpy(), df["locus_length_m"].to_numpy())
     # (b) azimuth x azimuth: where the largest bin median is, and the bins within its interval
     b = maps["b"]
-    region, _, _ = peak_region(b, batch_medians(parts, b), confidence_level=confidence_level)
+    region, _, _ = peak_region(b, dealt_batch_medians(df, b, n_batches), confidence_level=confidence_level)
     pk = region.loc[region["median"].idxmax()]
     m["azimuth_peak_theta1_deg"], m["azimuth_peak_theta2_deg"] = float(pk.x_mid), float(pk.y_mid)
     m["azimuth_peak_count"] = float(pk["count"])  # samples behind the peak bin's median
@@ -180,7 +201,7 @@ def _yaw_metrics(m: dict, df: pd.DataFrame, parts: list[pd.DataFrame], e: pd.Dat
     peaks of the yaw-azimuth panel."""
     prof = binned_profile(df, "yaw2_deg", edges=np.arange(-180.0, 180.0 + yaw_bin_deg, yaw_bin_deg),
                           min_count=min_count)
-    meds = batch_medians(parts, prof)
+    meds = dealt_batch_medians(df, prof, len(parts))
     shown, mid, med = ~prof["masked"].to_numpy(), prof["mid"].to_numpy(), prof["median"].to_numpy()
     for half, sel in (("neg", mid < 0), ("pos", mid > 0)):
         region, _, _ = peak_region(prof, meds, sel, confidence_level)
@@ -197,7 +218,7 @@ def _yaw_metrics(m: dict, df: pd.DataFrame, parts: list[pd.DataFrame], e: pd.Dat
                          ("yaw_peak_over_near0_ratio", lambda v: v[..., top] / np.mean(v[..., near0], axis=-1)),
                          ("yaw_peak_asymmetry_ratio", lambda v: v[..., neg] / v[..., pos])):
             _with_interval(m, name, float(fn(med)), fn(meds), confidence_level)
-    em = batch_medians(parts, e)
+    em = dealt_batch_medians(df, e, len(parts))
     for half, sel in (("neg", e.x_mid < 0), ("pos", e.x_mid > 0)):
         region, _, _ = peak_region(e, em, sel.to_numpy(), confidence_level)
         pk = region.loc[region["median"].idxmax()]
@@ -212,6 +233,5 @@ def map_intervals(df: pd.DataFrame, maps: dict[str, pd.DataFrame], n_batches: in
     """Per panel of ``maps`` (:func:`~sss_locus.experiments.pose_stats.heatmaps` of ``df``), the
     95 % replicate interval ``(low, high)`` of every bin's median, in the bins' order (NaN where
     a batch has no row in the bin)."""
-    parts = batches(df, n_batches)
-    return {p: replicate_interval(b["median"].to_numpy(float), batch_medians(parts, b), confidence_level)
+    return {p: replicate_interval(b["median"].to_numpy(float), dealt_batch_medians(df, b, n_batches), confidence_level)
             for p, b in maps.items()}

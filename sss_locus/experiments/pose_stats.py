@@ -16,7 +16,7 @@ from scipy.stats import binned_statistic_dd
 
 from .replicates import (N_BATCHES, batch_count, centred_from, check_confidence, fisher_z_interval,
                          rank_correlation, replicate_interval)
-from .rowstats import average_ranks
+from .rowstats import average_ranks, batch_average_ranks, ranks_in_order, value_order
 
 TARGETS = ("locus_length_m", "locus_length_normalized")
 """Raw and range-normalised locus length (``locus_length_m / mean_range_m``)."""
@@ -35,6 +35,7 @@ _RANK_MEMO_BYTES = 256 * 2 ** 20
 """Bound of the memo of column ranks (:func:`column_ranks`), bytes."""
 _rank_memo: OrderedDict[tuple, np.ndarray] = OrderedDict()
 _memo_bytes = [0]  # bytes held by _rank_memo
+_order_memo: OrderedDict[tuple, np.ndarray] = OrderedDict()  # value orders (_stable_order)
 
 
 MISALIGNMENT_READINGS = ("magnitude", "signed")
@@ -106,12 +107,11 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     if constant and (not drop_constant or set(constant) & set(targets)):
         raise ValueError(f"columns {constant} are constant: their rank correlation is undefined")
     candidates = [c for c in candidates if c not in constant]
-    X = np.column_stack([column_ranks(df[c].to_numpy()) for c in candidates])
-    Y = np.column_stack([column_ranks(df[c].to_numpy()) for c in targets])
+    # whole columns, and each batch ranked on its own (the batches one after another)
+    ranks = {c: column_rank_sets(df[c].to_numpy(), (1, k)) for c in [*candidates, *targets]}
+    X, Xb = (np.column_stack([ranks[c][i] for c in candidates]) for i in (0, 1))
+    Y, Yb = (np.column_stack([ranks[c][i] for c in targets]) for i in (0, 1))
     rho = rank_correlation(centred_from(X), centred_from(Y))
-    # each batch ranked on its own: column_ranks(.., k) holds the batches one after another
-    Xb = np.column_stack([column_ranks(df[c].to_numpy(), k) for c in candidates])
-    Yb = np.column_stack([column_ranks(df[c].to_numpy(), k) for c in targets])
     starts = np.concatenate([[0], np.cumsum([len(range(j, n, k)) for j in range(k)])])
     with np.errstate(invalid="ignore", divide="ignore"):  # a batch with a constant column: NaN
         batches = np.stack([rank_correlation(centred_from(Xb[a:b]), centred_from(Yb[a:b]))
@@ -140,7 +140,8 @@ def rho_frame(rho: np.ndarray, batches: np.ndarray, n: int, candidates: Sequence
 def column_ranks(values: np.ndarray, n_batches: int = 1) -> np.ndarray:
     """:func:`~sss_locus.experiments.rowstats.average_ranks` of one column, remembered by its
     content; with ``n_batches = k > 1``, the ranks of each batch ``values[j::k]`` within the
-    batch, concatenated in batch order.
+    batch, concatenated in batch order
+    (:func:`~sss_locus.experiments.rowstats.batch_average_ranks`).
 
     A chapter ranks the same columns of a table more than once (the readings of the
     misalignment share all other columns); ranking costs a sort, recognising a column one
@@ -148,26 +149,42 @@ def column_ranks(values: np.ndarray, n_batches: int = 1) -> np.ndarray:
     first out, at most :data:`_RANK_MEMO_BYTES`), as twice their ranks in ``uint32`` (exact:
     ranks are half-integers up to ``n``); the ranks returned are the same numbers either way.
     """
-    v = np.ascontiguousarray(values)
-    k = int(n_batches)
+    return column_rank_sets(values, (int(n_batches),))[0]
 
-    def rank():
-        return average_ranks(v) if k == 1 else np.concatenate([average_ranks(v[j::k]) for j in range(k)])
+
+def column_rank_sets(values: np.ndarray, batch_counts: Sequence[int]) -> list[np.ndarray]:
+    """:func:`column_ranks` of ``values`` for each ``k`` in ``batch_counts`` (1: the whole
+    column), from at most one sort of the column: the batches' ranks are dealt from the whole
+    column's order (:func:`~sss_locus.experiments.rowstats.batch_average_ranks`)."""
+    v = np.ascontiguousarray(values)
+    order = []  # the column's value order, once computed
+
+    def rank(k: int) -> np.ndarray:
+        if v.ndim != 1 or (v.dtype.kind == "f" and np.isnan(v).any()):
+            return average_ranks(v) if k == 1 else batch_average_ranks(v, k)
+        if not order:
+            order.append(value_order(v))
+        return ranks_in_order(v, order[0]) if k == 1 else batch_average_ranks(v, k, order[0])
 
     if v.ndim != 1 or v.dtype.kind not in "fiub" or not 0 < 2 * v.size < 2 ** 32:
-        return rank()
-    key = (v.dtype.str, v.size, k, hashlib.sha256(v.view(np.uint8)).digest())
-    if key in _rank_memo:
-        _rank_memo.move_to_end(key)
-        return _rank_memo[key] * 0.5
-    ranks = rank()
-    if np.isnan(ranks).any():
-        return ranks
-    _rank_memo[key] = (2.0 * ranks).astype(np.uint32)
-    _memo_bytes[0] += _rank_memo[key].nbytes
-    while _memo_bytes[0] > _RANK_MEMO_BYTES:
-        _memo_bytes[0] -= _rank_memo.popitem(last=False)[1].nbytes
-    return ranks
+        return [rank(int(k)) for k in batch_counts]
+    digest = hashlib.sha256(v.view(np.uint8)).digest()
+    out = []
+    for k in map(int, batch_counts):
+        key = (v.dtype.str, v.size, k, digest)
+        if key in _rank_memo:
+            _rank_memo.move_to_end(key)
+            out.append(_rank_memo[key] * 0.5)
+            continue
+        ranks = rank(k)
+        out.append(ranks)
+        if np.isnan(ranks).any():
+            continue
+        _rank_memo[key] = (2.0 * ranks).astype(np.uint32)
+        _memo_bytes[0] += _rank_memo[key].nbytes
+        while _memo_bytes[0] > _RANK_MEMO_BYTES:
+            _memo_bytes[0] -= _rank_memo.popitem(last=False)[1].nbytes
+    return out
 
 
 def _is_constant(column: pd.Series) -> bool:
@@ -186,21 +203,73 @@ def _edges(name: str, edges) -> np.ndarray:
 
 def _binned(df: pd.DataFrame, columns: Sequence[str], edges: Sequence[np.ndarray], value: str,
             min_count: int) -> tuple[np.ndarray, np.ndarray, int]:
-    """Counts and medians of ``value`` per bin of ``columns`` (one axis per column), by
-    :func:`scipy.stats.binned_statistic_dd`; and the number of rows left out for a NaN."""
+    """Counts and medians of ``value`` per bin of ``columns`` (one axis per column), and the
+    number of rows left out for a NaN (:func:`grouped_binned` with one group)."""
     if int(min_count) < 1:
         raise ValueError(f"min_count must be >= 1; got {min_count}")
+    count, med, n_nan = grouped_binned(df, columns, edges, value)
+    return count[0], med[0], n_nan
+
+
+def grouped_binned(df: pd.DataFrame, columns: Sequence[str], edges: Sequence[np.ndarray], value: str,
+                   groups=None, n_groups: int = 1) -> tuple[np.ndarray, np.ndarray, int]:
+    """:func:`grouped_binned_medians` of the rows of ``df`` (``groups`` one per row; ``None``:
+    all in group 0) without those with a NaN coordinate or value, and their number. The order
+    of the ``value`` column is remembered by its content (a chapter bins one column many ways)."""
     coords = np.column_stack([df[c].to_numpy(float) for c in columns])
     v = df[value].to_numpy(float)
     ok = ~(np.isnan(coords).any(axis=1) | np.isnan(v))
-    if not ok.any():  # scipy needs a sample to bin: every bin empty
-        shape = tuple(len(e) - 1 for e in edges)
-        return np.zeros(shape, int), np.full(shape, np.nan), int((~ok).sum())
-    res = binned_statistic_dd(coords[ok], v[ok], "median", bins=list(edges))
-    shape = tuple(len(e) + 1 for e in edges)  # binnumber counts the outlier bins either side
-    inner = tuple(slice(1, -1) for _ in edges)
-    count = np.bincount(res.binnumber, minlength=np.prod(shape)).reshape(shape)[inner]
-    return count, res.statistic, int((~ok).sum())
+    groups = np.zeros(len(v), np.intp) if groups is None else np.asarray(groups)
+    order = _stable_order(v)
+    if not ok.all():  # the order of the rows kept, numbered among them
+        order = (np.cumsum(ok) - 1)[order[ok[order]]]
+    count, med = grouped_binned_medians(coords[ok], v[ok], edges, groups[ok], n_groups, order)
+    return count, med, int((~ok).sum())
+
+
+def _stable_order(v: np.ndarray) -> np.ndarray:
+    """``np.argsort(v, kind="stable")``, remembered for the last few columns by content."""
+    key = (v.size, hashlib.sha256(np.ascontiguousarray(v).view(np.uint8)).digest())
+    if key not in _order_memo:
+        _order_memo[key] = np.argsort(v, kind="stable")
+        while len(_order_memo) > 4:
+            _order_memo.popitem(last=False)
+    _order_memo.move_to_end(key)
+    return _order_memo[key]
+
+
+def grouped_binned_medians(coords: np.ndarray, values: np.ndarray, edges: Sequence[np.ndarray],
+                           groups: np.ndarray, n_groups: int, order=None) -> tuple[np.ndarray, np.ndarray]:
+    """Per group ``0 .. n_groups - 1`` (``groups``, one per row), the count and the median of
+    ``values`` in each bin of ``coords`` ``(n, d)`` (rows without NaN): arrays of shape
+    ``(n_groups, *bins)``, medians NaN in empty bins.
+
+    The numbers of one :func:`scipy.stats.binned_statistic_dd` (statistic ``"median"``) per
+    group, bit for bit: the bins are scipy's (its ``binnumber``), and its median, the mean of
+    the middle two of the bin's values ordered by value and then by row (``lexsort``), is taken
+    the same way, from one stable sort of the values and one stable sort of the (group, bin)
+    numbers along it (a radix sort for up to 65,536 of them) instead of one ``lexsort`` per
+    group. ``order``: ``np.argsort(values, kind="stable")`` if already known.
+    """
+    shape = tuple(len(e) + 1 for e in edges)  # scipy's bin numbers count the outlier bins either side
+    n_flat = int(np.prod(shape))
+    size = n_groups * n_flat
+    if len(values):
+        bins = binned_statistic_dd(coords, values, "count", bins=list(edges)).binnumber
+        key = (np.asarray(groups, np.intp) * n_flat + bins).astype(np.min_scalar_type(size - 1))
+    else:  # scipy needs a sample to bin: every bin empty
+        key = np.zeros(0, np.intp)
+    order = np.argsort(values, kind="stable") if order is None else order  # by value, equal values by row
+    order = order[np.argsort(key[order], kind="stable")]  # by group and bin, each by value and row
+    s = values[order]
+    count = np.bincount(key, minlength=size)
+    start = np.cumsum(count) - count
+    med = np.full(size, np.nan)
+    filled = count > 0
+    mid = start[filled] + (count[filled] - 1) / 2
+    med[filled] = (s[np.floor(mid).astype(int)] + s[np.ceil(mid).astype(int)]) / 2
+    inner = (slice(None),) + tuple(slice(1, -1) for _ in edges)
+    return count.reshape((n_groups,) + shape)[inner], med.reshape((n_groups,) + shape)[inner]
 
 
 def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m", *,

@@ -48,13 +48,63 @@ def average_ranks(v) -> np.ndarray:
     (:func:`_float_order`, faster than sorting the floats); when no two values are equal the
     ranks are written directly (the formula gives ``first = last``).
     """
+    v = _one_d(v)
+    if v.dtype.kind == "f" and np.isnan(v).any():
+        return np.full(v.size, np.nan)
+    return ranks_in_order(v, value_order(v))
+
+
+def batch_average_ranks(v, n_batches: int, order=None) -> np.ndarray:
+    """``np.concatenate([average_ranks(v[j::k]) for j in range(k)])`` (``k = n_batches``): the
+    ranks of each replicate batch ``v[j::k]`` within the batch, batches one after another, the
+    same numbers bit for bit (half-integer ranks are exact), from one sort of the whole column.
+
+    ``order`` is :func:`value_order` of ``v`` if already known. The rows in the order of their
+    values are dealt to their batches by a stable sort of the batch numbers (a radix sort of
+    small integers, linear in ``n``), which keeps each batch in the order of its values; the
+    runs of equal values are then found within each batch. A batch holding a NaN gets NaN
+    ranks, as :func:`average_ranks` gives it.
+    """
+    v, k = _one_d(v), int(n_batches)
+    n = v.size
+    if k < 1:
+        raise ValueError(f"n_batches must be a positive integer; got {n_batches!r}")
+    if v.dtype.kind == "f" and np.isnan(v).any():
+        return np.concatenate([average_ranks(v[j::k]) for j in range(k)])
+    order = value_order(v) if order is None else order
+    batch = (order % k).astype(np.min_scalar_type(max(k - 1, 0)))
+    deal = np.argsort(batch, kind="stable")
+    by_batch, batch = order[deal], batch[deal]  # batch by batch, each in value order
+    s = v[by_batch]
+    new = np.empty(n, bool)
+    new[:1] = True
+    np.not_equal(s[1:], s[:-1], out=new[1:])
+    new[1:] |= batch[1:] != batch[:-1]  # a batch starts a run
+    sizes = np.bincount(batch, minlength=k)
+    start = np.concatenate([[0], np.cumsum(sizes)[:-1]])  # first output position of each batch
+    group = np.cumsum(new)
+    bounds = np.append(np.flatnonzero(new), n)
+    offset = start[batch]  # positions counted from the batch's first: ranks 1..size
+    ranks = np.empty(n)
+    ranks[offset + by_batch // k] = 0.5 * (bounds[group] + bounds[group - 1] + 1 - 2 * offset)
+    return ranks
+
+
+def value_order(v: np.ndarray) -> np.ndarray:
+    """An order that sorts the 1-D array ``v`` (without NaN), equal values next to each other."""
+    return _float_order(v) if v.dtype == np.float64 else np.argsort(v)
+
+
+def _one_d(v) -> np.ndarray:
     v = np.asarray(v)
     if v.ndim != 1:
         raise ValueError(f"average_ranks takes a 1-D array; got shape {v.shape}")
+    return v
+
+
+def ranks_in_order(v: np.ndarray, order: np.ndarray) -> np.ndarray:
+    """Average ranks of ``v`` given an order that sorts it (:func:`value_order`)."""
     n = v.size
-    if v.dtype.kind == "f" and np.isnan(v).any():
-        return np.full(n, np.nan)
-    order = _float_order(v) if v.dtype == np.float64 else np.argsort(v)
     # any order within a run of ties gives the same ranks: no stable sort needed
     s = v[order]
     new = np.empty(n, bool)
