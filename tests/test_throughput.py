@@ -131,20 +131,29 @@ def test_column_ranks_remembered_are_the_ranks(monkeypatch):
     ("auv", {}), ("boat", {}), ("auv", {"profile": "unconstrained"}), ("boat", {"feature_below": False}),
     ("boat", {"tilt_deg": 35.0, "side2": "port"}), ("auv", {"side1": "either", "feature_distribution": "volume"}),
     ("boat", {"azimuth1_window_deg": (-10.0, -5.0), "azimuth2_window_deg": (0.0, 4.0)}),
+    ("auv", {"vehicle_depths": "difference"}), ("auv", {"vehicle_depths": "free", "side2": "starboard"}),
+    ("auv", {"feature_below": False, "vehicle1_depth_m": 5.0}),
+    ("auv", {"azimuth1_window_deg": (-10.0, -5.0), "azimuth2_window_deg": (0.0, 4.0), "pitch_max_deg": 60.0}),
+    ("auv", {"roll_max_deg": 30.0, "side1": "either"}),
 ])
-def test_pose_space_block_is_the_plain_rejection_sampler(key, options):
+@pytest.mark.parametrize("margin", [None, 0.05])
+def test_pose_space_block_is_the_plain_rejection_sampler(key, options, margin, monkeypatch):
     # reference: every candidate's arrays filtered by the acceptance mask, round by round,
-    # concatenated and cut to the block (the sampler's definition, without shortcuts)
+    # concatenated and cut to the block (the sampler's definition, without shortcuts); with a
+    # wide decision margin most rows are decided by the plain computation, also the same rows
+    from sss_locus.experiments import pose_draw
     from sss_locus.experiments.platforms import load_platform
-    from sss_locus.experiments.pose_space import BLOCK_SIZE, PoseSpaceSpec, _draw_candidates, draw_block
+    from sss_locus.experiments.pose_space import BLOCK_SIZE, PoseSpaceSpec, draw_block
     from sss_locus.geometry import relative_pose
 
+    if margin is not None:
+        monkeypatch.setattr(pose_draw, "DECISION_MARGIN", margin)
     spec = PoseSpaceSpec(load_platform(key), **options)
     for block in (0, 3):
         rng = np.random.default_rng(np.random.SeedSequence(5, spawn_key=(block,)))
         parts, have = [], 0
         while have < BLOCK_SIZE:
-            cand = _draw_candidates(spec, rng, max(BLOCK_SIZE, 2 * (BLOCK_SIZE - have)))
+            cand = pose_draw.draw_candidates(spec, rng, max(BLOCK_SIZE, 2 * (BLOCK_SIZE - have)))
             keep = cand.pop("accept")
             parts.append({k: v[keep] for k, v in cand.items()})
             have += int(keep.sum())
@@ -154,6 +163,27 @@ def test_pose_space_block_is_the_plain_rejection_sampler(key, options):
         assert ours.keys() == ref.keys()
         for k in ref:
             assert ours[k].dtype == ref[k].dtype and ours[k].tobytes() == ref[k].tobytes(), k
+
+
+@pytest.mark.parametrize("key, options", [("auv", {}), ("auv", {"side1": "either", "feature_distribution": "volume",
+                                                                 "pitch_max_deg": 80.0, "roll_max_deg": 80.0})])
+def test_short_acceptance_heights_are_the_plain_ones_within_a_millionth_of_the_margin(key, options):
+    # the short closed form decides a candidate only where its margin exceeds DECISION_MARGIN
+    # times the length scale: its heights must agree with the plain computation far closer
+    from sss_locus.experiments import pose_draw
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.pose_space import PoseSpaceSpec
+
+    spec = PoseSpaceSpec(load_platform(key), **options)
+    d = pose_draw.draw_numbers(spec, np.random.default_rng(8), 200_000)
+    plain = pose_draw.candidates(spec, d)
+    short = dict(zip(("f_z", "o1_z", "o2_z", "v2_z"), pose_draw._heights(spec, d)))
+    ref = dict(f_z=plain["f"][:, 2], o1_z=plain["o1"][:, 2], o2_z=plain["o2"][:, 2], v2_z=plain["v2_z"])
+    tol = 1e-6 * pose_draw.DECISION_MARGIN * pose_draw.length_scale(spec.platform)
+    for name in ref:
+        assert np.max(np.abs(short[name] - ref[name])) < tol, name
+    accept, sure = pose_draw._constraints(spec, *short.values(), d.get("d1"), strict=False, tol=0.0)
+    assert np.array_equal(accept, plain["accept"])  # at these draws no margin is within rounding
 
 
 @pytest.mark.parametrize("key", ["auv", "boat"])

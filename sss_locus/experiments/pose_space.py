@@ -70,12 +70,12 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.spatial.transform import Rotation
 
 from ..geometry import elevation_misalignment, relative_pose, two_view_locus
 from .platforms import SIDES, Platform
+from .pose_draw import draw_round, spherical_to_cartesian  # noqa: F401 (spherical_to_cartesian: re-exported)
 from .scale import map_chunks
-from .straight_pass import attitude_angles, transducer_stack, vehicle_attitude
+from .straight_pass import transducer_stack
 from .water import WaterColumn
 
 BLOCK_SIZE = 4096
@@ -184,129 +184,21 @@ class PoseSpaceSpec:
         return d
 
 
-# --------------------------------------------------------------------------------------------
-# Geometry helpers (batched)
-# --------------------------------------------------------------------------------------------
-def spherical_to_cartesian(r, theta, phi) -> np.ndarray:
-    """The paper's eq. (1): ``(r cos t cos p, r sin t cos p, r sin p)``; shape ``(..., 3)``."""
-    cp = np.cos(phi)
-    return np.stack([r * np.cos(theta) * cp, r * np.sin(theta) * cp, r * np.sin(phi)], axis=-1)
-
-
-def _draw_range_angles(rng, n, ap, distribution, window_deg=None):
-    lo, hi = ap.min_range, ap.max_range
-    u = 1.0 - rng.random((3, n))  # in (0, 1]: r never hits min_range = 0 exactly
-    if distribution == "angles":
-        r = lo + (hi - lo) * u[0]
-        phi = (2.0 * u[2] - 1.0) * ap.half_elevation_rad
-    else:
-        r = np.cbrt(lo ** 3 + (hi ** 3 - lo ** 3) * u[0])
-        phi = np.arcsin((2.0 * u[2] - 1.0) * math.sin(ap.half_elevation_rad))
-    if window_deg is None:
-        theta = (2.0 * u[1] - 1.0) * ap.half_azimuth_rad
-    else:
-        a, b = np.radians(window_deg)
-        theta = a + (b - a) * (1.0 - u[1])
-    return r, theta, phi
-
-
-def _draw_sides(rng, n, choice):
-    if choice == "either":
-        return rng.random(n) < 0.5  # True = port
-    return np.full(n, choice == "port")
-
-
-def _solve_azimuth(rng, a_row, r2, phi2, depth_target, half_az):
-    """Azimuth ``theta`` with ``a . p2(r2, theta, phi2) = depth_target``; NaN where none fits.
-
-    ``a . p2 = A cos(theta) + B sin(theta) + r2 a_z sin(phi2)``, with ``A = r2 cos(phi2) a_x``,
-    ``B = r2 cos(phi2) a_y``; the two roots are ``atan2(B, A) ± arccos(D / hypot(A, B))``.
-    """
-    A = r2 * np.cos(phi2) * a_row[:, 0]
-    B = r2 * np.cos(phi2) * a_row[:, 1]
-    D = depth_target - r2 * np.sin(phi2) * a_row[:, 2]
-    rho = np.hypot(A, B)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        c = D / rho
-    ok = (rho > 0) & (np.abs(c) <= 1.0)
-    base = np.arctan2(B, A)
-    delta = np.arccos(np.clip(c, -1.0, 1.0))
-    roots = np.stack([base + delta, base - delta])
-    roots = (roots + np.pi) % (2.0 * np.pi) - np.pi
-    inside = ok & (np.abs(roots) <= half_az)
-    pick_second = rng.random(r2.shape) < 0.5
-    first = np.where(inside[0] & inside[1], np.where(pick_second, roots[1], roots[0]),
-                     np.where(inside[0], roots[0], roots[1]))
-    return np.where(inside[0] | inside[1], first, np.nan)
-
-
-def _draw_candidates(spec: PoseSpaceSpec, rng, m: int) -> dict[str, np.ndarray]:
-    """``m`` candidate configurations and a boolean ``accept`` mask (the constraints); the
-    sensors' world rotations ``R1``, ``R2`` (:func:`draw_block` turns them into ``R``, ``t``)."""
-    pf = spec.platform
-    ap = pf.sonar.aperture()
-    port1 = _draw_sides(rng, m, spec.side1)
-    R1, o1 = transducer_stack(pf, port1)  # vehicle 1 = world
-    r1, th1, ph1 = _draw_range_angles(rng, m, ap, spec.feature_distribution, spec.azimuth1_window_deg)
-    f = np.einsum("nij,nj->ni", R1, spherical_to_cartesian(r1, th1, ph1)) + o1
-    port2 = _draw_sides(rng, m, spec.side2)
-    M2, m2 = transducer_stack(pf, port2)
-    solved = spec.profile == "platform" and pf.fixed_depth
-    r2, th2, ph2 = _draw_range_angles(rng, m, ap, spec.feature_distribution,
-                                      None if solved else spec.azimuth2_window_deg)
-    if spec.profile == "unconstrained":
-        R2 = Rotation.random(m, rng=rng).as_matrix()
-        Rv2 = np.einsum("nij,nkj->nik", R2, M2)  # R2 M2^T
-        yaw, pitch, roll = attitude_angles(Rotation.from_matrix(Rv2))
-    else:
-        yaw = rng.uniform(-180.0, 180.0, m)
-        pitch = rng.uniform(-1.0, 1.0, m) * pf.pitch_max_deg
-        roll = rng.uniform(-1.0, 1.0, m) * pf.roll_max_deg
-        Rv2 = vehicle_attitude(yaw, pitch, roll).as_matrix()
-        R2 = Rv2 @ M2
-    mount2 = np.einsum("nij,nj->ni", Rv2, m2)
-    accept = np.ones(m, bool)
-    if spec.profile == "platform" and pf.fixed_depth:
-        # vehicle 2 reference at z = 0 (same depth as vehicle 1): o2_z = mount2_z, so the world
-        # z of R2 p2 must equal f_z - mount2_z
-        th2 = _solve_azimuth(rng, R2[:, 2, :], r2, ph2, f[:, 2] - mount2[:, 2], ap.half_azimuth_rad)
-        accept &= np.isfinite(th2)
-        th2 = np.where(accept, th2, 0.0)
-        if spec.azimuth2_window_deg is not None:
-            lo2, hi2 = np.radians(spec.azimuth2_window_deg)
-            accept &= (th2 >= lo2) & (th2 <= hi2)
-    o2 = f - np.einsum("nij,nj->ni", R2, spherical_to_cartesian(r2, th2, ph2))
-    v2_z = o2[:, 2] - mount2[:, 2]
-    if spec.profile == "platform":
-        if spec.feature_below:
-            accept &= (f[:, 2] < o1[:, 2]) & (f[:, 2] < o2[:, 2])
-        if not pf.fixed_depth and spec.vehicle_depths == "difference":
-            accept &= np.abs(v2_z) <= pf.depth_max_m - pf.depth_min_m
-        elif not pf.fixed_depth and spec.vehicle_depths == "in_water":  # drawn last: the draws above stay
-            d1 = (rng.uniform(pf.depth_min_m, pf.depth_max_m, m) if spec.vehicle1_depth_m is None
-                  else np.full(m, float(spec.vehicle1_depth_m)))
-            accept &= (d1 - v2_z >= pf.depth_min_m) & (d1 - v2_z <= pf.depth_max_m)  # v2_z: height over vehicle 1
-    return dict(accept=accept, R1=R1, R2=R2, r1=r1, r2=r2, th1=th1, th2=th2, ph1=ph1, ph2=ph2,
-                yaw=yaw, pitch=pitch, roll=roll, port1=port1, port2=port2, v2_z=v2_z,
-                f=f, o1=o1, o2=o2)
-
-
 def draw_block(spec: PoseSpaceSpec, seed: int, block: int) -> dict[str, np.ndarray]:
     """Block ``block`` (:data:`BLOCK_SIZE` accepted configurations) of the stream for ``seed``."""
     rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(block,)))
-    parts, have, tried = [], 0, 0  # parts: (candidates, the rows of them kept)
+    parts, have, tried = [], 0, 0  # parts: the kept rows of each round
     while have < BLOCK_SIZE:
         m = max(BLOCK_SIZE, 2 * (BLOCK_SIZE - have))
-        cand = _draw_candidates(spec, rng, m)
-        rows = np.flatnonzero(cand.pop("accept"))
+        rows, accepted = draw_round(spec, rng, m, BLOCK_SIZE - have)  # accepted rows beyond the block: unused
         tried += m
-        parts.append((cand, rows[:BLOCK_SIZE - have]))  # accepted rows beyond the block: unused
-        have += rows.size
+        parts.append(rows)
+        have += accepted
         if tried >= 20 * BLOCK_SIZE and have < MIN_ACCEPTANCE * tried:
             raise ValueError(
                 f"the constraints of platform {spec.platform.key!r} accept only {have} of {tried} "
                 "draws: check its mounting, attitude limits and depth envelope")
-    out = {k: np.concatenate([c[k][rows] for c, rows in parts]) for k in parts[0][0]}
+    out = {k: np.concatenate([rows[k] for rows in parts]) for k in parts[0]}
     # row by row, so the same numbers as for every candidate, computed for the accepted ones only
     R, t = relative_pose(out.pop("R1"), out["o1"], out.pop("R2"), out["o2"])
     return {"R": R, "t": t, **out}

@@ -92,7 +92,7 @@ def attitude_angles(rot: Rotation) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 @functools.lru_cache(maxsize=64)
-def _mount(transducer) -> tuple[np.ndarray, np.ndarray]:
+def mount(transducer) -> tuple[np.ndarray, np.ndarray]:
     """A transducer's rotation matrix and position (read-only; computed once per transducer)."""
     out = transducer.rotation.as_matrix(), transducer.position_m
     for a in out:
@@ -103,7 +103,7 @@ def _mount(transducer) -> tuple[np.ndarray, np.ndarray]:
 def transducer_stack(platform, is_port):
     """Stacked transducer rotations (matrices) and positions for a boolean port mask: row ``i``
     is a copy of the port transducer's where ``is_port[i]``, else of the starboard one's."""
-    mounts = [_mount(platform.transducers[s]) for s in ("starboard", "port")]  # index 0, 1
+    mounts = [mount(platform.transducers[s]) for s in ("starboard", "port")]  # index 0, 1
     pick = np.asarray(is_port, bool).astype(np.intp)
     return np.stack([m[0] for m in mounts])[pick], np.stack([m[1] for m in mounts])[pick]
 
