@@ -133,6 +133,9 @@ def test_with_derived_adds_magnitudes():
     df = pd.DataFrame({"yaw2_deg": [-170.0, 20.0], "psi1_deg": [-3.0, 4.0]})
     out = with_derived(df)
     assert list(out["abs_yaw2_deg"]) == [170.0, 20.0] and list(out["abs_psi1_deg"]) == [3.0, 4.0]
+    out.loc[0, "yaw2_deg"] = 5.0  # a copy: changing it leaves the table given
+    out["psi1_deg"] *= 2
+    assert list(df["yaw2_deg"]) == [-170.0, 20.0] and list(df["psi1_deg"]) == [-3.0, 4.0]
 
 
 def test_plain_label():

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 from scipy.stats import binned_statistic_dd
 
-from .replicates import (N_BATCHES, batch_count, centred_from, check_confidence, fisher_z_interval,
+from .replicates import (N_BATCHES, batch_count, check_confidence, fisher_z_interval,
                          rank_correlation, replicate_interval)
 from .rowstats import average_ranks, batch_average_ranks, ranks_in_order, value_order
 
@@ -36,6 +36,7 @@ _RANK_MEMO_BYTES = 256 * 2 ** 20
 _rank_memo: OrderedDict[tuple, np.ndarray] = OrderedDict()
 _memo_bytes = [0]  # bytes held by _rank_memo
 _order_memo: OrderedDict[tuple, np.ndarray] = OrderedDict()  # value orders (_stable_order)
+_COPY_ON_WRITE = int(pd.__version__.split(".")[0]) >= 3  # always on from pandas 3
 
 
 MISALIGNMENT_READINGS = ("magnitude", "signed")
@@ -51,7 +52,7 @@ def with_derived(df: pd.DataFrame, misalignment: str = "magnitude") -> pd.DataFr
     kernel's column)."""
     if misalignment not in MISALIGNMENT_READINGS:
         raise ValueError(f"misalignment must be one of {list(MISALIGNMENT_READINGS)}; got {misalignment!r}")
-    out = df.copy()
+    out = df.copy(deep=not _COPY_ON_WRITE)  # with copy-on-write a shallow copy is a copy
     for src in ("psi1_deg", "psi2_deg", "elevation1_deg", "elevation2_deg", "yaw2_deg", "pitch2_deg"):
         if src in out:
             out["abs_" + src] = out[src].abs()
@@ -109,14 +110,25 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     candidates = [c for c in candidates if c not in constant]
     # whole columns, and each batch ranked on its own (the batches one after another)
     ranks = {c: column_rank_sets(df[c].to_numpy(), (1, k)) for c in [*candidates, *targets]}
-    X, Xb = (np.column_stack([ranks[c][i] for c in candidates]) for i in (0, 1))
-    Y, Yb = (np.column_stack([ranks[c][i] for c in targets]) for i in (0, 1))
-    rho = rank_correlation(centred_from(X), centred_from(Y))
     starts = np.concatenate([[0], np.cumsum([len(range(j, n, k)) for j in range(k)])])
+    spans = list(zip(starts[:-1].tolist(), starts[1:].tolist()))
+    X, Xb = (_centred_stack([ranks[c][i] for c in candidates], s) for i, s in ((0, [(0, n)]), (1, spans)))
+    Y, Yb = (_centred_stack([ranks[c][i] for c in targets], s) for i, s in ((0, [(0, n)]), (1, spans)))
+    rho = rank_correlation(X, Y)
     with np.errstate(invalid="ignore", divide="ignore"):  # a batch with a constant column: NaN
-        batches = np.stack([rank_correlation(centred_from(Xb[a:b]), centred_from(Yb[a:b]))
-                            for a, b in zip(starts[:-1], starts[1:])])
+        batches = np.stack([rank_correlation(Xb[a:b], Yb[a:b]) for a, b in spans])
     return rho_frame(rho, batches, n, candidates, targets, confidence_level, dropped=constant)
+
+
+def _centred_stack(columns: list[np.ndarray], spans: list[tuple[int, int]]) -> np.ndarray:
+    """``centred_from`` of the rows ``a:b`` of each span of ``column_stack(columns)``, in one
+    array (each element the same operations: one pass over the columns instead of three over
+    the stacked matrix)."""
+    out = np.empty((len(columns[0]), len(columns)))
+    for i, r in enumerate(columns):
+        for a, b in spans:
+            out[a:b, i] = (r[a:b] - (b - a + 1) / 2.0) / (b - a)
+    return out
 
 
 def rho_frame(rho: np.ndarray, batches: np.ndarray, n: int, candidates: Sequence[str],
