@@ -156,9 +156,10 @@ def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFr
     # with both below it (from the samples, not from bin medians)
     half_r = maps["a"]["x_hi"].max() / 2
 
-    def far_near(d: pd.DataFrame) -> float:
-        far = d[(d.r1_m > half_r) & (d.r2_m > half_r)]["locus_length_m"].median()
-        return float(far / d[(d.r1_m <= half_r) & (d.r2_m <= half_r)]["locus_length_m"].median())
+    def far_near(d: pd.DataFrame) -> float:  # (the one column filtered, not the frame)
+        length = d["locus_length_m"]
+        far = length[(d.r1_m > half_r) & (d.r2_m > half_r)].median()
+        return float(far / length[(d.r1_m <= half_r) & (d.r2_m <= half_r)].median())
 
     interval("range_far_over_near_ratio", far_near)
     m["range_r1_rho"] = spearman_rho(df["r1_m"].to_numpy(), df["locus_length_m"].to_numpy())
@@ -185,9 +186,9 @@ def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFr
     third = maps["c"]["x_hi"].max() / 3
 
     def centre_corner(d: pd.DataFrame) -> float:
-        e1, e2 = d["elevation1_deg"].abs(), d["elevation2_deg"].abs()
-        inner = d[(e1 < third) & (e2 < third)]["locus_length_m"].median()
-        return float(inner / d[(e1 > 2 * third) & (e2 > 2 * third)]["locus_length_m"].median())
+        e1, e2, length = d["elevation1_deg"].abs(), d["elevation2_deg"].abs(), d["locus_length_m"]
+        inner = length[(e1 < third) & (e2 < third)].median()
+        return float(inner / length[(e1 > 2 * third) & (e2 > 2 * third)].median())
 
     interval("elevation_centre_over_corner_ratio", centre_corner)
     _yaw_metrics(m, df, parts, maps["e"], yaw_bin_deg, min_count, confidence_level)

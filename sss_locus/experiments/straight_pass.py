@@ -50,20 +50,23 @@ REJECTION_REASONS = ("outside_swath", "no_solution", "outside_azimuth", "out_of_
 its range limits, at the ping."""
 
 
-def _elementary_quat(axis: int, angle: np.ndarray) -> np.ndarray:
-    q = np.zeros(angle.shape + (4,))
-    q[..., 3] = np.cos(angle / 2.0)
-    q[..., axis] = np.sin(angle / 2.0)
-    return q
+def _half_angle(angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(sin, cos)`` of half of each angle: the nonzero parts of an elementary quaternion."""
+    half = angle / 2.0
+    return np.sin(half), np.cos(half)
 
 
-def _compose_quat(p: np.ndarray, q: np.ndarray) -> np.ndarray:
-    cross = np.cross(p[..., :3], q[..., :3])
-    return np.stack([p[..., 3] * q[..., 0] + q[..., 3] * p[..., 0] + cross[..., 0],
-                     p[..., 3] * q[..., 1] + q[..., 3] * p[..., 1] + cross[..., 1],
-                     p[..., 3] * q[..., 2] + q[..., 3] * p[..., 2] + cross[..., 2],
-                     p[..., 3] * q[..., 3] - p[..., 0] * q[..., 0] - p[..., 1] * q[..., 1]
-                     - p[..., 2] * q[..., 2]], axis=-1)
+def _compose_quat(p, q):
+    """Quaternion product ``p q`` of scalar-last quaternions given as 4 components (arrays, or
+    Python ``0.0`` for a component known to be zero: numpy computes the same numbers with it as
+    with an array of zeros), by the formula and the operation order of scipy's ``from_euler``
+    (``p3 q_v + q3 p_v + p_v x q_v``, ``p3 q3 - p_v . q_v``; the cross product as
+    :func:`numpy.cross` computes it)."""
+    p0, p1, p2, p3 = p
+    q0, q1, q2, q3 = q
+    c0, c1, c2 = p1 * q2 - p2 * q1, p2 * q0 - p0 * q2, p0 * q1 - p1 * q0
+    return (p3 * q0 + q3 * p0 + c0, p3 * q1 + q3 * p1 + c1, p3 * q2 + q3 * p2 + c2,
+            p3 * q3 - p0 * q0 - p1 * q1 - p2 * q2)
 
 
 def vehicle_attitude(yaw_deg, pitch_deg, roll_deg) -> Rotation:
@@ -71,16 +74,18 @@ def vehicle_attitude(yaw_deg, pitch_deg, roll_deg) -> Rotation:
 
     The same rotation, bit for bit, as ``Rotation.from_euler("ZYX", [yaw, -pitch, roll],
     degrees=True)`` (its quaternions, composed with the same arithmetic as scipy's array-API
-    implementation of ``from_euler``), but vectorised: scipy's compiled path for NumPy costs
-    about 3 us per rotation, this about a quarter of that (``tests/test_straight_pass.py``
-    checks the bits against scipy).
+    implementation of ``from_euler``), but vectorised, one component at a time: scipy's
+    compiled path for NumPy costs about 3 us per rotation, this about a twentieth of that
+    (``tests/test_throughput.py`` checks the bits against scipy).
     """
     angles = np.stack([np.asarray(yaw_deg, float), -np.asarray(pitch_deg, float),
                        np.asarray(roll_deg, float)], axis=-1) * (np.pi / 180.0)
     flat = angles.reshape(-1, 3)
-    q = _elementary_quat(2, flat[:, 0])  # intrinsic Z, Y, X: q = qz * qy * qx
-    q = _compose_quat(q, _elementary_quat(1, flat[:, 1]))
-    q = _compose_quat(q, _elementary_quat(0, flat[:, 2]))
+    sz, cz = _half_angle(flat[:, 0])  # intrinsic Z, Y, X: q = qz * qy * qx
+    sy, cy = _half_angle(flat[:, 1])
+    sx, cx = _half_angle(flat[:, 2])
+    q = _compose_quat(_compose_quat((0.0, 0.0, sz, cz), (0.0, sy, 0.0, cy)), (sx, 0.0, 0.0, cx))
+    q = np.stack([np.broadcast_to(c, sz.shape) for c in q], axis=-1)
     return Rotation(q.reshape(angles.shape[:-1] + (4,)) if angles.ndim > 1 else q[0],
                     normalize=False, copy=False)
 
@@ -103,9 +108,18 @@ def mount(transducer) -> tuple[np.ndarray, np.ndarray]:
 def transducer_stack(platform, is_port):
     """Stacked transducer rotations (matrices) and positions for a boolean port mask: row ``i``
     is a copy of the port transducer's where ``is_port[i]``, else of the starboard one's."""
-    mounts = [mount(platform.transducers[s]) for s in ("starboard", "port")]  # index 0, 1
+    mats, pos = _mount_pair(platform.transducers["starboard"], platform.transducers["port"])  # index 0, 1
     pick = np.asarray(is_port, bool).astype(np.intp)
-    return np.stack([m[0] for m in mounts])[pick], np.stack([m[1] for m in mounts])[pick]
+    return np.take(mats, pick, axis=0), np.take(pos, pick, axis=0)
+
+
+@functools.lru_cache(maxsize=64)
+def _mount_pair(starboard, port) -> tuple[np.ndarray, np.ndarray]:
+    """The two transducers' rotation matrices and positions stacked (starboard, port)."""
+    out = tuple(np.stack([mount(starboard)[i], mount(port)[i]]) for i in (0, 1))
+    for a in out:
+        a.setflags(write=False)
+    return out
 
 
 def swath_m(platform: Platform, is_port, altitude_m) -> tuple[np.ndarray, np.ndarray]:
