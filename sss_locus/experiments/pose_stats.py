@@ -124,11 +124,11 @@ def _centred_stack(columns: list[np.ndarray], spans: list[tuple[int, int]]) -> n
     """``centred_from`` of the rows ``a:b`` of each span of ``column_stack(columns)``, in one
     array (each element the same operations: one pass over the columns instead of three over
     the stacked matrix)."""
-    out = np.empty((len(columns[0]), len(columns)))
+    rows = np.empty((len(columns), len(columns[0])))  # column by column, then one transposing copy
     for i, r in enumerate(columns):
         for a, b in spans:
-            out[a:b, i] = (r[a:b] - (b - a + 1) / 2.0) / (b - a)
-    return out
+            np.divide(np.subtract(r[a:b], (b - a + 1) / 2.0, out=rows[i, a:b]), b - a, out=rows[i, a:b])
+    return np.ascontiguousarray(rows.T)
 
 
 def rho_frame(rho: np.ndarray, batches: np.ndarray, n: int, candidates: Sequence[str],

@@ -72,21 +72,24 @@ def batch_average_ranks(v, n_batches: int, order=None) -> np.ndarray:
     if v.dtype.kind == "f" and np.isnan(v).any():
         return np.concatenate([average_ranks(v[j::k]) for j in range(k)])
     order = value_order(v) if order is None else order
+    sizes = np.array([len(range(j, n, k)) for j in range(k)], np.intp)
+    start = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(np.intp)  # each batch's first output position
     batch = (order % k).astype(np.min_scalar_type(max(k - 1, 0)))
-    deal = np.argsort(batch, kind="stable")
-    by_batch, batch = order[deal], batch[deal]  # batch by batch, each in value order
+    by_batch = order[np.argsort(batch, kind="stable")]  # batch by batch, each in value order
+    offset = np.repeat(start, sizes)  # ranks count from each batch's first position
     s = v[by_batch]
-    new = np.empty(n, bool)
-    new[:1] = True
-    np.not_equal(s[1:], s[:-1], out=new[1:])
-    new[1:] |= batch[1:] != batch[:-1]  # a batch starts a run
-    sizes = np.bincount(batch, minlength=k)
-    start = np.concatenate([[0], np.cumsum(sizes)[:-1]])  # first output position of each batch
-    group = np.cumsum(new)
-    bounds = np.append(np.flatnonzero(new), n)
-    offset = start[batch]  # positions counted from the batch's first: ranks 1..size
+    tie = np.empty(n, bool)  # equal to the value before it in the same batch
+    tie[:1] = False
+    np.equal(s[1:], s[:-1], out=tie[1:])
+    tie[start[sizes > 0]] = False
     ranks = np.empty(n)
-    ranks[offset + by_batch // k] = 0.5 * (bounds[group] + bounds[group - 1] + 1 - 2 * offset)
+    where = offset + by_batch // k  # output position: batch j's rows j, j + k, ... in order
+    if not tie.any():  # no two values equal within a batch: position in the batch, plus one
+        ranks[where] = np.arange(1.0, n + 1.0) - offset
+        return ranks
+    group = np.cumsum(~tie)  # 1-based run of each dealt position
+    bounds = np.append(np.flatnonzero(~tie), n)  # first position of each run, then n
+    ranks[where] = 0.5 * (bounds[group] + bounds[group - 1] + 1 - 2 * offset)
     return ranks
 
 
