@@ -104,7 +104,7 @@ def test_hotspot_check_on_hand_built_bins():
     assert (out["x_mid"], out["y_mid"]) == (1.5, 1.5)
     assert out["target_count"] == len(in_bin(targeted, "a", "b", (1, 2), (1, 2)))
     assert out["target_ci_low"] <= 5.0 <= out["target_ci_high"] + 0.02
-    assert out["still_peak"] == 1.0 and out["runner_up_median"] == pytest.approx(1.0, abs=0.05)
+    assert out["still_peak"] is True and out["runner_up_median"] == pytest.approx(1.0, abs=0.05)
 
 
 def _curve(g, m):

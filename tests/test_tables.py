@@ -90,6 +90,18 @@ def test_a_turned_table_keeps_whole_numbers_whole():
     assert cells[6:9] == ["q0 (m)", "0.500", "0"]
 
 
+def test_numbers_held_as_objects_are_not_taken_for_row_labels():
+    """A frame built by transposing a dict of mixed results (numbers and a yes/no) holds every
+    column as objects; its first number column must not join the headers (it did: "auv, -24.375")."""
+    checks = {"auv": {"x_mid_deg": -24.375, "count": 178, "still_peak": True, **{f"q{i}_m": 1.0 for i in range(6)}},
+              "boat": {"x_mid_deg": -21.875, "count": 1282, "still_peak": False, **{f"q{i}_m": 2.0 for i in range(6)}}}
+    frame = pd.DataFrame(checks).T.rename_axis("platform")
+    assert (frame.dtypes == object).all()  # the case guarded
+    html = readable_table(frame).to_html()
+    assert _cells(html, "th") == ["quantity", "auv", "boat"]
+    assert _cells(html, "td")[:9] == ["x mid (deg)", "-24.4", "-21.9", "count", "178", "1,282", "still peak", "yes", "no"]
+
+
 def test_a_turned_table_is_headed_by_its_row_labels_as_they_are():
     """The platform key my_auv heads its column as the key (not "my auv"); a text column of results
     next to the label (the top quantity of a run) joins the headers only when no labels are named."""

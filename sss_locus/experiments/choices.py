@@ -119,7 +119,7 @@ def hotspot_check(binned: pd.DataFrame, targeted: pd.DataFrame, *, value: str = 
         :func:`~sss_locus.experiments.replicates.median_with_interval`)
         ``target_ci_low``/``target_ci_high``; ``runner_up_median``, ``runner_up_count``,
         ``runner_up_x_mid``, ``runner_up_y_mid`` (the second-largest shown bin); and
-        ``still_peak`` (1.0 if the targeted interval lies above the runner-up's median, else 0.0).
+        ``still_peak`` (a bool: whether the targeted interval lies above the runner-up's median).
         With ``batch_meds``, the bins' medians in the replicate batches of the samples behind
         ``binned`` (:func:`~sss_locus.experiments.pose_claims.batch_medians`, in ``binned``'s
         row order), also the intervals of the peak bin's and the runner-up's medians
@@ -137,16 +137,16 @@ def hotspot_check(binned: pd.DataFrame, targeted: pd.DataFrame, *, value: str = 
     if inside.size == 0:
         raise ValueError("no targeted sample lies inside the peak bin")
     med, lo, hi = median_with_interval(inside, n_batches, confidence_level)
-    out = {"x_mid": float(top.x_mid), "y_mid": float(top.y_mid), "count": float(top["count"]),
-           "median": float(top["median"]), "target_count": float(inside.size),
+    out = {"x_mid": float(top.x_mid), "y_mid": float(top.y_mid), "count": int(top["count"]),
+           "median": float(top["median"]), "target_count": int(inside.size),
            "target_median": med, "target_ci_low": float(lo), "target_ci_high": float(hi),
-           "runner_up_median": float(second["median"]), "runner_up_count": float(second["count"]),
+           "runner_up_median": float(second["median"]), "runner_up_count": int(second["count"]),
            "runner_up_x_mid": float(second.x_mid), "runner_up_y_mid": float(second.y_mid),
-           "still_peak": float(lo > second["median"])}
+           "still_peak": bool(lo > second["median"])}
     if batch_meds is not None:
         meds = np.asarray(batch_meds, float)
         for name, row in (("median", top), ("runner_up", second)):
             r_lo, r_hi = replicate_interval(row["median"], meds[:, binned.index.get_loc(row.name)], confidence_level)
             out[f"{name}_ci_low"], out[f"{name}_ci_high"] = float(r_lo), float(r_hi)
-        out["still_peak"] = float(lo > out["runner_up_ci_high"])
+        out["still_peak"] = bool(lo > out["runner_up_ci_high"])
     return out

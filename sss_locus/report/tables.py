@@ -127,7 +127,7 @@ def readable_table(frame: pd.DataFrame, *, caption: str = "", digits: int = 3,
     """
     if not isinstance(frame, pd.DataFrame):
         raise ValueError(f"frame must be a pandas DataFrame; got {type(frame).__name__}")
-    shown = _index_as_columns(frame)
+    shown = _index_as_columns(frame).infer_objects()  # numbers held as objects (a transposed dict) are numbers
     if row_labels is not None and not set(row_labels) <= set(shown.columns):
         raise ValueError(f"row_labels must be columns of frame ({list(shown.columns)}); got {list(row_labels)}")
     turned = shown.shape[1] > WIDE and shown.shape[0] < shown.shape[1] - 1  # few rows, many columns
