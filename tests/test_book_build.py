@@ -23,7 +23,7 @@ pytest.importorskip("jupyter_book")
 from book_support import TIMEOUT_S  # noqa: E402  (the quick_book fixture is in conftest.py)
 from test_paperinputs import PLATFORM_FROM_INPUT  # noqa: E402
 from sss_locus import paths  # noqa: E402
-from sss_locus.pipeline import bookbuild
+from sss_locus.pipeline import bookbuild, figindex
 from sss_locus.pipeline.export import load_manifests  # noqa: E402
 from sss_locus.pipeline.registry import load_registry  # noqa: E402
 
@@ -82,6 +82,12 @@ def test_every_exported_figure_is_served_and_indexed(quick_book):
             assert (quick_book["html"] / entry["url"]).is_file()
         assert (quick_book["html"] / "figures" / f"{manifest['label']}.json").is_file()
         assert f"sss-locus:{manifest['label']}" in figures_page
+    tables = load_manifests(quick_book["area"] / "source" / "_extra" / "figures", kinds=("tab",))
+    assert len(tables) >= 20  # every chapter's published tables are indexed with their files
+    for manifest in tables:
+        assert f"sss-locus:{manifest['label']}" in figures_page, manifest["label"]
+        assert f'href="../figures/{manifest["label"]}.csv"' in figures_page
+    assert figures_page.index('id="tables"') > figures_page.index('id="figures"')
 
 
 def test_every_published_figure_is_readable_at_the_column_width(quick_book):
@@ -145,7 +151,7 @@ def test_figures_index_lists_only_registered_notebooks_in_book_order():
         {"label": "fig-a", "notebook": registered[0]},
         {"label": "fig-c", "notebook": "notebooks/removed.ipynb"},
     ]
-    listed = [m["label"] for m in bookbuild._in_book_order(manifests)]
+    listed = [m["label"] for m in figindex.in_book_order(manifests)]
     assert listed == ["fig-a", "fig-b"]
 
 

@@ -3,16 +3,15 @@
 The staged source (:func:`sss_locus.paths.source_dir`, ``<build>/source``) is the book's source
 root: it receives copies of ``_config.yml``, ``_toc.yml`` and ``book/`` next to the executed
 notebooks (``executed/``), the exported figures and a local MathJax (``_extra/``, copied verbatim
-to the site root by ``html_extra_path``). The figures page is generated from the figure
-manifests; the claims page gets a notice at its top when a chapter ran on other inputs than the
-paper's (:mod:`sss_locus.pipeline.paperinputs`). Jupyter Book writes into
+to the site root by ``html_extra_path``). The figures page is generated from the figure and
+table manifests (:mod:`sss_locus.pipeline.figindex`); the claims page gets a notice at its top
+when a chapter ran on other inputs than the paper's (:mod:`sss_locus.pipeline.paperinputs`). Jupyter Book writes into
 ``<build>/jupyter-book``; the finished site replaces ``<build>/html`` only when the build and the
 site checks pass.
 """
 
 from __future__ import annotations
 
-import json
 import os
 import shutil
 import subprocess
@@ -24,7 +23,7 @@ from typing import Any
 from urllib.parse import unquote, urlsplit
 
 from sss_locus import paths
-from sss_locus.pipeline import citation, claimsindex, export, outputs, paperinputs, provenance
+from sss_locus.pipeline import citation, claimsindex, export, figindex, outputs, paperinputs, provenance
 from sss_locus.pipeline.buildlog import ANSI, StagingPathFilter
 from sss_locus.pipeline.kernels import hermetic_env
 
@@ -99,89 +98,6 @@ def stage_config(root: Path) -> None:
     (root / paths.CONFIG_FILE.name).write_text(yaml.safe_dump(config, sort_keys=False), encoding="utf-8")
 
 
-def _file_links(manifest: dict[str, Any]) -> str:
-    names = sorted(manifest["files"])
-    kinds = {".png": "PNG", ".svg": "SVG", ".pdf": "PDF", ".bib": "BibTeX"}
-    links = []
-    for name in names:
-        suffix = Path(name).suffix
-        text = kinds.get(suffix) or ("data " + name.removeprefix(manifest["label"]).strip("-.") if suffix == ".csv" else name)
-        links.append(f'<a href="../{manifest["files"][name]["url"]}">{text}</a>')
-    links.append(f'<a href="../{paths.FIGURES_SUBDIR}/{manifest["label"]}.json">manifest (JSON)</a>')
-    return " · ".join(links)
-
-
-def _data_line(manifest: dict[str, Any]) -> str:
-    """The data files (with SHA-256), overrides and platform values a figure was computed from."""
-    inputs = manifest.get("data_inputs") or {}
-    files = ", ".join(f"`{Path(f['path']).name if f.get('role') == 'user' else f['path']}` "
-                      f"({f.get('role')}, sha256 `{f['sha256'][:12]}`)" for f in inputs.get("files", []))
-    sets = "".join(f"; override `{o}`" for o in inputs.get("overrides", []))
-    values = "".join(
-        f"; {v['name']}: {v['sonar']['name']}, {v['sonar']['azimuth_deg']:g}° × "
-        f"{v['sonar']['elevation_deg']:g}°, {v['sonar']['max_range_m']:g} m, tilt "
-        + "/".join(f"{t:g}" for t in dict.fromkeys(v["tilt_deg"].values())) + "°"
-        for v in (inputs.get("values") or {}).values())
-    return (files or "not recorded") + sets + values + "."
-
-
-def figures_index(manifests: list[dict[str, Any]]) -> str:
-    """Markdown (MyST) listing every exported figure with its files, provenance and BibTeX."""
-    if not manifests:
-        return "No figures have been exported yet.\n"
-    out = []
-    for m in manifests:
-        label = m["label"]
-        params = ", ".join(f"`{k} = {json.dumps(v)}`" for k, v in sorted(m["parameters"].items())) or "none"
-        out += [
-            f"## `{label}`",
-            "",
-            f"{{numref}}`Figure %s <{label}>` in the notebook `{m['notebook']}` (profile `{m['profile']}`).",
-            "",
-            m["caption"],
-            "",
-            f'<a href="../{paths.FIGURES_SUBDIR}/{label}.png"><img src="../{paths.FIGURES_SUBDIR}/{label}.png" '
-            f'alt="{label}" style="max-width: 28em; width: 100%;"></a>',
-            "",
-            f"<p>{_file_links(m)}</p>",
-            "",
-            f"Parameters: {params}; {_seed_text(m['seed'])}; commit `{provenance.short_commit(m['git_commit'])}`; "
-            f"sss-locus {m['package_version']}; environment.lock `{m['lock_sha256'][:12]}`; "
-            f"run {m['run_time_utc']}.",
-            "",
-            f"Data: {_data_line(m)}",
-            "",
-            "Cite this figure:",
-            "",
-            "```bibtex",
-            (paths.figures_dir() / f"{label}.bib").read_text(encoding="utf-8").rstrip(),
-            "```",
-            "",
-        ]
-    return "\n".join(out)
-
-
-def _seed_text(seed) -> str:
-    """The figure index's seed note: the seed, or that the run has none (no ``seed`` parameter:
-    the notebook draws no random numbers, so the figure is the same on every run)."""
-    if seed is None:
-        return "no seed (deterministic: the notebook draws no random numbers)"
-    return f"seed `{seed}`"
-
-
-def _in_book_order(manifests: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Figures of registered notebooks, sorted by the notebook's place in the registry, then label.
-
-    Figures exported by other runs (a plain papermill run, a notebook since removed from the
-    registry) stay in the folder but are not indexed: their labels need not exist in the book.
-    """
-    from sss_locus.pipeline.registry import load_registry
-
-    order = {entry.source_relative: i for i, entry in enumerate(load_registry().values())}
-    listed = [m for m in manifests if m["notebook"] in order]
-    return sorted(listed, key=lambda m: (order[m["notebook"]], m["label"]))
-
-
 def paper_input_records() -> dict[str, Any]:
     """Each registered notebook's recorded comparison with the paper's inputs (``None`` when its
     executed copy has none), see :func:`sss_locus.pipeline.paperinputs.compare`."""
@@ -226,7 +142,8 @@ def stage() -> Path:
     claimsindex.stage_claims_index(staged_book / CLAIMS_PAGE)  # the notice, if any, goes above it
     stage_claims_notice(staged_book / CLAIMS_PAGE)
     for name, marker, generated in (
-            (FIGURES_PAGE, FIGURES_MARKER, lambda: figures_index(_in_book_order(export.load_manifests()))),
+            (FIGURES_PAGE, FIGURES_MARKER,
+             lambda: figindex.figures_index(figindex.in_book_order(export.load_manifests(kinds=("fig", "tab"))))),
             (CITE_PAGE, PROJECT_BIBTEX_MARKER, lambda: f"```bibtex\n{citation.project_bibtex()}```")):
         text = (staged_book / name).read_text(encoding="utf-8")
         if marker not in text:
