@@ -48,7 +48,7 @@ def test_two_worker_process_cluster_is_bit_identical_to_serial(monkeypatch):
     distributed = pytest.importorskip("distributed")
     serial_pose, (serial_survey, serial_acc) = _studies(monkeypatch, None)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster:
+                                  dashboard_address=":0") as cluster:
         with distributed.Client(cluster) as client:
             with distributed.get_task_stream(client) as stream:
                 pose, (survey, acc) = _studies(monkeypatch, cluster.scheduler_address)
@@ -208,3 +208,23 @@ def test_both_local_cluster_paths_give_workers_the_documented_memory_trim(monkey
     expected = {"MALLOC_TRIM_THRESHOLD_": str(256 * 2**20), "OMP_NUM_THREADS": "1"}
     assert via_cli == [expected, expected] and via_env == [expected, expected]
     assert dict(__import__("os").environ) == before
+
+
+def test_a_local_cluster_does_not_warn_when_port_8787_is_taken(recwarn):
+    """Dask's default HTTP port 8787 taken (by another cluster, a notebook's, a test's): the
+    local cluster starts on a free port without warning "Port 8787 is already in use"."""
+    pytest.importorskip("distributed")
+    import socket
+
+    taken = socket.socket()
+    try:
+        taken.bind(("", 8787))
+        taken.listen()
+    except OSError:
+        pass  # taken already: the case this test is about
+    try:
+        cluster = scale.start_local_cluster(1)
+        cluster.close()
+    finally:
+        taken.close()
+    assert not [w for w in recwarn if "already in use" in str(w.message)]

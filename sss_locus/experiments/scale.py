@@ -80,8 +80,10 @@ def start_local_cluster(n_workers: int):
     try:
         with dask.config.set({f"distributed.nanny.pre-spawn-environ.{_TRIM}":
                               str(LOCAL_MALLOC_TRIM_THRESHOLD)}):
+            # ":0": the scheduler's HTTP server (started even without a dashboard) on a free
+            # port, not on 8787, which a second cluster (or a test's) would find taken and warn
             return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                                dashboard_address=None)
+                                dashboard_address=":0")
     finally:
         for key in set(os.environ) - set(before):
             del os.environ[key]
