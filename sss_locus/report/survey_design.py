@@ -87,10 +87,15 @@ def plot_front(fronts: dict, objective: str, platforms: dict):
     return fig
 
 
+#: The survey area's outline in the plan figures (dashed, so it is not read as a line to run).
+AREA_EDGE = "0.3"
+
+
 def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadir_gap_m: float, platform,
               title: str, ax=None):
     """The plan over the area: coverage cells by the number of lines that see them (holes red),
-    the lines as arrows in run order, the nadir gap of each line hatched."""
+    cut at the area's edge (dashed), the lines as arrows in run order, the nadir gap of each line
+    hatched."""
     if ax is None:
         fig, ax = plt.subplots(figsize=(PAGE_WIDTH_IN, 5.2), constrained_layout=True)
     cmap = ListedColormap(["tab:red", "#c6dbef", "#6baed6", "#2171b5"])
@@ -100,10 +105,11 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     j = np.rint((grid.y_m - y0) / grid_m).astype(int)
     counts = np.full((j.max() + 1, i.max() + 1), np.nan)
     counts[j, i] = grid.n_lines
-    ax.pcolormesh(x0 + (np.arange(i.max() + 2) - 0.5) * grid_m, y0 + (np.arange(j.max() + 2) - 0.5) * grid_m,
-                  np.ma.masked_invalid(counts), cmap=cmap, norm=norm, rasterized=True)
+    mesh = ax.pcolormesh(x0 + (np.arange(i.max() + 2) - 0.5) * grid_m, y0 + (np.arange(j.max() + 2) - 0.5) * grid_m,
+                         np.ma.masked_invalid(counts), cmap=cmap, norm=norm, rasterized=True)
     xy = np.asarray(area.polygon.exterior.coords)
-    ax.add_patch(PolygonPatch(xy, closed=True, fill=False, edgecolor="black", lw=1.5))
+    mesh.set_clip_path(PolygonPatch(xy, closed=True, transform=ax.transData))  # cells cut at the area's edge
+    ax.add_patch(PolygonPatch(xy, closed=True, fill=False, edgecolor=AREA_EDGE, lw=1.3, ls=(0, (5, 2))))
     for _, r in lines.iterrows():
         p0, p1 = np.array([r.x0_m, r.y0_m]), np.array([r.x1_m, r.y1_m])
         d = (p1 - p0) / max(r.length_m, 1e-9)
@@ -119,8 +125,8 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     ax.set_title(title, fontsize=9)
     handles = [plt.Line2D([], [], marker="s", ls="", color=c, markersize=8) for c in cmap.colors]
     labels = ["hole (no line)", "seen by 1 line", "2 lines", "3 or more"]
-    handles.append(plt.Line2D([], [], color="black"))
-    labels.append("main line")
+    handles += [plt.Line2D([], [], color=AREA_EDGE, lw=1.3, ls=(0, (5, 2))), plt.Line2D([], [], color="black")]
+    labels += ["survey area", "main line"]
     if (lines["set"] != "main").any():
         handles.append(plt.Line2D([], [], color="tab:orange"))
         labels.append("cross / repeat line")
