@@ -277,3 +277,24 @@ def test_the_plan_caption_names_the_mission_files_and_why_some_are_missing():
                               ["mission.csv", "mission.geojson", "mission.plan", "mission.waypoints"])
     assert "`mission.waypoints`" in everything and "origin_lonlat" not in everything
     assert pf.name in everything and "5.00 km" in everything
+
+
+@pytest.mark.parametrize("winner", ["lawnmower", "search"])
+def test_the_comparison_says_when_the_recommendation_is_the_lawnmower_baseline(winner):
+    """A recommendation that is the lawn-mower baseline itself is a finding (no searched plan
+    beats it): the sentence says so, and says nothing of the kind for a searched plan."""
+    from types import SimpleNamespace
+
+    from sss_locus.report.survey_design import comparison_sentence
+
+    t = pd.DataFrame({"kind": ["standard", "lawnmower", "search"],
+                      "recommended": [False, winner == "lawnmower", winner == "search"],
+                      "locus_median_m": [0.163, 0.150, 0.148], "total_m": [4092.0, 4007.0, 4000.0],
+                      "two_view_share": [0.75, 0.805, 0.78], "heading_deg": [0.0, 0.0, 45.0],
+                      "spacing_m": [240.0, 124.0, 130.0], "crossing_deg": [0.0, math.nan, math.nan],
+                      "cross_spacing_m": [240.0, 124.0, math.nan], "altitude_m": [21.0, 21.0, 21.0],
+                      "pitch_deg": [0.0, 0.0, 0.0]})
+    text = comparison_sentence(t, "locus", SimpleNamespace(name="Kestrel AUV"))
+    assert text.startswith("For the Kestrel AUV, the recommended plan")
+    assert ("lawn-mower baseline itself" in text) == (winner == "lawnmower")
+    assert ("0.150 m" if winner == "lawnmower" else "0.148 m") in text and "0.163 m" in text

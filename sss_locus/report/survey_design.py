@@ -155,7 +155,10 @@ def comparison_sentence(t: pd.DataFrame, objective: str, platform) -> str:
     longer = r.total_m / std.total_m - 1.0
     length = (f"on a track {fmt_percent(abs(longer))} {'shorter' if longer < 0 else 'longer'} "
               f"({r.total_m / 1e3:.2f} km against {std.total_m / 1e3:.2f} km)")
-    return (f"For the {name}, the recommended plan ({plan_label(r)}) gives {show(r[col])} against the "
+    which = (f"the recommended plan is the lawn-mower baseline itself ({plan_label(r)}; no plan of the search "
+             f"does better under the same rule): it gives" if r.kind == "lawnmower"
+             else f"the recommended plan ({plan_label(r)}) gives")
+    return (f"For the {name}, {which} {show(r[col])} against the "
             f"standard plan's {show(std[col])} ({fmt_percent(abs(change))} {'less' if change < 0 else 'more'}) "
             f"{length}; it shows {fmt_percent(r.two_view_share)} of the features to two lines "
             f"(standard: {fmt_percent(std.two_view_share)}).")
