@@ -363,9 +363,9 @@ SHIPPED_TABLES = {"terrain": "data/terrain.toml", "survey": "data/terrain.toml",
                   "survey_design": "data/survey_design.toml"}
 
 
-def test_user_figures_cite_only_the_users_platform_and_inputs(user_book):
+def test_user_figures_and_tables_cite_only_the_users_platform_and_inputs(user_book):
     figures = user_book["my_auv"] / "source" / "_extra" / "figures"
-    manifests = {m["label"]: m for m in load_manifests(figures)}
+    manifests = {m["label"]: m for m in load_manifests(figures, kinds=("fig", "tab"))}  # tables too
     assert {"fig-sensitivity-my-auv", "fig-survey-passes", "fig-noise-crossing", "fig-rigs"} <= set(manifests)
     for label, m in manifests.items():
         inputs = m["data_inputs"]
