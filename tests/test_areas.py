@@ -138,6 +138,19 @@ def test_a_figure_names_only_its_own_platforms_entries_and_files(tmp_path):
     assert [f["path"] for f in both["files"]] == ["data/platforms.toml", str(user)]
 
 
+def test_the_rig_caption_names_the_files_its_platforms_come_from(tmp_path):
+    from sss_locus.report.rigs import data_sources
+
+    user = tmp_path / "my_auv.toml"
+    user.write_bytes(EXAMPLE.read_bytes())
+    tilt = tmp_path / "tilt.toml"
+    tilt.write_text('[platforms.auv.transducers.port.tilt_deg]\nvalue = 15.0\nassumption = "bracket"\n')
+    inputs = userdata.make_inputs([user, tilt])
+    assert data_sources(["my_auv"], inputs) == "my_auv.toml"  # defined there alone: no shipped file
+    assert data_sources(["auv", "my_auv"], inputs) == "data/platforms.toml and my_auv.toml and tilt.toml"
+    assert data_sources(["auv"], userdata.make_inputs([user])) == "data/platforms.toml"
+
+
 def test_an_entry_hash_changes_exactly_with_its_value(tmp_path):
     user = tmp_path / "my_auv.toml"
     user.write_bytes(EXAMPLE.read_bytes())

@@ -166,7 +166,7 @@ def noise_advice_findings(prefix: str, verdicts: Mapping[tuple[str, str, float],
         f"and than 90°), the advice holds in {sum(flags)} of {len(flags)} cases: {'; '.join(clauses)}. "
         f"Conditions: errors independent between the two passes (errors common "
         f"to both would cancel and are left out); each level multiplies every standard deviation of "
-        f"data/noise.toml at once, the range error as well as position and attitude; and the extent "
+        f"the platform's noise model at once, the range error as well as position and attitude; and the extent "
         f"combines the band width with the noise-free locus length, while the locus computed from the noisy "
         f"measurements is empty in {empty} of the draws at the headline level.")
     return out

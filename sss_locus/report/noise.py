@@ -57,7 +57,7 @@ def scale_text(bases: Mapping, scale: float) -> str:
                      f"of the range, position {fmt_sig(m.horizontal_sigma_m, 2)} m per horizontal axis and "
                      f"{fmt_sig(m.vertical_sigma_m, 2)} m vertical, roll {fmt_sig(m.roll_sigma_deg, 2)}°, "
                      f"pitch {fmt_sig(m.pitch_sigma_deg, 2)}°, heading {fmt_sig(m.heading_sigma_deg, 2)}°")
-    return (f"{level_label(scale)}: every standard deviation of data/noise.toml times {scale:g}, range, position "
+    return (f"{level_label(scale)}: every standard deviation of the platform's noise model times {scale:g}, range, position "
             f"and attitude alike ({'; '.join(parts)})")
 
 

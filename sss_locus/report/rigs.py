@@ -10,7 +10,8 @@ transducers' lateral spacing.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
+from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -18,6 +19,7 @@ import pandas as pd
 from matplotlib.patches import Circle, Rectangle
 from scipy.spatial import ConvexHull
 
+from ..experiments import userdata
 from ..experiments.platforms import Platform, frustum_points
 from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
 
@@ -168,3 +170,11 @@ def coverage_text(platforms: Mapping[str, Platform]) -> str:
         out.append(f"{p.name}: {article} {kind} {t.tilt_deg:g}° look-down with a {p.sonar.azimuth_deg:g}° fan "
                    f"spans from {where} to {bottom:g}° below it{past}.")
     return " ".join(out)
+
+
+def data_sources(platform_keys: Iterable[str], inputs: userdata.DataInputs | None = None) -> str:
+    """The data files the drawn platforms and their sonars come from, for the caption: the ones
+    the figure's manifest lists (:func:`~sss_locus.experiments.userdata.figure_record`), shipped
+    files by their repository path, a user's file by its name."""
+    files = userdata.figure_record(list(platform_keys), inputs, read=set())["files"]
+    return " and ".join(f["path"] if f["role"] == "shipped" else Path(f["path"]).name for f in files)
