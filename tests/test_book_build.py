@@ -70,6 +70,20 @@ def test_notebook_ran_under_quick_profile(quick_book, name):
         assert "The values this run used (profile 'quick')" in text and "Show the data files this run read" in text
 
 
+def test_survey_design_noise_table_marks_the_recommended_plan_of_the_plans_table(quick_book):
+    import pandas as pd
+
+    figures = quick_book["area"] / "source" / "_extra" / "figures"
+    plans = pd.read_csv(figures / "tab-survey-design-plans.csv")
+    noise = pd.read_csv(figures / "tab-survey-design-noise.csv")
+    for platform, rows in noise.groupby("platform"):
+        rec = rows[rows.kind.str.endswith(" = recommended")]
+        planned = plans[(plans.platform == platform) & plans.kind.str.endswith(" = recommended")]
+        assert len(rec) == 1 and len(planned) == 1, platform
+        assert rec.kind.iloc[0] == planned.kind.iloc[0]
+        assert rec.total_m.iloc[0] / 1e3 == pytest.approx(planned.track_km.iloc[0], rel=1e-12)
+
+
 def test_site_has_no_broken_images_or_unresolved_glue(quick_book):
     assert bookbuild.site_problems(quick_book["html"]) == []
 
