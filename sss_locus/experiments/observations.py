@@ -33,13 +33,17 @@ column names, and a column whose name has the right quantity but another unit
     or empty cell is refused unless the run says ``missing_attitude="level"`` (then it is taken
     as 0 and the sighting is flagged ``attitude_assumed``): never a silent zero.
 ``slant_range_m`` *or* ``sample``, ``range_setting_m``, ``n_samples``
-    the slant range, or the sample index (0-based) in a ping of ``n_samples`` samples over
+    the slant range, or the sample index (0-based, counted from the near end) in a ping of ``n_samples`` samples over
     ``range_setting_m``: ``r = (sample + 1/2) range_setting_m / n_samples`` (the sample's centre,
     an open choice; :func:`slant_range_from_sample`).
 ``range_sigma_m`` (optional)
     the standard deviation of the range (> 0); default the run's ``range_sigma_m``.
 ``time_s`` (optional)
     any time stamp in seconds, carried through.
+``layback_m`` (optional, >= 0; empty is 0)
+    a towed sensor: the position columns are the tow point's (the ship's) and the sensor is
+    this far behind it along ``heading_deg``
+    (:func:`~sss_locus.experiments.towfish.apply_layback`).
 
 Every cell is checked before any work; the first bad one is refused in one line naming the file,
 its line (the header is line 1), its column and the valid range (:func:`read_sightings`).
@@ -63,7 +67,7 @@ NUMBERS = {
     "depth_m": (0.0, 11000.0), "altitude_m": (1e-3, 11000.0), "heading_deg": (-360.0, 360.0),
     "pitch_deg": (-90.0, 90.0), "roll_deg": (-180.0, 180.0), "slant_range_m": (1e-3, 1e5),
     "sample": (0.0, 1e9), "range_setting_m": (1e-3, 1e5), "n_samples": (1.0, 1e9),
-    "range_sigma_m": (1e-9, 1e3), "time_s": (-1e12, 1e12),
+    "range_sigma_m": (1e-9, 1e3), "time_s": (-1e12, 1e12), "layback_m": (0.0, 1e4),
 }
 TEXT = ("feature", "platform", "side")
 #: Column names sharing a quantity with a numeric column but in another unit are refused.
@@ -72,7 +76,7 @@ ATTITUDE = ("pitch_deg", "roll_deg")
 #: The columns every reader returns (the sightings table, one row per sighting).
 COLUMNS = ("feature", "platform", "side", "east_m", "north_m", "lon_deg", "lat_deg", "depth_m",
            "altitude_m", "heading_deg", "grid_heading_deg", "pitch_deg", "roll_deg", "slant_range_m",
-           "range_sigma_m", "time_s", "attitude_assumed", "source", "line")
+           "range_sigma_m", "time_s", "layback_m", "attitude_assumed", "source", "line")
 
 
 class ObservationError(ValueError):
@@ -80,8 +84,10 @@ class ObservationError(ValueError):
 
 
 def slant_range_from_sample(sample, range_setting_m, n_samples) -> np.ndarray:
-    """Slant range (m) of a sample index: ``(sample + 1/2) range_setting_m / n_samples``, the
-    centre of the sample's range cell (recording assumed to start at transmission)."""
+    """Slant range (m) of a sample index counted from the near end (sample 0 the first after
+    transmission): ``(sample + 1/2) range_setting_m / n_samples``, the centre of the sample's
+    range cell (recording assumed to start at transmission). An XTF channel stored far-to-near
+    is turned round first (:mod:`~sss_locus.experiments.sample_order`)."""
     return (np.asarray(sample, float) + 0.5) * np.asarray(range_setting_m, float) / np.asarray(n_samples, float)
 
 
@@ -243,6 +249,8 @@ def parse_sightings(raw: pd.DataFrame, source: str, *, missing_attitude: str = "
     sig = _numbers(raw, "range_sigma_m", source, optional=True) if "range_sigma_m" in cols else np.full(len(raw), np.nan)
     out["range_sigma_m"] = np.where(np.isnan(sig), float(range_sigma_m), sig)
     out["time_s"] = _numbers(raw, "time_s", source, optional=True) if "time_s" in cols else np.full(len(raw), np.nan)
+    lb = _numbers(raw, "layback_m", source, optional=True) if "layback_m" in cols else np.zeros(len(raw))
+    out["layback_m"] = np.where(np.isnan(lb), 0.0, lb)
     for name in ("east_m", "north_m", "lon_deg", "lat_deg"):
         out.setdefault(name, np.full(len(raw), np.nan))
     out["grid_heading_deg"] = np.full(len(raw), np.nan)

@@ -186,14 +186,18 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
     return PingResults(features=feats, sightings=sights, locus=locus, frame=frame)
 
 
-def read_checked(path, platform=None, *, missing_attitude: str = "refuse", range_sigma_m: float = 0.1):
+def read_checked(path, platform=None, *, missing_attitude: str = "refuse", range_sigma_m: float = 0.1,
+                 sample_order: str = "detect", towfish: str = "auto"):
     """The validated sightings of a CSV or XTF matches file
     (:func:`~sss_locus.experiments.observations_xtf.read_observations`) and the platform they
     name (default: the file's platform key, from the data files); a slant range outside the
-    sonar's range limits is refused naming its line. Returns ``(table, platform)``."""
+    sonar's range limits is refused naming its line. ``sample_order`` and ``towfish``: how an
+    XTF file's channels and positions are read (:mod:`~sss_locus.experiments.sample_order`,
+    :mod:`~sss_locus.experiments.towfish`). Returns ``(table, platform)``."""
     from .observations_xtf import read_observations
 
-    table = read_observations(path, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
+    table = read_observations(path, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m,
+                              sample_order=sample_order, towfish=towfish)
     key, where = table["platform"].iloc[0], f"{Path(path).name} line {table['line'].iloc[0]}, column platform"
     if platform is None:  # only this platform's data entries are read (a run is stale only when they change)
         from .platforms import load_platform
@@ -216,13 +220,18 @@ def read_checked(path, platform=None, *, missing_attitude: str = "refuse", range
 
 
 def run(path, platform=None, origin: LocalFrame | None = None, *, missing_attitude: str = "refuse",
-        range_sigma_m: float = 0.1, **kw) -> PingResults:
+        range_sigma_m: float = 0.1, sample_order: str = "detect", towfish: str = "auto", **kw) -> PingResults:
     """Read a sightings CSV or an XTF matches file and check it (:func:`read_checked`), put it in
-    the local frame and :func:`analyse` it with ``platform`` (default: the file's platform key)."""
+    the local frame, move towed sensors back by their layback
+    (:func:`~sss_locus.experiments.towfish.apply_layback`) and :func:`analyse` it with
+    ``platform`` (default: the file's platform key)."""
     from .observations import to_local_frame
+    from .towfish import apply_layback
 
-    table, platform = read_checked(path, platform, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
+    table, platform = read_checked(path, platform, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m,
+                                   sample_order=sample_order, towfish=towfish)
     table, frame = to_local_frame(table, origin)
+    table = apply_layback(table)
     return analyse(table, platform, frame, **kw)
 
 
