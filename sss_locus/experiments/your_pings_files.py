@@ -5,7 +5,7 @@ the sea surface, m, negative below) and the comparison with a known truth (the w
 GeoJSON features (``properties.kind``):
 
 ``locus``
-    one LineString per arc of a feature's two-view locus (first two sightings), with the
+    one LineString per arc of a feature's two-view locus (its best pair of sightings), with the
     feature's locus length and arc count;
 ``nview``
     the N-view position (where estimated), with its status, cost and the 1-sigma uncertainty
@@ -94,6 +94,8 @@ def against_truth(res: PingResults, truth: pd.DataFrame) -> pd.DataFrame:
     for est in ("flat", "two_view", "nview"):
         d = t[[f"{est}_east_m", f"{est}_north_m", f"{est}_up_m"]].to_numpy() - t[["east_m", "north_m", "up_m"]].to_numpy()
         ok = np.isfinite(d).all(axis=1)
+        if est == "two_view":  # an empty locus has no locus point (its fallback is not one)
+            ok &= (t["two_view_status"] == "locus").to_numpy()
         rows.append(pd.DataFrame({"feature": t["feature"][ok], "estimator": est, "n_sightings": t["n_sightings"][ok],
                                   "error_h_m": np.hypot(d[ok, 0], d[ok, 1]), "error_up_m": d[ok, 2]}))
     return pd.concat(rows, ignore_index=True)
