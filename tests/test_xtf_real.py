@@ -165,3 +165,137 @@ def test_altitude_zero_names_the_xtf_field(tmp_path):
     with pytest.raises(ob.ObservationError, match=r"m.csv line 2: SensorPrimaryAltitude of ping 0 of cut.xtf "
                                                   r"\(packet at byte 1024\) is 0"):
         ox.read_xtf_sightings(tmp_path / "m.csv")
+
+
+def _towed_file(tmp_path, *, layback, cable=0, ship_offset_m=None, heading=30.0):
+    """Three pings of a towed sensor (NavUnits 3): ``SensorX/Y`` at the ship's position, or,
+    with ``ship_offset_m``, the towfish's position that far behind the ship's (pyproj geodesic)."""
+    from pyproj import Geod
+
+    ship = (-70.0, 43.0)
+    if ship_offset_m is None:
+        sensor = ship
+    else:
+        lo, la, _ = Geod(ellps="WGS84").fwd(ship[0], ship[1], heading + 180.0, ship_offset_m)
+        sensor = (float(lo), float(la))
+    pings = pd.DataFrame({"ping": [1, 2, 3], "lon_deg": sensor[0], "lat_deg": sensor[1], "depth_m": 12.0,
+                          "altitude_m": 8.0, "heading_deg": heading, "pitch_deg": 0.0, "roll_deg": 0.0,
+                          "time_s": [1.0, 2.0, 3.0], "range_setting_m": 60.0, "n_samples": 600,
+                          "ship_x": ship[0], "ship_y": ship[1], "layback_m": layback, "cable_out_m": cable})
+    ox.write_xtf(tmp_path / "t.xtf", pings)
+    (tmp_path / "m.csv").write_text("feature,platform,file,ping,channel,sample\nA,auv,t.xtf,2,1,300\n")
+    return tmp_path / "m.csv", ship
+
+
+def _geodesic_behind(ship, heading, distance):
+    from pyproj import Geod
+
+    lo, la, _ = Geod(ellps="WGS84").fwd(ship[0], ship[1], heading + 180.0, distance)
+    return float(lo), float(la)
+
+
+@pytest.mark.parametrize("layback, cable, expected", [(40.0, 0, 40.0), (0.0, 37, np.sqrt(37.0 ** 2 - 12.0 ** 2))])
+def test_towfish_is_behind_the_ship_by_the_layback(tmp_path, layback, cable, expected):
+    """Layback (or a straight cable of CableOut to the fish's depth) moves the sensor behind the
+    ship along its heading: the result against a pyproj geodesic."""
+    from sss_locus.experiments.observations import LocalFrame
+
+    matches, ship = _towed_file(tmp_path, layback=layback, cable=cable)
+    frame = LocalFrame(-70.0, 43.0)
+    res = yp.run(matches, None, frame)
+    s = res.sightings.iloc[0]
+    e, n = frame.to_local(*_geodesic_behind(ship, 30.0, expected))
+    assert s["layback_m"] == pytest.approx(expected, rel=1e-6)
+    assert np.hypot(s["east_m"] - e, s["north_m"] - n) < 0.01  # the reference point moved to the towfish
+    assert s["position_read_as"] == "shifted by the layback" and s["layback_from"] == ("Layback" if layback else "CableOut")
+
+
+def test_a_recorded_towfish_position_is_not_shifted_twice(tmp_path):
+    from sss_locus.experiments.observations import LocalFrame
+
+    matches, ship = _towed_file(tmp_path, layback=40.0, ship_offset_m=40.0)
+    frame = LocalFrame(-70.0, 43.0)
+    s = yp.run(matches, None, frame).sightings.iloc[0]
+    e, n = frame.to_local(*_geodesic_behind(ship, 30.0, 40.0))
+    assert s["layback_m"] == 0.0 and s["position_read_as"] == "recorded (already the towfish's)"
+    assert np.hypot(s["east_m"] - e, s["north_m"] - n) < 0.01
+
+
+def test_a_towfish_position_that_fits_neither_reading_is_refused(tmp_path):
+    matches, _ = _towed_file(tmp_path, layback=40.0, ship_offset_m=15.0)
+    with pytest.raises(ob.ObservationError, match=r"m.csv line 2: ping 2 of t.xtf: SensorX/Ycoordinate is 15 m from "
+                                                  r"ShipX/Ycoordinate but the layback is 40 m.*-p towfish"):
+        ox.read_xtf_sightings(matches)
+    t = ox.read_xtf_sightings(matches, towfish="recorded")
+    assert t["layback_m"].iloc[0] == 0.0
+
+
+def test_a_csv_layback_column_moves_the_sensor(tmp_path):
+    text = ("feature,platform,side,east_m,north_m,depth_m,altitude_m,heading_deg,pitch_deg,roll_deg,slant_range_m,layback_m\n"
+            "A,auv,port,100,200,20,15,90,0,0,30,25\nA,auv,starboard,10,5,20,15,0,0,0,35,\n")
+    (tmp_path / "s.csv").write_text(text)
+    s = yp.run(tmp_path / "s.csv").sightings
+    assert (s["east_m"].tolist(), s["north_m"].tolist()) == ([75.0, 10.0], [200.0, 5.0])
+    assert s["tow_east_m"].tolist() == [100.0, 10.0]
+
+
+MUTATIONS = ("byte", "field", "truncate", "duplicate")
+
+
+def _mutate(data: bytes, rng) -> bytes:
+    """One seeded mutation: random bytes, an extreme value in a header field, a truncation, or a
+    packet repeated."""
+    d = bytearray(data)
+    offs = _packets(data)
+    kind = MUTATIONS[rng.integers(len(MUTATIONS))]
+    if kind == "byte":
+        for _ in range(rng.integers(1, 6)):
+            d[rng.integers(len(d))] = rng.integers(256)
+    elif kind == "field":
+        base = 0 if rng.random() < 0.3 else offs[rng.integers(len(offs))]
+        size = (1, 2, 4, 8)[rng.integers(4)]
+        at = base + rng.integers(0, (1024 if base == 0 else 256 + 64) - size)
+        value = (0, 255, 2 ** (8 * size) - 1, 2 ** (8 * size - 1))[rng.integers(4)]
+        if size == 4 and rng.random() < 0.3:
+            value = int.from_bytes(np.float32(np.nan).tobytes(), "little")
+        d[at:at + size] = int(value).to_bytes(size, "little")
+    elif kind == "truncate":
+        d = d[:rng.integers(len(d))]
+    else:
+        k = rng.integers(len(offs) - 1)
+        d = d[:offs[k + 1]] + data[offs[k]:offs[k + 1]] + d[offs[k + 1]:]
+    return bytes(d)
+
+
+@pytest.mark.parametrize("base", ["example", "real"])
+def test_fuzzed_xtf_bytes_give_a_result_or_one_line(tmp_path, base):
+    """A seeded byte-and-field mutator over the example file and the real file (its first 30
+    pings): every case either reads, with every sighting's range and position finite and in
+    range, or is refused in one line naming the file; never another exception."""
+    if base == "example":
+        data = (EXAMPLE / "example.xtf").read_bytes()
+        (tmp_path / "cut.xtf").write_bytes(data[:_packets(data)[16]])
+        src = tmp_path / "cut.xtf"
+        rows = pd.read_csv(EXAMPLE / "example_xtf_matches.csv", comment="#").query("ping < 16").head(6)
+        matches = rows.assign(file="f.xtf").to_csv(index=False)
+    else:
+        src = _real_cut(tmp_path)
+        matches = "feature,platform,file,ping,channel,sample\nA,auv,f.xtf,12,1,140\nB,auv,f.xtf,20,0,700\n"
+    data = src.read_bytes()
+    (tmp_path / "m.csv").write_text(matches)
+    rng = np.random.default_rng(36 if base == "example" else 38)
+    outcomes = {"read": 0, "refused": 0}
+    for case in range(120):
+        (tmp_path / "f.xtf").write_bytes(_mutate(data, rng))
+        try:
+            t = ox.read_xtf_sightings(tmp_path / "m.csv")
+        except ob.ObservationError as exc:
+            msg = str(exc)
+            assert "\n" not in msg and ("f.xtf" in msg or "m.csv" in msg), (case, msg)
+            outcomes["refused"] += 1
+            continue
+        xy = ["lon_deg", "lat_deg"] if np.isfinite(t["lon_deg"]).all() else ["east_m", "north_m"]  # NavUnits 3 or 0
+        assert np.isfinite(t[["slant_range_m", *xy, "depth_m", "altitude_m"]].to_numpy(float)).all()
+        assert ((t["slant_range_m"] > 0) & (t["altitude_m"] > 0)).all()
+        outcomes["read"] += 1
+    assert outcomes["read"] > 10 and outcomes["refused"] > 10  # the mutator reaches both outcomes
