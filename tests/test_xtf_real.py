@@ -299,3 +299,35 @@ def test_fuzzed_xtf_bytes_give_a_result_or_one_line(tmp_path, base):
         assert ((t["slant_range_m"] > 0) & (t["altitude_m"] > 0)).all()
         outcomes["read"] += 1
     assert outcomes["read"] > 10 and outcomes["refused"] > 10  # the mutator reaches both outcomes
+
+
+def test_xtf_summary_on_one_screen(capsys):
+    from sss_locus.pipeline.cli import main
+
+    assert main(["xtf", str(REAL / "scotsman-iver2.xtf")]) == 0
+    out = capsys.readouterr().out
+    assert len(out.splitlines()) <= 24 and "461 sonar pings, PingNumber 0 to 460" in out
+    assert "0  port" in out and "far_first: detected" in out and "1  starboard" in out and "near_first: detected" in out
+    assert "(52.2 s)" in out and "1 ping(s) with altitude 0" in out and "layback: none recorded" in out
+    assert main(["xtf", str(REAL)]) == 2
+    assert "is a directory" in capsys.readouterr().err
+
+
+def test_waterfall_axes_are_ping_and_stored_sample():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.experiments.xtf_summary import waterfall_data
+    from sss_locus.report.waterfall import waterfall
+
+    numbers, image = waterfall_data(REAL / "scotsman-iver2.xtf", 0)
+    _, pings = ox.read_pings(REAL / "scotsman-iver2.xtf")
+    assert numbers.tolist() == list(range(461)) and np.array_equal(image[242], pings[242].data[0])
+    marks = pd.DataFrame({"channel": [1], "ping": [281], "sample": [138], "label": ["hit"]})
+    fig, data = waterfall(REAL / "scotsman-iver2.xtf", marks=marks)
+    ax = fig.axes[1]
+    assert ax.get_xlabel() == "sample (as stored)" and "starboard" in ax.get_title()
+    assert ax.collections[0].get_offsets().tolist() == [[138.0, 281.0]]
+    plt.close(fig)

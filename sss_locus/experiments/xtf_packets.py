@@ -123,7 +123,8 @@ def read_pings(path) -> tuple[object, dict[int, object]]:
     pyxtf, _ = _structures()
     path = Path(path)
     if not path.is_file():
-        raise ObservationError(f"XTF file {path} does not exist" + (" (it is a directory)" if path.is_dir() else ""))
+        raise ObservationError(f"XTF file {path} is a directory, not a file" if path.is_dir()
+                               else f"XTF file {path} does not exist")
     data = path.read_bytes()
     header, channels = read_header(path, data)
     pings: dict[int, object] = {}

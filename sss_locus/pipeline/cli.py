@@ -11,6 +11,7 @@ Examples::
     sss-locus run pose_space --data my.toml -p platforms '["my_auv"]' --name my_auv  # your sonar and vehicle
     sss-locus book --data my.toml -p platforms '["my_auv"]' --name my_auv  # its book: _build/my_auv/html
     sss-locus answer --data my.toml -p platform my_auv  # bands and drivers in the terminal, no book
+    sss-locus xtf survey.xtf             # channels, sample order, pings, layback of an XTF file
 
 A run on other inputs than the paper's (--data, --set, other platforms) goes into a build area of
 its own with --name; into the reproduction (_build/) it is refused unless --replace-reproduction.
@@ -108,6 +109,12 @@ def _parser() -> argparse.ArgumentParser:
     ans.add_argument("--profile", default="quick", help="parameter profile of those notebooks (default: quick)")
     ans.add_argument("--top", type=int, default=5, help="drivers shown (default: 5)")
     _data_arguments(ans)
+
+    xtf = sub.add_parser("xtf", help="a one-screen summary of an XTF file (channels, sides, sample order, range, "
+                         "pings, time, layback), for writing a matches file")
+    xtf.add_argument("file", help="the XTF file")
+    xtf.add_argument("--sample-order", default="detect", choices=("detect", "near_first", "port_far_first"),
+                     help="which end of each channel is the near end (default: detect it from the data)")
 
     sub.add_parser("list", help="list the registered notebooks")
     return parser
@@ -208,6 +215,13 @@ def _answer(args: argparse.Namespace) -> int:
     return 0
 
 
+def _xtf(args: argparse.Namespace) -> int:
+    from sss_locus.pipeline.xtfinfo import summary_lines
+
+    print("\n".join(summary_lines(args.file, args.sample_order)))
+    return 0
+
+
 def _list(_: argparse.Namespace) -> int:
     for entry in load_registry().values():
         print(f"{entry.name:20s} {entry.source_relative:35s} profiles: {', '.join(entry.profiles)}")
@@ -231,7 +245,7 @@ def main(argv: list[str] | None = None) -> int:
 
     args = _parser().parse_args(argv)
     handler = {"run": _run, "book": _book, "params": _params, "list": _list, "cache": _cache,
-               "answer": _answer}[args.command]
+               "answer": _answer, "xtf": _xtf}[args.command]
     try:
         with areas.entered(getattr(args, "name", None)):
             if args.command in ("run", "book"):

@@ -101,7 +101,8 @@ def check_files(parameters: dict) -> None:
         else:
             from sss_locus.experiments.your_pings import read_checked
 
-            read_checked(path, missing_attitude=parameters["missing_attitude"], range_sigma_m=parameters["range_sigma_m"])
+            read_checked(path, missing_attitude=parameters["missing_attitude"], range_sigma_m=parameters["range_sigma_m"],
+                         **{k: parameters[k] for k in ("sample_order", "towfish") if k in parameters})
     except ValueError as exc:
         shown = path.name if path.name not in str(exc) else ""  # the file, once
         raise ValueError(f"-p {name}{' ' + shown if shown else ''}: {exc}") from None
