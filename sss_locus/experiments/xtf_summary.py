@@ -19,7 +19,8 @@ NAV_UNITS = {0: "metres (east, north)", 3: "degrees (longitude, latitude)"}
 def summary(path, sample_order: str = "detect") -> dict:
     """One XTF file in numbers: ``file``, ``sonar``, ``nav_units``, ``n_pings``, ``ping_first``,
     ``ping_last``, ``ping_gaps`` (numbers missing between them), ``time_first_s``,
-    ``time_last_s`` (seconds of the day), ``altitude_zero`` (pings with altitude 0), ``layback_m``
+    ``time_last_s`` (seconds of the day), ``altitude_zero`` (pings with altitude 0),
+    ``n_positions`` (distinct recorded sensor positions), ``layback_m``
     (min, max), ``layback_from``, and ``channels``: per channel ``channel``, ``type``, ``side``,
     ``n_samples`` (min, max), ``range_m`` (min, max), ``order`` and ``order_how`` (or
     ``order_error``, the reason the order cannot be detected)."""
@@ -38,6 +39,7 @@ def summary(path, sample_order: str = "detect") -> dict:
                ping_gaps=int(numbers[-1] - numbers[0] + 1 - numbers.size),
                time_first_s=float(times.min()), time_last_s=float(times.max()),
                altitude_zero=int(sum(p.SensorPrimaryAltitude == 0 for p in pings.values())),
+               n_positions=len({(p.SensorXcoordinate, p.SensorYcoordinate) for p in pings.values()}),
                layback_m=(min(v for v, _ in lb), max(v for v, _ in lb)),
                layback_from=sorted({s for _, s in lb if s}))
     for ch, kind in enumerate(channel_types(header)):
