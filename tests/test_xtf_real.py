@@ -331,3 +331,30 @@ def test_waterfall_axes_are_ping_and_stored_sample():
     assert ax.get_xlabel() == "sample (as stored)" and "starboard" in ax.get_title()
     assert ax.collections[0].get_offsets().tolist() == [[138.0, 281.0]]
     plt.close(fig)
+
+
+def test_a_towed_survey_gives_the_results_of_its_towfish_positions(tmp_path):
+    """The worked example recorded by a towed sensor: SensorX/Y holds the ship, 35 m ahead of the
+    towfish along its heading (pyproj geodesic), with Layback 35. The results are those of the
+    towfish positions themselves (the example's CSV), to the millimetre."""
+    from pyproj import Geod
+
+    from sss_locus.experiments import your_pings_example as ex
+
+    sights = pd.read_csv(EXAMPLE / "example_sightings.csv", comment="#")
+    sights["n_samples"] = sights["n_samples"].astype(int)
+    pings, matches = ex.xtf_tables(sights, "towed.xtf")
+    lon, lat, _ = Geod(ellps="WGS84").fwd(pings["lon_deg"], pings["lat_deg"], pings["heading_deg"], np.full(len(pings), 35.0))
+    towed = pings.assign(lon_deg=lon, lat_deg=lat, layback_m=35.0)
+    ox.write_xtf(tmp_path / "towed.xtf", towed)
+    ex.write_csv(tmp_path / "towed_matches.csv", matches)
+    a = yp.run(EXAMPLE / "example_sightings.csv")
+    b = yp.run(tmp_path / "towed_matches.csv", None, a.frame)
+    assert (b.sightings["layback_m"] == 35.0).all()
+    np.testing.assert_allclose(b.sightings[["east_m", "north_m"]], a.sightings[["east_m", "north_m"]], atol=1e-3)
+    ok = np.isfinite(a.features["nview_east_m"])
+    np.testing.assert_allclose(b.features.loc[ok, ["nview_east_m", "nview_north_m"]],
+                               a.features.loc[ok, ["nview_east_m", "nview_north_m"]], atol=0.01)
+    untouched = yp.run(tmp_path / "towed_matches.csv", None, a.frame, towfish="recorded")
+    d = np.hypot(*(untouched.sightings[["east_m", "north_m"]].to_numpy() - a.sightings[["east_m", "north_m"]].to_numpy()).T)
+    np.testing.assert_allclose(d, 35.0, atol=0.01)  # without the layback every position is 35 m off

@@ -23,6 +23,8 @@ from .text import fmt_sig
 ESTIMATES = {"flat": ("flat seafloor, mean of the sightings", "black", "s"),
              "two_view": ("two views (best pair): locus point nearest the flat mean, non-empty loci only", "tab:orange", "^"),
              "nview": ("N views, least squares (1-sigma ellipse x 3)", "tab:blue", "D")}
+MIN_HALF_WIDTH_M = 1.0
+"""A feature's panel shows at least this far (m) around its flat-seafloor mean."""
 ELLIPSE_SCALE = 3.0
 """The drawn ellipses are this many standard deviations (1-sigma ones would be invisible)."""
 
@@ -96,6 +98,8 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
             ax.scatter([t["east_m"] - e0], [t["north_m"] - n0], s=60, c="gold", marker="*", edgecolors="k",
                        linewidths=0.4, label="truth (synthetic example)", zorder=4)
         ax.set_title(f"{r['feature']}: {panel_status(r)}", fontsize=8)
+        ax.update_datalim([[-MIN_HALF_WIDTH_M, -MIN_HALF_WIDTH_M], [MIN_HALF_WIDTH_M, MIN_HALF_WIDTH_M]])
+        ax.autoscale_view()
         ax.set_aspect("equal", adjustable="datalim")
         ax.tick_params(labelsize=8.5)
         out.append(sg[["feature", "line", "flat_east_m", "flat_north_m"]].assign(flat_east_m=lambda d: d.flat_east_m - e0,
@@ -105,7 +109,7 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
     for k, ax in enumerate(axes.ravel()[:n]):
         if k + cols >= n:  # the lowest panel of its column
             ax.set_xlabel("grid east (m)", fontsize=8.5)
-    fig.supylabel("grid north from the feature's flat-seafloor mean (m)", fontsize=9)
+    fig.supylabel("grid north from the flat mean (m)", fontsize=9)
     handles, labels = axes.ravel()[0].get_legend_handles_labels()
     handles.insert(1, plt.Line2D([], [], color="tab:red", lw=2))
     labels.insert(1, "two-view locus (best pair)")
@@ -124,7 +128,7 @@ def panel_status(r) -> str:
     empty or not) and the N-view status."""
     n = int(r["n_sightings"])
     if n == 1:
-        return ONE_SIGHTING
+        return "\n" + ONE_SIGHTING
     two = "locus" if r["two_view_status"] == "locus" else "empty locus"
     return f"{n} sightings\n2 views ({r['two_view_pair']}): {two}\nN views: {r['nview_status']}"
 
