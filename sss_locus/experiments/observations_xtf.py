@@ -60,6 +60,10 @@ def _check_fields(ping, nav_units: int, name: str, where: str) -> None:
                                       if field == "SensorPrimaryAltitude" and v == 0 else ""))
 
 
+DETECT_PINGS = 2000
+"""At most about this many pings of a channel are read to detect its sample order."""
+
+
 def channel_order(pings: dict, header, ch: int, choice: str, name: str) -> tuple[str, str]:
     """The sample order of channel ``ch`` of one file (:mod:`~sss_locus.experiments.sample_order`)
     and how it was decided; a file the data cannot decide is refused, saying how to set it."""
@@ -68,6 +72,7 @@ def channel_order(pings: dict, header, ch: int, choice: str, name: str) -> tuple
         return so.chosen(choice, kind), f"sample_order {choice!r}"
     n = pd.Series([len(p.data[ch]) for p in pings.values() if len(p.data) > ch]).mode()
     rows = [p for p in pings.values() if len(p.data) > ch and len(p.data[ch]) == n.iloc[0]]
+    rows = rows[::max(1, len(rows) // DETECT_PINGS)]  # evenly spread over the file: enough to decide
     data = np.stack([p.data[ch].astype(float) for p in rows])
     rng = np.array([p.ping_chan_headers[ch].SlantRange for p in rows], float)
     alt = np.array([p.SensorPrimaryAltitude for p in rows], float)

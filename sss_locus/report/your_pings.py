@@ -97,7 +97,7 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
             t = truth.set_index("feature").loc[r["feature"]]
             ax.scatter([t["east_m"] - e0], [t["north_m"] - n0], s=60, c="gold", marker="*", edgecolors="k",
                        linewidths=0.4, label="truth (synthetic example)", zorder=4)
-        ax.set_title(f"{r['feature']}: {panel_status(r)}", fontsize=8)
+        ax.set_title(f"{r['feature']}: {panel_status(r)}", fontsize=8.5)
         ax.update_datalim([[-MIN_HALF_WIDTH_M, -MIN_HALF_WIDTH_M], [MIN_HALF_WIDTH_M, MIN_HALF_WIDTH_M]])
         ax.autoscale_view()
         ax.set_aspect("equal", adjustable="datalim")
