@@ -358,3 +358,13 @@ def test_a_towed_survey_gives_the_results_of_its_towfish_positions(tmp_path):
     untouched = yp.run(tmp_path / "towed_matches.csv", None, a.frame, towfish="recorded")
     d = np.hypot(*(untouched.sightings[["east_m", "north_m"]].to_numpy() - a.sightings[["east_m", "north_m"]].to_numpy()).T)
     np.testing.assert_allclose(d, 35.0, atol=0.01)  # without the layback every position is 35 m off
+
+
+def test_unsupported_nav_units_are_refused_naming_the_byte(tmp_path):
+    path = _real_cut(tmp_path)
+    data = bytearray(path.read_bytes())
+    data[164:166] = (1).to_bytes(2, "little")  # NavUnits (Triton's layout: after the 64-byte file name)
+    path.write_bytes(bytes(data))
+    (tmp_path / "m.csv").write_text("feature,platform,file,ping,channel,sample\nA,iver2,cut.xtf,3,1,100\n")
+    with pytest.raises(ob.ObservationError, match=r"^cut.xtf byte 164: NavUnits 1 not supported"):
+        ox.read_xtf_sightings(tmp_path / "m.csv")

@@ -115,6 +115,12 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse", range_
         name = str(raw["file"].iloc[i]).strip()
         if name not in files:
             files[name] = read_pings(matches_path.parent / name)
+            units = files[name][0].NavUnits
+            if units not in _NAV_UNITS:
+                import pyxtf
+
+                raise ObservationError(f"{name} byte {pyxtf.XTFFileHeader.NavUnits.offset}: NavUnits {units} not "
+                                       "supported (0 metres or 3 longitude/latitude)")
         header, pings = files[name]
         values = {}
         for col in ("ping", "channel", "sample"):
