@@ -280,7 +280,7 @@ def test_fuzzed_xtf_bytes_give_a_result_or_one_line(tmp_path, base):
         matches = rows.assign(file="f.xtf").to_csv(index=False)
     else:
         src = _real_cut(tmp_path)
-        matches = "feature,platform,file,ping,channel,sample\nA,auv,f.xtf,12,1,140\nB,auv,f.xtf,20,0,700\n"
+        matches = "feature,platform,file,ping,channel,sample\nA,auv,f.xtf,12,1,500\nB,auv,f.xtf,20,0,300\n"
     data = src.read_bytes()
     (tmp_path / "m.csv").write_text(matches)
     rng = np.random.default_rng(36 if base == "example" else 38)
