@@ -44,7 +44,8 @@ def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str =
         ax.scatter(truth["east_m"], truth["north_m"], s=40, c="gold", marker="*", edgecolors="k", linewidths=0.4,
                    label="truth (synthetic example)", zorder=4)
     for _, r in f.iterrows():
-        ax.annotate(r["feature"], (r["flat_east_m"], r["flat_north_m"]), xytext=(4, 4), textcoords="offset points",
+        ax.annotate(r["feature"] + ("\n(" + ONE_SIGHTING + ")" if r["n_sightings"] == 1 else ""),
+                    (r["flat_east_m"], r["flat_north_m"]), xytext=(4, 4), textcoords="offset points",
                     fontsize=8.5)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("grid east (m)")
@@ -231,8 +232,9 @@ def view_3d(res, *, truth: pd.DataFrame | None = None):
             v.extend([*arc[c].tolist(), None])
     traces.append(go.Scatter3d(x=xs, y=ys, z=zs, mode="lines", line=dict(color="crimson", width=6), name="two-view locus"))
     for key, (name, colour, _) in ESTIMATES.items():
-        traces.append(go.Scatter3d(x=f[f"{key}_east_m"], y=f[f"{key}_north_m"], z=f[f"{key}_up_m"], mode="markers",
-                                   marker=dict(size=4, color=to_hex(colour)), name=name.split(" (")[0], text=f["feature"]))
+        g = drawn(f, key)
+        traces.append(go.Scatter3d(x=g[f"{key}_east_m"], y=g[f"{key}_north_m"], z=g[f"{key}_up_m"], mode="markers",
+                                   marker=dict(size=4, color=to_hex(colour)), name=name.split(" (")[0], text=g["feature"]))
     if truth is not None:
         traces.append(go.Scatter3d(x=truth["east_m"], y=truth["north_m"], z=truth["up_m"], mode="markers",
                                    marker=dict(size=5, color="gold", symbol="diamond", line=dict(color="black", width=1)),
