@@ -368,3 +368,21 @@ def test_unsupported_nav_units_are_refused_naming_the_byte(tmp_path):
     (tmp_path / "m.csv").write_text("feature,platform,file,ping,channel,sample\nA,iver2,cut.xtf,3,1,100\n")
     with pytest.raises(ob.ObservationError, match=r"^cut.xtf byte 164: NavUnits 1 not supported"):
         ox.read_xtf_sightings(tmp_path / "m.csv")
+
+
+def test_the_real_pass_section_says_what_one_pass_cannot_tell(iver2):
+    from sss_locus.report.text import fmt_sig
+    from sss_locus.report.your_pings_real import marks, one_pass_text, positions_table, read_hits
+
+    hits = read_hits(REAL / "scotsman-iver2.xtf.hits")
+    assert hits.to_dict("records") == [{"channel": 1, "sample": 138, "row": 281}]
+    m = marks(pd.read_csv(REAL / "scotsman_matches.csv", comment="#"), hits, np.arange(461))
+    assert m.iloc[-1].to_dict() == {"channel": 1, "ping": 281, "sample": 138, "label": "annotated hit (.hits)"}
+    res = yp.run(REAL / "scotsman_matches.csv")
+    table = positions_table(res)
+    text = one_pass_text(res, table, 220, 461)
+    r, h = table.loc["wreck_edge", ["slant_range_m", "transducer_height_m"]]
+    moved = np.sqrt(r ** 2 - (h - 1.0) ** 2) - np.sqrt(r ** 2 - h ** 2)  # a point 1 m up, on the same sphere
+    assert "4 of the 4 picks" in text and f"{fmt_sig(moved)} m longer" in text and "wreck_edge" in text
+    np.testing.assert_allclose(table["ground_range_m"] ** 2 + table["transducer_height_m"] ** 2,
+                               table["slant_range_m"] ** 2, rtol=1e-9)

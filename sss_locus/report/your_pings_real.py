@@ -30,13 +30,13 @@ def marks(matches: pd.DataFrame, hits: pd.DataFrame, ping_numbers: np.ndarray) -
 
 
 def positions_table(res) -> pd.DataFrame:
-    """One row per pick: where in the file (ping, channel, sample as stored, the channel's
-    order), the slant range, the transducer's height, the flat-seafloor ground range and
+    """One row per pick: where in the file (the side's channel, ping, sample as stored, the
+    channel's order), the slant range, the transducer's height, the flat-seafloor ground range and
     position (lon/lat) and the feature's status."""
     s = res.sightings
     ground = np.hypot(s["flat_east_m"] - s["sensor_east_m"], s["flat_north_m"] - s["sensor_north_m"])
     status = res.features.set_index("feature")["two_view_status"]
-    return pd.DataFrame({"feature": s["feature"], "side": s["side"], "ping": s["ping"], "channel": s["channel"],
+    return pd.DataFrame({"feature": s["feature"], "side": s["side"], "ping": s["ping"],
                          "sample_stored": s["sample_stored"], "sample_order": s["sample_order"],
                          "slant_range_m": s["slant_range_m"], "transducer_height_m": s["transducer_height_m"],
                          "ground_range_m": ground, "flat_lon_deg": s["flat_lon_deg"], "flat_lat_deg": s["flat_lat_deg"],
