@@ -377,7 +377,10 @@ def test_the_real_pass_section_says_what_one_pass_cannot_tell(iver2):
     hits = read_hits(REAL / "scotsman-iver2.xtf.hits")
     assert hits.to_dict("records") == [{"channel": 1, "sample": 138, "row": 281}]
     m = marks(pd.read_csv(REAL / "scotsman_matches.csv", comment="#"), hits, np.arange(461))
-    assert m.iloc[-1].to_dict() == {"channel": 1, "ping": 281, "sample": 138, "label": "annotated hit (.hits)"}
+    assert len(m) == 4 and m.iloc[0].to_dict() == {"channel": 1, "ping": 281, "sample": 138,
+                                                   "label": "wreck_edge = annotated hit (.hits)"}
+    other = marks(pd.read_csv(REAL / "scotsman_matches.csv", comment="#").iloc[1:], hits, np.arange(461))
+    assert other.iloc[-1].to_dict() == {"channel": 1, "ping": 281, "sample": 138, "label": "annotated hit (.hits)"}
     res = yp.run(REAL / "scotsman_matches.csv")
     table = positions_table(res)
     text = one_pass_text(res, table, 220, 461)

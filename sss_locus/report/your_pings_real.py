@@ -22,10 +22,14 @@ def read_hits(path) -> pd.DataFrame:
 
 def marks(matches: pd.DataFrame, hits: pd.DataFrame, ping_numbers: np.ndarray) -> pd.DataFrame:
     """What the waterfall marks: every pick of the matches file and every annotated hit (its
-    row turned into the ping's number)."""
+    row turned into the ping's number); a pick on an annotated hit is marked once, saying so."""
     picks = matches.assign(label=matches["feature"])[["channel", "ping", "sample", "label"]]
     hit = pd.DataFrame({"channel": hits["channel"], "ping": ping_numbers[hits["row"].to_numpy()],
                         "sample": hits["sample"], "label": "annotated hit (.hits)"})
+    key = ["channel", "ping", "sample"]
+    same = picks.merge(hit[key], on=key, how="left", indicator=True)["_merge"].eq("both").to_numpy()
+    picks.loc[same, "label"] = picks.loc[same, "label"] + " = annotated hit (.hits)"
+    hit = hit[~hit.merge(picks[key], on=key, how="left", indicator=True)["_merge"].eq("both").to_numpy()]
     return pd.concat([picks, hit], ignore_index=True)
 
 
