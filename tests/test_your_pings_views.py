@@ -77,3 +77,16 @@ def test_empty_loci_are_not_drawn_counted_or_compared_as_locus_points(example):
     titles = [ax.get_title() for ax in fig.axes if ax.get_visible() and ax.get_title()]
     assert sum("empty locus" in t for t in titles) == empty.sum()
     assert all("N views:" in t for t in titles)
+
+
+def test_geojson_does_not_call_a_fallback_a_locus_point(example):
+    import json
+
+    from sss_locus.experiments.your_pings_files import geojson_text
+
+    doc = json.loads(geojson_text(example))
+    kinds = {f["properties"]["feature"]: f["properties"]["kind"] for f in doc["features"]
+             if f["properties"]["kind"].startswith("two_view")}
+    status = example.features.set_index("feature")["two_view_status"]
+    assert kinds and all((k == "two_view") == (status[f] == "locus") for f, k in kinds.items())
+    assert "two_view_empty_locus" in kinds.values()

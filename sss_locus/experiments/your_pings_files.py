@@ -13,6 +13,9 @@ GeoJSON features (``properties.kind``):
     ``ellipse_azimuth_deg`` (major axis, clockwise from grid north), ``sigma_up_m``;
 ``two_view``
     the point of the locus nearest the mean flat-seafloor position (two or more sightings);
+``two_view_empty_locus``
+    where that locus is empty (the pair does not agree within the beams): the fallback point on
+    the circle or sphere, which is not a locus point;
 ``flat_mean`` and ``flat``
     the mean flat-seafloor position with the spread, and each sighting's.
 """
@@ -67,7 +70,8 @@ def geojson(res: PingResults, *, notice: str = "") -> dict:
                 ellipse_azimuth_deg=r["ellipse_azimuth_deg"], sigma_up_m=r["sigma_up_m"])
         if np.isfinite(r["two_view_east_m"]):
             add({"type": "Point", "coordinates": _point(r["two_view_lon_deg"], r["two_view_lat_deg"], r["two_view_up_m"])},
-                kind="two_view", feature=r["feature"], status=r["two_view_status"], locus_length_m=r["locus_length_m"])
+                kind="two_view" if r["two_view_status"] == "locus" else "two_view_empty_locus",
+                feature=r["feature"], status=r["two_view_status"], locus_length_m=r["locus_length_m"])
         add({"type": "Point", "coordinates": _point(r["flat_lon_deg"], r["flat_lat_deg"], r["flat_up_m"])},
             kind="flat_mean", feature=r["feature"], n_sightings=int(r["n_sightings"]), flat_spread_m=r["flat_spread_m"])
     for _, s in res.sightings.iterrows():
