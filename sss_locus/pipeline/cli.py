@@ -14,6 +14,8 @@ Examples::
 
 A run on other inputs than the paper's (--data, --set, other platforms) goes into a build area of
 its own with --name; into the reproduction (_build/) it is refused unless --replace-reproduction.
+A side run (--output PATH) writes only beside PATH, which must lie outside _build/ (the
+reproduction and every named area, whatever --name says); --replace-reproduction is refused with it.
 
 Every parameter value is checked (type, range, allowed values, memory) before a kernel starts.
 A failing notebook is reported in one line (cell and error); add --verbose for the traceback.
@@ -122,7 +124,11 @@ def _run(args: argparse.Namespace) -> int:
     if args.output is None:
         parameters = resolve_parameters(entry, args.profile, overrides, from_text=True, data=data)
         areas.check_reproduction([(entry, parameters)], replace=args.replace_reproduction)
-    _say_area()
+        _say_area()
+    elif args.replace_reproduction:  # one rule: a side run writes beside --output and nowhere else
+        raise ValueError("--replace-reproduction and --output contradict each other: a side run writes only "
+                         "beside --output (outside every build area) and never replaces the reproduction; "
+                         "drop one of them")
     run_notebook(entry, args.profile, overrides, from_text=True, output=args.output, data=data)
     if args.output:  # a side run leaves the book as it was: nothing to rebuild
         return 0
