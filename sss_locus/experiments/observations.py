@@ -55,6 +55,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .inputs import missing_file
+
 MISSING_ATTITUDE = ("refuse", "level")
 SIDES = ("port", "starboard")
 #: Numeric columns: (name, lo, hi, lo inclusive).
@@ -295,6 +297,6 @@ def read_sightings(path, *, missing_attitude: str = "refuse", range_sigma_m: flo
     in one line naming the file, line, column and valid range otherwise."""
     path = Path(path)
     if not path.is_file():
-        raise ObservationError(f"observations file {path} does not exist")
+        raise ObservationError(missing_file(path, "observations file"))
     return parse_sightings(read_table(path), path.name, missing_attitude=missing_attitude,
                            range_sigma_m=range_sigma_m)
