@@ -48,9 +48,13 @@ def test_markdown_emphasis_becomes_latex():
         r"\textbf{widened} \emph{beam} \texttt{f\_x}"
 
 
-def test_character_without_latex_equivalent_is_named():
-    with pytest.raises(ValueError, match="U\\+1F30A"):
-        citation.latex_escape("wave \U0001F30A")
+def test_a_name_in_any_script_becomes_ascii_latex_instead_of_an_error():
+    """Issue 38: an area or file name in any script must reach BibTeX (it raised "has no LaTeX
+    equivalent" and no such input could run): accented letters stay LaTeX accents, digits of any
+    script become digits, characters without an ASCII form their code point, each distinct."""
+    assert citation.latex_escape("港 Harbour á ١٢ wave \U0001F30A") == "U+6E2F Harbour {\\'a} 12 wave U+1F30A"
+    assert citation.latex_escape("港口") != citation.latex_escape("港湾")
+    assert all(ord(c) < 128 for c in citation.latex_escape("مرفأ 港 Ωmega"))
 
 
 def test_short_caption_is_the_first_clause_and_short():

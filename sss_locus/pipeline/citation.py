@@ -15,7 +15,8 @@ DOI) is generated from ``CITATION.cff``; regenerate it after editing the CFF fil
     .venv/bin/python -m sss_locus.pipeline.citation --check  # exit 1 if it is out of date
 
 Every BibTeX field is valid LaTeX: TeX specials outside ``$...$`` math are escaped, non-ASCII
-characters become LaTeX commands (``latexcodec``, a dependency of ``sphinxcontrib-bibtex``) and
+characters become LaTeX commands (``latexcodec``, a dependency of ``sphinxcontrib-bibtex``), or, for
+characters LaTeX has none for (a name in any script), ASCII (:func:`_transliterate`), and
 the Markdown emphasis of captions becomes ``\\emph``/``\\textbf``/``\\texttt``.
 """
 
@@ -59,11 +60,24 @@ def _escape_text(text: str) -> str:
             try:
                 out.append("{" + codecs.encode(char, "ulatex+ascii") + "}")
             except UnicodeEncodeError:
-                raise ValueError(
-                    f"character {char!r} (U+{ord(char):04X}) has no LaTeX equivalent; "
-                    "use ASCII, $...$ math or a common accented letter or symbol"
-                ) from None
+                out.append(_transliterate(char))
     return "".join(out)
+
+
+def _transliterate(char: str) -> str:
+    """A character LaTeX has no command for, in ASCII: its base letters (a decomposed letter),
+    its digit (any script's digits), else its code point ``U+XXXX`` (a name in any script stays
+    readable and distinct in BibTeX and the PDF; the pages show it as written)."""
+    import unicodedata
+
+    base = "".join(c for c in unicodedata.normalize("NFKD", char) if ord(c) < 128)
+    if base.strip():
+        return "".join(_SPECIALS.get(c, c) for c in base)
+    if unicodedata.digit(char, None) is not None:
+        return str(unicodedata.digit(char))
+    if unicodedata.category(char).startswith(("Z", "C")):
+        return " " if unicodedata.category(char) == "Zs" else ""
+    return f"U+{ord(char):04X}"
 
 
 def latex_escape(text: str, *, markdown: bool = False) -> str:
