@@ -20,6 +20,7 @@ from typing import Any
 import pandas as pd
 
 from sss_locus.experiments.pose_stats import round_sig
+from sss_locus.pipeline import budgets
 from sss_locus.pipeline.registry import ParameterError, get_entry
 
 #: The chapters whose computations the answer repeats, and the parameter naming the platform.
@@ -41,6 +42,7 @@ def _parameters(profile: str, key: str, pairs: list[list[str]]) -> tuple[dict[st
         mine = {n: v for n, v in overrides.items() if n in entry.parameters()}
         mine["platforms"] = f'["{key}"]'
         out.append(entry.resolve(profile, mine, from_text=True))
+        budgets.check_parameters(out[-1])
     return out[0], out[1]
 
 

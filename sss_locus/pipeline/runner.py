@@ -37,8 +37,8 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import (atomic, export, faults, kernels, orphans, outputs, paperinputs, paramcell, preflight,
-                                progress, provenance, userfiles)
+from sss_locus.pipeline import (atomic, budgets, export, faults, kernels, orphans, outputs, paperinputs, paramcell,
+                                preflight, progress, provenance, userfiles)
 from sss_locus.pipeline.kernels import KERNEL_NAME, hermetic_env, install_kernelspec
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
@@ -65,6 +65,7 @@ def resolve_parameters(entry: NotebookEntry, profile: str, overrides: dict[str, 
     (``data``, a :class:`sss_locus.experiments.userdata.DataInputs` from ``--data``/``--set``)
     as the ``data_files``/``data_set`` parameters of a notebook that declares them."""
     parameters = entry.resolve(profile, overrides, from_text=from_text)
+    budgets.check_parameters(parameters)  # memory and time the parameters alone would take
     parameters.update(userfiles.file_parameters(parameters))  # a user's observations or area file, read
     if data is not None and not data.is_default:
         for name, value in (("data_files", list(data.files)), ("data_set", list(data.sets))):

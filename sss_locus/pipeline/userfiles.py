@@ -94,9 +94,14 @@ def check_files(parameters: dict) -> None:
             from sss_locus.experiments.platforms import load_platform
             from sss_locus.experiments.survey_area import load_area
 
+            from sss_locus.experiments.survey_plans import load_settings
+            from sss_locus.pipeline.budgets import check_survey_design
+
             area = load_area(path)
-            for key in parameters.get("platforms", []):
-                sd.standard_for(sd.make_setting(load_platform(key), area, parameters["terrain"], seed=parameters["seed"],
+            platforms = [load_platform(key) for key in parameters.get("platforms", [])]
+            check_survey_design(parameters, area, platforms, load_settings())  # before the features are drawn
+            for platform in platforms:
+                sd.standard_for(sd.make_setting(platform, area, parameters["terrain"], seed=parameters["seed"],
                                                 n_features=parameters["n_features"], grid_m=parameters["grid_m"]))
         else:
             from sss_locus.experiments.your_pings import read_checked
