@@ -16,7 +16,8 @@ DOI) is generated from ``CITATION.cff``; regenerate it after editing the CFF fil
 
 Every BibTeX field is valid LaTeX: TeX specials outside ``$...$`` math are escaped, non-ASCII
 characters become LaTeX commands (``latexcodec``, a dependency of ``sphinxcontrib-bibtex``), or, for
-characters LaTeX has none for (a name in any script), ASCII (:func:`_transliterate`), and
+characters LaTeX has none for (a name in any script), ASCII
+(:func:`sss_locus.pipeline.latex_ascii.transliterate`), and
 the Markdown emphasis of captions becomes ``\\emph``/``\\textbf``/``\\texttt``.
 """
 
@@ -32,6 +33,7 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
+from sss_locus.pipeline.latex_ascii import transliterate
 
 ZENODO_FILE: Path = paths.REPO_ROOT / ".zenodo.json"
 #: Site folder (``_extra/notebooks``) holding the executed notebooks offered for download.
@@ -60,24 +62,8 @@ def _escape_text(text: str) -> str:
             try:
                 out.append("{" + codecs.encode(char, "ulatex+ascii") + "}")
             except UnicodeEncodeError:
-                out.append(_transliterate(char))
+                out.append(transliterate(char, _SPECIALS))
     return "".join(out)
-
-
-def _transliterate(char: str) -> str:
-    """A character LaTeX has no command for, in ASCII: its base letters (a decomposed letter),
-    its digit (any script's digits), else its code point ``U+XXXX`` (a name in any script stays
-    readable and distinct in BibTeX and the PDF; the pages show it as written)."""
-    import unicodedata
-
-    base = "".join(c for c in unicodedata.normalize("NFKD", char) if ord(c) < 128)
-    if base.strip():
-        return "".join(_SPECIALS.get(c, c) for c in base)
-    if unicodedata.digit(char, None) is not None:
-        return str(unicodedata.digit(char))
-    if unicodedata.category(char).startswith(("Z", "C")):
-        return " " if unicodedata.category(char) == "Zs" else ""
-    return f"U+{ord(char):04X}"
 
 
 def latex_escape(text: str, *, markdown: bool = False) -> str:
