@@ -81,8 +81,9 @@ def file_parameters(parameters: dict) -> dict[str, str]:
 def check_files(parameters: dict) -> None:
     """Read the user's files of a run (:func:`file_parameters`) as its chapter will, before a
     kernel starts: a bad area (not a valid polygon, too small for one line of a platform's
-    standard plan) or bad observations (a row, column or XTF byte offset) are refused in one line
-    naming the parameter. The data files (``--data``) must be in use (they define the platforms)."""
+    standard plan, over the memory or time budget: :mod:`sss_locus.pipeline.budgets`), bad
+    observations (a row, column or XTF byte offset, a sighting far from the frame's origin), a
+    bad ``origin`` or ``truth`` file are refused in one line naming the parameter. The data files (``--data``) must be in use (they define the platforms)."""
     name = "area" if "area_sha256" in parameters else "observations" if "observations_sha256" in parameters else None
     if name is None or name not in parameters:
         return
@@ -93,7 +94,6 @@ def check_files(parameters: dict) -> None:
             from sss_locus.experiments import survey_design as sd
             from sss_locus.experiments.platforms import load_platform
             from sss_locus.experiments.survey_area import load_area
-
             from sss_locus.experiments.survey_plans import load_settings
             from sss_locus.pipeline.budgets import check_survey_design
 
@@ -104,9 +104,21 @@ def check_files(parameters: dict) -> None:
                 sd.standard_for(sd.make_setting(platform, area, parameters["terrain"], seed=parameters["seed"],
                                                 n_features=parameters["n_features"], grid_m=parameters["grid_m"]))
         else:
+            from sss_locus.experiments.observations import frame_from_origin, to_local_frame
             from sss_locus.experiments.your_pings import read_checked
+            from sss_locus.experiments.your_pings_files import read_truth
 
-            read_checked(path, missing_attitude=parameters["missing_attitude"], range_sigma_m=parameters["range_sigma_m"])
+            table, _ = read_checked(path, missing_attitude=parameters["missing_attitude"],
+                                    range_sigma_m=parameters["range_sigma_m"])
+            name, observed, path = "origin", path, Path("")
+            frame = frame_from_origin(parameters.get("origin"))
+            name, path = "observations", observed
+            to_local_frame(table, frame)  # every sighting near the frame's origin
+            if parameters.get("truth"):
+                name = "truth"
+                truth = Path(parameters["truth"])
+                path = truth if truth.is_absolute() else paths.REPO_ROOT / truth
+                read_truth(path, observed)
     except ValueError as exc:
-        shown = path.name if path.name not in str(exc) else ""  # the file, once
+        shown = path.name if path.name and path.name not in str(exc) else ""  # the file, once
         raise ValueError(f"-p {name}{' ' + shown if shown else ''}: {exc}") from None
