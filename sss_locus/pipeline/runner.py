@@ -215,10 +215,13 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     figures = executed.parent / paths.FIGURES_SUBDIR if side else paths.figures_dir()
     if not side:
         preflight.check_writable(paths.build_dir(), "build area")
+        for folder, what in ((executed.parent, "executed-copies folder"), (figures, "figures folder")):
+            preflight.check_writable(folder, what)  # a read-only one found now, not at the commit
     executed.parent.mkdir(parents=True, exist_ok=True)
     tmp_root = executed.parent if side else paths.build_dir() / "tmp"
     tmp_root.mkdir(parents=True, exist_ok=True)
     orphans.remove_stale_staging(tmp_root)  # left by runs that were killed (SIGKILL)
+    orphans.remove_stale_temporaries(figures, executed.parent)  # ... during their commit
     staging = tmp_root / f".run-{entry.name}-{os.getpid()}-{uuid.uuid4().hex[:12]}"
     key = run_key(entry, profile, parameters)
     env = hermetic_env()
