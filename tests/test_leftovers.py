@@ -79,3 +79,16 @@ def test_a_read_only_figures_folder_is_refused_before_the_kernel(build_area, mon
     assert cli.main(["run", "concept"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "figures folder" in err and "not writable" in err and not started
+
+
+@pytest.mark.parametrize("make, fragment", [
+    (lambda tmp: (tmp / "afile").write_text("x") and tmp / "afile" / "sub", "is a file, not a folder"),
+    (lambda tmp: "/proc/nope", "not writable"),
+])
+def test_a_bad_cache_folder_is_named_in_one_line(tmp_path, monkeypatch, capsys, make, fragment):
+    monkeypatch.setenv("SSS_LOCUS_CACHE_DIR", str(make(tmp_path)))
+    assert cli.main(["answer", "-p", "platform", "auv"]) == 2
+    assert cli.main(["cache", "--prune"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 2 and all("result cache (SSS_LOCUS_CACHE_DIR)" in e and fragment in e for e in err), err
+    assert all("Errno" not in e for e in err)

@@ -232,6 +232,14 @@ def _cache(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check_cache_folder() -> None:
+    """The result cache must be a folder this process can write (or create), before any work."""
+    from sss_locus.pipeline.preflight import check_writable
+
+    given = os.environ.get(paths.CACHE_DIR_ENV)
+    check_writable(paths.cache_dir(), f"result cache ({paths.CACHE_DIR_ENV})" if given else "result cache")
+
+
 def main(argv: list[str] | None = None) -> int:
     from sss_locus.pipeline.runner import NotebookFailed
 
@@ -239,6 +247,9 @@ def main(argv: list[str] | None = None) -> int:
     handler = {"run": _run, "book": _book, "params": _params, "list": _list, "cache": _cache,
                "answer": _answer}[args.command]
     try:
+        if args.command in ("run", "answer") or (args.command == "book" and not args.no_run) or \
+                (args.command == "cache" and args.prune):
+            _check_cache_folder()
         with areas.entered(getattr(args, "name", None)):
             if args.command in ("run", "book"):
                 with scaleout.scheduler_environment(args):
