@@ -137,3 +137,28 @@ def test_a_refusal_reaches_the_command_line_in_one_line(tmp_path, capsys, monkey
     assert cli.main(["run", "your_pings", "--profile", "quick", "-p", "origin", "[nan, 43]"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "origin" in err and not started
+
+
+def _once(tmp_path):
+    header, rows = _rows()
+    seen, kept = set(), []
+    for r in rows:
+        if r[0] not in seen:
+            seen.add(r[0])
+            kept.append(r)
+    return _write(tmp_path, header, kept, name="once.csv")
+
+
+def test_no_feature_seen_twice_is_a_defined_result_in_the_library(tmp_path):
+    from sss_locus.experiments import your_pings as yp
+
+    res = yp.run(_once(tmp_path))
+    assert (res.features["n_sightings"] == 1).all()
+    assert set(res.features["two_view_status"]) == {"too few views"} == set(res.features["nview_status"])
+    assert res.features["locus_length_m"].isna().all() and len(res.locus) == 0
+
+
+def test_no_feature_seen_twice_is_refused_before_the_kernel(tmp_path):
+    with pytest.raises(ValueError, match="^-p observations once.csv: no feature is seen twice"):
+        resolve_parameters(get_entry("your_pings"), "quick", {"observations": str(_once(tmp_path)), "truth": '""'},
+                           from_text=True)

@@ -110,6 +110,10 @@ def check_files(parameters: dict) -> None:
 
             table, _ = read_checked(path, missing_attitude=parameters["missing_attitude"],
                                     range_sigma_m=parameters["range_sigma_m"])
+            if not table["feature"].duplicated().any():
+                raise ValueError(f"no feature is seen twice ({len(table)} sightings of {len(table)} features): a "
+                                 "position needs two sightings of one feature; give each feature the same identifier "
+                                 "in every ping that saw it")
             name, observed, path = "origin", path, Path("")
             frame = frame_from_origin(parameters.get("origin"))
             name, path = "observations", observed
