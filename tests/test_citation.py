@@ -169,3 +169,13 @@ def test_launch_links_need_a_github_repository(tmp_path):
         "Binder": "https://mybinder.org/v2/gh/owner/sss-locus/dev?labpath=notebooks/concept.ipynb",
         "Colab": "https://colab.research.google.com/github/owner/sss-locus/blob/dev/notebooks/concept.ipynb",
     }
+
+
+def test_a_figure_of_an_area_named_in_any_script_gets_an_entry(tmp_path):
+    """The survey-design tables' captions name the area (issue 38: ``港``, ``á``, Arabic digits
+    stopped publish_table); the entry parses and is ASCII."""
+    config = tmp_path / "_config.yml"
+    config.write_text("html:\n  baseurl: ''\n")
+    bib = citation.figure_bibtex(manifest("tab-x", caption="Plans over 港口 á ١٢ مرفأ: headings."), config=config)
+    assert bib.isascii()
+    assert "U+6E2F" in parse(bib).entries["sss-locus:tab-x"].fields["title"]
