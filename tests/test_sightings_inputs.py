@@ -162,3 +162,13 @@ def test_no_feature_seen_twice_is_refused_before_the_kernel(tmp_path):
     with pytest.raises(ValueError, match="^-p observations once.csv: no feature is seen twice"):
         resolve_parameters(get_entry("your_pings"), "quick", {"observations": str(_once(tmp_path)), "truth": '""'},
                            from_text=True)
+
+
+@pytest.mark.parametrize("value, fragment", [("", "the path is empty"), ('""', "the path is empty"),
+                                             ("/dev/zero", "character device"), ("/tmp", "is a directory"),
+                                             ("no/such.csv", "does not exist")])
+@pytest.mark.parametrize("notebook, parameter", [("your_pings", "observations"), ("survey_design", "area")])
+def test_user_file_parameters_say_what_a_non_file_is(notebook, parameter, value, fragment):
+    with pytest.raises(ValueError) as info:
+        resolve_parameters(get_entry(notebook), "quick", {parameter: value}, from_text=True)
+    assert str(info.value).startswith(f"-p {parameter}: ") and fragment in str(info.value), info.value

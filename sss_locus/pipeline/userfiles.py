@@ -70,6 +70,9 @@ def file_parameters(parameters: dict) -> dict[str, str]:
     its ``*_sha256`` parameter), resolved and hashed (:func:`observation_parameters`,
     :func:`area_parameters`), after reading the files as the chapter will (:func:`check_files`)."""
     out = {}
+    for name in ("observations", "area"):
+        if name in parameters and f"{name}_sha256" in parameters and not _unquote(str(parameters[name])):
+            raise ValueError(f"-p {name}: the path is empty; give the {name} file's name")
     if "observations" in parameters and "observations_sha256" in parameters:
         out.update(observation_parameters(parameters["observations"], parameters.get("truth")))
     if "area" in parameters and "area_sha256" in parameters:
@@ -89,6 +92,10 @@ def check_files(parameters: dict) -> None:
         return
     given = Path(parameters[name])  # resolved (file_parameters), or as typed when not found
     path = paths.REPO_ROOT / given if (paths.REPO_ROOT / given).is_file() else given
+    if not path.is_file():  # say what it is: a folder, a FIFO, a device ...
+        from sss_locus.experiments.inputs import missing_file
+
+        raise ValueError(f"-p {name}: {missing_file(path, f'{name} file')}")
     try:
         if name == "area":
             from sss_locus.experiments import survey_design as sd
