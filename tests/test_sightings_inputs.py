@@ -172,3 +172,24 @@ def test_user_file_parameters_say_what_a_non_file_is(notebook, parameter, value,
     with pytest.raises(ValueError) as info:
         resolve_parameters(get_entry(notebook), "quick", {parameter: value}, from_text=True)
     assert str(info.value).startswith(f"-p {parameter}: ") and fragment in str(info.value), info.value
+
+
+def test_a_survey_moved_across_the_antimeridian_gives_the_same_features(tmp_path):
+    """The example moved in longitude so that it straddles +-180 deg: a rigid move of the whole
+    survey (same latitude), so every feature's status and spread must be unchanged (the plain mean
+    longitude put the origin ~180 deg away: resolved features diverged, spreads grew)."""
+    import io
+
+    import pandas as pd
+
+    from sss_locus.experiments import your_pings as yp
+
+    lines = [ln for ln in EXAMPLE.read_text(encoding="utf-8").splitlines() if not ln.startswith("#")]
+    table = pd.read_csv(io.StringIO("\n".join(lines)))
+    table["lon_deg"] = (table["lon_deg"] + 250.0 + 180.0) % 360.0 - 180.0
+    assert (table["lon_deg"] > 179).any() and (table["lon_deg"] < -179).any()
+    table.to_csv(tmp_path / "moved.csv", index=False)
+    moved, home = yp.run(tmp_path / "moved.csv").features, yp.run(EXAMPLE).features
+    assert list(moved["nview_status"]) == list(home["nview_status"])
+    np.testing.assert_allclose(moved["flat_spread_m"], home["flat_spread_m"], atol=1e-6)
+    np.testing.assert_allclose(moved["locus_length_m"], home["locus_length_m"], atol=1e-6)
