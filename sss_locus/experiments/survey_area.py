@@ -24,9 +24,15 @@ GeoJSON (RFC 7946: longitude/latitude, WGS 84): a ``Polygon``, or a ``Feature`` 
 ``FeatureCollection`` whose first polygon is the area; its origin is the polygon's first vertex
 unless the feature's properties give ``origin_lonlat``. Holes (inner rings) are kept.
 
-Validation: every ring closed or not, at least three distinct vertices, a valid polygon
-(:func:`shapely.is_valid`: no self-intersection) and an area of at least :data:`MIN_AREA_M2`;
-each refused in one line naming the file and the rule.
+``holes_m`` (rings in metres of the local frame) may go with either kind of vertices; with
+``vertices_lonlat`` they are in the frame around the origin.
+
+Validation: every ring closed or not, at least three distinct vertices of numbers (not booleans
+or strings), a valid polygon (:func:`shapely.is_valid`: no self-intersection), an area of at
+least :data:`MIN_AREA_M2`, at most :data:`MAX_VERTICES` vertices in a file of at most
+:data:`MAX_FILE_BYTES`, every vertex within :data:`MAX_ORIGIN_DISTANCE_M` of the origin when
+there is one, GeoJSON members of their RFC 7946 types; each refused in one line naming the file
+and the rule.
 """
 
 from __future__ import annotations
