@@ -99,7 +99,7 @@ def test_bad_base_url_is_rejected(tmp_path):
 @pytest.mark.skipif(not (shutil.which("pdflatex") and shutil.which("bibtex")), reason="no TeX installation")
 def test_entries_compile_with_latex(tmp_path):
     captions = [NASTY, "Plain caption.", "Width {in} m; 100% of \\alpha, café, ≈ 5 µm. Rest.",
-                "Unbalanced $ dollar and }brace{. Rest."]
+                "Unbalanced $ dollar and }brace{. Rest.", "Plans over 港口 á ١٢ مرفأ Ωmega. Rest."]
     bib = "\n".join(citation.figure_bibtex(manifest(f"fig-n{i}", caption=c)) for i, c in enumerate(captions))
     keys = [f"sss-locus:fig-n{i}" for i in range(len(captions))]
     assert set(parse(bib).entries) == set(keys)
