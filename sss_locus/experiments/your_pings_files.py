@@ -27,6 +27,7 @@ import json
 import numpy as np
 import pandas as pd
 
+from .inputs import missing_file
 from .your_pings import PingResults
 
 #: Decimal places of written coordinates: 1e-9 deg is about 0.1 mm; heights to 0.1 mm.
@@ -120,9 +121,24 @@ def read_truth(truth, observations) -> pd.DataFrame | None:
     if truth.resolve().parent == example and observations.resolve().parent != example:
         return None
     if not truth.is_file():
-        raise ValueError(f"truth file {truth} does not exist")
-    table = pd.read_csv(truth, comment="#")
+        raise ValueError(missing_file(truth, "truth file"))
+    try:
+        table = pd.read_csv(truth, comment="#", dtype={"feature": str})
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"truth file {truth.name}: not UTF-8 text (byte {exc.start})") from None
+    except (pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
+        raise ValueError(f"truth file {truth.name}: not a readable CSV file ({str(exc).strip().splitlines()[-1]})") from None
     missing = [c for c in ("feature", "east_m", "north_m", "up_m") if c not in table.columns]
     if missing:
-        raise ValueError(f"{truth.name}: missing column(s) {missing}")
+        raise ValueError(f"truth file {truth.name}: missing column(s) {missing}; the header has {list(table.columns)}")
+    for c in ("east_m", "north_m", "up_m"):
+        values = pd.to_numeric(table[c], errors="coerce")
+        bad = ~np.isfinite(values.to_numpy(float))
+        if bad.any():
+            raise ValueError(f"truth file {truth.name} row {int(np.flatnonzero(bad)[0]) + 1}, column {c}: "
+                             f"must be a finite number of metres; got {table[c].iloc[int(np.flatnonzero(bad)[0])]!r}")
+        table[c] = values.astype(float)
+    if table["feature"].duplicated().any():
+        raise ValueError(f"truth file {truth.name}: feature {table['feature'][table['feature'].duplicated()].iloc[0]!r} "
+                         "appears twice")
     return table.astype({"feature": str})
