@@ -16,7 +16,7 @@ from scipy.stats import binned_statistic_dd
 
 from .replicates import (N_BATCHES, batch_count, check_confidence, fisher_z_interval,
                          rank_correlation, replicate_interval)
-from .rowstats import average_ranks, batch_average_ranks, ranks_in_order, value_order
+from .rowstats import average_ranks, batch_average_ranks
 
 TARGETS = ("locus_length_m", "locus_length_normalized")
 """Raw and range-normalised locus length (``locus_length_m / mean_range_m``)."""
@@ -35,7 +35,6 @@ _RANK_MEMO_BYTES = 256 * 2 ** 20
 """Bound of the memo of column ranks (:func:`column_ranks`), bytes."""
 _rank_memo: OrderedDict[tuple, np.ndarray] = OrderedDict()
 _memo_bytes = [0]  # bytes held by _rank_memo
-_order_memo: OrderedDict[tuple, np.ndarray] = OrderedDict()  # value orders (_stable_order)
 _COPY_ON_WRITE = int(pd.__version__.split(".")[0]) >= 3  # always on from pandas 3
 
 
@@ -166,17 +165,25 @@ def column_ranks(values: np.ndarray, n_batches: int = 1) -> np.ndarray:
 
 def column_rank_sets(values: np.ndarray, batch_counts: Sequence[int]) -> list[np.ndarray]:
     """:func:`column_ranks` of ``values`` for each ``k`` in ``batch_counts`` (1: the whole
-    column), from at most one sort of the column: the batches' ranks are dealt from the whole
-    column's order (:func:`~sss_locus.experiments.rowstats.batch_average_ranks`)."""
+    column).
+
+    Parameters
+    ----------
+    values : numpy.ndarray, shape (n,)
+        One column of a table.
+    batch_counts : sequence of int
+        Numbers of replicate batches ``k``, each ``>= 1``.
+
+    Returns
+    -------
+    list of numpy.ndarray, each shape (n,)
+        Per ``k``, the ranks of each batch ``values[j::k]`` within it, batches in order
+        (:func:`~sss_locus.experiments.rowstats.batch_average_ranks`).
+    """
     v = np.ascontiguousarray(values)
-    order = []  # the column's value order, once computed
 
     def rank(k: int) -> np.ndarray:
-        if v.ndim != 1 or (v.dtype.kind == "f" and np.isnan(v).any()):
-            return average_ranks(v) if k == 1 else batch_average_ranks(v, k)
-        if not order:
-            order.append(value_order(v))
-        return ranks_in_order(v, order[0]) if k == 1 else batch_average_ranks(v, k, order[0])
+        return average_ranks(v) if k == 1 else batch_average_ranks(v, k)
 
     if v.ndim != 1 or v.dtype.kind not in "fiub" or not 0 < 2 * v.size < 2 ** 32:
         return [rank(int(k)) for k in batch_counts]
@@ -225,63 +232,77 @@ def _binned(df: pd.DataFrame, columns: Sequence[str], edges: Sequence[np.ndarray
 
 def grouped_binned(df: pd.DataFrame, columns: Sequence[str], edges: Sequence[np.ndarray], value: str,
                    groups=None, n_groups: int = 1) -> tuple[np.ndarray, np.ndarray, int]:
-    """:func:`grouped_binned_medians` of the rows of ``df`` (``groups`` one per row; ``None``:
-    all in group 0) without those with a NaN coordinate or value, and their number. The order
-    of the ``value`` column is remembered by its content (a chapter bins one column many ways)."""
+    """:func:`grouped_binned_medians` of the rows of ``df`` without those with a NaN
+    coordinate or value, and their number.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        Table holding ``columns`` and ``value``.
+    columns : sequence of str
+        Columns binned, one axis each.
+    edges : sequence of numpy.ndarray
+        Increasing bin edges of each column.
+    value : str
+        Column whose medians are taken.
+    groups : array_like of int, shape (len(df),), optional
+        Group ``0 .. n_groups - 1`` of each row; ``None``: all in group 0.
+    n_groups : int
+        Number of groups.
+
+    Returns
+    -------
+    count, median : numpy.ndarray, shape (n_groups, *bins)
+        As :func:`grouped_binned_medians`.
+    n_nan : int
+        Rows left out for a NaN.
+    """
     coords = np.column_stack([df[c].to_numpy(float) for c in columns])
     v = df[value].to_numpy(float)
     ok = ~(np.isnan(coords).any(axis=1) | np.isnan(v))
     groups = np.zeros(len(v), np.intp) if groups is None else np.asarray(groups)
-    order = _stable_order(v)
-    if not ok.all():  # the order of the rows kept, numbered among them
-        order = (np.cumsum(ok) - 1)[order[ok[order]]]
-    count, med = grouped_binned_medians(coords[ok], v[ok], edges, groups[ok], n_groups, order)
+    count, med = grouped_binned_medians(coords[ok], v[ok], edges, groups[ok], n_groups)
     return count, med, int((~ok).sum())
 
 
-def _stable_order(v: np.ndarray) -> np.ndarray:
-    """``np.argsort(v, kind="stable")``, remembered for the last few columns by content."""
-    key = (v.size, hashlib.sha256(np.ascontiguousarray(v).view(np.uint8)).digest())
-    if key not in _order_memo:
-        _order_memo[key] = np.argsort(v, kind="stable")
-        while len(_order_memo) > 4:
-            _order_memo.popitem(last=False)
-    _order_memo.move_to_end(key)
-    return _order_memo[key]
-
-
 def grouped_binned_medians(coords: np.ndarray, values: np.ndarray, edges: Sequence[np.ndarray],
-                           groups: np.ndarray, n_groups: int, order=None) -> tuple[np.ndarray, np.ndarray]:
-    """Per group ``0 .. n_groups - 1`` (``groups``, one per row), the count and the median of
-    ``values`` in each bin of ``coords`` ``(n, d)`` (rows without NaN): arrays of shape
-    ``(n_groups, *bins)``, medians NaN in empty bins.
+                           groups: np.ndarray, n_groups: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per group, the count and the median of ``values`` in each bin of ``coords``: one
+    :func:`scipy.stats.binned_statistic_dd` (statistic ``"median"``) per group.
 
-    The numbers of one :func:`scipy.stats.binned_statistic_dd` (statistic ``"median"``) per
-    group, bit for bit: the bins are scipy's (its ``binnumber``), and its median, the mean of
-    the middle two of the bin's values ordered by value and then by row (``lexsort``), is taken
-    the same way, from one stable sort of the values and one stable sort of the (group, bin)
-    numbers along it (a radix sort for up to 65,536 of them) instead of one ``lexsort`` per
-    group. ``order``: ``np.argsort(values, kind="stable")`` if already known.
+    Parameters
+    ----------
+    coords : numpy.ndarray, shape (n, d)
+        Coordinates of the rows (no NaN).
+    values : numpy.ndarray, shape (n,)
+        Values of the rows (no NaN).
+    edges : sequence of d numpy.ndarray
+        Increasing bin edges of each coordinate (scipy's bins: half-open, the last closed).
+    groups : numpy.ndarray of int, shape (n,)
+        Group ``0 .. n_groups - 1`` of each row.
+    n_groups : int
+        Number of groups.
+
+    Returns
+    -------
+    count : numpy.ndarray of int, shape (n_groups, *bins)
+        Rows per bin (``bins`` one less than each axis' edges).
+    median : numpy.ndarray of float, shape (n_groups, *bins)
+        Median per bin; NaN in empty bins.
     """
-    shape = tuple(len(e) + 1 for e in edges)  # scipy's bin numbers count the outlier bins either side
-    n_flat = int(np.prod(shape))
-    size = n_groups * n_flat
-    if len(values):
-        bins = binned_statistic_dd(coords, values, "count", bins=list(edges)).binnumber
-        key = (np.asarray(groups, np.intp) * n_flat + bins).astype(np.min_scalar_type(size - 1))
-    else:  # scipy needs a sample to bin: every bin empty
-        key = np.zeros(0, np.intp)
-    order = np.argsort(values, kind="stable") if order is None else order  # by value, equal values by row
-    order = order[np.argsort(key[order], kind="stable")]  # by group and bin, each by value and row
-    s = values[order]
-    count = np.bincount(key, minlength=size)
-    start = np.cumsum(count) - count
-    med = np.full(size, np.nan)
-    filled = count > 0
-    mid = start[filled] + (count[filled] - 1) / 2
-    med[filled] = (s[np.floor(mid).astype(int)] + s[np.ceil(mid).astype(int)]) / 2
-    inner = (slice(None),) + tuple(slice(1, -1) for _ in edges)
-    return count.reshape((n_groups,) + shape)[inner], med.reshape((n_groups,) + shape)[inner]
+    bins = tuple(len(e) - 1 for e in edges)
+    count = np.zeros((int(n_groups),) + bins, np.intp)
+    med = np.full((int(n_groups),) + bins, np.nan)
+    groups = np.asarray(groups)
+    for g in range(int(n_groups)):
+        sel = groups == g
+        if sel.any():  # scipy needs a sample to bin: an empty group keeps every bin empty
+            res = binned_statistic_dd(coords[sel], values[sel], "median", bins=list(edges))
+            med[g] = res.statistic
+            inner = tuple(slice(1, -1) for _ in edges)  # scipy's bin numbers count the outlier bins
+            count[g] = np.bincount(res.binnumber, minlength=int(np.prod([b + 2 for b in bins]))
+                                   ).reshape(tuple(b + 2 for b in bins))[inner]
+    return count, med
 
 
 def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m", *,
