@@ -48,7 +48,20 @@ def with_derived(df: pd.DataFrame, misalignment: str = "magnitude") -> pd.DataFr
     """A copy of ``df`` with the magnitude columns used in :data:`CANDIDATES`, and with
     ``elevation_misalignment_deg`` recomputed from ``psi1_deg`` and ``psi2_deg`` under the
     reading ``misalignment`` (:data:`MISALIGNMENT_READINGS`; ``"magnitude"`` reproduces the
-    kernel's column)."""
+    kernel's column).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        A pose-space table (:func:`~sss_locus.experiments.pose_space.sample_pose_space`).
+    misalignment : {"magnitude", "signed"}
+        Reading of the paper's ``max(psi1, psi2)``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        A copy of ``df`` with the added and recomputed columns (degrees).
+    """
     if misalignment not in MISALIGNMENT_READINGS:
         raise ValueError(f"misalignment must be one of {list(MISALIGNMENT_READINGS)}; got {misalignment!r}")
     out = df.copy(deep=not _COPY_ON_WRITE)  # with copy-on-write a shallow copy is a copy
@@ -88,6 +101,19 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     constant column (e.g. the boat's pitch, always 0) has no rank correlation: with
     ``drop_constant`` it is left out (listed in ``out.attrs["dropped"]``), otherwise it raises
     ``ValueError``.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table, with the columns named in ``candidates`` and ``targets``.
+    candidates, targets : sequence of str
+        Columns correlated (default :data:`CANDIDATES`, :data:`TARGETS`).
+    n_batches : int
+        Replicate batches, ``>= 2``.
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+    drop_constant : bool
+        Leave constant candidates out instead of raising.
 
     Returns
     -------
@@ -133,7 +159,28 @@ def _centred_stack(columns: list[np.ndarray], spans: list[tuple[int, int]]) -> n
 def rho_frame(rho: np.ndarray, batches: np.ndarray, n: int, candidates: Sequence[str],
               targets: Sequence[str], confidence_level: float = 0.95, dropped=()) -> pd.DataFrame:
     """The table of :func:`spearman_table` from a point estimate ``rho`` ``(p, q)`` (candidates x
-    targets), the ``k`` replicate batches' rhos ``(k, p, q)`` and the number of rows ``n``."""
+    targets), the ``k`` replicate batches' rhos ``(k, p, q)`` and the number of rows ``n``.
+
+    Parameters
+    ----------
+    rho : numpy.ndarray, shape (p, q)
+        Spearman rho of the whole table, candidates x targets.
+    batches : numpy.ndarray, shape (k, p, q)
+        Rho of each replicate batch.
+    n : int
+        Rows of the table.
+    candidates, targets : sequence of str
+        Names of the ``p`` candidates and ``q`` targets.
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+    dropped : sequence of str
+        Constant columns left out (``attrs["dropped"]``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        As :func:`spearman_table`.
+    """
     lo, hi = replicate_interval(rho, batches, confidence_level, bounds=(-1.0, 1.0))
     zlo, zhi = fisher_z_interval(rho, n, confidence_level)
     rows = [dict(target=tg, quantity=c, rho=rho[i, j], ci_low=lo[i, j], ci_high=hi[i, j], n=n,
@@ -159,6 +206,18 @@ def column_ranks(values: np.ndarray, n_batches: int = 1) -> np.ndarray:
     SHA-256 of its bytes. Numeric columns without NaN are remembered (least recently used
     first out, at most :data:`_RANK_MEMO_BYTES`), as twice their ranks in ``uint32`` (exact:
     ranks are half-integers up to ``n``); the ranks returned are the same numbers either way.
+
+    Parameters
+    ----------
+    values : numpy.ndarray, shape (n,)
+        One column of a table.
+    n_batches : int
+        Number of replicate batches ``k >= 1`` (1: the whole column).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n,), float64
+        The average ranks (half-integers), batches one after another.
     """
     return column_rank_sets(values, (int(n_batches),))[0]
 
@@ -315,6 +374,19 @@ def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m
     NaN coordinate or value lies in no bin (neither counted nor in a median); their number is
     ``attrs["n_nan"]``. Every bin appears (empty ones with ``count`` 0 and NaN median).
 
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        Table holding ``x``, ``y`` and ``value``.
+    x, y : str
+        Columns binned.
+    value : str
+        Column whose median is taken.
+    x_edges, y_edges : array_like
+        Strictly increasing bin edges, at least two each.
+    min_count : int
+        Rows a bin needs to be shown, ``>= 1``.
+
     Returns
     -------
     pandas.DataFrame
@@ -337,7 +409,20 @@ def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m
 
 
 def bin_index(v: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    """Bin of each value for increasing ``edges``: half-open ``[lo, hi)``, the last bin closed; -1 outside."""
+    """Bin of each value for increasing ``edges``: half-open ``[lo, hi)``, the last bin closed; -1 outside.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Values.
+    edges : numpy.ndarray, shape (m + 1,)
+        Increasing bin edges.
+
+    Returns
+    -------
+    numpy.ndarray of int, shape of ``v``
+        Bin ``0 .. m - 1`` of each value, -1 outside the edges.
+    """
     i = np.searchsorted(edges, v, side="right") - 1
     i = np.where(v == edges[-1], len(edges) - 2, i)
     return np.where((v < edges[0]) | (v > edges[-1]), -1, i)
@@ -345,7 +430,20 @@ def bin_index(v: np.ndarray, edges: np.ndarray) -> np.ndarray:
 
 def median_grid(binned: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(x_edges, y_edges, Z)`` for ``pcolormesh`` from :func:`binned_median`; masked bins NaN.
-    ``Z`` has shape ``(n_y, n_x)``."""
+    ``Z`` has shape ``(n_y, n_x)``.
+
+    Parameters
+    ----------
+    binned : pandas.DataFrame
+        A :func:`binned_median` table.
+
+    Returns
+    -------
+    x_edges : numpy.ndarray, shape (n_x + 1,)
+    y_edges : numpy.ndarray, shape (n_y + 1,)
+    Z : numpy.ndarray, shape (n_y, n_x)
+        Medians, NaN in masked bins.
+    """
     xe = np.unique(np.concatenate([binned["x_lo"], binned["x_hi"]]))
     ye = np.unique(np.concatenate([binned["y_lo"], binned["y_hi"]]))
     z = np.where(binned["masked"], np.nan, binned["median"]).reshape(len(xe) - 1, len(ye) - 1)
@@ -355,7 +453,27 @@ def median_grid(binned: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarra
 def binned_profile(df: pd.DataFrame, x: str, value: str = "locus_length_m", *, edges,
                    min_count: int = 30) -> pd.DataFrame:
     """1-D version of :func:`binned_median`: ``lo, hi, mid, count, median, masked``; the same
-    bins and NaN rule."""
+    bins and NaN rule.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        Table holding ``x`` and ``value``.
+    x : str
+        Column binned.
+    value : str
+        Column whose median is taken.
+    edges : array_like
+        Strictly increasing bin edges, at least two.
+    min_count : int
+        Rows a bin needs to be shown, ``>= 1``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per bin; ``attrs`` as :func:`binned_median` (``x``, ``value``, ``min_count``,
+        ``n_nan``).
+    """
     _require(df, [x, value])
     e = _edges("edges", edges)
     count, med, n_nan = _binned(df, [x], [e], value, min_count)
@@ -367,7 +485,20 @@ def binned_profile(df: pd.DataFrame, x: str, value: str = "locus_length_m", *, e
 
 
 def round_sig(x, digits: int = 2):
-    """Round to ``digits`` significant figures (array-friendly; 0 and NaN pass through)."""
+    """Round to ``digits`` significant figures (array-friendly; 0 and NaN pass through).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Values.
+    digits : int
+        Significant figures.
+
+    Returns
+    -------
+    numpy.ndarray
+        The rounded values (0-d for a scalar).
+    """
     x = np.asarray(x, float)
     with np.errstate(divide="ignore", invalid="ignore"):
         mag = np.where((x == 0) | ~np.isfinite(x), 0, np.floor(np.log10(np.abs(x))))
@@ -376,7 +507,20 @@ def round_sig(x, digits: int = 2):
 
 
 def agree_sig(a, b, digits: int = 2) -> np.ndarray:
-    """Whether ``a`` and ``b`` are equal after rounding each to ``digits`` significant figures."""
+    """Whether ``a`` and ``b`` are equal after rounding each to ``digits`` significant figures.
+
+    Parameters
+    ----------
+    a, b : float or array_like
+        Values compared (broadcast).
+    digits : int
+        Significant figures.
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        Whether they agree at ``digits``.
+    """
     return np.asarray(round_sig(a, digits) == round_sig(b, digits))
 
 
@@ -395,7 +539,23 @@ HEATMAP_PANELS = (
 
 def panel_edges(column: str, platform, n_bins: int) -> np.ndarray:
     """Bin edges spanning the sampled range of ``column`` for ``platform`` (its aperture and
-    attitude limits). A column held at 0 (the boat's pitch) gets a single bin [-0.5, 0.5]."""
+    attitude limits). A column held at 0 (the boat's pitch) gets a single bin [-0.5, 0.5].
+
+    Parameters
+    ----------
+    column : str
+        A heatmap column (``r1_m``, ``azimuth1_deg``, ``yaw2_deg`` ...).
+    platform : Platform
+        The platform sampled.
+    n_bins : int
+        Number of bins.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``n_bins + 1`` equal-width edges (metres or degrees, as the column), or the two edges of
+        the single bin.
+    """
     sonar = platform.sonar
     limits = {
         "r1_m": (sonar.min_range_m, sonar.max_range_m), "r2_m": (sonar.min_range_m, sonar.max_range_m),
@@ -415,7 +575,26 @@ def panel_edges(column: str, platform, n_bins: int) -> np.ndarray:
 
 def heatmaps(df: pd.DataFrame, platform, *, n_bins: int = 24, min_count: int = 30,
              value: str = "locus_length_m") -> dict[str, pd.DataFrame]:
-    """:func:`binned_median` for every panel of :data:`HEATMAP_PANELS`, keyed by panel letter."""
+    """:func:`binned_median` for every panel of :data:`HEATMAP_PANELS`, keyed by panel letter.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The pose-space table (feature on the side the chapter maps).
+    platform : Platform
+        The platform sampled (for :func:`panel_edges`).
+    n_bins : int
+        Bins per axis.
+    min_count : int
+        Rows a bin needs to be shown.
+    value : str
+        Column whose median is taken.
+
+    Returns
+    -------
+    dict of str to pandas.DataFrame
+        Per panel letter of :data:`HEATMAP_PANELS`, its :func:`binned_median` table.
+    """
     return {p: binned_median(df, x, y, value, x_edges=panel_edges(x, platform, n_bins),
                              y_edges=panel_edges(y, platform, n_bins), min_count=min_count)
             for p, x, y in HEATMAP_PANELS}
