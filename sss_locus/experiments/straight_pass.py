@@ -71,7 +71,18 @@ def vehicle_attitude(yaw_deg, pitch_deg, roll_deg) -> Rotation:
 
 
 def attitude_angles(rot: Rotation) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Inverse of :func:`vehicle_attitude`: (yaw, pitch, roll) in degrees."""
+    """Inverse of :func:`vehicle_attitude`: (yaw, pitch, roll) in degrees.
+
+    Parameters
+    ----------
+    rot : scipy.spatial.transform.Rotation
+        Vehicle attitudes ``R_world_vehicle``.
+
+    Returns
+    -------
+    yaw_deg, pitch_deg, roll_deg : numpy.ndarray
+        One per rotation, degrees (pitch nose-up positive).
+    """
     e = np.atleast_2d(rot.as_euler("ZYX", degrees=True))
     return e[:, 0], -e[:, 1], e[:, 2]
 
@@ -87,7 +98,22 @@ def mount(transducer) -> tuple[np.ndarray, np.ndarray]:
 
 def transducer_stack(platform, is_port):
     """Stacked transducer rotations (matrices) and positions for a boolean port mask: row ``i``
-    is a copy of the port transducer's where ``is_port[i]``, else of the starboard one's."""
+    is a copy of the port transducer's where ``is_port[i]``, else of the starboard one's.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform.
+    is_port : numpy.ndarray of bool, shape (n,)
+        Whether row ``i`` observes with the port transducer.
+
+    Returns
+    -------
+    rotations : numpy.ndarray, shape (n, 3, 3)
+        Transducer-to-vehicle rotation matrices.
+    positions : numpy.ndarray, shape (n, 3)
+        Transducer positions in the vehicle frame, metres.
+    """
     mats, pos = _mount_pair(platform.transducers["starboard"], platform.transducers["port"])  # index 0, 1
     pick = np.asarray(is_port, bool).astype(np.intp)
     return np.take(mats, pick, axis=0), np.take(pos, pick, axis=0)
@@ -193,8 +219,12 @@ def observe_pass(platform: Platform, is_port, heading_deg, ground_offset_m, alti
                  pitch_deg, elevation_rad) -> dict[str, np.ndarray]:
     """The ping of one straight pass that sees the feature (at the origin) at ``elevation_rad``.
 
-    Parameters (arrays broadcast to one shape ``(n,)``)
+    The arguments after ``platform`` are arrays broadcast to one shape ``(n,)``.
+
+    Parameters
     ----------
+    platform : Platform
+        The vehicle and its transducers.
     is_port : bool
         Observing transducer.
     heading_deg : float
