@@ -16,10 +16,17 @@ the wall and CPU seconds (the command and every process it waited for) of each r
 medians per tree and command, and the ratio. This is a benchmark, not a test: nothing is
 asserted.
 
+``--variants`` also runs the pose-space chapter on this tree with ONE of the baseline's own
+implementations put back (``ranks``: ``rowstats`` and ``pose_stats.column_rank_sets``;
+``medians``: ``pose_stats.grouped_binned``/``grouped_binned_medians``; ``attitude``:
+``straight_pass.vehicle_attitude``), each copied from ``REF``'s source by a ``sitecustomize``
+module on ``PYTHONPATH`` that every process (the kernel too) runs at start: what each
+replacement costs on its own, against ``none`` (the same start-up imports, nothing put back).
+
 Usage::
 
     python benchmarks/bench_libraries.py --baseline df45293              # 2 repetitions
-    python benchmarks/bench_libraries.py --baseline df45293 --repeats 3 --profile quick
+    python benchmarks/bench_libraries.py --baseline df45293 --repeats 1 --variants
 """
 
 from __future__ import annotations
@@ -42,9 +49,58 @@ def _children_cpu() -> float:
     return r.ru_utime + r.ru_stime
 
 
-def timed(cmd: list[str], tree: Path, scratch: Path) -> tuple[float, float]:
+#: Per variant, the baseline's functions put back: (module, functions copied from REF's source
+#: into the module, names re-bound in the modules that imported them by name).
+OLD_PARTS = {
+    "ranks": [("rowstats", None, {"pose_stats": ["average_ranks", "batch_average_ranks", "ranks_in_order",
+                                                 "value_order"], "replicates": ["average_ranks"],
+                                  "pose_reduce": ["average_ranks"]}),
+              ("pose_stats", ["column_rank_sets"], {})],
+    "medians": [("pose_stats", ["grouped_binned", "_stable_order", "grouped_binned_medians"],
+                 {"pose_claims": ["grouped_binned", "grouped_binned_medians"]})],
+    "attitude": [("straight_pass", ["_half_angle", "_compose_quat", "vehicle_attitude"],
+                  {"pose_draw": ["vehicle_attitude"], "view_sets": ["vehicle_attitude"],
+                   "choices": ["vehicle_attitude"], "terrain_survey": ["vehicle_attitude"]})],
+    # the same start-up imports, nothing put back: the reference of the three
+    "none": [(m, [], {}) for m in ("rowstats", "pose_stats", "pose_claims", "straight_pass", "pose_draw")],
+}
+
+SITECUSTOMIZE = """
+import ast, importlib, collections
+def _functions(src, names):
+    lines, out = src.splitlines(), []
+    for node in ast.parse(src).body:
+        if isinstance(node, ast.FunctionDef) and node.name in names:
+            out.append("\\n".join(lines[node.lineno - 1 - len(node.decorator_list):node.end_lineno]))
+    assert len(out) == len(names), names
+    return "\\n\\n".join(out)
+for module, names, rebind in PARTS:
+    mod = importlib.import_module("sss_locus.experiments." + module)
+    src = SOURCES[module]
+    mod.__dict__.setdefault("_order_memo", collections.OrderedDict())
+    exec(compile(src if names is None else _functions(src, names), "baseline " + module, "exec"), mod.__dict__)
+    for other, attrs in rebind.items():
+        target = importlib.import_module("sss_locus.experiments." + other)
+        for a in attrs:
+            setattr(target, a, getattr(mod, a))
+"""
+
+
+def variant_dir(tmp: Path, ref: str, variant: str) -> Path:
+    """A folder holding a ``sitecustomize.py`` that puts back ``variant``'s functions of ``ref``."""
+    parts = OLD_PARTS[variant]
+    sources = {m: subprocess.run(["git", "show", f"{ref}:sss_locus/experiments/{m}.py"], cwd=REPO, check=True,
+                                 capture_output=True, text=True).stdout for m, _, _ in parts}
+    folder = tmp / f"variant-{variant}"
+    folder.mkdir()
+    (folder / "sitecustomize.py").write_text(f"PARTS = {parts!r}\nSOURCES = {sources!r}\n" + SITECUSTOMIZE)
+    return folder
+
+
+def timed(cmd: list[str], tree: Path, scratch: Path, extra_path: Path | None = None) -> tuple[float, float]:
     """(wall s, CPU s) of ``cmd`` run in ``tree`` with an empty cache and build folder."""
-    env = dict(os.environ, PYTHONPATH=str(tree), SSS_LOCUS_BUILD_DIR=str(scratch / "build"),
+    path = str(tree) if extra_path is None else f"{extra_path}{os.pathsep}{tree}"
+    env = dict(os.environ, PYTHONPATH=path, SSS_LOCUS_BUILD_DIR=str(scratch / "build"),
                SSS_LOCUS_CACHE_DIR=str(scratch / "cache"))
     env.pop("SSS_LOCUS_SCHEDULER", None)
     cpu, start = _children_cpu(), time.perf_counter()
@@ -60,6 +116,8 @@ def main() -> int:
     parser.add_argument("--baseline", metavar="REF", required=True, help="git ref measured side by side")
     parser.add_argument("--repeats", type=int, default=2)
     parser.add_argument("--profile", default="book", help="profile of the pose-space run (default: book)")
+    parser.add_argument("--variants", action="store_true",
+                        help="also the pose-space run with each one of the baseline's implementations put back")
     args = parser.parse_args()
     cli = [sys.executable, "-m", "sss_locus.pipeline.cli"]
     commands = {"answer -p platform auv": cli + ["answer", "-p", "platform", "auv"],
@@ -84,6 +142,16 @@ def main() -> int:
                         wall, cpu = timed(cmd, tree, scratch)
                         runs.setdefault((name, label), []).append((wall, cpu))
                         print(f"rep {rep}: {label}: {name}: wall {wall:.1f} s, CPU {cpu:.1f} s", flush=True)
+            if args.variants:
+                for variant in OLD_PARTS:
+                    name = f"run pose_space --profile {args.profile}"
+                    scratch = tmp / f"variant-{variant}-run"
+                    cmd = cli + ["run", "pose_space", "--profile", args.profile, "--output",
+                                 str(scratch / "out" / "pose_space.ipynb")]
+                    wall, cpu = timed(cmd, REPO, scratch, variant_dir(tmp, args.baseline, variant))
+                    runs.setdefault((name, f"this tree, baseline's {variant}"), []).append((wall, cpu))
+                    print(f"this tree with the baseline's {variant}: {name}: wall {wall:.1f} s, CPU {cpu:.1f} s",
+                          flush=True)
         finally:
             subprocess.run(["git", "worktree", "remove", "--force", str(base)], cwd=REPO, capture_output=True)
         print(f"\nload average at end: {os.getloadavg()[0]:.2f}; {time.perf_counter() - start:.0f} s\n")
@@ -92,6 +160,13 @@ def main() -> int:
             print(f"| {name} | {label} | {statistics.median(w for w, _ in values):.1f} "
                   f"| {statistics.median(c for _, c in values):.1f} |")
         labels = list(trees)
+        name = f"run pose_space --profile {args.profile}"
+        ref = (name, "this tree, baseline's none")
+        base_cpu = statistics.median(c for _, c in runs.get(ref, runs[(name, labels[1])]))
+        for (cmd_name, label), values in runs.items():
+            if cmd_name == name and label.startswith("this tree, ") and (cmd_name, label) != ref:
+                cpu = statistics.median(c for _, c in values)
+                print(f"\n{label}: {1 - cpu / base_cpu:.0%} less CPU than this tree's chapter (reference: none)")
         for name in commands:
             b, t = (statistics.median(w for w, _ in runs[(name, lb)]) for lb in labels)
             bc, tc = (statistics.median(c for _, c in runs[(name, lb)]) for lb in labels)

@@ -12,6 +12,18 @@ def nanquantile_rows(x, q) -> np.ndarray:
     The same numbers as ``np.nanquantile(x, q, axis=1)`` (its "linear" method: the same
     virtual index, neighbours and interpolation, operation for operation) with one sort of the
     whole table instead of one ``np.quantile`` call per row.
+
+    Parameters
+    ----------
+    x : array_like, shape (m, n)
+        Table, one sample per row.
+    q : float
+        Quantile, in [0, 1].
+
+    Returns
+    -------
+    numpy.ndarray, shape (m,)
+        The quantile of each row.
     """
     x = np.asarray(x, float)
     s = np.sort(x, axis=1)  # NaN last
