@@ -26,7 +26,7 @@ replacement costs on its own, against ``none`` (the same start-up imports, nothi
 Usage::
 
     python benchmarks/bench_libraries.py --baseline df45293              # 2 repetitions
-    python benchmarks/bench_libraries.py --baseline df45293 --repeats 1 --variants
+    python benchmarks/bench_libraries.py --baseline df45293 --repeats 0 --variants  # variants only
 """
 
 from __future__ import annotations
@@ -162,12 +162,12 @@ def main() -> int:
         labels = list(trees)
         name = f"run pose_space --profile {args.profile}"
         ref = (name, "this tree, baseline's none")
-        base_cpu = statistics.median(c for _, c in runs.get(ref, runs[(name, labels[1])]))
+        base_cpu = statistics.median(c for _, c in runs.get(ref, runs.get((name, labels[1]), [(1.0, 1.0)])))
         for (cmd_name, label), values in runs.items():
             if cmd_name == name and label.startswith("this tree, ") and (cmd_name, label) != ref:
                 cpu = statistics.median(c for _, c in values)
                 print(f"\n{label}: {1 - cpu / base_cpu:.0%} less CPU than this tree's chapter (reference: none)")
-        for name in commands:
+        for name in (n for n in commands if all((n, lb) in runs for lb in labels)):
             b, t = (statistics.median(w for w, _ in runs[(name, lb)]) for lb in labels)
             bc, tc = (statistics.median(c for _, c in runs[(name, lb)]) for lb in labels)
             print(f"\n{name}: this tree / baseline = {t / b:.2f} wall, {tc / bc:.2f} CPU")
