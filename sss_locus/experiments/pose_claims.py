@@ -58,8 +58,7 @@ def batch_medians(parts: list[pd.DataFrame], binned: pd.DataFrame) -> np.ndarray
     :func:`~sss_locus.experiments.pose_stats.binned_median` or
     :func:`~sss_locus.experiments.pose_stats.binned_profile` table): shape ``(k, n_bins)``, NaN
     where a batch has no row in a bin. The numbers of ``binned_median`` (``binned_profile``) of
-    each part, from one sort of all of them
-    (:func:`~sss_locus.experiments.pose_stats.grouped_binned_medians`).
+    each part (:func:`~sss_locus.experiments.pose_stats.grouped_binned_medians`).
 
     Parameters
     ----------
@@ -85,8 +84,8 @@ def batch_medians(parts: list[pd.DataFrame], binned: pd.DataFrame) -> np.ndarray
 
 def dealt_batch_medians(df: pd.DataFrame, binned: pd.DataFrame, n_batches: int = N_BATCHES) -> np.ndarray:
     """:func:`batch_medians` of ``batches(df, n_batches)`` (the same numbers), without cutting
-    ``df``: row ``i`` is in batch ``i mod k``, and the order of the values is shared with the
-    other binnings of ``df`` (:func:`~sss_locus.experiments.pose_stats.grouped_binned`).
+    ``df``: row ``i`` is in batch ``i mod k``
+    (:func:`~sss_locus.experiments.pose_stats.grouped_binned`).
 
     Parameters
     ----------
