@@ -185,8 +185,16 @@ def test_package_exports_the_geometry_api():
 
 @pytest.mark.parametrize("module", sorted(MODULES))
 def test_modules_stay_small(module):
-    lines = len(MODULES[module].read_text(encoding="utf-8").splitlines())
-    assert lines <= 400, f"{module} has {lines} lines (limit 400: split it by job)"
+    """At most 400 lines besides docstrings (numpydoc sections must never force a split)."""
+    text = MODULES[module].read_text(encoding="utf-8")
+    docs = set()
+    for node in ast.walk(ast.parse(text)):
+        body = getattr(node, "body", None)
+        if isinstance(body, list) and body and isinstance(body[0], ast.Expr) \
+                and isinstance(body[0].value, ast.Constant) and isinstance(body[0].value.value, str):
+            docs.update(range(body[0].lineno, body[0].end_lineno + 1))
+    lines = len(text.splitlines()) - len(docs)
+    assert lines <= 400, f"{module} has {lines} lines besides docstrings (limit 400: split it by job)"
 
 
 def test_notebook_cells_read_like_chapters():

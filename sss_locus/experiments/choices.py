@@ -36,6 +36,17 @@ def fan_share_removed(platform: Platform, side: str = "port", pitch_deg: float =
     sampler's "feature below both sensors" rule never samples. Midpoint rule on an
     ``n_grid x n_grid`` grid (error O(1/n_grid) at the boundary).
 
+    Parameters
+    ----------
+    platform : Platform
+        The platform.
+    side : {"port", "starboard"}
+        The transducer.
+    pitch_deg : float
+        Vehicle pitch, degrees, nose-up positive.
+    n_grid : int
+        Grid points per axis.
+
     Returns
     -------
     dict
@@ -69,6 +80,15 @@ def reading_effect(table: pd.DataFrame, readings=MISALIGNMENT_READINGS, *,
     (:func:`~sss_locus.experiments.pose_stats.with_derived`) and the candidates ranked again
     (:func:`~sss_locus.experiments.pose_stats.spearman_table`).
 
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A pose-space table.
+    readings : sequence of str
+        Readings of :data:`~sss_locus.experiments.pose_stats.MISALIGNMENT_READINGS`.
+    n_batches : int
+        Replicate batches.
+
     Returns
     -------
     pandas.DataFrame
@@ -89,13 +109,41 @@ def reading_effect(table: pd.DataFrame, readings=MISALIGNMENT_READINGS, *,
 
 def bin_window(binned: pd.DataFrame, row) -> tuple[tuple[float, float], tuple[float, float]]:
     """The ``(x_lo, x_hi)`` and ``(y_lo, y_hi)`` edges of one bin of a
-    :func:`~sss_locus.experiments.pose_stats.binned_median` table (``row`` an index label)."""
+    :func:`~sss_locus.experiments.pose_stats.binned_median` table (``row`` an index label).
+
+    Parameters
+    ----------
+    binned : pandas.DataFrame
+        A binned table.
+    row : label
+        Index label of the bin.
+
+    Returns
+    -------
+    x_window, y_window : (float, float)
+        The bin's edges.
+    """
     r = binned.loc[row]
     return (float(r.x_lo), float(r.x_hi)), (float(r.y_lo), float(r.y_hi))
 
 
 def in_bin(df: pd.DataFrame, x: str, y: str, x_window, y_window) -> pd.DataFrame:
-    """Rows of ``df`` with ``x`` in ``x_window`` and ``y`` in ``y_window`` (closed intervals)."""
+    """Rows of ``df`` with ``x`` in ``x_window`` and ``y`` in ``y_window`` (closed intervals).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table.
+    x, y : str
+        Columns.
+    x_window, y_window : (float, float)
+        Closed intervals.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows inside.
+    """
     return df[df[x].between(*x_window) & df[y].between(*y_window)]
 
 
@@ -110,6 +158,15 @@ def hotspot_check(binned: pd.DataFrame, targeted: pd.DataFrame, *, value: str = 
     targeted : pandas.DataFrame
         Extra samples drawn inside the peak bin's window (rows outside it are ignored), from the
         same distribution as the samples behind ``binned`` conditioned on the bin.
+
+    value : str
+        The column whose median is taken.
+    n_batches : int
+        Replicate batches of the targeted samples.
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+    batch_meds : numpy.ndarray, shape (k, n_bins), optional
+        The bins' medians in each replicate batch of the samples behind ``binned``.
 
     Returns
     -------

@@ -66,14 +66,43 @@ class SurveyEnvelope:
         object.__setattr__(self, "level_pass1", bool(self.level_pass1))
 
     def with_pitch(self, lo: float, hi: float) -> "SurveyEnvelope":
-        """A copy with pitch drawn in ``[lo, hi]`` degrees (``lo == hi`` fixes it)."""
+        """A copy with pitch drawn in ``[lo, hi]`` degrees (``lo == hi`` fixes it).
+
+        Parameters
+        ----------
+        lo, hi : float
+            Pitch range, degrees, nose-up positive.
+
+        Returns
+        -------
+        SurveyEnvelope
+            The copy.
+        """
         return replace(self, pitch_min_deg=lo, pitch_max_deg=hi)
 
     def with_altitude(self, lo: float, hi: float) -> "SurveyEnvelope":
-        """A copy with altitude drawn in ``[lo, hi]`` metres (``lo == hi`` fixes it)."""
+        """A copy with altitude drawn in ``[lo, hi]`` metres (``lo == hi`` fixes it).
+
+        Parameters
+        ----------
+        lo, hi : float
+            Altitude range, metres.
+
+        Returns
+        -------
+        SurveyEnvelope
+            The copy.
+        """
         return replace(self, altitude_min_m=lo, altitude_max_m=hi)
 
     def key(self) -> dict:
+        """Plain-data description (for cache keys and figure manifests).
+
+        Returns
+        -------
+        dict
+            Every field by name.
+        """
         return {k: getattr(self, k) for k in self.__dataclass_fields__}
 
 
@@ -121,6 +150,18 @@ class OffsetModel:
         """The model named by a parameter string: ``"independent"`` or
         ``"matched:<jitter_m>:<side_rule>"`` (``side_rule`` one of :data:`SIDE_RULES`).
 
+        Parameters
+        ----------
+        spec : str
+            The parameter string.
+
+        Returns
+        -------
+        OffsetModel
+            The model.
+
+        Examples
+        --------
         >>> OffsetModel.parse("matched:10:same")
         OffsetModel(kind='matched', jitter_m=10.0, side_rule='same', side1='random')
         >>> OffsetModel.parse("independent").label
@@ -156,19 +197,52 @@ class OffsetModel:
         return core if self.side1 == "random" else f"{core}, pass 1 {self.side1}"
 
     def key(self) -> dict:
+        """Plain-data description (for cache keys and figure manifests).
+
+        Returns
+        -------
+        dict
+            Every field by name.
+        """
         return {k: getattr(self, k) for k in self.__dataclass_fields__}
 
 
 def load_envelope(platform_key: str, path: str | Path | None = None) -> SurveyEnvelope:
     """The survey envelope of ``platform_key`` from ``data/`` merged with the active user data
-    (:mod:`sss_locus.experiments.userdata`), or from the file ``path`` only."""
+    (:mod:`sss_locus.experiments.userdata`), or from the file ``path`` only.
+
+    Parameters
+    ----------
+    platform_key : str
+        Key of the platform in ``[envelopes]``.
+    path : str or pathlib.Path, optional
+        A TOML file read alone instead.
+
+    Returns
+    -------
+    SurveyEnvelope
+        The validated envelope.
+    """
     if path is None:
         datadoc.note_read(f"envelopes.{platform_key}")
     return parse_envelope(datadoc.document() if path is None else read_toml(path), platform_key)
 
 
 def parse_envelope(doc: dict, platform_key: str) -> SurveyEnvelope:
-    """The validated ``[envelopes.<platform_key>]`` table of a parsed document."""
+    """The validated ``[envelopes.<platform_key>]`` table of a parsed document.
+
+    Parameters
+    ----------
+    doc : dict
+        A parsed TOML document.
+    platform_key : str
+        Key of the platform in ``[envelopes]``.
+
+    Returns
+    -------
+    SurveyEnvelope
+        The validated envelope.
+    """
     (t, p), prov = platform_table(doc, "envelopes", platform_key), {}
     same = sourced(t, "same_altitude", p, prov, choices=(True, False))
     if not isinstance(same, bool):
@@ -180,7 +254,24 @@ def parse_envelope(doc: dict, platform_key: str) -> SurveyEnvelope:
 def default_offset_model(kind: str = "independent", side_rule: str = "random",
                          path: str | Path | None = None, doc: dict | None = None) -> OffsetModel:
     """An :class:`OffsetModel` with the defaults of the data (matched jitter): ``doc``, the file
-    ``path``, or ``data/`` merged with the active user data."""
+    ``path``, or ``data/`` merged with the active user data.
+
+    Parameters
+    ----------
+    kind : {"independent", "matched"}
+        Kind of model.
+    side_rule : str
+        One of :data:`SIDE_RULES`.
+    path : str or pathlib.Path, optional
+        A TOML file read alone instead.
+    doc : dict, optional
+        A parsed document used instead of any file.
+
+    Returns
+    -------
+    OffsetModel
+        The model.
+    """
     if kind != "matched":
         return OffsetModel(kind, 0.0, side_rule)
     if doc is None:

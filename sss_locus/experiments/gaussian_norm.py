@@ -70,7 +70,20 @@ def exact_quantile_squared(a, b, quantile: float) -> np.ndarray:
     """``q`` quantile of ``z1^2 + a z2^2 + b z3^2`` (independent standard normal ``z``), by
     quadrature over the sphere and Newton's method (module docstring); ``a``, ``b`` broadcast,
     values in ``[0, 1]``. About 2,000 CDF evaluations per Newton step and point: for tables and
-    tests, not for millions of rows (use :func:`gaussian_norm_quantile`)."""
+    tests, not for millions of rows (use :func:`gaussian_norm_quantile`).
+
+    Parameters
+    ----------
+    a, b : array_like
+        Variances of the second and third terms relative to the first, in [0, 1].
+    quantile : float
+        Quantile, in (0, 1).
+
+    Returns
+    -------
+    numpy.ndarray
+        The quantile of the squared norm, one per broadcast element.
+    """
     from scipy.special import chdtri, erf  # chdtri(k, 1 - q) = chi2(k).ppf(q), without scipy.stats
 
     q = _check_quantile(quantile)

@@ -95,7 +95,18 @@ class NoiseModel:
             object.__setattr__(self, f.name, float(v))
 
     def scaled(self, k: float) -> "NoiseModel":
-        """Every standard deviation multiplied by ``k`` (>= 0); ``scaled(0)`` is noise-free."""
+        """Every standard deviation multiplied by ``k`` (>= 0); ``scaled(0)`` is noise-free.
+
+        Parameters
+        ----------
+        k : float
+            Factor, ``>= 0``.
+
+        Returns
+        -------
+        NoiseModel
+            The scaled copy.
+        """
         if not (isinstance(k, (int, float, np.integer, np.floating)) and math.isfinite(k) and k >= 0):
             raise ValueError(f"k must be a finite number >= 0; got {k!r}")
         return replace(self, range_resolution_m=k * self.range_resolution_m,
@@ -107,7 +118,18 @@ class NoiseModel:
 
     def only(self, *groups: str) -> "NoiseModel":
         """A copy keeping only the error groups named (``"range"``, ``"position"``,
-        ``"attitude"``); the others are set to 0."""
+        ``"attitude"``); the others are set to 0.
+
+        Parameters
+        ----------
+        *groups : str
+            Groups kept.
+
+        Returns
+        -------
+        NoiseModel
+            The copy.
+        """
         known = {"range": ("range_resolution_m", "sound_speed_relative_sigma"),
                  "position": ("horizontal_sigma_m", "vertical_sigma_m"),
                  "attitude": ("roll_sigma_deg", "pitch_sigma_deg", "heading_sigma_deg")}
@@ -117,24 +139,68 @@ class NoiseModel:
         return replace(self, **{n: 0.0 for g, names in known.items() if g not in groups for n in names})
 
     def range_sigma_m(self, r) -> np.ndarray:
-        """Range standard deviation (m) at true range ``r`` (m)."""
+        """Range standard deviation (m) at true range ``r`` (m).
+
+        Parameters
+        ----------
+        r : array_like
+            True ranges, metres.
+
+        Returns
+        -------
+        numpy.ndarray
+            Standard deviations, metres.
+        """
         return np.hypot(self.range_sigma_per_resolution * self.range_resolution_m,
                         self.sound_speed_relative_sigma * np.asarray(r, float))
 
     def key(self) -> dict:
+        """Plain-data description (for cache keys and figure manifests).
+
+        Returns
+        -------
+        dict
+            Every field by name.
+        """
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
 def load_noise_model(platform_key: str, path: str | Path | None = None) -> NoiseModel:
     """The noise model of ``platform_key`` from ``data/`` merged with the active user data
-    (:mod:`sss_locus.experiments.userdata`), or from the file ``path`` only."""
+    (:mod:`sss_locus.experiments.userdata`), or from the file ``path`` only.
+
+    Parameters
+    ----------
+    platform_key : str
+        Key of the platform in ``[noise]``.
+    path : str or pathlib.Path, optional
+        A TOML file read alone instead.
+
+    Returns
+    -------
+    NoiseModel
+        The validated model.
+    """
     if path is None:
         datadoc.note_read(f"noise.{platform_key}")
     return parse_noise_model(datadoc.document() if path is None else read_toml(path), platform_key)
 
 
 def parse_noise_model(doc: dict, platform_key: str) -> NoiseModel:
-    """The validated ``[noise.<platform_key>]`` table of a parsed document."""
+    """The validated ``[noise.<platform_key>]`` table of a parsed document.
+
+    Parameters
+    ----------
+    doc : dict
+        A parsed TOML document.
+    platform_key : str
+        Key of the platform in ``[noise]``.
+
+    Returns
+    -------
+    NoiseModel
+        The validated model.
+    """
     t, where = platform_table(doc, "noise", platform_key)
     names = [f.name for f in fields(NoiseModel)]
     unknown = set(t) - set(names)
@@ -147,7 +213,21 @@ def parse_noise_model(doc: dict, platform_key: str) -> NoiseModel:
 # Perturbation of world-frame views (sss_locus.experiments.view_sets.Views)
 # --------------------------------------------------------------------------------------------
 def noise_sigmas(views: Views, noise: NoiseModel) -> np.ndarray:
-    """Standard deviations of the seven errors of every view, shape (n, k, 7)."""
+    """Standard deviations of the seven errors of every view, shape (n, k, 7).
+
+    Parameters
+    ----------
+    views : Views
+        The configurations (their ranges set the range errors).
+    noise : NoiseModel
+        The error model.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, k, 7)
+        Standard deviations: range (metres), horizontal position (2, metres), vertical
+        position (metres), roll, pitch and heading (radians).
+    """
     n, k = views.origin.shape[:2]
     s = np.empty((n, k, 7))
     s[..., 0] = noise.range_sigma_m(views.ranges)
@@ -161,6 +241,24 @@ def perturb(views: Views, sigmas: np.ndarray, errors: np.ndarray):
     """Estimated poses and ranges for standardised ``errors`` of shape (n, ..., k, 7).
 
     Returns ``W_hat`` (n, ..., k, 3, 3), ``origin_hat`` (n, ..., k, 3), ``r_hat`` (n, ..., k).
+
+    Parameters
+    ----------
+    views : Views
+        The true configurations.
+    sigmas : numpy.ndarray, shape (n, k, 7)
+        Standard deviations (:func:`noise_sigmas`).
+    errors : numpy.ndarray, shape (n, ..., k, 7)
+        Standardised errors.
+
+    Returns
+    -------
+    W_hat : numpy.ndarray, shape (n, ..., k, 3, 3)
+        Estimated transducer axes in the world.
+    origin_hat : numpy.ndarray, shape (n, ..., k, 3)
+        Estimated origins, metres.
+    r_hat : numpy.ndarray, shape (n, ..., k)
+        Estimated ranges, metres.
     """
     extra = errors.ndim - 3
     def ex(a, tail):  # (n, k) + tail -> (n, 1 ... 1, k) + tail
@@ -193,6 +291,24 @@ def two_view_offsets(W_hat, o_hat, r_hat, feature, aperture: Aperture) -> dict:
     (..., 3) broadcastable. Returns ``circle_offset`` (..., 3) (world vector from the feature to
     the nearest point of the circle), ``circle_miss_m``, ``near_m``, ``far_m`` (NaN where the
     locus is empty), ``empty``, ``length_m``.
+
+    Parameters
+    ----------
+    W_hat : numpy.ndarray, shape (..., 2, 3, 3)
+        Estimated transducer axes of views 1 and 2.
+    o_hat : numpy.ndarray, shape (..., 2, 3)
+        Estimated origins, metres.
+    r_hat : numpy.ndarray, shape (..., 2)
+        Estimated ranges, metres.
+    feature : numpy.ndarray, shape (..., 3)
+        True feature in the world, metres.
+    aperture : Aperture
+        Both views' aperture.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The quantities named above (metres; ``empty`` boolean).
     """
     R, t = relative_pose(W_hat[..., 0, :, :], o_hat[..., 0, :], W_hat[..., 1, :, :], o_hat[..., 1, :])
     loc = two_view_locus(R, t, r_hat[..., 0], r_hat[..., 1], aperture, aperture)
@@ -233,6 +349,26 @@ def three_view_offsets(W_hat, o_hat, r_hat, feature, aperture: Aperture, *,
     Returns ``point_offset`` (..., 3) (world vector feature -> nearest candidate, valid only
     if ``require_valid``; zeros where there is none), ``point_error_m`` (NaN where lost),
     ``lost``, ``n_valid``.
+
+    Parameters
+    ----------
+    W_hat : numpy.ndarray, shape (..., 3, 3, 3)
+        Estimated transducer axes of views 1 to 3.
+    o_hat : numpy.ndarray, shape (..., 3, 3)
+        Estimated origins, metres.
+    r_hat : numpy.ndarray, shape (..., 3)
+        Estimated ranges, metres.
+    feature : numpy.ndarray, shape (..., 3)
+        True feature in the world, metres.
+    aperture : Aperture
+        The views' aperture.
+    require_valid : bool
+        Take only candidates inside every aperture.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The quantities named above (metres; ``lost`` boolean, ``n_valid`` integer).
     """
     W, o = W_hat, o_hat
     R12, t12 = relative_pose(W[..., 0, :, :], o[..., 0, :], W[..., 1, :, :], o[..., 1, :])
@@ -283,6 +419,28 @@ def monte_carlo(views: Views, noise: NoiseModel, aperture: Aperture, *, kind: st
     ``empty_fraction``, ``length_median_m``; plus the noise-free ``length0_m`` and ``far0_m``.
     Three views: ``point_error_q`` (over draws with a valid candidate), ``lost_fraction``,
     ``ambiguous_fraction`` (two valid candidates); plus the noise-free ``n_valid0``.
+
+    Parameters
+    ----------
+    views : Views
+        The true configurations.
+    noise : NoiseModel
+        The error model.
+    aperture : Aperture
+        The views' aperture.
+    kind : {"two", "three"}
+        Locus of views 1 and 2, or three-view point.
+    n_draws : int
+        Noisy draws per configuration.
+    seed : int
+        Seed.
+    quantile : float
+        Quantile taken over draws, in (0, 1).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per configuration, the columns named above (metres, shares in [0, 1]).
     """
     k = _check(views, kind, aperture)
     if isinstance(n_draws, bool) or not isinstance(n_draws, (int, np.integer)) or n_draws < 2:
@@ -328,6 +486,24 @@ def first_order(views: Views, noise: NoiseModel, aperture: Aperture, *, kind: st
     For ``kind="two"`` the offset is feature -> nearest point of the perturbed circle, for
     ``"three"`` feature -> nearest three-view candidate (the branch need not pass the aperture
     test: at first order the candidate stays put).
+
+    Parameters
+    ----------
+    views : Views
+        The true configurations.
+    noise : NoiseModel
+        The error model.
+    aperture : Aperture
+        The views' aperture.
+    kind : {"two", "three"}
+        The offset differentiated.
+    step : float
+        Step of the central differences, in standard deviations.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 3, 3)
+        Covariance of the offset, square metres.
     """
     k = _check(views, kind, aperture)
     if isinstance(step, bool) or not isinstance(step, (int, float, np.integer, np.floating)) \
@@ -355,6 +531,26 @@ def survey_noise_table(platform, samples: pd.DataFrame, noise_models: dict, *, n
     circle: the width of the band the locus sweeps), ``extent_m`` (``hypot(locus_length_m,
     band_width_m)``: the diagonal of a band that long and that wide), ``empty_fraction`` and
     ``far_q_m`` (see :func:`monte_carlo`).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform surveying.
+    samples : pandas.DataFrame
+        Its pass pairs.
+    noise_models : dict of str to NoiseModel
+        Models by label.
+    n_draws : int
+        Noisy draws per pass pair.
+    seed : int
+        Seed.
+    quantile : float
+        Quantile of the distance, in (0, 1).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows described above.
     """
 
     views = views_from_survey(platform, samples)

@@ -50,7 +50,22 @@ VALUES = ("locus_length_m", "elevation_misalignment_deg")
 def crossing_angle_grid(fine_step_deg: float = 1.0, fine_max_deg: float = 40.0,
                         coarse_step_deg: float = 5.0) -> np.ndarray:
     """Crossing angles 0..180 deg: every ``fine_step_deg`` up to ``fine_max_deg``, then every
-    ``coarse_step_deg`` (always including 90 and 180 when the steps divide them)."""
+    ``coarse_step_deg`` (always including 90 and 180 when the steps divide them).
+
+    Parameters
+    ----------
+    fine_step_deg : float
+        Step of the fine part, degrees.
+    fine_max_deg : float
+        End of the fine part, degrees.
+    coarse_step_deg : float
+        Step beyond it, degrees.
+
+    Returns
+    -------
+    numpy.ndarray
+        Increasing crossing angles, degrees.
+    """
     for name, v in (("fine_step_deg", fine_step_deg), ("coarse_step_deg", coarse_step_deg)):
         if not (isinstance(v, (int, float)) and math.isfinite(v) and 0 < v <= 180):
             raise ValueError(f"{name} must be in (0, 180] degrees; got {v!r}")
@@ -66,6 +81,22 @@ def bootstrap_median(values, n_resamples: int, rng, *, batch: int = 64) -> np.nd
 
     Vectorised in batches of ``batch`` resamples; ``rng`` a :class:`numpy.random.Generator`.
     Returns an array of shape ``(n_resamples,)``.
+
+    Parameters
+    ----------
+    values : array_like, shape (n,)
+        Sample.
+    n_resamples : int
+        Number of resamples.
+    rng : numpy.random.Generator
+        Source of the resampled rows.
+    batch : int
+        Resamples drawn per batch.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_resamples,)
+        The resamples' medians.
     """
     x = np.asarray(values, float)
     if x.ndim != 1 or x.size == 0:
@@ -109,6 +140,21 @@ def curve_summary(samples: pd.DataFrame, values=VALUES, *, n_batches: int = N_BA
                   seed: int = 0) -> tuple[pd.DataFrame, dict]:
     """Median, quartiles and replicate interval of the median per crossing angle.
 
+    Parameters
+    ----------
+    samples : pandas.DataFrame
+        Simulated pass pairs with ``crossing_angle_deg`` and the ``values`` columns.
+    values : sequence of str
+        Columns summarised.
+    n_batches : int
+        Replicate batches per angle.
+    n_resamples : int
+        Bootstrap resamples for :func:`peak_angle`.
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+    seed : int
+        Seed of the bootstrap.
+
     Returns
     -------
     curve : pandas.DataFrame
@@ -135,7 +181,26 @@ def curve_summary(samples: pd.DataFrame, values=VALUES, *, n_batches: int = N_BA
 
 def curve_row(gamma_deg: float, g: pd.DataFrame, values=VALUES, n_batches: int = N_BATCHES,
               confidence_level: float = 0.95) -> dict:
-    """One crossing angle's row of :func:`curve_summary` from its samples ``g`` (its rows only)."""
+    """One crossing angle's row of :func:`curve_summary` from its samples ``g`` (its rows only).
+
+    Parameters
+    ----------
+    gamma_deg : float
+        The crossing angle, degrees.
+    g : pandas.DataFrame
+        Its samples.
+    values : sequence of str
+        Columns summarised.
+    n_batches : int
+        Replicate batches.
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+
+    Returns
+    -------
+    dict
+        ``crossing_angle_deg``, ``n`` and ``v_median, v_q25, v_q75, v_ci_low, v_ci_high`` per value.
+    """
     row = {"crossing_angle_deg": float(gamma_deg), "n": len(g)}
     for v in values:
         x = g[v].to_numpy(float)
@@ -147,7 +212,20 @@ def curve_row(gamma_deg: float, g: pd.DataFrame, values=VALUES, n_batches: int =
 
 
 def curve_frame(rows: list[dict], values=VALUES) -> pd.DataFrame:
-    """The rows of :func:`curve_row` as the table of :func:`curve_summary`."""
+    """The rows of :func:`curve_row` as the table of :func:`curve_summary`.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Rows of :func:`curve_row`.
+    values : sequence of str
+        Columns summarised.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The curve, one row per angle.
+    """
     order = ["crossing_angle_deg", "n"] + [f"{v}_{s}" for v in values
                                           for s in ("median", "q25", "q75", "ci_low", "ci_high")]
     return pd.DataFrame(rows)[order]
@@ -156,7 +234,24 @@ def curve_frame(rows: list[dict], values=VALUES) -> pd.DataFrame:
 def peak_angle(curve: pd.DataFrame, boot: np.ndarray, value: str = "locus_length_m", *,
                confidence_level: float = 0.95) -> dict[str, float]:
     """Angle of the largest median and its percentile bootstrap interval (argmax of each
-    resample's medians over the grid)."""
+    resample's medians over the grid).
+
+    Parameters
+    ----------
+    curve : pandas.DataFrame
+        A curve of :func:`curve_summary`.
+    boot : numpy.ndarray, shape (n_resamples, n_angles)
+        Bootstrap medians of ``value`` at each angle.
+    value : str
+        Column whose peak is taken.
+    confidence_level : float
+        Level of the interval, in (0, 1).
+
+    Returns
+    -------
+    dict of str to float
+        ``angle_deg`` (the grid angle of the largest median), ``ci_low_deg``, ``ci_high_deg``.
+    """
     angles = curve["crossing_angle_deg"].to_numpy(float)
     at = angles[np.argmax(boot, axis=1)]
     lo, hi = _interval(at, confidence_level)
@@ -188,7 +283,20 @@ class CrossingAngleCurve:
     peak: dict = field(default_factory=dict)
 
     def at(self, gamma_deg: float, value: str = "locus_length_m") -> dict[str, float]:
-        """Median and its interval at one grid angle."""
+        """Median and its interval at one grid angle.
+
+        Parameters
+        ----------
+        gamma_deg : float
+            A crossing angle of the grid, degrees.
+        value : str
+            Column.
+
+        Returns
+        -------
+        dict of str to float
+            ``median``, ``ci_low``, ``ci_high``, ``q25``, ``q75`` at that angle.
+        """
         row = self.curve[np.isclose(self.curve["crossing_angle_deg"], gamma_deg)]
         if row.empty:
             raise ValueError(f"gamma_deg {gamma_deg} is not on the grid")
@@ -221,6 +329,12 @@ def crossing_angle_curve(platform: Platform, envelope: SurveyEnvelope | None = N
     confidence_level : float
     simulate : callable
         :func:`~sss_locus.experiments.survey_passes.simulate_passes` or a cached version of it.
+
+    Returns
+    -------
+    CrossingAngleCurve
+        The curve (medians, quartiles and intervals per angle), the peak angle and the acceptance
+        table.
     """
     envelope = envelope if envelope is not None else load_envelope(platform.key)
     offset_model = offset_model if offset_model is not None else OffsetModel("independent")
@@ -242,6 +356,8 @@ def planning_bands(curve: pd.DataFrame, value: str = "locus_length_m", *,
     ----------
     curve : pandas.DataFrame
         With ``crossing_angle_deg`` and ``<value>_median`` (:attr:`CrossingAngleCurve.curve`).
+    value : str
+        The column whose median curve is used.
     prefer_below, avoid_above : float
         Fractions of the curve's range (module docstring), ``0 <= prefer_below < avoid_above <= 1``.
 
@@ -272,7 +388,22 @@ def planning_bands(curve: pd.DataFrame, value: str = "locus_length_m", *,
 
 
 def worst_band(curve: pd.DataFrame, value: str = "locus_length_m", **rule) -> tuple[float, float]:
-    """The avoid band (:func:`planning_bands`) containing the curve's largest median."""
+    """The avoid band (:func:`planning_bands`) containing the curve's largest median.
+
+    Parameters
+    ----------
+    curve : pandas.DataFrame
+        A median curve.
+    value : str
+        Column used.
+    **rule
+        ``prefer_below``, ``avoid_above`` of :func:`planning_bands`.
+
+    Returns
+    -------
+    (float, float)
+        First and last angle of the band, degrees.
+    """
     bands = planning_bands(curve, value, **rule)
     peak = float(curve.loc[curve[f"{value}_median"].idxmax(), "crossing_angle_deg"])
     hit = bands[(bands["kind"] == "avoid") & (bands["lo_deg"] <= peak) & (bands["hi_deg"] >= peak)]
@@ -281,7 +412,20 @@ def worst_band(curve: pd.DataFrame, value: str = "locus_length_m", **rule) -> tu
 
 def band_at(bands: pd.DataFrame, angle_deg: float) -> str:
     """``"prefer"``, ``"avoid"`` or ``"neither"``: the kind of :func:`planning_bands` band
-    holding ``angle_deg``."""
+    holding ``angle_deg``.
+
+    Parameters
+    ----------
+    bands : pandas.DataFrame
+        Bands of :func:`planning_bands`.
+    angle_deg : float
+        Crossing angle, degrees.
+
+    Returns
+    -------
+    str
+        The kind of band.
+    """
     hit = bands[(bands["lo_deg"] <= angle_deg) & (bands["hi_deg"] >= angle_deg)]
     return str(hit["kind"].iloc[0]) if len(hit) else "neither"
 
@@ -292,6 +436,16 @@ def rejected_share(acceptance: pd.DataFrame) -> tuple[float, float]:
     ``acceptance`` is the second table of
     :func:`~sss_locus.experiments.survey_passes.simulate_passes` (``n_tried``, ``n_accepted``,
     ``acceptance`` per angle).
+
+    Parameters
+    ----------
+    acceptance : pandas.DataFrame
+        The acceptance table.
+
+    Returns
+    -------
+    (float, float)
+        The share over the grid and the largest share at one angle, in [0, 1].
     """
     overall = 1 - acceptance["n_accepted"].sum() / acceptance["n_tried"].sum()
     return float(overall), float(1 - acceptance["acceptance"].min())
@@ -301,7 +455,20 @@ def curve_shape_rho(curve: pd.DataFrame, a: str = "locus_length_m",
                     b: str = "elevation_misalignment_deg") -> float:
     """Rank correlation (Spearman, as the Pearson correlation of ranks) of the median curves of
     ``a`` and ``b`` over the crossing-angle grid: whether the two curves rise and fall together
-    (it says nothing about where their peaks are)."""
+    (it says nothing about where their peaks are).
+
+    Parameters
+    ----------
+    curve : pandas.DataFrame
+        A curve of :func:`curve_summary`.
+    a, b : str
+        Values whose ``_median`` columns are compared.
+
+    Returns
+    -------
+    float
+        Spearman's rho, in [-1, 1].
+    """
     return spearman_rho(curve[f"{a}_median"].to_numpy(float), curve[f"{b}_median"].to_numpy(float))
 
 
@@ -314,6 +481,20 @@ def median_ratio(x, y, *, n_batches: int = N_BATCHES,
     ``y``'s (NaN where the latter is not positive), and
     :func:`~sss_locus.experiments.replicates.replicate_interval` turns the spread of the
     batches' statistics into intervals around the full-sample ones.
+
+    Parameters
+    ----------
+    x, y : array_like
+        The two samples.
+    n_batches : int
+        Replicate batches of each.
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+
+    Returns
+    -------
+    dict of str to float
+        ``ratio``, ``median_x``, ``median_y``, each with ``_ci_low`` and ``_ci_high``.
     """
     mx, x_lo, x_hi = median_with_interval(x, n_batches, confidence_level)
     my, y_lo, y_hi = median_with_interval(y, n_batches, confidence_level)
@@ -331,7 +512,32 @@ def band_samples(platform: Platform, envelope: SurveyEnvelope, offset_model: Off
                  band_deg: tuple[float, float], grid, n_per_angle: int, seed: int, *,
                  simulate=simulate_passes) -> pd.DataFrame:
     """Simulated pass pairs at the grid angles inside ``band_deg`` (inclusive), pooled
-    (``simulate`` as in :func:`crossing_angle_curve`)."""
+    (``simulate`` as in :func:`crossing_angle_curve`).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform surveying.
+    envelope : SurveyEnvelope
+        Its survey envelope.
+    offset_model : OffsetModel
+        How the ground offsets are drawn.
+    band_deg : (float, float)
+        The band of crossing angles, degrees.
+    grid : array_like
+        Crossing angles, degrees; those inside the band are simulated.
+    n_per_angle : int
+        Pass pairs per angle.
+    seed : int
+        Seed.
+    simulate : callable
+        The simulation (cached or not).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The pass pairs of every angle in the band, pooled.
+    """
     g = np.asarray(grid, float)
     angles = g[(g >= band_deg[0] - 1e-9) & (g <= band_deg[1] + 1e-9)]
     if angles.size == 0:

@@ -58,7 +58,13 @@ class Sonar:
     min_range_m: float = 0.0
 
     def aperture(self):
-        """The kernel's :class:`sss_locus.geometry.aperture.Aperture` for this sonar."""
+        """The kernel's :class:`sss_locus.geometry.aperture.Aperture` for this sonar.
+
+        Returns
+        -------
+        sss_locus.geometry.aperture.Aperture
+            Azimuth and elevation apertures (degrees) and maximum range (metres).
+        """
         from ..geometry import Aperture
 
         return Aperture(self.azimuth_deg, self.elevation_deg, self.max_range_m, self.min_range_m)
@@ -118,7 +124,9 @@ class Transducer:
     def world_pose(self, position_m, yaw_deg, pitch_deg, roll_deg) -> tuple[np.ndarray, np.ndarray]:
         """The sensor's pose in the world from the vehicle's pose (batched).
 
-        Parameters (broadcast together to a batch shape ``S``)
+        The arguments are broadcast together to a batch shape ``S``.
+
+        Parameters
         ----------
         position_m : array_like, shape S + (3,)
             The vehicle reference point in the world frame (``x``, ``y`` horizontal, ``z`` up), m.
@@ -186,7 +194,18 @@ class Platform:
 
     def with_attitude_limits(self, *, pitch_max_deg: float | None = None,
                              roll_max_deg: float | None = None) -> "Platform":
-        """A copy with other attitude limits (e.g. the +-15 deg survey envelope of Sec. IV-D)."""
+        """A copy with other attitude limits (e.g. the +-15 deg survey envelope of Sec. IV-D).
+
+        Parameters
+        ----------
+        pitch_max_deg, roll_max_deg : float, optional
+            New limits, degrees; ``None`` keeps a limit.
+
+        Returns
+        -------
+        Platform
+            The copy.
+        """
         changes = {}
         for name, value in (("pitch_max_deg", pitch_max_deg), ("roll_max_deg", roll_max_deg)):
             if value is not None:
@@ -195,7 +214,18 @@ class Platform:
 
     def with_tilt(self, tilt_deg: float) -> "Platform":
         """A copy with both transducers tilted down by ``tilt_deg`` degrees, in [-90, 90] (to
-        probe an assumed tilt, such as the boat's Omniscan tilt)."""
+        probe an assumed tilt, such as the boat's Omniscan tilt).
+
+        Parameters
+        ----------
+        tilt_deg : float
+            Downward tilt of both transducers, degrees.
+
+        Returns
+        -------
+        Platform
+            The copy.
+        """
         tilt = check_range(float(tilt_deg), "tilt_deg", -90.0, 90.0)
         return dataclasses.replace(self, transducers={
             side: dataclasses.replace(t, tilt_deg=tilt) for side, t in self.transducers.items()})
@@ -281,6 +311,16 @@ def parse_platforms(doc: Mapping[str, Any]) -> dict[str, Platform]:
     ------
     ValueError
         Naming the full key path of the first missing or malformed entry.
+
+    Parameters
+    ----------
+    doc : mapping
+        A parsed TOML document with ``[sonars]`` and ``[platforms]``.
+
+    Returns
+    -------
+    dict of str to Platform
+        The platforms by key, in document order.
     """
     provenance: dict[str, str] = {}
     sonar_docs = table(doc, "sonars", "")
@@ -297,6 +337,16 @@ def load_platforms(path: str | Path | None = None) -> dict[str, Platform]:
 
     Default: ``data/`` merged with the active user data (:mod:`sss_locus.experiments.userdata`);
     ``path``: that one file only.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path, optional
+        A TOML file read alone instead.
+
+    Returns
+    -------
+    dict of str to Platform
+        The platforms by key.
     """
     if path is None:
         datadoc.note_read("platforms", "sonars")
@@ -304,7 +354,20 @@ def load_platforms(path: str | Path | None = None) -> dict[str, Platform]:
 
 
 def load_platform(key: str, path: str | Path | None = None) -> Platform:
-    """One platform by key (e.g. ``"boat"`` or ``"auv"``)."""
+    """One platform by key (e.g. ``"boat"`` or ``"auv"``).
+
+    Parameters
+    ----------
+    key : str
+        Platform key.
+    path : str or pathlib.Path, optional
+        A TOML file read alone instead.
+
+    Returns
+    -------
+    Platform
+        The platform.
+    """
     platforms = parse_platforms(datadoc.document() if path is None else read_toml(path))
     if key not in platforms:
         raise ValueError(f"platform must be one of {sorted(platforms)}; got {key!r}")
@@ -314,7 +377,18 @@ def load_platform(key: str, path: str | Path | None = None) -> Platform:
 
 
 def provenance_table(platform: Platform):
-    """The platform's numbers with their sources / assumptions, as a pandas DataFrame."""
+    """The platform's numbers with their sources / assumptions, as a pandas DataFrame.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per number: ``key``, ``kind`` (source or assumption) and ``note``.
+    """
     import pandas as pd
 
     rows = []
@@ -332,6 +406,17 @@ def frustum_points(sonar: Sonar, transducer: Transducer, plot_range_m: float,
     azimuth and elevation apertures; returned are its apex (the transducer origin) followed by
     an ``n`` x ``n`` grid over the far cap (azimuth x elevation at ``plot_range_m``). For
     apertures up to 180 deg in azimuth the frustum is the convex hull of these points.
+
+    Parameters
+    ----------
+    sonar : Sonar
+        The sonar (its apertures).
+    transducer : Transducer
+        The transducer (its mounting).
+    plot_range_m : float
+        Range of the far cap, metres.
+    n : int
+        Grid points per side of the cap.
 
     Returns
     -------

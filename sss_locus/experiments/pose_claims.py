@@ -31,7 +31,20 @@ from .replicates import N_BATCHES, batch_count, check_confidence, replicate_inte
 
 def batches(df: pd.DataFrame, n_batches: int = N_BATCHES) -> list[pd.DataFrame]:
     """The replicate batches of the rows of ``df``: batch ``j`` holds rows ``j, j + k, ...``
-    (:func:`~sss_locus.experiments.replicates.batch_count`)."""
+    (:func:`~sss_locus.experiments.replicates.batch_count`).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table.
+    n_batches : int
+        Batches wanted (at most ``len(df) // 3`` are made).
+
+    Returns
+    -------
+    list of pandas.DataFrame
+        The ``k`` batches, in order.
+    """
     k = batch_count(len(df), n_batches)
     return [df.iloc[j::k] for j in range(k)]
 
@@ -45,8 +58,20 @@ def batch_medians(parts: list[pd.DataFrame], binned: pd.DataFrame) -> np.ndarray
     :func:`~sss_locus.experiments.pose_stats.binned_median` or
     :func:`~sss_locus.experiments.pose_stats.binned_profile` table): shape ``(k, n_bins)``, NaN
     where a batch has no row in a bin. The numbers of ``binned_median`` (``binned_profile``) of
-    each part, from one sort of all of them
-    (:func:`~sss_locus.experiments.pose_stats.grouped_binned_medians`)."""
+    each part (:func:`~sss_locus.experiments.pose_stats.grouped_binned_medians`).
+
+    Parameters
+    ----------
+    parts : list of pandas.DataFrame
+        The replicate batches (:func:`batches`).
+    binned : pandas.DataFrame
+        The binned table whose bins are used (its ``attrs`` name the columns).
+
+    Returns
+    -------
+    numpy.ndarray, shape (k, n_bins)
+        The medians, batch by batch, in the order of ``binned``'s rows.
+    """
     a = binned.attrs
     columns, edges = _binning(binned)
     coords = np.column_stack([np.concatenate([p[c].to_numpy(float) for p in parts]) for c in columns])
@@ -59,8 +84,23 @@ def batch_medians(parts: list[pd.DataFrame], binned: pd.DataFrame) -> np.ndarray
 
 def dealt_batch_medians(df: pd.DataFrame, binned: pd.DataFrame, n_batches: int = N_BATCHES) -> np.ndarray:
     """:func:`batch_medians` of ``batches(df, n_batches)`` (the same numbers), without cutting
-    ``df``: row ``i`` is in batch ``i mod k``, and the order of the values is shared with the
-    other binnings of ``df`` (:func:`~sss_locus.experiments.pose_stats.grouped_binned`)."""
+    ``df``: row ``i`` is in batch ``i mod k``
+    (:func:`~sss_locus.experiments.pose_stats.grouped_binned`).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The whole table.
+    binned : pandas.DataFrame
+        The binned table of ``df``.
+    n_batches : int
+        Batches wanted.
+
+    Returns
+    -------
+    numpy.ndarray, shape (k, n_bins)
+        As :func:`batch_medians`.
+    """
     k = batch_count(len(df), n_batches)
     columns, edges = _binning(binned)
     _, med, _ = grouped_binned(df, columns, edges, binned.attrs["value"], np.arange(len(df)) % k, k)
@@ -91,6 +131,24 @@ def peak_region(binned: pd.DataFrame, batch_meds: np.ndarray, select=None,
     the region (the peak bin always in it) and the peak median's interval. Overlapping
     intervals are a screen, not a test: the region is the set of bins that may hold the
     largest median at this sample size.
+
+    Parameters
+    ----------
+    binned : pandas.DataFrame
+        A binned table.
+    batch_meds : numpy.ndarray, shape (k, n_bins)
+        Its bins' medians in each replicate batch.
+    select : numpy.ndarray of bool, shape (n_bins,), optional
+        Bins searched (default all).
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+
+    Returns
+    -------
+    region : pandas.DataFrame
+        The rows of ``binned`` in the region.
+    low, high : float
+        The peak median's interval, metres.
     """
     check_confidence(confidence_level)
     keep = ~binned["masked"].to_numpy()
@@ -138,6 +196,28 @@ def claim_metrics(df: pd.DataFrame, rho: pd.DataFrame, maps: dict[str, pd.DataFr
     medians are too noisy for a useful region); its region is ``azimuth_region_theta1_lo_deg``
     etc., ``azimuth_region_bins`` bins, ``azimuth_region_equal`` 1.0 if one of them has equal
     azimuths.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The heatmaps' table.
+    rho : pandas.DataFrame
+        The :func:`~sss_locus.experiments.pose_stats.spearman_table` of the whole table.
+    maps : dict of str to pandas.DataFrame
+        The heatmaps of ``df``.
+    yaw_bin_deg : float
+        Width of the yaw profile's bins, degrees.
+    min_count : int
+        Rows a bin needs to be shown.
+    n_batches : int
+        Replicate batches.
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+
+    Returns
+    -------
+    dict of str to float or str
+        The numbers by key (units in the key: ``_deg``, ``_m``; ratios and shares plain).
     """
     m: dict[str, float | str] = {}
     for target, tag in (("locus_length_m", "raw"), ("locus_length_normalized", "norm")):
@@ -233,6 +313,23 @@ def map_intervals(df: pd.DataFrame, maps: dict[str, pd.DataFrame], n_batches: in
                   confidence_level: float = 0.95) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Per panel of ``maps`` (:func:`~sss_locus.experiments.pose_stats.heatmaps` of ``df``), the
     95 % replicate interval ``(low, high)`` of every bin's median, in the bins' order (NaN where
-    a batch has no row in the bin)."""
+    a batch has no row in the bin).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The heatmaps' table.
+    maps : dict of str to pandas.DataFrame
+        The heatmaps of ``df``.
+    n_batches : int
+        Replicate batches.
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+
+    Returns
+    -------
+    dict of str to (numpy.ndarray, numpy.ndarray)
+        Per panel letter, the lower and upper ends, metres, one per bin.
+    """
     return {p: replicate_interval(b["median"].to_numpy(float), dealt_batch_medians(df, b, n_batches), confidence_level)
             for p, b in maps.items()}

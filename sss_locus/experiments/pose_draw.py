@@ -33,7 +33,20 @@ nearer rows go through the plain computation. Its rounding error is below 1e-15 
 
 
 def spherical_to_cartesian(r, theta, phi) -> np.ndarray:
-    """The paper's eq. (1): ``(r cos t cos p, r sin t cos p, r sin p)``; shape ``(..., 3)``."""
+    """The paper's eq. (1): ``(r cos t cos p, r sin t cos p, r sin p)``; shape ``(..., 3)``.
+
+    Parameters
+    ----------
+    r : array_like
+        Ranges, metres.
+    theta, phi : array_like
+        Azimuth and elevation, radians; broadcast with ``r``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        Points in the sensor frame, metres.
+    """
     cp = np.cos(phi)
     return np.stack([r * np.cos(theta) * cp, r * np.sin(theta) * cp, r * np.sin(phi)], axis=-1)
 
@@ -91,7 +104,22 @@ def _solved(spec) -> bool:
 
 def draw_numbers(spec, rng, m: int) -> dict[str, np.ndarray]:
     """Every random number of a round of ``m`` candidates, drawn from ``rng`` in the sampler's
-    order; each array has the candidates along its last axis (``R2``: along its first)."""
+    order; each array has the candidates along its last axis (``R2``: along its first).
+
+    Parameters
+    ----------
+    spec : PoseSpaceSpec
+        The study.
+    rng : numpy.random.Generator
+        The stream's generator.
+    m : int
+        Number of candidates.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The draws by name (uniform numbers, rotations ``R2`` of shape ``(m, 3, 3)``).
+    """
     pf = spec.platform
     d = {"port1": _sides(rng, m, spec.side1)}
     d["u1"] = 1.0 - rng.random((3, m))  # in (0, 1]: r never hits min_range = 0 exactly
@@ -112,13 +140,40 @@ def draw_numbers(spec, rng, m: int) -> dict[str, np.ndarray]:
 
 
 def rows_of(d: dict[str, np.ndarray], rows) -> dict[str, np.ndarray]:
-    """The draws of :func:`draw_numbers` for the candidates ``rows`` only."""
+    """The draws of :func:`draw_numbers` for the candidates ``rows`` only.
+
+    Parameters
+    ----------
+    d : dict of str to numpy.ndarray
+        Draws of :func:`draw_numbers`.
+    rows : array_like of int or bool
+        Candidates kept (indices or a mask along the candidates' axis).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The same draws for those candidates only.
+    """
     return {k: v[rows] if k == "R2" else v[..., rows] for k, v in d.items()}
 
 
 def candidates(spec, d: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """The candidate configurations of the draws ``d`` and a boolean ``accept`` mask (the
-    constraints); the sensors' world rotations ``R1``, ``R2``."""
+    constraints); the sensors' world rotations ``R1``, ``R2``.
+
+    Parameters
+    ----------
+    spec : PoseSpaceSpec
+        The study.
+    d : dict of str to numpy.ndarray
+        Draws of :func:`draw_numbers`.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The configurations (ranges in metres, angles in radians, world positions and rotations)
+        and ``accept``, a boolean mask, one entry per candidate.
+    """
     pf = spec.platform
     ap = pf.sonar.aperture()
     port1, port2 = d["port1"], d["port2"]
@@ -186,13 +241,39 @@ def _constraints(spec, f_z, o1_z, o2_z, v2_z, d1, strict: bool, tol: float = 0.0
 
 
 def draw_candidates(spec, rng, m: int) -> dict[str, np.ndarray]:
-    """``m`` candidate configurations and their ``accept`` mask: the plain sampler's round."""
+    """``m`` candidate configurations and their ``accept`` mask: the plain sampler's round.
+
+    Parameters
+    ----------
+    spec : PoseSpaceSpec
+        The study.
+    rng : numpy.random.Generator
+        The stream's generator.
+    m : int
+        Number of candidates.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        :func:`candidates` of :func:`draw_numbers` (with ``accept``).
+    """
     return candidates(spec, draw_numbers(spec, rng, m))
 
 
 def length_scale(pf) -> float:
     """Metres against which :data:`DECISION_MARGIN` is taken: twice the maximum range, the
-    transducers' distances from the reference point and the deepest depth, plus 1."""
+    transducers' distances from the reference point and the deepest depth, plus 1.
+
+    Parameters
+    ----------
+    pf : Platform
+        The platform of the study.
+
+    Returns
+    -------
+    float
+        The length scale, metres.
+    """
     mounts = max(float(np.linalg.norm(t.position_m)) for t in pf.transducers.values())
     return 2.0 * pf.sonar.max_range_m + 2.0 * mounts + abs(pf.depth_max_m) + abs(pf.depth_min_m) + 1.0
 
@@ -233,7 +314,26 @@ def draw_round(spec, rng, m: int, need: int) -> tuple[dict[str, np.ndarray], int
     """One round of :func:`draw_candidates`, reduced to its first ``need`` accepted rows:
     ``(rows, n_accepted)``, ``rows`` the arrays of those candidates (without ``accept``) and
     ``n_accepted`` how many of the ``m`` were accepted. The same numbers, bit for bit, as
-    filtering :func:`draw_candidates` (module docstring)."""
+    filtering :func:`draw_candidates` (module docstring).
+
+    Parameters
+    ----------
+    spec : PoseSpaceSpec
+        The study.
+    rng : numpy.random.Generator
+        The stream's generator.
+    m : int
+        Number of candidates drawn.
+    need : int
+        Accepted rows still needed by the block.
+
+    Returns
+    -------
+    rows : dict of str to numpy.ndarray
+        The first ``min(need, n_accepted)`` accepted candidates.
+    n_accepted : int
+        Candidates of the ``m`` accepted.
+    """
     d = draw_numbers(spec, rng, m)
     if spec.profile != "platform" or spec.platform.fixed_depth:
         cand = candidates(spec, d)

@@ -81,12 +81,42 @@ def batch_rows(n: int, k: int) -> list[tuple[int, int]]:
     alike, so unequal batches (e.g. whole sampler blocks, 1 or 2 of them) would make it a
     differently weighted, noisier estimate than the full table's (by ~0.3 of the interval's
     half-width, measured). A block that two batches share is drawn by both (at most ``k - 1``
-    extra blocks of :data:`~sss_locus.experiments.pose_space.BLOCK_SIZE` rows)."""
+    extra blocks of :data:`~sss_locus.experiments.pose_space.BLOCK_SIZE` rows).
+
+    Parameters
+    ----------
+    n : int
+        Rows of the study.
+    k : int
+        Number of batches.
+
+    Returns
+    -------
+    list of (int, int)
+        ``k`` half-open row ranges covering ``0 .. n - 1`` in order.
+    """
     return [(j * n // k, (j + 1) * n // k) for j in range(k)]
 
 
 def batch_table(spec: PoseSpaceSpec, seed: int, n: int, start: int, stop: int) -> pd.DataFrame:
-    """Rows ``start .. stop - 1`` of ``sample_pose_space(spec, n, seed)``, made on their own."""
+    """Rows ``start .. stop - 1`` of ``sample_pose_space(spec, n, seed)``, made on their own.
+
+    Parameters
+    ----------
+    spec : PoseSpaceSpec
+        The study.
+    seed : int
+        Seed of the stream.
+    n : int
+        Rows of the whole study.
+    start, stop : int
+        Rows wanted, ``start .. stop - 1``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Those rows, index from 0.
+    """
     first, last = start // BLOCK_SIZE, -(-stop // BLOCK_SIZE)
     rows = evaluate_blocks(spec, seed, first, last, n)
     return rows.iloc[start - first * BLOCK_SIZE:stop - first * BLOCK_SIZE].reset_index(drop=True)

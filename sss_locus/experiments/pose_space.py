@@ -176,7 +176,13 @@ class PoseSpaceSpec:
         object.__setattr__(self, "roll_max_deg", limited.roll_max_deg)
 
     def key(self) -> dict:
-        """Plain-data description (for cache keys and figure manifests)."""
+        """Plain-data description (for cache keys and figure manifests).
+
+        Returns
+        -------
+        dict
+            The platform key, constraints and windows as plain numbers and strings.
+        """
         d = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in ("platform", "water")}
         d["platform"] = self.platform.key
         if self.water is not None:  # absent when off: the paper's runs keep their keys
@@ -185,7 +191,23 @@ class PoseSpaceSpec:
 
 
 def draw_block(spec: PoseSpaceSpec, seed: int, block: int) -> dict[str, np.ndarray]:
-    """Block ``block`` (:data:`BLOCK_SIZE` accepted configurations) of the stream for ``seed``."""
+    """Block ``block`` (:data:`BLOCK_SIZE` accepted configurations) of the stream for ``seed``.
+
+    Parameters
+    ----------
+    spec : PoseSpaceSpec
+        The study (platform, constraints, windows).
+    seed : int
+        Seed of the stream, ``>= 0``.
+    block : int
+        Index of the block in the stream, ``>= 0``.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The raw configurations of the block (:func:`sample_geometry`'s arrays), each with
+        :data:`BLOCK_SIZE` rows.
+    """
     rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(block,)))
     parts, have, tried = [], 0, 0  # parts: the kept rows of each round
     while have < BLOCK_SIZE:
@@ -233,7 +255,24 @@ def _evaluate(spec: PoseSpaceSpec, g: dict[str, np.ndarray]) -> pd.DataFrame:
 
 
 def evaluate_blocks(spec: PoseSpaceSpec, seed: int, first: int, stop: int, n: int) -> pd.DataFrame:
-    """Rows of blocks ``first .. stop - 1`` (cut at row ``n``): one chunk of the study."""
+    """Rows of blocks ``first .. stop - 1`` (cut at row ``n``): one chunk of the study.
+
+    Parameters
+    ----------
+    spec : PoseSpaceSpec
+        The study.
+    seed : int
+        Seed of the stream.
+    first, stop : int
+        Blocks ``first .. stop - 1`` of the stream.
+    n : int
+        Rows of the whole study: the last block is cut at row ``n``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows of :func:`sample_pose_space` of those blocks, in stream order.
+    """
     blocks = [draw_block(spec, seed, k) for k in range(first, stop)]
     g = {key: np.concatenate([b[key] for b in blocks])[:n - first * BLOCK_SIZE] for key in blocks[0]}
     return _evaluate(spec, g)
@@ -241,13 +280,48 @@ def evaluate_blocks(spec: PoseSpaceSpec, seed: int, first: int, stop: int, n: in
 
 def sample_geometry(spec: PoseSpaceSpec, n: int, seed: int) -> dict[str, np.ndarray]:
     """The first ``n`` raw configurations (``R``, ``t``, ranges, angles, world positions ``f``,
-    ``o1``, ``o2`` ...) for ``seed``; the rows of :func:`sample_pose_space` in the same order."""
+    ``o1``, ``o2`` ...) for ``seed``; the rows of :func:`sample_pose_space` in the same order.
+
+    Parameters
+    ----------
+    spec : PoseSpaceSpec
+        The study.
+    n : int
+        Number of configurations, ``>= 1``.
+    seed : int
+        Seed of the stream, ``>= 0``.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        Per quantity, an array with ``n`` rows along its first axis (rotations ``(n, 3, 3)``,
+        vectors ``(n, 3)``, metres and radians).
+    """
     n, seed = check_n_seed(n, seed)
     blocks = [draw_block(spec, seed, k) for k in range(-(-n // BLOCK_SIZE))]
     return {k: np.concatenate([b[k] for b in blocks])[:n] for k in blocks[0]} if blocks else {}
 
 
 def check_n_seed(n, seed):
+    """The sample count and seed as ``int``, checked before any work starts.
+
+    Parameters
+    ----------
+    n : int
+        Number of samples, ``>= 1``.
+    seed : int
+        Seed, ``>= 0``.
+
+    Returns
+    -------
+    (int, int)
+        ``(n, seed)``.
+
+    Raises
+    ------
+    ValueError
+        Naming ``n_samples`` or ``seed`` and the valid range.
+    """
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"n_samples must be a positive integer; got {n!r}")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:

@@ -16,7 +16,7 @@ from scipy.stats import binned_statistic_dd
 
 from .replicates import (N_BATCHES, batch_count, check_confidence, fisher_z_interval,
                          rank_correlation, replicate_interval)
-from .rowstats import average_ranks, batch_average_ranks, ranks_in_order, value_order
+from .rowstats import average_ranks, batch_average_ranks
 
 TARGETS = ("locus_length_m", "locus_length_normalized")
 """Raw and range-normalised locus length (``locus_length_m / mean_range_m``)."""
@@ -35,7 +35,6 @@ _RANK_MEMO_BYTES = 256 * 2 ** 20
 """Bound of the memo of column ranks (:func:`column_ranks`), bytes."""
 _rank_memo: OrderedDict[tuple, np.ndarray] = OrderedDict()
 _memo_bytes = [0]  # bytes held by _rank_memo
-_order_memo: OrderedDict[tuple, np.ndarray] = OrderedDict()  # value orders (_stable_order)
 _COPY_ON_WRITE = int(pd.__version__.split(".")[0]) >= 3  # always on from pandas 3
 
 
@@ -49,7 +48,20 @@ def with_derived(df: pd.DataFrame, misalignment: str = "magnitude") -> pd.DataFr
     """A copy of ``df`` with the magnitude columns used in :data:`CANDIDATES`, and with
     ``elevation_misalignment_deg`` recomputed from ``psi1_deg`` and ``psi2_deg`` under the
     reading ``misalignment`` (:data:`MISALIGNMENT_READINGS`; ``"magnitude"`` reproduces the
-    kernel's column)."""
+    kernel's column).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        A pose-space table (:func:`~sss_locus.experiments.pose_space.sample_pose_space`).
+    misalignment : {"magnitude", "signed"}
+        Reading of the paper's ``max(psi1, psi2)``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        A copy of ``df`` with the added and recomputed columns (degrees).
+    """
     if misalignment not in MISALIGNMENT_READINGS:
         raise ValueError(f"misalignment must be one of {list(MISALIGNMENT_READINGS)}; got {misalignment!r}")
     out = df.copy(deep=not _COPY_ON_WRITE)  # with copy-on-write a shallow copy is a copy
@@ -89,6 +101,19 @@ def spearman_table(df: pd.DataFrame, candidates: Sequence[str] = CANDIDATES,
     constant column (e.g. the boat's pitch, always 0) has no rank correlation: with
     ``drop_constant`` it is left out (listed in ``out.attrs["dropped"]``), otherwise it raises
     ``ValueError``.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table, with the columns named in ``candidates`` and ``targets``.
+    candidates, targets : sequence of str
+        Columns correlated (default :data:`CANDIDATES`, :data:`TARGETS`).
+    n_batches : int
+        Replicate batches, ``>= 2``.
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+    drop_constant : bool
+        Leave constant candidates out instead of raising.
 
     Returns
     -------
@@ -134,7 +159,28 @@ def _centred_stack(columns: list[np.ndarray], spans: list[tuple[int, int]]) -> n
 def rho_frame(rho: np.ndarray, batches: np.ndarray, n: int, candidates: Sequence[str],
               targets: Sequence[str], confidence_level: float = 0.95, dropped=()) -> pd.DataFrame:
     """The table of :func:`spearman_table` from a point estimate ``rho`` ``(p, q)`` (candidates x
-    targets), the ``k`` replicate batches' rhos ``(k, p, q)`` and the number of rows ``n``."""
+    targets), the ``k`` replicate batches' rhos ``(k, p, q)`` and the number of rows ``n``.
+
+    Parameters
+    ----------
+    rho : numpy.ndarray, shape (p, q)
+        Spearman rho of the whole table, candidates x targets.
+    batches : numpy.ndarray, shape (k, p, q)
+        Rho of each replicate batch.
+    n : int
+        Rows of the table.
+    candidates, targets : sequence of str
+        Names of the ``p`` candidates and ``q`` targets.
+    confidence_level : float
+        Level of the intervals, in (0, 1).
+    dropped : sequence of str
+        Constant columns left out (``attrs["dropped"]``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        As :func:`spearman_table`.
+    """
     lo, hi = replicate_interval(rho, batches, confidence_level, bounds=(-1.0, 1.0))
     zlo, zhi = fisher_z_interval(rho, n, confidence_level)
     rows = [dict(target=tg, quantity=c, rho=rho[i, j], ci_low=lo[i, j], ci_high=hi[i, j], n=n,
@@ -160,23 +206,43 @@ def column_ranks(values: np.ndarray, n_batches: int = 1) -> np.ndarray:
     SHA-256 of its bytes. Numeric columns without NaN are remembered (least recently used
     first out, at most :data:`_RANK_MEMO_BYTES`), as twice their ranks in ``uint32`` (exact:
     ranks are half-integers up to ``n``); the ranks returned are the same numbers either way.
+
+    Parameters
+    ----------
+    values : numpy.ndarray, shape (n,)
+        One column of a table.
+    n_batches : int
+        Number of replicate batches ``k >= 1`` (1: the whole column).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n,), float64
+        The average ranks (half-integers), batches one after another.
     """
     return column_rank_sets(values, (int(n_batches),))[0]
 
 
 def column_rank_sets(values: np.ndarray, batch_counts: Sequence[int]) -> list[np.ndarray]:
     """:func:`column_ranks` of ``values`` for each ``k`` in ``batch_counts`` (1: the whole
-    column), from at most one sort of the column: the batches' ranks are dealt from the whole
-    column's order (:func:`~sss_locus.experiments.rowstats.batch_average_ranks`)."""
+    column).
+
+    Parameters
+    ----------
+    values : numpy.ndarray, shape (n,)
+        One column of a table.
+    batch_counts : sequence of int
+        Numbers of replicate batches ``k``, each ``>= 1``.
+
+    Returns
+    -------
+    list of numpy.ndarray, each shape (n,)
+        Per ``k``, the ranks of each batch ``values[j::k]`` within it, batches in order
+        (:func:`~sss_locus.experiments.rowstats.batch_average_ranks`).
+    """
     v = np.ascontiguousarray(values)
-    order = []  # the column's value order, once computed
 
     def rank(k: int) -> np.ndarray:
-        if v.ndim != 1 or (v.dtype.kind == "f" and np.isnan(v).any()):
-            return average_ranks(v) if k == 1 else batch_average_ranks(v, k)
-        if not order:
-            order.append(value_order(v))
-        return ranks_in_order(v, order[0]) if k == 1 else batch_average_ranks(v, k, order[0])
+        return average_ranks(v) if k == 1 else batch_average_ranks(v, k)
 
     if v.ndim != 1 or v.dtype.kind not in "fiub" or not 0 < 2 * v.size < 2 ** 32:
         return [rank(int(k)) for k in batch_counts]
@@ -225,63 +291,77 @@ def _binned(df: pd.DataFrame, columns: Sequence[str], edges: Sequence[np.ndarray
 
 def grouped_binned(df: pd.DataFrame, columns: Sequence[str], edges: Sequence[np.ndarray], value: str,
                    groups=None, n_groups: int = 1) -> tuple[np.ndarray, np.ndarray, int]:
-    """:func:`grouped_binned_medians` of the rows of ``df`` (``groups`` one per row; ``None``:
-    all in group 0) without those with a NaN coordinate or value, and their number. The order
-    of the ``value`` column is remembered by its content (a chapter bins one column many ways)."""
+    """:func:`grouped_binned_medians` of the rows of ``df`` without those with a NaN
+    coordinate or value, and their number.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        Table holding ``columns`` and ``value``.
+    columns : sequence of str
+        Columns binned, one axis each.
+    edges : sequence of numpy.ndarray
+        Increasing bin edges of each column.
+    value : str
+        Column whose medians are taken.
+    groups : array_like of int, shape (len(df),), optional
+        Group ``0 .. n_groups - 1`` of each row; ``None``: all in group 0.
+    n_groups : int
+        Number of groups.
+
+    Returns
+    -------
+    count, median : numpy.ndarray, shape (n_groups, *bins)
+        As :func:`grouped_binned_medians`.
+    n_nan : int
+        Rows left out for a NaN.
+    """
     coords = np.column_stack([df[c].to_numpy(float) for c in columns])
     v = df[value].to_numpy(float)
     ok = ~(np.isnan(coords).any(axis=1) | np.isnan(v))
     groups = np.zeros(len(v), np.intp) if groups is None else np.asarray(groups)
-    order = _stable_order(v)
-    if not ok.all():  # the order of the rows kept, numbered among them
-        order = (np.cumsum(ok) - 1)[order[ok[order]]]
-    count, med = grouped_binned_medians(coords[ok], v[ok], edges, groups[ok], n_groups, order)
+    count, med = grouped_binned_medians(coords[ok], v[ok], edges, groups[ok], n_groups)
     return count, med, int((~ok).sum())
 
 
-def _stable_order(v: np.ndarray) -> np.ndarray:
-    """``np.argsort(v, kind="stable")``, remembered for the last few columns by content."""
-    key = (v.size, hashlib.sha256(np.ascontiguousarray(v).view(np.uint8)).digest())
-    if key not in _order_memo:
-        _order_memo[key] = np.argsort(v, kind="stable")
-        while len(_order_memo) > 4:
-            _order_memo.popitem(last=False)
-    _order_memo.move_to_end(key)
-    return _order_memo[key]
-
-
 def grouped_binned_medians(coords: np.ndarray, values: np.ndarray, edges: Sequence[np.ndarray],
-                           groups: np.ndarray, n_groups: int, order=None) -> tuple[np.ndarray, np.ndarray]:
-    """Per group ``0 .. n_groups - 1`` (``groups``, one per row), the count and the median of
-    ``values`` in each bin of ``coords`` ``(n, d)`` (rows without NaN): arrays of shape
-    ``(n_groups, *bins)``, medians NaN in empty bins.
+                           groups: np.ndarray, n_groups: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per group, the count and the median of ``values`` in each bin of ``coords``: one
+    :func:`scipy.stats.binned_statistic_dd` (statistic ``"median"``) per group.
 
-    The numbers of one :func:`scipy.stats.binned_statistic_dd` (statistic ``"median"``) per
-    group, bit for bit: the bins are scipy's (its ``binnumber``), and its median, the mean of
-    the middle two of the bin's values ordered by value and then by row (``lexsort``), is taken
-    the same way, from one stable sort of the values and one stable sort of the (group, bin)
-    numbers along it (a radix sort for up to 65,536 of them) instead of one ``lexsort`` per
-    group. ``order``: ``np.argsort(values, kind="stable")`` if already known.
+    Parameters
+    ----------
+    coords : numpy.ndarray, shape (n, d)
+        Coordinates of the rows (no NaN).
+    values : numpy.ndarray, shape (n,)
+        Values of the rows (no NaN).
+    edges : sequence of d numpy.ndarray
+        Increasing bin edges of each coordinate (scipy's bins: half-open, the last closed).
+    groups : numpy.ndarray of int, shape (n,)
+        Group ``0 .. n_groups - 1`` of each row.
+    n_groups : int
+        Number of groups.
+
+    Returns
+    -------
+    count : numpy.ndarray of int, shape (n_groups, *bins)
+        Rows per bin (``bins`` one less than each axis' edges).
+    median : numpy.ndarray of float, shape (n_groups, *bins)
+        Median per bin; NaN in empty bins.
     """
-    shape = tuple(len(e) + 1 for e in edges)  # scipy's bin numbers count the outlier bins either side
-    n_flat = int(np.prod(shape))
-    size = n_groups * n_flat
-    if len(values):
-        bins = binned_statistic_dd(coords, values, "count", bins=list(edges)).binnumber
-        key = (np.asarray(groups, np.intp) * n_flat + bins).astype(np.min_scalar_type(size - 1))
-    else:  # scipy needs a sample to bin: every bin empty
-        key = np.zeros(0, np.intp)
-    order = np.argsort(values, kind="stable") if order is None else order  # by value, equal values by row
-    order = order[np.argsort(key[order], kind="stable")]  # by group and bin, each by value and row
-    s = values[order]
-    count = np.bincount(key, minlength=size)
-    start = np.cumsum(count) - count
-    med = np.full(size, np.nan)
-    filled = count > 0
-    mid = start[filled] + (count[filled] - 1) / 2
-    med[filled] = (s[np.floor(mid).astype(int)] + s[np.ceil(mid).astype(int)]) / 2
-    inner = (slice(None),) + tuple(slice(1, -1) for _ in edges)
-    return count.reshape((n_groups,) + shape)[inner], med.reshape((n_groups,) + shape)[inner]
+    bins = tuple(len(e) - 1 for e in edges)
+    count = np.zeros((int(n_groups),) + bins, np.intp)
+    med = np.full((int(n_groups),) + bins, np.nan)
+    groups = np.asarray(groups)
+    for g in range(int(n_groups)):
+        sel = groups == g
+        if sel.any():  # scipy needs a sample to bin: an empty group keeps every bin empty
+            res = binned_statistic_dd(coords[sel], values[sel], "median", bins=list(edges))
+            med[g] = res.statistic
+            inner = tuple(slice(1, -1) for _ in edges)  # scipy's bin numbers count the outlier bins
+            count[g] = np.bincount(res.binnumber, minlength=int(np.prod([b + 2 for b in bins]))
+                                   ).reshape(tuple(b + 2 for b in bins))[inner]
+    return count, med
 
 
 def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m", *,
@@ -293,6 +373,19 @@ def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m
     less than a millionth of the narrowest bin); rows outside the edges are ignored. A row with a
     NaN coordinate or value lies in no bin (neither counted nor in a median); their number is
     ``attrs["n_nan"]``. Every bin appears (empty ones with ``count`` 0 and NaN median).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        Table holding ``x``, ``y`` and ``value``.
+    x, y : str
+        Columns binned.
+    value : str
+        Column whose median is taken.
+    x_edges, y_edges : array_like
+        Strictly increasing bin edges, at least two each.
+    min_count : int
+        Rows a bin needs to be shown, ``>= 1``.
 
     Returns
     -------
@@ -316,7 +409,20 @@ def binned_median(df: pd.DataFrame, x: str, y: str, value: str = "locus_length_m
 
 
 def bin_index(v: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    """Bin of each value for increasing ``edges``: half-open ``[lo, hi)``, the last bin closed; -1 outside."""
+    """Bin of each value for increasing ``edges``: half-open ``[lo, hi)``, the last bin closed; -1 outside.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Values.
+    edges : numpy.ndarray, shape (m + 1,)
+        Increasing bin edges.
+
+    Returns
+    -------
+    numpy.ndarray of int, shape of ``v``
+        Bin ``0 .. m - 1`` of each value, -1 outside the edges.
+    """
     i = np.searchsorted(edges, v, side="right") - 1
     i = np.where(v == edges[-1], len(edges) - 2, i)
     return np.where((v < edges[0]) | (v > edges[-1]), -1, i)
@@ -324,7 +430,20 @@ def bin_index(v: np.ndarray, edges: np.ndarray) -> np.ndarray:
 
 def median_grid(binned: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(x_edges, y_edges, Z)`` for ``pcolormesh`` from :func:`binned_median`; masked bins NaN.
-    ``Z`` has shape ``(n_y, n_x)``."""
+    ``Z`` has shape ``(n_y, n_x)``.
+
+    Parameters
+    ----------
+    binned : pandas.DataFrame
+        A :func:`binned_median` table.
+
+    Returns
+    -------
+    x_edges : numpy.ndarray, shape (n_x + 1,)
+    y_edges : numpy.ndarray, shape (n_y + 1,)
+    Z : numpy.ndarray, shape (n_y, n_x)
+        Medians, NaN in masked bins.
+    """
     xe = np.unique(np.concatenate([binned["x_lo"], binned["x_hi"]]))
     ye = np.unique(np.concatenate([binned["y_lo"], binned["y_hi"]]))
     z = np.where(binned["masked"], np.nan, binned["median"]).reshape(len(xe) - 1, len(ye) - 1)
@@ -334,7 +453,27 @@ def median_grid(binned: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarra
 def binned_profile(df: pd.DataFrame, x: str, value: str = "locus_length_m", *, edges,
                    min_count: int = 30) -> pd.DataFrame:
     """1-D version of :func:`binned_median`: ``lo, hi, mid, count, median, masked``; the same
-    bins and NaN rule."""
+    bins and NaN rule.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        Table holding ``x`` and ``value``.
+    x : str
+        Column binned.
+    value : str
+        Column whose median is taken.
+    edges : array_like
+        Strictly increasing bin edges, at least two.
+    min_count : int
+        Rows a bin needs to be shown, ``>= 1``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per bin; ``attrs`` as :func:`binned_median` (``x``, ``value``, ``min_count``,
+        ``n_nan``).
+    """
     _require(df, [x, value])
     e = _edges("edges", edges)
     count, med, n_nan = _binned(df, [x], [e], value, min_count)
@@ -346,7 +485,20 @@ def binned_profile(df: pd.DataFrame, x: str, value: str = "locus_length_m", *, e
 
 
 def round_sig(x, digits: int = 2):
-    """Round to ``digits`` significant figures (array-friendly; 0 and NaN pass through)."""
+    """Round to ``digits`` significant figures (array-friendly; 0 and NaN pass through).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Values.
+    digits : int
+        Significant figures.
+
+    Returns
+    -------
+    numpy.ndarray
+        The rounded values (0-d for a scalar).
+    """
     x = np.asarray(x, float)
     with np.errstate(divide="ignore", invalid="ignore"):
         mag = np.where((x == 0) | ~np.isfinite(x), 0, np.floor(np.log10(np.abs(x))))
@@ -355,7 +507,20 @@ def round_sig(x, digits: int = 2):
 
 
 def agree_sig(a, b, digits: int = 2) -> np.ndarray:
-    """Whether ``a`` and ``b`` are equal after rounding each to ``digits`` significant figures."""
+    """Whether ``a`` and ``b`` are equal after rounding each to ``digits`` significant figures.
+
+    Parameters
+    ----------
+    a, b : float or array_like
+        Values compared (broadcast).
+    digits : int
+        Significant figures.
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        Whether they agree at ``digits``.
+    """
     return np.asarray(round_sig(a, digits) == round_sig(b, digits))
 
 
@@ -374,7 +539,23 @@ HEATMAP_PANELS = (
 
 def panel_edges(column: str, platform, n_bins: int) -> np.ndarray:
     """Bin edges spanning the sampled range of ``column`` for ``platform`` (its aperture and
-    attitude limits). A column held at 0 (the boat's pitch) gets a single bin [-0.5, 0.5]."""
+    attitude limits). A column held at 0 (the boat's pitch) gets a single bin [-0.5, 0.5].
+
+    Parameters
+    ----------
+    column : str
+        A heatmap column (``r1_m``, ``azimuth1_deg``, ``yaw2_deg`` ...).
+    platform : Platform
+        The platform sampled.
+    n_bins : int
+        Number of bins.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``n_bins + 1`` equal-width edges (metres or degrees, as the column), or the two edges of
+        the single bin.
+    """
     sonar = platform.sonar
     limits = {
         "r1_m": (sonar.min_range_m, sonar.max_range_m), "r2_m": (sonar.min_range_m, sonar.max_range_m),
@@ -394,7 +575,26 @@ def panel_edges(column: str, platform, n_bins: int) -> np.ndarray:
 
 def heatmaps(df: pd.DataFrame, platform, *, n_bins: int = 24, min_count: int = 30,
              value: str = "locus_length_m") -> dict[str, pd.DataFrame]:
-    """:func:`binned_median` for every panel of :data:`HEATMAP_PANELS`, keyed by panel letter."""
+    """:func:`binned_median` for every panel of :data:`HEATMAP_PANELS`, keyed by panel letter.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The pose-space table (feature on the side the chapter maps).
+    platform : Platform
+        The platform sampled (for :func:`panel_edges`).
+    n_bins : int
+        Bins per axis.
+    min_count : int
+        Rows a bin needs to be shown.
+    value : str
+        Column whose median is taken.
+
+    Returns
+    -------
+    dict of str to pandas.DataFrame
+        Per panel letter of :data:`HEATMAP_PANELS`, its :func:`binned_median` table.
+    """
     return {p: binned_median(df, x, y, value, x_edges=panel_edges(x, platform, n_bins),
                              y_edges=panel_edges(y, platform, n_bins), min_count=min_count)
             for p, x, y in HEATMAP_PANELS}

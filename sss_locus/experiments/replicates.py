@@ -42,14 +42,38 @@ freedom is within 5 % of the normal one)."""
 
 
 def check_batches(n_batches, name: str = "n_batches") -> int:
-    """``n_batches`` as an int, ``ValueError`` naming ``name`` unless an integer >= 3."""
+    """``n_batches`` as an int, ``ValueError`` naming ``name`` unless an integer >= 3.
+
+    Parameters
+    ----------
+    n_batches : int
+        Number of batches.
+    name : str
+        Name of the argument in the error message.
+
+    Returns
+    -------
+    int
+        ``n_batches``.
+    """
     if isinstance(n_batches, bool) or not isinstance(n_batches, (int, np.integer)) or n_batches < 3:
         raise ValueError(f"{name} must be an integer >= 3 (replicate batches); got {n_batches!r}")
     return int(n_batches)
 
 
 def check_confidence(confidence_level) -> float:
-    """``confidence_level`` as a float, ``ValueError`` unless in (0, 1)."""
+    """``confidence_level`` as a float, ``ValueError`` unless in (0, 1).
+
+    Parameters
+    ----------
+    confidence_level : float
+        Level of an interval.
+
+    Returns
+    -------
+    float
+        ``confidence_level``.
+    """
     if not (isinstance(confidence_level, (int, float)) and 0.0 < confidence_level < 1.0):
         raise ValueError(f"confidence_level must be in (0, 1); got {confidence_level!r}")
     return float(confidence_level)
@@ -58,7 +82,20 @@ def check_confidence(confidence_level) -> float:
 def batch_count(n: int, n_batches: int = N_BATCHES) -> int:
     """The number of batches ``k = min(n_batches, n)`` of ``n`` rows; batch ``j`` is rows
     ``j, j + k, j + 2k, ...`` (``values[j::k]``). ``ValueError`` if ``n < 3`` (an interval
-    needs three replicates)."""
+    needs three replicates).
+
+    Parameters
+    ----------
+    n : int
+        Rows.
+    n_batches : int
+        Batches wanted, ``>= 3``.
+
+    Returns
+    -------
+    int
+        ``k``.
+    """
     k = min(check_batches(n_batches), int(n))
     if k < 3:
         raise ValueError(f"need at least 3 rows for replicate batches; got {n}")
@@ -67,7 +104,22 @@ def batch_count(n: int, n_batches: int = N_BATCHES) -> int:
 
 def batch_statistic(values, fn, n_batches: int = N_BATCHES) -> np.ndarray:
     """``fn`` of each batch ``values[j::k]`` of the rows of ``values`` (:func:`batch_count`),
-    stacked: shape ``(k, ...)``."""
+    stacked: shape ``(k, ...)``.
+
+    Parameters
+    ----------
+    values : array_like, shape (n, ...)
+        Rows.
+    fn : callable
+        Statistic of one batch (array -> array or number).
+    n_batches : int
+        Batches wanted.
+
+    Returns
+    -------
+    numpy.ndarray, shape (k, ...)
+        The batches' statistics.
+    """
     v = np.asarray(values)
     k = batch_count(len(v), n_batches)
     return np.stack([np.asarray(fn(v[j::k])) for j in range(k)])
@@ -80,6 +132,22 @@ def replicate_interval(estimate, batch_stats, confidence_level: float = 0.95, bo
 
     ``batch_stats`` has the ``k`` replicates along axis 0; ``estimate`` broadcasts against the
     rest. NaN where any replicate is NaN (a batch whose statistic is undefined).
+
+    Parameters
+    ----------
+    estimate : float or numpy.ndarray
+        The full-sample statistic.
+    batch_stats : numpy.ndarray, shape (k, ...)
+        The replicates' statistics.
+    confidence_level : float
+        Level, in (0, 1).
+    bounds : (float, float), optional
+        Range of the statistic.
+
+    Returns
+    -------
+    low, high : float or numpy.ndarray
+        Ends of the interval, shaped like ``estimate`` broadcast with ``batch_stats[0]``.
     """
     from scipy.special import stdtrit  # not at import: scipy.special loads in ~0.2 s
 
@@ -98,7 +166,22 @@ def replicate_interval(estimate, batch_stats, confidence_level: float = 0.95, bo
 def median_with_interval(values, n_batches: int = N_BATCHES,
                          confidence_level: float = 0.95) -> tuple[float, float, float]:
     """Median of ``values`` (1-D) and its :func:`replicate_interval` from batch medians, within
-    the values' range."""
+    the values' range.
+
+    Parameters
+    ----------
+    values : array_like, shape (n,)
+        Sample, i.i.d. in its order.
+    n_batches : int
+        Replicate batches.
+    confidence_level : float
+        Level, in (0, 1).
+
+    Returns
+    -------
+    median, low, high : float
+        The median and its interval.
+    """
     x = np.asarray(values, float)
     if x.ndim != 1 or x.size == 0:
         raise ValueError(f"values must be a non-empty 1-D array; got shape {x.shape}")
@@ -110,33 +193,94 @@ def median_with_interval(values, n_batches: int = N_BATCHES,
 
 def centred_from(ranks: np.ndarray) -> np.ndarray:
     """Ranks ``(n, p)`` (1..n) centred and scaled, ``(r - (n + 1) / 2) / n`` (well-conditioned
-    sums)."""
+    sums).
+
+    Parameters
+    ----------
+    ranks : numpy.ndarray, shape (n, p)
+        Ranks of ``p`` columns.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, p)
+        Centred, scaled ranks.
+    """
     n = ranks.shape[0]
     return (ranks - (n + 1) / 2.0) / n
 
 
 def centred_ranks(columns) -> np.ndarray:
     """:func:`centred_from` of the average ranks of each column of ``columns`` (a list of 1-D
-    arrays), as an ``(n, p)`` array."""
+    arrays), as an ``(n, p)`` array.
+
+    Parameters
+    ----------
+    columns : sequence of numpy.ndarray, each shape (n,)
+        The columns.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, p)
+        Centred, scaled average ranks.
+    """
     return centred_from(np.column_stack([average_ranks(np.asarray(c)) for c in columns]))
 
 
 def rank_correlation(rx: np.ndarray, ry: np.ndarray) -> np.ndarray:
     """Pearson correlation of every column of ``rx`` ``(n, p)`` with every column of ``ry``
-    ``(n, q)``, shape ``(p, q)``: Spearman's rho when the columns are (centred) ranks."""
+    ``(n, q)``, shape ``(p, q)``: Spearman's rho when the columns are (centred) ranks.
+
+    Parameters
+    ----------
+    rx : numpy.ndarray, shape (n, p)
+        Centred columns.
+    ry : numpy.ndarray, shape (n, q)
+        Centred columns.
+
+    Returns
+    -------
+    numpy.ndarray, shape (p, q)
+        Correlations, in [-1, 1] (NaN for a constant column).
+    """
     dx, dy = rx - rx.mean(axis=0), ry - ry.mean(axis=0)
     return (dx.T @ dy) / np.sqrt(np.outer((dx * dx).sum(axis=0), (dy * dy).sum(axis=0)))
 
 
 def spearman_rho(x, y) -> float:
-    """Spearman's rho of two 1-D samples (average ranks for ties; NaN if either holds NaN)."""
+    """Spearman's rho of two 1-D samples (average ranks for ties; NaN if either holds NaN).
+
+    Parameters
+    ----------
+    x, y : array_like, shape (n,)
+        The samples.
+
+    Returns
+    -------
+    float
+        Spearman's rho, in [-1, 1].
+    """
     return float(rank_correlation(centred_ranks([x]), centred_ranks([y]))[0, 0])
 
 
 def fisher_z_interval(rho, n, confidence_level: float = 0.95):
     """Asymptotic interval of Spearman's rho: ``tanh(atanh(rho) +- z sqrt((1 + rho^2 / 2) /
     (n - 3)))`` (Bonett & Wright 2000, *Psychometrika* 65, 23-28), the cross-check of the
-    replicate interval. ``rho`` and ``n`` broadcast; returns ``(low, high)``."""
+    replicate interval. ``rho`` and ``n`` broadcast; returns ``(low, high)``.
+
+    Parameters
+    ----------
+    rho : float or array_like
+        Spearman's rho.
+    n : int or array_like
+        Sample sizes, ``> 3``.
+    confidence_level : float
+        Level, in (0, 1).
+
+    Returns
+    -------
+    low, high : numpy.ndarray
+        Ends of the interval.
+    """
     from scipy.special import ndtri
 
     r = np.asarray(rho, float)

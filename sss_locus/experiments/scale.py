@@ -34,6 +34,16 @@ def parse_scheduler(value: str | None) -> tuple[str, int | str] | None:
 
     Raises ``ValueError`` naming :data:`SCHEDULER_ENV` for ``local:N`` with ``N`` not a
     positive integer.
+
+    Parameters
+    ----------
+    value : str or None
+        The setting: empty or ``None``, ``local:N`` or a scheduler address.
+
+    Returns
+    -------
+    tuple or None
+        As above.
     """
     text = (value or "").strip()
     if not text:
@@ -69,6 +79,16 @@ def start_local_cluster(n_workers: int):
     cluster or a notebook kernel started from here.
 
     Raises ``RuntimeError`` naming the extra to install if Dask is missing.
+
+    Parameters
+    ----------
+    n_workers : int
+        Worker processes, ``>= 1``.
+
+    Returns
+    -------
+    distributed.LocalCluster
+        The running cluster.
     """
     try:
         import dask
@@ -91,7 +111,18 @@ def start_local_cluster(n_workers: int):
 
 
 def client(value: str):
-    """The Dask client for a scheduler setting (created once per process and setting)."""
+    """The Dask client for a scheduler setting (created once per process and setting).
+
+    Parameters
+    ----------
+    value : str
+        A scheduler setting (:func:`parse_scheduler`).
+
+    Returns
+    -------
+    distributed.Client
+        The client.
+    """
     kind, arg = parse_scheduler(value)
     if value not in _CLIENTS:
         try:
@@ -121,6 +152,20 @@ def map_chunks(fn: Callable, tasks: Sequence[tuple], progress: Callable[[int, in
     ran. ``progress``, if given, is called as ``progress(done, total)`` once after each chunk
     finishes (on a cluster, in the order the futures complete; the results keep task order); it
     only observes, so the result is the same with or without it. This layer never prints.
+
+    Parameters
+    ----------
+    fn : callable
+        Module-level function.
+    tasks : sequence of tuple
+        Arguments of each call.
+    progress : callable, optional
+        ``progress(done, total)``.
+
+    Returns
+    -------
+    list
+        The results, in task order.
     """
     setting = os.environ.get(SCHEDULER_ENV, "")
     if parse_scheduler(setting) is None or len(tasks) < 2:
@@ -158,6 +203,26 @@ def map_reduce(map_fn: Callable, tasks: Sequence[tuple], reduce_fn: Callable, n_
     summaries and the reduced results travel to this process. Both stages are pure functions of
     their arguments, combined in a fixed order, so the result is bit-identical here and on any
     number of workers. ``progress(done, total)`` is called after each map task.
+
+    Parameters
+    ----------
+    map_fn : callable
+        ``map_fn(*task) -> (summary, parts)``.
+    tasks : sequence of tuple
+        Arguments of each map call.
+    reduce_fn : callable
+        ``reduce_fn(g, parts_g)``.
+    n_parts : int
+        Parts per map output.
+    progress : callable, optional
+        ``progress(done, total)``.
+
+    Returns
+    -------
+    summaries : list
+        In task order.
+    reduced : list
+        In part order.
     """
     setting = os.environ.get(SCHEDULER_ENV, "")
     if parse_scheduler(setting) is None or len(tasks) < 2:

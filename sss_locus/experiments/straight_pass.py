@@ -50,48 +50,39 @@ REJECTION_REASONS = ("outside_swath", "no_solution", "outside_azimuth", "out_of_
 its range limits, at the ping."""
 
 
-def _half_angle(angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(sin, cos)`` of half of each angle: the nonzero parts of an elementary quaternion."""
-    half = angle / 2.0
-    return np.sin(half), np.cos(half)
-
-
-def _compose_quat(p, q):
-    """Quaternion product ``p q`` of scalar-last quaternions given as 4 components (arrays, or
-    Python ``0.0`` for a component known to be zero: numpy computes the same numbers with it as
-    with an array of zeros), by the formula and the operation order of scipy's ``from_euler``
-    (``p3 q_v + q3 p_v + p_v x q_v``, ``p3 q3 - p_v . q_v``; the cross product as
-    :func:`numpy.cross` computes it)."""
-    p0, p1, p2, p3 = p
-    q0, q1, q2, q3 = q
-    c0, c1, c2 = p1 * q2 - p2 * q1, p2 * q0 - p0 * q2, p0 * q1 - p1 * q0
-    return (p3 * q0 + q3 * p0 + c0, p3 * q1 + q3 * p1 + c1, p3 * q2 + q3 * p2 + c2,
-            p3 * q3 - p0 * q0 - p1 * q1 - p2 * q2)
-
-
 def vehicle_attitude(yaw_deg, pitch_deg, roll_deg) -> Rotation:
     """``R_world_vehicle = Rz(yaw) Ry(-pitch) Rx(roll)``: yaw toward port, pitch nose-up positive.
 
-    The same rotation, bit for bit, as ``Rotation.from_euler("ZYX", [yaw, -pitch, roll],
-    degrees=True)`` (its quaternions, composed with the same arithmetic as scipy's array-API
-    implementation of ``from_euler``), but vectorised, one component at a time: scipy's
-    compiled path for NumPy costs about 3 us per rotation, this about a twentieth of that
-    (``tests/test_throughput.py`` checks the bits against scipy).
+    Parameters
+    ----------
+    yaw_deg, pitch_deg, roll_deg : float or array_like
+        Vehicle heading (toward port positive), pitch (nose-up positive) and roll, degrees;
+        broadcast against each other.
+
+    Returns
+    -------
+    scipy.spatial.transform.Rotation
+        ``Rotation.from_euler("ZYX", [yaw, -pitch, roll], degrees=True)``: one rotation per
+        broadcast element (a single one for scalars).
     """
-    angles = np.stack([np.asarray(yaw_deg, float), -np.asarray(pitch_deg, float),
-                       np.asarray(roll_deg, float)], axis=-1) * (np.pi / 180.0)
-    flat = angles.reshape(-1, 3)
-    sz, cz = _half_angle(flat[:, 0])  # intrinsic Z, Y, X: q = qz * qy * qx
-    sy, cy = _half_angle(flat[:, 1])
-    sx, cx = _half_angle(flat[:, 2])
-    q = _compose_quat(_compose_quat((0.0, 0.0, sz, cz), (0.0, sy, 0.0, cy)), (sx, 0.0, 0.0, cx))
-    q = np.stack([np.broadcast_to(c, sz.shape) for c in q], axis=-1)
-    return Rotation(q.reshape(angles.shape[:-1] + (4,)) if angles.ndim > 1 else q[0],
-                    normalize=False, copy=False)
+    angles = np.stack(np.broadcast_arrays(np.asarray(yaw_deg, float), -np.asarray(pitch_deg, float),
+                                          np.asarray(roll_deg, float)), axis=-1)
+    return Rotation.from_euler("ZYX", angles, degrees=True)
 
 
 def attitude_angles(rot: Rotation) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Inverse of :func:`vehicle_attitude`: (yaw, pitch, roll) in degrees."""
+    """Inverse of :func:`vehicle_attitude`: (yaw, pitch, roll) in degrees.
+
+    Parameters
+    ----------
+    rot : scipy.spatial.transform.Rotation
+        Vehicle attitudes ``R_world_vehicle``.
+
+    Returns
+    -------
+    yaw_deg, pitch_deg, roll_deg : numpy.ndarray
+        One per rotation, degrees (pitch nose-up positive).
+    """
     e = np.atleast_2d(rot.as_euler("ZYX", degrees=True))
     return e[:, 0], -e[:, 1], e[:, 2]
 
@@ -107,7 +98,22 @@ def mount(transducer) -> tuple[np.ndarray, np.ndarray]:
 
 def transducer_stack(platform, is_port):
     """Stacked transducer rotations (matrices) and positions for a boolean port mask: row ``i``
-    is a copy of the port transducer's where ``is_port[i]``, else of the starboard one's."""
+    is a copy of the port transducer's where ``is_port[i]``, else of the starboard one's.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform.
+    is_port : numpy.ndarray of bool, shape (n,)
+        Whether row ``i`` observes with the port transducer.
+
+    Returns
+    -------
+    rotations : numpy.ndarray, shape (n, 3, 3)
+        Transducer-to-vehicle rotation matrices.
+    positions : numpy.ndarray, shape (n, 3)
+        Transducer positions in the vehicle frame, metres.
+    """
     mats, pos = _mount_pair(platform.transducers["starboard"], platform.transducers["port"])  # index 0, 1
     pick = np.asarray(is_port, bool).astype(np.intp)
     return np.take(mats, pick, axis=0), np.take(pos, pick, axis=0)
@@ -213,8 +219,12 @@ def observe_pass(platform: Platform, is_port, heading_deg, ground_offset_m, alti
                  pitch_deg, elevation_rad) -> dict[str, np.ndarray]:
     """The ping of one straight pass that sees the feature (at the origin) at ``elevation_rad``.
 
-    Parameters (arrays broadcast to one shape ``(n,)``)
+    The arguments after ``platform`` are arrays broadcast to one shape ``(n,)``.
+
+    Parameters
     ----------
+    platform : Platform
+        The vehicle and its transducers.
     is_port : bool
         Observing transducer.
     heading_deg : float

@@ -79,7 +79,15 @@ COLUMNS = (
 
 def check_envelope(platform: Platform, envelope: SurveyEnvelope) -> None:
     """Raise ``ValueError`` if the envelope does not fit the platform (attitude limits, a swath
-    at every altitude of the envelope)."""
+    at every altitude of the envelope).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform surveying.
+    envelope : SurveyEnvelope
+        Its survey envelope.
+    """
     lim = platform.pitch_max_deg
     if max(abs(envelope.pitch_min_deg), abs(envelope.pitch_max_deg)) > lim:
         raise ValueError(f"envelope pitch [{envelope.pitch_min_deg}, {envelope.pitch_max_deg}] deg "
@@ -133,7 +141,32 @@ def draw_block(platform: Platform, envelope: SurveyEnvelope, model: OffsetModel,
     (including those past :data:`BLOCK_SIZE`, which are not used) over all draws made.
 
     Block ``block`` draws rounds of ``m = max(BLOCK_SIZE, 2 * missing)`` candidates from its own
-    generator until it has :data:`BLOCK_SIZE` accepted ones."""
+    generator until it has :data:`BLOCK_SIZE` accepted ones.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform surveying.
+    envelope : SurveyEnvelope
+        Its survey envelope.
+    model : OffsetModel
+        How the passes' ground offsets are drawn.
+    gamma_deg : float
+        Crossing angle, degrees.
+    seed : int
+        Seed of the stream, ``>= 0``.
+    block : int
+        Index of the block in the stream.
+
+    Returns
+    -------
+    rows : dict of str to numpy.ndarray
+        The accepted pass pairs, :data:`BLOCK_SIZE` rows each.
+    rejected : numpy.ndarray of int
+        Rejected draws per reason of :data:`REJECTION_REASONS`.
+    accepted : int
+        Accepted draws.
+    """
     return draw_blocks(platform, envelope, model, gamma_deg, seed, [block])[0]
 
 
@@ -141,7 +174,28 @@ def draw_blocks(platform: Platform, envelope: SurveyEnvelope, model: OffsetModel
                 seed: int, blocks) -> list[tuple[dict[str, np.ndarray], np.ndarray, int]]:
     """:func:`draw_block` for each of ``blocks``, the same bit for bit, with each round's
     candidates of all unfinished blocks evaluated in one batch (blocks of 256 rows are too
-    small for NumPy to run near its speed one by one)."""
+    small for NumPy to run near its speed one by one).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform surveying.
+    envelope : SurveyEnvelope
+        Its survey envelope.
+    model : OffsetModel
+        How the passes' ground offsets are drawn.
+    gamma_deg : float
+        Crossing angle, degrees.
+    seed : int
+        Seed of the stream.
+    blocks : sequence of int
+        Indices of the blocks.
+
+    Returns
+    -------
+    list of (dict, numpy.ndarray, int)
+        :func:`draw_block`'s result for each block, in the order of ``blocks``.
+    """
     blocks = list(blocks)
     rngs = [np.random.default_rng(_seed_sequence(platform, seed, gamma_deg, k)) for k in blocks]
     parts = [[] for _ in blocks]
@@ -171,6 +225,22 @@ def draw_blocks(platform: Platform, envelope: SurveyEnvelope, model: OffsetModel
 
 
 def check_inputs(angles, n, seed):
+    """The crossing angles, pass pairs per angle and seed, checked before any work starts.
+
+    Parameters
+    ----------
+    angles : array_like
+        Crossing angles, degrees, each in [-180, 180] (a 1-D list, not empty).
+    n : int
+        Accepted pass pairs per angle, ``>= 1``.
+    seed : int
+        Seed, ``>= 0``.
+
+    Returns
+    -------
+    (numpy.ndarray, int, int)
+        The angles as a float array, ``n`` and ``seed`` as ``int``.
+    """
     g = np.atleast_1d(np.asarray(angles, float))
     if g.ndim != 1 or g.size == 0 or not np.all(np.isfinite(g)) or np.any(np.abs(g) > 180):
         raise ValueError(f"crossing_angles_deg must be a non-empty 1-D list of finite angles in "

@@ -38,6 +38,20 @@ def three_view_table(views: Views, aperture, noise=None) -> pd.DataFrame:
     candidate. With a
     :class:`~sss_locus.experiments.noise.NoiseModel` ``noise``, also ``point_error_q95_m``: the first-order
     95 % error of the point (:func:`sss_locus.experiments.noise.first_order`).
+
+    Parameters
+    ----------
+    views : Views
+        Configurations of three views.
+    aperture : Aperture
+        The views' aperture.
+    noise : NoiseModel, optional
+        Error model for the first-order point error.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per configuration, the columns named above.
     """
     if views.origin.shape[1] != 3:
         raise ValueError(f"views must hold 3 views; got {views.origin.shape[1]}")
@@ -71,6 +85,28 @@ def heading_sweep(platform, envelope, headings2_deg, headings3_deg, n: int, seed
     replicate-batch interval ``point_error_q95_median_ci_low_m``/``_ci_high_m`` (``n_batches``
     batches, :func:`~sss_locus.experiments.replicates.median_with_interval`). Each pair is
     drawn with its own seed (``seed`` plus the pair's index in the grid).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform surveying.
+    envelope : SurveyEnvelope
+        Its survey envelope.
+    headings2_deg, headings3_deg : sequence of float
+        Headings of passes 2 and 3, degrees.
+    n : int
+        Configurations per pair.
+    seed : int
+        Seed of the first pair.
+    noise : NoiseModel, optional
+        Error model for the point error.
+    n_batches : int
+        Replicate batches of the intervals.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per pair, the columns named above.
     """
     rows, i = [], 0
     for h2 in np.asarray(headings2_deg, float):
@@ -100,6 +136,20 @@ def share_upper_bound(count: int, n: int, confidence_level: float = 0.95) -> flo
     ``betaincinv(count + 1, n - count, confidence_level)``; 1 when ``count == n``. For a share
     seen in few of ``n`` configurations (e.g. the two-fold ambiguities), it says how large the
     share could be.
+
+    Parameters
+    ----------
+    count : int
+        Configurations with the property, ``0 <= count <= n``.
+    n : int
+        Configurations, ``>= 1``.
+    confidence_level : float
+        Level, in (0, 1).
+
+    Returns
+    -------
+    float
+        The bound, in [0, 1].
     """
     from scipy.special import betaincinv
 
@@ -117,7 +167,22 @@ def cells_within(sweep: pd.DataFrame, best: str = "min", value: str = "point_err
     """The cells of a :func:`heading_sweep` (with noise) that the sampling cannot tell from its
     best (``best="min"``) or worst (``"max"``) cell: those whose median ``value`` lies inside the
     95 % interval (``value`` with its ending ``_m`` read as ``_ci_low_m``/``_ci_high_m``) of the
-    smallest (largest) median, that cell always among them."""
+    smallest (largest) median, that cell always among them.
+
+    Parameters
+    ----------
+    sweep : pandas.DataFrame
+        A heading sweep with noise.
+    best : {"min", "max"}
+        Which extreme cell.
+    value : str
+        Column compared (ending ``_m``, with its interval columns).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows of ``sweep`` in the region.
+    """
     if best not in ("min", "max"):
         raise ValueError(f"best must be 'min' or 'max'; got {best!r}")
     if not value.endswith("_m"):
@@ -132,7 +197,22 @@ def cells_within(sweep: pd.DataFrame, best: str = "min", value: str = "point_err
 def share_interval(count: int, n: int, confidence_level: float = 0.95) -> tuple[float, float]:
     """Two-sided exact (Clopper-Pearson) interval of a share ``count / n``: the ``(1 - level)
     / 2`` and ``(1 + level) / 2`` quantiles of Beta(count, n - count + 1) and Beta(count + 1,
-    n - count), 0 and 1 at the ends. Checks its arguments like :func:`share_upper_bound`."""
+    n - count), 0 and 1 at the ends. Checks its arguments like :func:`share_upper_bound`.
+
+    Parameters
+    ----------
+    count : int
+        Configurations with the property, ``0 <= count <= n``.
+    n : int
+        Configurations, ``>= 1``.
+    confidence_level : float
+        Level, in (0, 1).
+
+    Returns
+    -------
+    (float, float)
+        Lower and upper ends, in [0, 1].
+    """
     from scipy.special import betaincinv
 
     share_upper_bound(count, n, confidence_level)  # the same argument checks
@@ -145,7 +225,22 @@ def share_interval(count: int, n: int, confidence_level: float = 0.95) -> tuple[
 def median_intervals(table: pd.DataFrame, columns, n_batches: int = N_BATCHES) -> dict[str, dict[str, float]]:
     """Per column of ``table`` (the rows i.i.d. configurations), its median and 95 %
     replicate-batch interval (:func:`~sss_locus.experiments.replicates.median_with_interval`,
-    NaN rows left out): ``{column: {"median", "ci_low", "ci_high"}}``."""
+    NaN rows left out): ``{column: {"median", "ci_low", "ci_high"}}``.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Rows of i.i.d. configurations.
+    columns : sequence of str
+        Columns summarised.
+    n_batches : int
+        Replicate batches.
+
+    Returns
+    -------
+    dict of str to dict of str to float
+        Per column, ``median``, ``ci_low`` and ``ci_high``.
+    """
     out = {}
     for c in columns:
         v = table[c].to_numpy(float)

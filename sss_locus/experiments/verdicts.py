@@ -54,6 +54,8 @@ def near_end_check(curve: pd.DataFrame, value: str = "locus_length_m", *, window
     curve : pandas.DataFrame
         ``crossing_angle_deg`` (degrees in [0, 180], both ends on the grid) and
         ``<value>_median``.
+    value : str
+        The column whose median curve is used.
     window_deg : float
         "Near" means within this many degrees of the end (exclusive of the end), > 0.
     prefer_below, avoid_above : float
@@ -96,7 +98,18 @@ def near_end_check(curve: pd.DataFrame, value: str = "locus_length_m", *, window
 def peak_agreement(peak_a: dict, peak_b: dict) -> dict[str, float | bool]:
     """Peak angles of two curves (each ``{angle_deg, ci_low_deg, ci_high_deg}``, as in
     :attr:`~sss_locus.experiments.planning.CrossingAngleCurve.peak`): ``gap_deg`` (b minus a)
-    and ``intervals_overlap`` (the two bootstrap intervals share at least one angle)."""
+    and ``intervals_overlap`` (the two bootstrap intervals share at least one angle).
+
+    Parameters
+    ----------
+    peak_a, peak_b : dict
+        Peak angles with their intervals, degrees.
+
+    Returns
+    -------
+    dict of str to float or bool
+        ``gap_deg`` and ``intervals_overlap``.
+    """
     for name, p in (("peak_a", peak_a), ("peak_b", peak_b)):
         if not {"angle_deg", "ci_low_deg", "ci_high_deg"} <= set(p):
             raise ValueError(f"{name} needs angle_deg, ci_low_deg and ci_high_deg; got {sorted(p)}")
@@ -109,6 +122,15 @@ def advice_verdict(curve: pd.DataFrame, value: str = "locus_length_m", *,
                    oblique_band_deg: tuple[float, float] = (10.0, 40.0)) -> dict[str, float | bool]:
     """The paper's advice (prefer ~0 or ~180 deg over oblique crossings and a cross-line) tested
     on one median curve.
+
+    Parameters
+    ----------
+    curve : pandas.DataFrame
+        A median curve (``crossing_angle_deg``, ``<value>_median``).
+    value : str
+        The column used.
+    oblique_band_deg : (float, float)
+        The oblique band, degrees.
 
     Returns
     -------
@@ -134,7 +156,26 @@ def over_peak(cur, gamma_deg: float, value: str = "locus_length_m", *, n_batches
     (the peak angle chosen on the whole curve), with its 95 % replicate-batch interval: each
     batch (every angle's rows dealt ``i mod k``) gives the ratio of its medians at the two
     angles. ``cur`` is a :class:`~sss_locus.experiments.planning.CrossingAngleCurve` (its
-    ``curve`` and ``samples``). Returns ``median`` (the ratio), ``ci_low``, ``ci_high``."""
+    ``curve`` and ``samples``). Returns ``median`` (the ratio), ``ci_low``, ``ci_high``.
+
+    Parameters
+    ----------
+    cur : CrossingAngleCurve
+        The curve and its samples.
+    gamma_deg : float
+        A grid angle, degrees.
+    value : str
+        The column used.
+    n_batches : int
+        Replicate batches.
+    confidence_level : float
+        Level, in (0, 1).
+
+    Returns
+    -------
+    dict of str to float
+        ``median``, ``ci_low``, ``ci_high``.
+    """
     c, s = cur.curve, cur.samples
     angles = c["crossing_angle_deg"].to_numpy()
     peak = float(angles[int(np.argmax(c[f"{value}_median"].to_numpy()))])

@@ -43,16 +43,51 @@ class Views:
         return np.linalg.norm(self.feature[:, None, :] - self.origin, axis=-1)
 
     def take(self, index) -> "Views":
-        """A subset of the configurations (any numpy index on the first axis)."""
+        """A subset of the configurations (any numpy index on the first axis).
+
+        Parameters
+        ----------
+        index : int, slice or array_like
+            Index of the configurations kept.
+
+        Returns
+        -------
+        Views
+            The subset.
+        """
         return Views(self.W[index], self.origin[index], self.vehicle[index], self.feature[index])
 
     def select(self, *views: int) -> "Views":
-        """A subset of the views, in the order given (e.g. ``select(0, 1)``)."""
+        """A subset of the views, in the order given (e.g. ``select(0, 1)``).
+
+        Parameters
+        ----------
+        *views : int
+            Indices of the views kept.
+
+        Returns
+        -------
+        Views
+            The subset.
+        """
         v = list(views)
         return Views(self.W[:, v], self.origin[:, v], self.vehicle[:, v], self.feature)
 
     def relative(self, a: int = 0, b: int = 1) -> tuple[np.ndarray, np.ndarray]:
-        """``(R, t)`` with ``p_b = R p_a + t`` (the kernels' convention), shapes (n, 3, 3), (n, 3)."""
+        """``(R, t)`` with ``p_b = R p_a + t`` (the kernels' convention), shapes (n, 3, 3), (n, 3).
+
+        Parameters
+        ----------
+        a, b : int
+            Indices of the two views.
+
+        Returns
+        -------
+        R : numpy.ndarray, shape (n, 3, 3)
+            Rotation from view ``a``'s frame to view ``b``'s.
+        t : numpy.ndarray, shape (n, 3)
+            Translation, metres: ``p_b = R p_a + t``.
+        """
         return relative_pose(self.W[:, a], self.origin[:, a], self.W[:, b], self.origin[:, b])
 
 
@@ -64,6 +99,30 @@ def views_from_passes(platform, headings_deg, is_port, ground_offset_m, altitude
     (see :func:`sss_locus.experiments.straight_pass.observe_pass` for their meaning and units). Returns the
     :class:`Views` and a boolean ``(n,)`` mask: every pass sees the feature (azimuth aperture,
     range, a unique in-beam ping).
+
+    Parameters
+    ----------
+    platform : Platform
+        The vehicle and its transducers.
+    headings_deg : array_like, shape (n, k)
+        Track headings, degrees, positive toward port.
+    is_port : array_like of bool, shape (n, k)
+        Observing transducer.
+    ground_offset_m : array_like, shape (n, k)
+        Across-track ground offset of the feature toward the observing side, metres.
+    altitude_m : array_like, shape (n, k)
+        Reference point above the feature, metres.
+    pitch_deg : array_like, shape (n, k)
+        Pitch, degrees, nose-up positive.
+    elevation_rad : array_like, shape (n, k)
+        In-beam elevation of the feature, radians.
+
+    Returns
+    -------
+    views : Views
+        The ``n`` configurations of ``k`` views.
+    seen : numpy.ndarray of bool, shape (n,)
+        Whether every pass sees the feature.
     """
     cols = np.broadcast_arrays(*(np.atleast_2d(np.asarray(a)) for a in (
         headings_deg, is_port, ground_offset_m, altitude_m, pitch_deg, elevation_rad)))
@@ -81,7 +140,20 @@ def views_from_passes(platform, headings_deg, is_port, ground_offset_m, altitude
 
 def views_from_survey(platform, samples: pd.DataFrame) -> Views:
     """The two passes of each row of :func:`sss_locus.experiments.survey_passes.simulate_passes` (pass 1 at
-    heading 0, pass 2 at ``crossing_angle_deg``), rebuilt from the row's draws."""
+    heading 0, pass 2 at ``crossing_angle_deg``), rebuilt from the row's draws.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform surveying.
+    samples : pandas.DataFrame
+        Pass pairs of :func:`~sss_locus.experiments.survey_passes.simulate_passes`.
+
+    Returns
+    -------
+    Views
+        Two views per row, in the rows' order.
+    """
     s = samples
     views, ok = views_from_passes(
         platform,
@@ -105,6 +177,19 @@ def draw_pattern(platform, envelope, headings_deg, n: int, seed: int) -> tuple[V
     the pitch uniform in the envelope, the in-beam elevation uniform within the aperture; the
     altitude is drawn per pass (once for a platform with ``envelope.same_altitude``). Draws in
     which some pass does not see the feature are redrawn.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform surveying.
+    envelope : SurveyEnvelope
+        Its survey envelope.
+    headings_deg : sequence of float
+        Heading of each pass, degrees.
+    n : int
+        Configurations, ``>= 1``.
+    seed : int
+        Seed, ``>= 0``.
 
     Returns
     -------

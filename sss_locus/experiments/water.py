@@ -73,7 +73,18 @@ class WaterColumn:
 
     def depth_for(self, platform: Platform) -> float:
         """Vehicle 1's reference depth (m) for ``platform``; ``ValueError`` if it is unknown or
-        outside the platform's depth range."""
+        outside the platform's depth range.
+
+        Parameters
+        ----------
+        platform : Platform
+            The platform.
+
+        Returns
+        -------
+        float
+            Depth below the surface, metres.
+        """
         if self.vehicle_depth_m is None:
             if not platform.fixed_depth:
                 raise ValueError(
@@ -129,7 +140,13 @@ class WaterColumn:
         return normals, offsets
 
     def key(self) -> dict:
-        """Plain-data description (for figure manifests)."""
+        """Plain-data description (for figure manifests).
+
+        Returns
+        -------
+        dict
+            Every field by name.
+        """
         d = {"vehicle_depth_m": self.vehicle_depth_m, "max_water_depth_m": self.max_water_depth_m}
         if self.seafloor_below_feature_m is not None:  # absent when off: earlier keys unchanged
             d["seafloor_below_feature_m"] = self.seafloor_below_feature_m
@@ -139,7 +156,18 @@ class WaterColumn:
 def deepest_feature_m(platform: Platform) -> float:
     """Greatest depth (m) below the sea surface of a feature in sensor 1's fan, for a level
     vehicle 1 at the shallowest depth of ``platform``: reference depth plus transducer depth
-    plus ``max_range * sin(min(tilt + azimuth / 2, 90 deg))``, the fan's lowest edge at full range."""
+    plus ``max_range * sin(min(tilt + azimuth / 2, 90 deg))``, the fan's lowest edge at full range.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform.
+
+    Returns
+    -------
+    float
+        Depth, metres.
+    """
     t = platform.transducers["port"]
     down = np.radians(min(t.tilt_deg + platform.sonar.azimuth_deg / 2, 90.0))
     return float(platform.depth_min_m + t.depth_m + platform.sonar.max_range_m * np.sin(down))

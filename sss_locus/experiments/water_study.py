@@ -91,7 +91,28 @@ def default_conditions(platforms: Sequence[Platform], *, surface_tilts_deg=(), s
     survey passes at its own tilt (submerged platforms at the shallowest depth given). Then, for
     each of ``seafloor_margins_m`` (m, >= 0), the first water column of each platform with a
     seafloor that far below each feature (``WaterColumn.seafloor_below_feature_m``), in the pose
-    space and, with ``envelopes``, in the survey passes."""
+    space and, with ``envelopes``, in the survey passes.
+
+    Parameters
+    ----------
+    platforms : sequence of Platform
+        The platforms.
+    surface_tilts_deg : sequence of float
+        Extra tilts of surface vessels, degrees.
+    submerged_depths_m : sequence of float
+        Depths of submerged platforms, metres.
+    envelopes : dict of str to SurveyEnvelope, optional
+        Survey envelopes by platform key.
+    offset_model : OffsetModel, optional
+        Offset model of the survey passes.
+    seafloor_margins_m : sequence of float
+        Seafloor distances below each feature, metres.
+
+    Returns
+    -------
+    list of Condition
+        The conditions, in the order above.
+    """
     out = []
     for pf in platforms:
         if pf.fixed_depth:
@@ -191,6 +212,11 @@ def pass2_above_surface_share(samples: pd.DataFrame, platform: Platform, water: 
         ``altitude1_m``, ``altitude2_m``), non-empty.
     platform : Platform
     water : WaterColumn
+
+    Returns
+    -------
+    float
+        The share, in [0, 1].
     """
     if len(samples) == 0:
         raise ValueError("samples must be a non-empty survey-pass table")

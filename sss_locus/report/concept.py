@@ -17,6 +17,8 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
+from .style import SMALL_FONT_PT
+
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 """Colours of a sensor's drawn x (boresight), y (left) and z (up) axes."""
 
@@ -112,15 +114,41 @@ def draw_sensor(ax, aperture, axes: np.ndarray, origin: np.ndarray, r: float, co
 
 def plot_locus_concept(data: dict[str, pd.DataFrame], aperture, feature: np.ndarray, *,
                        locus_length_m: float, view_elev_deg: float = 20.0,
-                       view_azim_deg: float = -80.0):
+                       view_azim_deg: float = -80.0, ax=None):
     """The locus concept figure: both sensors (:func:`draw_sensor`, same ``aperture``), the
     intersection circle (dashed), the locus arcs (thick red), the ``feature`` (star) and the
     baseline, from :func:`concept_data` tables; legend states the ranges and
-    ``locus_length_m``. Returns the figure."""
+    ``locus_length_m``.
+
+    Parameters
+    ----------
+    data : dict of str to pandas.DataFrame
+        :func:`concept_data` tables.
+    aperture : Aperture
+        Both sensors' aperture.
+    feature : numpy.ndarray, shape (3,)
+        The feature in sensor 1's frame, metres.
+    locus_length_m : float
+        Length of the locus, stated in the legend.
+    view_elev_deg, view_azim_deg : float
+        Camera elevation and azimuth, degrees.
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D, optional
+        3-D axes to draw on (the legend then goes below them); default: a new figure of 8 x 6.4
+        in with the legend below the scene.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure holding the scene (what :func:`~sss_locus.pipeline.publish.publish` takes).
+    """
     circle, sensors = _xyz(data["circle"]), data["sensors"]
     origin2 = _xyz(sensors)[1]
-    fig = plt.figure(figsize=(8, 6.4))
-    ax = fig.add_subplot(projection="3d", computed_zorder=False)
+    own = ax is None
+    if own:
+        fig = plt.figure(figsize=(8, 6.4))
+        ax = fig.add_subplot(projection="3d", computed_zorder=False)
+    else:
+        fig = ax.figure
     caps = [draw_sensor(ax, aperture, _sensor_axes(row), _xyz(sensors)[i], row["range_m"], colour)
             for (i, row), colour in zip(sensors.iterrows(), SENSOR_COLOURS)]
     ax.plot(*circle.T, color="0.3", lw=1.3, ls="--")
@@ -152,6 +180,10 @@ def plot_locus_concept(data: dict[str, pd.DataFrame], aperture, feature: np.ndar
         Line2D([], [], color="k", lw=0.8, ls="-.", label="baseline"),
         *(Line2D([], [], color=c, lw=2, label=f"sensor ${a}$ axis") for c, a in zip(AXIS_COLOURS, "xyz")),
     ]
+    if not own:
+        ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=SMALL_FONT_PT,
+                  frameon=False)  # below the scene
+        return fig
     fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=9.5, frameon=False)
     fig.subplots_adjust(left=0.0, right=1.0, top=1.05, bottom=0.12)
     return fig

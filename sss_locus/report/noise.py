@@ -25,7 +25,7 @@ import pandas as pd
 from matplotlib.ticker import NullFormatter
 
 from ..experiments.datadoc import label_key
-from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_colors, platform_title, themed
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, get_axis, platform_colors, platform_title, themed
 from .survey_passes import model_tag
 from .text import fmt_sig
 
@@ -116,51 +116,157 @@ def _angle_axis(ax, ncol: int = 1, legend: bool = True) -> None:
 
 
 @themed
+def plot_noise_extent(by_label: Mapping[str, pd.DataFrame], noise_scales: Sequence[float], *,
+                      title: str = "", legend: bool = True, ax=None):
+    """Noise-free locus length (black, median and interquartile range) and the median extent at
+    every level of ``noise_scales`` and with range errors only, against crossing angle (log scale).
+
+    Parameters
+    ----------
+    by_label : mapping of str to pandas.DataFrame
+        One platform's crossing-angle curves keyed by :func:`level_label` of every scale and
+        ``"range only"``.
+    noise_scales : sequence of float
+        Noise levels, the first the reference (its noise-free length is drawn).
+    title : str
+        Panel title.
+    legend : bool
+        Whether to put the legend below the panel.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
+    c0 = by_label[level_label(noise_scales[0])]
+    g = c0["crossing_angle_deg"]
+    ax.fill_between(g, c0["locus_length_m_q25"], c0["locus_length_m_q75"], color="k", alpha=0.12, lw=0)
+    ax.plot(g, c0["locus_length_m_median"], color="k", lw=2, label="locus length, no noise")
+    for i, s in enumerate(noise_scales):
+        ax.plot(g, by_label[level_label(s)]["extent_m_median"], color=LEVEL_COLORS[i % len(LEVEL_COLORS)],
+                lw=1.8, label=f"extent, every σ ×{s:g}")
+    ax.plot(g, by_label["range only"]["extent_m_median"], lw=1.5, label="extent, range errors only",
+            **GROUP_STYLE["range only"])
+    ax.set_yscale("log")
+    ax.set_ylabel("median over pass pairs (m)")
+    ax.set_title(title, fontsize=10)
+    _angle_axis(ax, legend=legend)
+    return ax
+
+
+@themed
+def plot_empty_share(by_label: Mapping[str, pd.DataFrame], noise_scales: Sequence[float], *,
+                     title: str = "", legend: bool = True, ax=None):
+    """Median share of noisy draws with an empty locus at every level of ``noise_scales`` and
+    with attitude errors only, against crossing angle.
+
+    Parameters
+    ----------
+    by_label : mapping of str to pandas.DataFrame
+        One platform's crossing-angle curves keyed by :func:`level_label` of every scale and
+        ``"attitude only"``.
+    noise_scales : sequence of float
+        Noise levels.
+    title : str
+        Panel title.
+    legend : bool
+        Whether to put the legend below the panel.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
+    g = by_label[level_label(noise_scales[0])]["crossing_angle_deg"]
+    for i, s in enumerate(noise_scales):
+        ax.plot(g, by_label[level_label(s)]["empty_fraction_median"], color=LEVEL_COLORS[i % len(LEVEL_COLORS)],
+                lw=1.8, label=f"every σ ×{s:g}")
+    ax.plot(g, by_label["attitude only"]["empty_fraction_median"], lw=1.5,
+            label="attitude errors only", **GROUP_STYLE["attitude only"])
+    ax.set_ylim(0, 1)
+    ax.set_ylabel("share of draws with an empty locus\n(median over pass pairs)")
+    ax.set_title(title, fontsize=10)
+    _angle_axis(ax, legend=legend)
+    return ax
+
+
+@themed
 def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.DataFrame]],
                       noise_scales: Sequence[float]):
     """Crossing-angle curves with noise, one row per platform; returns the figure.
 
     Left: noise-free locus length (black, median and interquartile range) and the median extent
-    at every level of ``noise_scales`` and with range errors only (log scale). Right: median
-    share of noisy draws with an empty locus at every level and with attitude errors only.
+    at every level of ``noise_scales`` and with range errors only (log scale;
+    :func:`plot_noise_extent`). Right: median share of noisy draws with an empty locus at every
+    level and with attitude errors only (:func:`plot_empty_share`).
     ``curves[platform.key]`` must hold the labels :func:`level_label` of every scale,
     ``"range only"`` and ``"attitude only"``.
     """
-    head = level_label(noise_scales[0])
     fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 3.9 * len(platforms) + 1.2),
                             constrained_layout=True, squeeze=False)
     for row, ((ax, ax2), pf) in enumerate(zip(axs, platforms)):
-        by_label = curves[pf.key]
-        c0 = by_label[head]
-        g = c0["crossing_angle_deg"]
-        ax.fill_between(g, c0["locus_length_m_q25"], c0["locus_length_m_q75"], color="k", alpha=0.12, lw=0)
-        ax.plot(g, c0["locus_length_m_median"], color="k", lw=2, label="locus length, no noise")
-        for i, s in enumerate(noise_scales):
-            c = by_label[level_label(s)]
-            color = LEVEL_COLORS[i % len(LEVEL_COLORS)]
-            ax.plot(g, c["extent_m_median"], color=color, lw=1.8, label=f"extent, every σ ×{s:g}")
-            ax2.plot(g, c["empty_fraction_median"], color=color, lw=1.8, label=f"every σ ×{s:g}")
-        ax.plot(g, by_label["range only"]["extent_m_median"], lw=1.5, label="extent, range errors only",
-                **GROUP_STYLE["range only"])
-        ax2.plot(g, by_label["attitude only"]["empty_fraction_median"], lw=1.5,
-                 label="attitude errors only", **GROUP_STYLE["attitude only"])
-        ax.set_yscale("log")
-        ax.set_ylabel("median over pass pairs (m)")
-        ax.set_title(_title(pf, "size of the uncertainty"), fontsize=10)
-        ax2.set_ylim(0, 1)
-        ax2.set_ylabel("share of draws with an empty locus\n(median over pass pairs)")
-        ax2.set_title(_title(pf, "crop fails"), fontsize=10)
-        _angle_axis(ax, legend=row == len(platforms) - 1)
-        _angle_axis(ax2, legend=row == len(platforms) - 1)
+        last = row == len(platforms) - 1
+        plot_noise_extent(curves[pf.key], noise_scales, title=_title(pf, "size of the uncertainty"),
+                          legend=last, ax=ax)
+        plot_empty_share(curves[pf.key], noise_scales, title=_title(pf, "crop fails"), legend=last, ax=ax2)
     return fig
+
+
+@themed
+def plot_band_widths(by_label: Mapping[str, pd.DataFrame], head: str, *, title: str = "",
+                     y_label: bool = True, ax=None):
+    """Band width against crossing angle by error group (all errors at level ``head``; sensor
+    position only; range only; median and interquartile range, log scale) with the noise-free
+    locus length.
+
+    Parameters
+    ----------
+    by_label : mapping of str to pandas.DataFrame
+        One platform's crossing-angle curves keyed by ``head`` and the keys of
+        :data:`BREAKDOWN_COLORS`.
+    head : str
+        Label of the all-errors curves.
+    title : str
+        Panel title.
+    y_label : bool
+        Whether to label the ``y`` axis.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
+    for lab, col in ((head, "tab:red"), *BREAKDOWN_COLORS.items()):
+        c = by_label[lab]
+        ax.fill_between(c["crossing_angle_deg"], c["band_width_m_q25"], c["band_width_m_q75"], color=col,
+                        alpha=0.15, lw=0)
+        ax.plot(c["crossing_angle_deg"], c["band_width_m_median"], color=col, lw=1.8,
+                label="all errors" if lab == head else lab)
+    c = by_label[head]
+    ax.plot(c["crossing_angle_deg"], c["locus_length_m_median"], color="k", lw=1.5,
+            label="locus length, no noise")
+    ax.set_yscale("log")
+    if y_label:
+        ax.set_ylabel("band width (m): median, IQR shaded")
+    ax.set_title(title, fontsize=10)
+    _angle_axis(ax, legend=False)
+    return ax
 
 
 @themed
 def plot_breakdown(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.DataFrame]],
                    head: str):
-    """Band width against crossing angle by error group (all errors at level ``head``; sensor
-    position only; range only; median and interquartile range, log scale) with the noise-free
-    locus length, one panel per platform; returns the figure."""
+    """Band width against crossing angle by error group, one panel per platform
+    (:func:`plot_band_widths`), one legend below; returns the figure."""
     ncols = min(len(platforms), 2)  # side by side: one row per two platforms, one legend
     nrows = -(-len(platforms) // ncols)
     fig, axs = plt.subplots(nrows, ncols, figsize=(PAGE_WIDTH_IN, 3.6 * nrows + 1.0),
@@ -169,24 +275,57 @@ def plot_breakdown(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.Dat
     for ax in axs.flat[len(platforms):]:
         ax.set_visible(False)
     for ax, pf in zip(axs.flat, platforms):
-        by_label = curves[pf.key]
-        for lab, col in ((head, "tab:red"), *BREAKDOWN_COLORS.items()):
-            c = by_label[lab]
-            ax.fill_between(c["crossing_angle_deg"], c["band_width_m_q25"], c["band_width_m_q75"], color=col,
-                            alpha=0.15, lw=0)
-            ax.plot(c["crossing_angle_deg"], c["band_width_m_median"], color=col, lw=1.8,
-                    label="all errors" if lab == head else lab)
-        c = by_label[head]
-        ax.plot(c["crossing_angle_deg"], c["locus_length_m_median"], color="k", lw=1.5,
-                label="locus length, no noise")
-        ax.set_yscale("log")
-        if ax in axs[:, 0]:
-            ax.set_ylabel("band width (m): median, IQR shaded")
-        ax.set_title(platform_title(pf, 34), fontsize=10)
-        _angle_axis(ax, legend=False)
+        plot_band_widths(curves[pf.key], head, title=platform_title(pf, 34), y_label=ax in axs[:, 0], ax=ax)
     handles, labels = axs.flat[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=4, fontsize=SMALL_FONT_PT, frameon=False)
     return fig
+
+
+@themed
+def plot_check_panel(check: pd.DataFrame, platforms: Sequence, kind: str, scale: float, *,
+                     colors: Mapping[str, str] | None = None, ax=None):
+    """Monte Carlo against first-order 95 % distances of one kind at one noise scale, one colour
+    per platform, with the line of equality (log-log).
+
+    Parameters
+    ----------
+    check : pandas.DataFrame
+        As :func:`plot_check`.
+    platforms : sequence of Platform
+        Platforms drawn, in legend order.
+    kind : {"two", "three"}
+        Distance to the circle (two views) or three-view point error.
+    scale : float
+        Noise scale.
+    colors : mapping of str to str, optional
+        Colour per platform key (default :func:`~sss_locus.report.style.platform_colors`).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
+    colors = platform_colors(platforms) if colors is None else colors
+    what = "distance to the circle" if kind == "two" else "three-view point error"
+    d = check[(check.kind == kind) & (check.scale == scale)]
+    for pf in platforms:
+        dk = d[d.platform == pf.key]
+        ax.scatter(dk.monte_carlo_m, dk.first_order_m, s=12, color=colors[pf.key],
+                   label=platform_title(pf, 60))
+    both = d[["monte_carlo_m", "first_order_m"]]
+    lo, hi = both.min().min(), both.max().max()
+    ax.plot([lo, hi], [lo, hi], color="k", lw=0.8, label="equal")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.xaxis.set_minor_formatter(NullFormatter())  # crowded minor labels on a short decade
+    ax.set_xlabel(f"Monte Carlo 95 % {what} (m)")
+    ax.set_ylabel("first-order estimate (m)")
+    ax.set_title(f"{'two views' if kind == 'two' else 'three views'}, noise ×{scale:g}", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    return ax
 
 
 @themed
@@ -200,23 +339,9 @@ def plot_check(check: pd.DataFrame, platforms: Sequence, scales: Sequence[float]
     colors = platform_colors(platforms)
     fig, axs = plt.subplots(2, len(scales), figsize=(PAGE_WIDTH_IN, 7.4), constrained_layout=True,
                             squeeze=False)
-    for row, kind, what in zip(axs, ("two", "three"), ("distance to the circle", "three-view point error")):
+    for row, kind in zip(axs, ("two", "three")):
         for ax, scale in zip(row, scales):
-            d = check[(check.kind == kind) & (check.scale == scale)]
-            for pf in platforms:
-                dk = d[d.platform == pf.key]
-                ax.scatter(dk.monte_carlo_m, dk.first_order_m, s=12, color=colors[pf.key],
-                           label=platform_title(pf, 60))
-            both = d[["monte_carlo_m", "first_order_m"]]
-            lo, hi = both.min().min(), both.max().max()
-            ax.plot([lo, hi], [lo, hi], color="k", lw=0.8, label="equal")
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            ax.xaxis.set_minor_formatter(NullFormatter())  # crowded minor labels on a short decade
-            ax.set_xlabel(f"Monte Carlo 95 % {what} (m)")
-            ax.set_ylabel("first-order estimate (m)")
-            ax.set_title(f"{'two views' if kind == 'two' else 'three views'}, noise ×{scale:g}", fontsize=10)
-            ax.grid(alpha=0.3, which="both")
+            plot_check_panel(check, platforms, kind, scale, colors=colors, ax=ax)
     # one legend for the four panels, below them (a legend in a panel covers points)
     handles, labels = axs[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=1, fontsize=SMALL_FONT_PT, frameon=False)

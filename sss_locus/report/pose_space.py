@@ -23,7 +23,7 @@ from matplotlib.colors import to_rgba
 from matplotlib.ticker import MaxNLocator
 
 from ..experiments.pose_stats import HEATMAP_PANELS, TARGETS, median_grid
-from .style import PAGE_WIDTH_IN, QUANTITY_LABELS, SMALL_FONT_PT, themed, upward_heatmap
+from .style import PAGE_WIDTH_IN, QUANTITY_LABELS, SMALL_FONT_PT, get_axis, themed, upward_heatmap
 from .pose_findings import fmt_rho
 from .text import fmt_ci, fmt_interval, fmt_sig, fmt_span, plain_label
 
@@ -53,30 +53,63 @@ def scatter_subset(df: pd.DataFrame, n_points: int, seed: int) -> pd.DataFrame:
 
 
 @themed
-def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""):
-    """The paper's Fig. 3 for one platform: (a, b) Spearman rho of each quantity with the raw and
-    the range-normalised locus length, with replicate-batch intervals; (c) normalised length against
-    elevation misalignment for ``subset`` (:func:`scatter_subset`), fragmented loci in orange.
+def plot_rho_bars(rho: pd.DataFrame, target: str = TARGETS[0], *, title: str = "", ax=None):
+    """One panel of the paper's Fig. 3: Spearman rho of each quantity with ``target``, bars
+    with their replicate-batch intervals (positive blue, negative grey).
 
-    ``rho`` is a :func:`~sss_locus.experiments.pose_stats.spearman_table`. Returns the figure.
+    Parameters
+    ----------
+    rho : pandas.DataFrame
+        A :func:`~sss_locus.experiments.pose_stats.spearman_table`.
+    target : str
+        One of :data:`~sss_locus.experiments.pose_stats.TARGETS`.
+    title : str
+        Panel title.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes, :func:`~sss_locus.report.style.get_axis`).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
     """
-    fig, mosaic = plt.subplot_mosaic([["a", "b"], ["c", "c"]], figsize=(PAGE_WIDTH_IN, 8), constrained_layout=True)
-    axs = [mosaic["a"], mosaic["b"], mosaic["c"]]
-    names = ("(a) raw locus length", "(b) range-normalised length")
-    for ax, target, name in zip(axs[:2], TARGETS, names):
-        tab = rho[rho["target"] == target].iloc[::-1]
-        err = np.vstack([tab["rho"] - tab["ci_low"], tab["ci_high"] - tab["rho"]])
-        ax.barh([QUANTITY_LABELS[q] for q in tab["quantity"]], tab["rho"], xerr=err, capsize=2,
-                color=np.where(tab["rho"] >= 0, "tab:blue", "tab:gray"))
-        ax.axvline(0, color="k", lw=0.8)
-        ax.set_xlim(-1, 1)
-        what = "length" if target == TARGETS[0] else "length / mean range"
-        ax.set_xlabel(r"Spearman $\rho$ with " + what)
-        ax.set_title(name)
-        ax.grid(axis="y", visible=False)  # no line through the bars
+    ax = get_axis(ax)
+    tab = rho[rho["target"] == target].iloc[::-1]
+    err = np.vstack([tab["rho"] - tab["ci_low"], tab["ci_high"] - tab["rho"]])
+    ax.barh([QUANTITY_LABELS[q] for q in tab["quantity"]], tab["rho"], xerr=err, capsize=2,
+            color=np.where(tab["rho"] >= 0, "tab:blue", "tab:gray"))
+    ax.axvline(0, color="k", lw=0.8)
+    ax.set_xlim(-1, 1)
+    what = "length" if target == TARGETS[0] else "length / mean range"
+    ax.set_xlabel(r"Spearman $\rho$ with " + what)
+    ax.set_title(title)
+    ax.grid(axis="y", visible=False)  # no line through the bars
+    return ax
+
+
+@themed
+def plot_length_scatter(subset: pd.DataFrame, *, title: str = "", ax=None):
+    """Panel (c) of the paper's Fig. 3: normalised locus length against elevation misalignment,
+    fragmented loci in orange, drawn last (on top).
+
+    Parameters
+    ----------
+    subset : pandas.DataFrame
+        Rows to draw, columns :data:`SCATTER_COLUMNS` (:func:`scatter_subset`).
+    title : str
+        Panel title.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
     arcs = np.where(subset["n_arcs"] > 1, "several arcs (fragmented)", "one arc")
     shown = subset.assign(arcs=arcs).sort_values("arcs", key=lambda a: a != "one arc", kind="stable")
-    ax = axs[2]  # fragmented loci drawn last, on top; no legend entry for a class with no points
+    # no legend entry for a class with no points
     sns.scatterplot(shown, x="elevation_misalignment_deg", y="locus_length_normalized", hue="arcs",
                     size="arcs", sizes={"one arc": 3, "several arcs (fragmented)": 9},
                     palette={"one arc": to_rgba("tab:blue", 0.35),  # the many single arcs faint
@@ -84,10 +117,83 @@ def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""
     ax.set_yscale("log")
     ax.set_xlabel("elevation misalignment (deg)")
     ax.set_ylabel("locus length / mean range")
-    ax.set_title("(c) normalised length vs misalignment")
+    ax.set_title(title)
     sns.move_legend(ax, "best", title=None, fontsize=SMALL_FONT_PT, markerscale=2)  # covers fewest points
+    return ax
+
+
+@themed
+def plot_sensitivity(rho: pd.DataFrame, subset: pd.DataFrame, *, title: str = ""):
+    """The paper's Fig. 3 for one platform: (a, b) Spearman rho of each quantity with the raw and
+    the range-normalised locus length, with replicate-batch intervals (:func:`plot_rho_bars`);
+    (c) normalised length against elevation misalignment for ``subset`` (:func:`scatter_subset`),
+    fragmented loci in orange (:func:`plot_length_scatter`).
+
+    Parameters
+    ----------
+    rho : pandas.DataFrame
+        A :func:`~sss_locus.experiments.pose_stats.spearman_table`.
+    subset : pandas.DataFrame
+        The scatter's rows (:func:`scatter_subset`).
+    title : str
+        Figure title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, mosaic = plt.subplot_mosaic([["a", "b"], ["c", "c"]], figsize=(PAGE_WIDTH_IN, 8), constrained_layout=True)
+    names = ("(a) raw locus length", "(b) range-normalised length")
+    for panel, target, name in zip("ab", TARGETS, names):
+        plot_rho_bars(rho, target, title=name, ax=mosaic[panel])
+    plot_length_scatter(subset, title="(c) normalised length vs misalignment", ax=mosaic["c"])
     fig.suptitle(textwrap.fill(title, 75))
     return fig
+
+
+@themed
+def plot_heatmap(binned: pd.DataFrame, *, title: str = "", x_label: str | None = None,
+                 y_label: str | None = None, ax=None):
+    """One panel of the paper's Fig. 4: the median locus length per bin of a
+    :func:`~sss_locus.experiments.pose_stats.binned_median` table as a ``seaborn.heatmap``
+    (masked bins blank on grey, ``y`` increasing upwards, ticks at round values of the binned
+    quantities, a colour bar); with one bin along ``y`` (e.g. a boat that never pitches), the
+    medians as a 1-D profile.
+
+    Parameters
+    ----------
+    binned : pandas.DataFrame
+        A :func:`~sss_locus.experiments.pose_stats.binned_median` table (its ``attrs`` name the
+        columns binned).
+    title : str
+        Panel title, ``"<x> vs <y>"`` (a profile keeps the part before ``" vs "``).
+    x_label, y_label : str, optional
+        Axis labels with units; default :data:`PANEL_AXIS_LABELS` of the columns binned.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
+    x_label = PANEL_AXIS_LABELS.get(binned.attrs.get("x"), binned.attrs.get("x")) if x_label is None else x_label
+    y_label = PANEL_AXIS_LABELS.get(binned.attrs.get("y"), binned.attrs.get("y")) if y_label is None else y_label
+    xe, ye, z = median_grid(binned)
+    if len(ye) == 2:  # one bin along y: a 1-D profile
+        ax.hlines(z[0], xe[:-1], xe[1:], color="tab:blue", lw=2)  # sparse (masked) bins: no line
+        ax.set_xlabel(x_label)
+        ax.set_ylabel("median locus length (m)")
+        ax.set_title(f"{title.split(' vs ')[0]}\n({y_label.split(' (')[0]} "
+                     f"always {0.5 * (ye[0] + ye[1]):g})")
+        ax.set_ylim(bottom=0)
+        return ax
+    _heatmap(ax, xe, ye, z)
+    ax.set_xlabel(x_label)
+    ax.set_ylabel(y_label)
+    ax.set_title(title)
+    return ax
 
 
 def _heatmap(ax, xe: np.ndarray, ye: np.ndarray, z: np.ndarray) -> None:
@@ -109,25 +215,24 @@ def _heatmap(ax, xe: np.ndarray, ye: np.ndarray, z: np.ndarray) -> None:
 @themed
 def plot_heatmaps(maps: Mapping[str, pd.DataFrame], *, title: str = ""):
     """The paper's Fig. 4 for one platform: median locus length per bin for each panel of
-    :data:`~sss_locus.experiments.pose_stats.HEATMAP_PANELS` (``seaborn.heatmap``); masked (sparse) bins blank.
+    :data:`~sss_locus.experiments.pose_stats.HEATMAP_PANELS` (:func:`plot_heatmap`); masked
+    (sparse) bins blank.
 
-    ``maps`` is a :func:`~sss_locus.experiments.pose_stats.heatmaps` result. Returns the figure.
+    Parameters
+    ----------
+    maps : mapping of str to pandas.DataFrame
+        A :func:`~sss_locus.experiments.pose_stats.heatmaps` result, keyed by panel letter.
+    title : str
+        Figure title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
     """
     fig, axs = plt.subplots(3, 2, figsize=(PAGE_WIDTH_IN, 10.5), constrained_layout=True)
     for ax, (panel, x, y) in zip(axs.flat, HEATMAP_PANELS):
-        xe, ye, z = median_grid(maps[panel])
-        if len(ye) == 2:  # one bin along y (e.g. a boat that never pitches): a 1-D profile
-            ax.hlines(z[0], xe[:-1], xe[1:], color="tab:blue", lw=2)  # sparse (masked) bins: no line
-            ax.set_xlabel(PANEL_AXIS_LABELS[x])
-            ax.set_ylabel("median locus length (m)")
-            ax.set_title(f"{PANEL_TITLES[panel].split(' vs ')[0]}\n({PANEL_AXIS_LABELS[y].split(' (')[0]} "
-                         f"always {0.5 * (ye[0] + ye[1]):g})")
-            ax.set_ylim(bottom=0)
-            continue
-        _heatmap(ax, xe, ye, z)
-        ax.set_xlabel(PANEL_AXIS_LABELS[x])
-        ax.set_ylabel(PANEL_AXIS_LABELS[y])
-        ax.set_title(PANEL_TITLES[panel])
+        plot_heatmap(maps[panel], title=PANEL_TITLES[panel], x_label=PANEL_AXIS_LABELS[x],
+                     y_label=PANEL_AXIS_LABELS[y], ax=ax)
     axs.flat[-1].axis("off")
     fig.suptitle(textwrap.fill(title, 75))
     return fig

@@ -21,7 +21,7 @@ from scipy.spatial import ConvexHull
 
 from ..experiments import userdata
 from ..experiments.platforms import Platform, frustum_points
-from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, get_axis, platform_title
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 """Colours of a transducer's drawn x (boresight), y and z axes."""
@@ -110,7 +110,7 @@ def draw_rig(platform: Platform, view: str, plot_range_m: float, axis_length_m: 
     (``x``, ``y``, ``z`` arrows of ``axis_length_m``; an axis along the line of sight is a ring
     with a dot, toward the viewer, or a cross, away). ``view`` is a key of :data:`VIEWS`.
     Returns the axes."""
-    ax = plt.gca() if ax is None else ax
+    ax = get_axis(ax)
     h, v = VIEWS[view]
     toward_viewer = np.cross(h, v)  # unit vector pointing out of the page
     _draw_hull(ax, platform, view)

@@ -131,6 +131,33 @@ def themed(fn):
     return wrapper
 
 
+def get_axis(ax=None, figsize: tuple[float, float] | None = None):
+    """The axes a one-panel plot function draws on (the pattern of xarray's ``plot.utils.get_axis``).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; returned as given.
+    figsize : (float, float), optional
+        Size in inches of a new figure with one axes, when ``ax`` is ``None``.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``; else the axes of a new figure of ``figsize``; else the current axes
+        (``plt.gca()``, a new figure if there is none).
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is not None:
+        if figsize is not None:
+            raise ValueError("give either ax or figsize, not both")
+        return ax
+    if figsize is not None:
+        return plt.figure(figsize=figsize, layout="constrained").add_subplot()
+    return plt.gca()
+
+
 def upward_heatmap(ax, z, **kwargs):
     """``seaborn.heatmap`` of ``z`` (shape ``(n_y, n_x)``, NaN cells blank on grey) on ``ax`` with
     row 0 at the bottom (``y`` increasing upwards, as on a numeric axis) and no grid, without a

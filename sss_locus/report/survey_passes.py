@@ -23,7 +23,7 @@ from ..experiments.envelopes import OffsetModel, SurveyEnvelope
 from ..experiments.userdata import label_key
 from ..experiments.planning import VALUES, CrossingAngleCurve, curve_shape_rho, rejected_share
 from ..experiments.verdicts import over_peak
-from .style import AXIS_LABELS, PAGE_WIDTH_IN, SMALL_FONT_PT, platform_colors, platform_title, themed
+from .style import AXIS_LABELS, PAGE_WIDTH_IN, SMALL_FONT_PT, get_axis, platform_colors, platform_title, themed
 from .text import fmt_change, fmt_ci, fmt_interval, fmt_sig
 
 UNITS = {"locus_length_m": "m", "elevation_misalignment_deg": "°"}
@@ -78,22 +78,54 @@ def describe_offset_model(model: OffsetModel) -> str:
 
 
 @themed
+def plot_crossing_curves(curves: Mapping[str, CrossingAngleCurve], value: str = VALUES[0], *,
+                         title: str = "", colors: Mapping[str, str] | None = None, ax=None):
+    """One panel of the paper's Fig. 5: ``value`` against crossing angle, median line and
+    interquartile band per platform.
+
+    Parameters
+    ----------
+    curves : mapping of str to CrossingAngleCurve
+        The curves, keyed by platform key.
+    value : str
+        One of :data:`VALUES`.
+    title : str
+        Panel title.
+    colors : mapping of str to str, optional
+        Colour per platform key (default :func:`~sss_locus.report.style.platform_colors`).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
+    colors = platform_colors([cur.platform for cur in curves.values()]) if colors is None else colors
+    for k, cur in curves.items():
+        c = cur.curve
+        ax.fill_between(c["crossing_angle_deg"], c[f"{value}_q25"], c[f"{value}_q75"], color=colors[k],
+                        alpha=0.2, lw=0)
+        ax.plot(c["crossing_angle_deg"], c[f"{value}_median"], color=colors[k], lw=1.8,
+                label=f"{cur.platform.name}: median, IQR shaded")
+    ax.set_ylabel(AXIS_LABELS[value])
+    ax.set_title(title)
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    return ax
+
+
+@themed
 def plot_fig5(curves: Mapping[str, CrossingAngleCurve]):
     """The paper's Fig. 5: (a) locus length and (b) elevation misalignment against crossing
-    angle, median line and interquartile band per platform. Returns the figure."""
+    angle, median line and interquartile band per platform (:func:`plot_crossing_curves`).
+    Returns the figure."""
     colors = platform_colors([cur.platform for cur in curves.values()])
     fig, axs = plt.subplots(2, 1, figsize=(PAGE_WIDTH_IN, 6.8), sharex=True, constrained_layout=True)
     for ax, v, tag in zip(axs, VALUES, "ab"):
-        for k, cur in curves.items():
-            c = cur.curve
-            ax.fill_between(c["crossing_angle_deg"], c[f"{v}_q25"], c[f"{v}_q75"], color=colors[k],
-                            alpha=0.2, lw=0)
-            ax.plot(c["crossing_angle_deg"], c[f"{v}_median"], color=colors[k], lw=1.8,
-                    label=f"{cur.platform.name}: median, IQR shaded")
-        ax.set_ylabel(AXIS_LABELS[v])
-        ax.set_title(f"({tag}) {AXIS_LABELS[v].split(' (')[0]} against crossing angle")
-        ax.set_ylim(bottom=0)
-        ax.grid(alpha=0.3)
+        plot_crossing_curves(curves, v, title=f"({tag}) {AXIS_LABELS[v].split(' (')[0]} against crossing angle",
+                             colors=colors, ax=ax)
     handles, labels = axs[0].get_legend_handles_labels()  # below the panels: never over a band
     fig.legend(handles, labels, loc="outside lower center", ncol=1, fontsize=SMALL_FONT_PT, frameon=False)
     axs[1].set_xlabel(r"crossing angle $\gamma$ between the passes (deg)")

@@ -26,7 +26,7 @@ from matplotlib.colors import LogNorm
 from matplotlib.ticker import NullFormatter
 
 from ..experiments.three_view_patterns import cells_within, share_interval, share_upper_bound
-from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title, themed, upward_heatmap
+from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, get_axis, platform_title, themed, upward_heatmap
 from .text import fmt_interval, fmt_percent, fmt_span
 
 PATTERN_TAGS = {"repeat + reciprocal": "rr", "two lines + cross line": "cross",
@@ -45,13 +45,86 @@ def pattern_label(name: str) -> str:
 
 
 @themed
+def plot_outcome_shares(by_pattern: Mapping[str, pd.DataFrame], *, title: str = "", ax=None):
+    """Share of configurations with one, two or no valid candidate, one stacked bar per pattern
+    (the tables' first at the top).
+
+    Parameters
+    ----------
+    by_pattern : mapping of str to pandas.DataFrame
+        Three-view tables (column ``n_valid``) keyed by pattern name.
+    title : str
+        Panel title.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
+    short = [pattern_label(name) for name in by_pattern]
+    fr = np.array([[(t.n_valid == v).mean() for _, v, _ in OUTCOMES] for t in by_pattern.values()])
+    left = np.zeros(len(short))
+    for j, (lab, _, color) in enumerate(OUTCOMES):  # the patterns as categories, as seaborn's
+        ax.barh(short, fr[:, j], left=left, color=color, label=lab, height=0.8)
+        left += fr[:, j]
+    ax.set_xlim(0, 1)
+    ax.set_xlabel("fraction of configurations")
+    ax.set_title(title, fontsize=10)
+    ax.grid(axis="y", visible=False)  # no line through the bars
+    return ax
+
+
+@themed
+def plot_pattern_boxes(by_pattern: Mapping[str, pd.DataFrame], column: str, *, xlabel: str = "",
+                       title: str = "", ax=None):
+    """Distribution of ``column`` per pattern (box: quartiles, whiskers: 5-95 %, log scale).
+
+    Parameters
+    ----------
+    by_pattern : mapping of str to pandas.DataFrame
+        Three-view tables keyed by pattern name.
+    column : str
+        Column drawn (e.g. ``plane_angle_deg``, ``point_error_q95_m``), positive values.
+    xlabel, title : str
+        Axis label and panel title.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
+    short = [pattern_label(name) for name in by_pattern]
+    long = pd.DataFrame({"pattern": np.repeat(short, [len(t) for t in by_pattern.values()]),
+                         column: np.concatenate([t[column].to_numpy() for t in by_pattern.values()])})
+    # quartiles of the values themselves (the axis turns logarithmic after, not before)
+    with warnings.catch_warnings():  # seaborn 0.13.2 passes Axes.bxp the vert= of matplotlib < 3.11
+        warnings.filterwarnings("ignore", message="vert: bool", category=DeprecationWarning)
+        sns.boxplot(long, x=column, y="pattern", order=short, whis=(5, 95), showfliers=False, ax=ax,
+                    color="0.92", linecolor="0.2", medianprops={"color": "tab:orange", "linewidth": 2})
+    ax.set_xscale("log")
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("")
+    ax.set_title(title, fontsize=10)
+    ax.grid(axis="y", visible=False)  # no line through the boxes
+    return ax
+
+
+@themed
 def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.DataFrame]],
                   range_sigma_m: float):
     """Three panels per platform (one column each); returns the figure.
 
-    (a) share of configurations with one, two or no valid candidate; (b) angle between the two
-    planes (box: quartiles, whiskers: 5-95 %, log scale); (c) first-order 95 % point error for a
-    ``range_sigma_m`` range error (``point_error_q95_m``, log scale).
+    (a) share of configurations with one, two or no valid candidate (:func:`plot_outcome_shares`);
+    (b) angle between the two planes (box: quartiles, whiskers: 5-95 %, log scale); (c)
+    first-order 95 % point error for a ``range_sigma_m`` range error (``point_error_q95_m``, log
+    scale; both :func:`plot_pattern_boxes`).
     ``tables[platform.key][pattern]`` is a three-view table. Rows (a), (b), (c); columns the
     platforms; the patterns, in the tables' order from the top, label the rows of the left
     column only (shared).
@@ -61,33 +134,12 @@ def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.Data
                             squeeze=False, sharey=True)
     for col, pf in zip(axs.T, platforms):
         by_pattern = tables[pf.key]
-        short = [pattern_label(name) for name in by_pattern]
-        fr = np.array([[(t.n_valid == v).mean() for _, v, _ in OUTCOMES] for t in by_pattern.values()])
-        left = np.zeros(len(short))
-        for j, (lab, _, color) in enumerate(OUTCOMES):  # the patterns as categories, as seaborn's
-            col[0].barh(short, fr[:, j], left=left, color=color, label=lab, height=0.8)
-            left += fr[:, j]
-        col[0].set_xlim(0, 1)
-        col[0].set_xlabel("fraction of configurations")
-        col[0].set_title(platform_title(pf, 72 // n) + "\n(a) outcome", fontsize=10)  # 36 a column for two
-        for ax, column, xlabel in (
-                (col[1], "plane_angle_deg", "angle between the two planes (deg)"),
-                (col[2], "point_error_q95_m", f"95 % point error per {100 * range_sigma_m:g} cm\nrange error (m)")):
-            long = pd.DataFrame({"pattern": np.repeat(short, [len(t) for t in by_pattern.values()]),
-                                 column: np.concatenate([t[column].to_numpy() for t in by_pattern.values()])})
-            # quartiles of the values themselves (the axis turns logarithmic after, not before)
-            with warnings.catch_warnings():  # seaborn 0.13.2 passes Axes.bxp the vert= of matplotlib < 3.11
-                warnings.filterwarnings("ignore", message="vert: bool", category=DeprecationWarning)
-                sns.boxplot(long, x=column, y="pattern", order=short, whis=(5, 95), showfliers=False, ax=ax,
-                            color="0.92", linecolor="0.2", medianprops={"color": "tab:orange", "linewidth": 2})
-            ax.set_xscale("log")
-            ax.xaxis.set_minor_formatter(NullFormatter())
-            ax.set_xlabel(xlabel)
-            ax.set_ylabel("")
-        col[1].set_title("(b) plane angle", fontsize=10)
-        col[2].set_title("(c) conditioning, first order", fontsize=10)
-        for ax in col:
-            ax.grid(axis="y", visible=False)  # no line through the bars and boxes
+        plot_outcome_shares(by_pattern, title=platform_title(pf, 72 // n) + "\n(a) outcome", ax=col[0])  # 36 a column for two
+        plot_pattern_boxes(by_pattern, "plane_angle_deg", xlabel="angle between the two planes (deg)",
+                           title="(b) plane angle", ax=col[1])
+        plot_pattern_boxes(by_pattern, "point_error_q95_m",
+                           xlabel=f"95 % point error per {100 * range_sigma_m:g} cm\nrange error (m)",
+                           title="(c) conditioning, first order", ax=col[2])
     handles, labels = axs[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=len(OUTCOMES), fontsize=SMALL_FONT_PT,
                frameon=False)
@@ -110,30 +162,63 @@ def sym_grid(sweep: pd.DataFrame, value: str) -> tuple[np.ndarray, np.ndarray]:
 
 
 @themed
+def plot_sweep_heatmap(sweep: pd.DataFrame, value: str, *, label: str = "", title: str = "",
+                       y_label: bool = True, ax=None, **style):
+    """``sweep[value]`` against the headings of passes 2 and 3, one ``seaborn.heatmap`` cell per
+    heading pair (:func:`sym_grid`), with a colour bar and ticks at the headings run.
+
+    Parameters
+    ----------
+    sweep : pandas.DataFrame
+        A heading sweep (``heading2_deg``, ``heading3_deg`` and ``value``).
+    value : str
+        Column drawn.
+    label : str
+        Colour bar label.
+    title : str
+        Panel title.
+    y_label : bool
+        Whether to label the ``y`` axis (the left panel of a row).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+    **style
+        Passed to ``seaborn.heatmap`` (``cmap``, ``norm``).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
+    h, z = sym_grid(sweep, value)
+    mesh = upward_heatmap(ax, z, square=True, **style)
+    ax.figure.colorbar(mesh, ax=ax, label=label, shrink=0.8).outline.set_linewidth(0)
+    ticks = np.unique(sweep.heading2_deg)
+    ticks = ticks if ticks.size <= 7 else ticks[::2]
+    at = np.searchsorted(h, ticks) + 0.5  # the centres of their cells
+    ax.set_xlabel("heading of pass 2, $h_2$ (deg)")
+    ax.set_ylabel("heading of pass 3, $h_3$ (deg)" if y_label else "")
+    ax.set_title(title, fontsize=10)
+    ax.set_xticks(at, [f"{v:g}" for v in ticks], rotation=0)
+    ax.set_yticks(at, [f"{v:g}" for v in ticks], rotation=0)
+    return ax
+
+
+@themed
 def plot_heading_sweep(platforms: Sequence, sweeps: Mapping[str, pd.DataFrame], range_sigma_m: float):
     """Median plane angle (left) and median first-order 95 % point error for a ``range_sigma_m``
     range error (right, log colour scale) against the headings of passes 2 and 3, one row per
-    platform, one ``seaborn.heatmap`` cell per heading pair (:func:`sym_grid`); returns the
-    figure. ``sweeps[platform.key]`` is a heading sweep with noise."""
+    platform (:func:`plot_sweep_heatmap`); returns the figure. ``sweeps[platform.key]`` is a
+    heading sweep with noise."""
     fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 3.5 * len(platforms)), constrained_layout=True,
                             squeeze=False)
     for row, pf in zip(axs, platforms):
         sweep = sweeps[pf.key]
-        for ax, value, style, label in (
-                (row[0], "plane_angle_median_deg", {"cmap": "viridis"}, "plane angle (deg)"),
-                (row[1], "point_error_q95_median_m", {"cmap": "magma_r", "norm": LogNorm()}, "95 % point error (m)")):
-            h, z = sym_grid(sweep, value)
-            mesh = upward_heatmap(ax, z, square=True, **style)
-            fig.colorbar(mesh, ax=ax, label=label, shrink=0.8).outline.set_linewidth(0)
-        ticks = np.unique(sweep.heading2_deg)
-        ticks = ticks if ticks.size <= 7 else ticks[::2]
-        at = np.searchsorted(h, ticks) + 0.5  # the centres of their cells
-        for ax, t in zip(row, ("median plane angle", f"median error per {100 * range_sigma_m:g} cm range error")):
-            ax.set_xlabel("heading of pass 2, $h_2$ (deg)")
-            ax.set_ylabel("heading of pass 3, $h_3$ (deg)" if ax is row[0] else "")
-            ax.set_title(f"{platform_title(pf, 32)}:\n{t}", fontsize=10)
-            ax.set_xticks(at, [f"{v:g}" for v in ticks], rotation=0)
-            ax.set_yticks(at, [f"{v:g}" for v in ticks], rotation=0)
+        plot_sweep_heatmap(sweep, "plane_angle_median_deg", label="plane angle (deg)",
+                           title=f"{platform_title(pf, 32)}:\nmedian plane angle", ax=row[0], cmap="viridis")
+        plot_sweep_heatmap(sweep, "point_error_q95_median_m", label="95 % point error (m)",
+                           title=f"{platform_title(pf, 32)}:\nmedian error per {100 * range_sigma_m:g} cm range error",
+                           y_label=False, ax=row[1], cmap="magma_r", norm=LogNorm())
     return fig
 
 

@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from .style import themed
+from .style import get_axis, themed
 
 PAPER_COLOR, WATER_COLOR = "tab:gray", "tab:blue"
 
@@ -62,23 +62,51 @@ CROP_TEXT = {"surface": ("cropped to the water", "(b) length below the surface")
 """Legend entry and panel (b) title of :func:`plot_crop_effects` for each ``crop``."""
 
 
-@themed
-def plot_crop_effects(effects: pd.DataFrame, crop: str = "surface"):
-    """(a) Share of fragmented loci without and with the crop; (b) share of the total locus
-    length the crop keeps; one row per condition whose ``crop`` column is ``crop`` (all
-    samples), 95 % replicate-batch intervals. Returns the figure."""
+def _crop_rows(effects: pd.DataFrame, crop: str) -> pd.DataFrame:
     if crop not in CROP_TEXT:
         raise ValueError(f"crop must be one of {list(CROP_TEXT)}; got {crop!r}")
     sel = effects[(effects["subset"] == "all") & (effects["crop"] == crop)]
     if sel.empty:
         raise ValueError(f"effects has no condition with crop {crop!r}")
+    return sel
+
+
+@themed
+def plot_crop_bars(effects: pd.DataFrame, statistics, *, crop: str = "surface", xmax: float = 100.0,
+                   xlabel: str = "", title: str = "", ax=None):
+    """One panel of the water figure: per condition (one row each, the first at the top), a bar
+    of each of ``statistics`` in per cent with its 95 % replicate-batch interval and its value
+    written beside it (inside the bar's left end where it would run past ``xmax``).
+
+    Parameters
+    ----------
+    effects : pandas.DataFrame
+        The long table of :func:`~sss_locus.experiments.water_study.crop_effects`.
+    statistics : sequence of (str, str or None, str)
+        ``(statistic, legend label, colour)`` of each bar of a row, top to bottom (at most two).
+    crop : str
+        The conditions drawn: those whose ``crop`` is this (a key of :data:`CROP_TEXT`), all
+        samples.
+    xmax : float
+        End of the axis, per cent.
+    xlabel, title : str
+        Axis label and panel title.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
+    ax = get_axis(ax)
+    sel = _crop_rows(effects, crop)
     allrows = sel.set_index(["label", "statistic"])
     labels = list(dict.fromkeys(sel["label"]))
     y = np.arange(len(labels))[::-1]
-    fig, axs = plt.subplots(1, 2, figsize=(7.2, 0.55 * len(labels) + 1.9), sharey=True,
-                            gridspec_kw={"width_ratios": [1.2, 1]}, layout="constrained")
-
-    def bars(ax, stat, offset, color, label):
+    ax.set_xlim(0, xmax)
+    offsets = (0.0,) if len(statistics) == 1 else (0.2, -0.2)
+    for (stat, label, color), offset in zip(statistics, offsets):
         est = np.array([allrows.loc[(lab, stat), "estimate"] for lab in labels]) * 100
         lo = np.array([allrows.loc[(lab, stat), "ci_low"] for lab in labels]) * 100
         hi = np.array([allrows.loc[(lab, stat), "ci_high"] for lab in labels]) * 100
@@ -90,25 +118,31 @@ def plot_crop_effects(effects: pd.DataFrame, crop: str = "surface"):
         ax.bar_label(bar, labels=[f"{v:.1f}" if i else "" for v, i in zip(est, inside)], fontsize=9,
                      label_type="center", color="white")
         ax.bar_label(bar, labels=["" if i else f"{v:.1f}" for v, i in zip(est, inside)], fontsize=9, padding=4)
-        return hi.max()
+    ax.set_xlabel(xlabel, fontsize=10)
+    ax.set_title(title, fontsize=10, loc="left")
+    ax.set_yticks(y, [textwrap.fill(lab, 28) for lab in labels], fontsize=9)
+    ax.tick_params(labelsize=9)
+    ax.grid(axis="y", visible=False)  # no line through the bars
+    return ax
 
+
+@themed
+def plot_crop_effects(effects: pd.DataFrame, crop: str = "surface"):
+    """(a) Share of fragmented loci without and with the crop; (b) share of the total locus
+    length the crop keeps; one row per condition whose ``crop`` column is ``crop`` (all
+    samples), 95 % replicate-batch intervals (:func:`plot_crop_bars`). Returns the figure."""
+    sel = _crop_rows(effects, crop)
+    labels = list(dict.fromkeys(sel["label"]))
+    fig, axs = plt.subplots(1, 2, figsize=(7.2, 0.55 * len(labels) + 1.9), sharey=True,
+                            gridspec_kw={"width_ratios": [1.2, 1]}, layout="constrained")
     cropped, title_b = CROP_TEXT[crop]
     top = 100 * sel.loc[sel["statistic"].str.startswith("multi_arc_share"), "ci_high"].max()
-    xmax = min(100.0, 1.3 * max(top, 1.0))  # read by bars()
-    axs[0].set_xlim(0, xmax)
-    bars(axs[0], "multi_arc_share_uncropped", 0.2, PAPER_COLOR, "paper's locus (apertures only)")
-    bars(axs[0], "multi_arc_share_cropped", -0.2, WATER_COLOR, cropped)
-    axs[0].set_xlabel("fragmented loci (% of samples)", fontsize=10)
-    axs[0].set_title("(a) loci with more than one arc", fontsize=10, loc="left")
-    xmax = 100.0
-    axs[1].set_xlim(0, xmax)
-    bars(axs[1], "length_ratio", 0.0, WATER_COLOR, None)
-    axs[1].set_xlabel("total locus length kept (%)", fontsize=10)
-    axs[1].set_title(title_b, fontsize=10, loc="left")
-    axs[0].set_yticks(y, [textwrap.fill(lab, 28) for lab in labels], fontsize=9)
-    for ax in axs:
-        ax.tick_params(labelsize=9)
-        ax.grid(axis="y", visible=False)  # no line through the bars
+    plot_crop_bars(effects, [("multi_arc_share_uncropped", "paper's locus (apertures only)", PAPER_COLOR),
+                             ("multi_arc_share_cropped", cropped, WATER_COLOR)], crop=crop,
+                   xmax=min(100.0, 1.3 * max(top, 1.0)), xlabel="fragmented loci (% of samples)",
+                   title="(a) loci with more than one arc", ax=axs[0])
+    plot_crop_bars(effects, [("length_ratio", None, WATER_COLOR)], crop=crop, xlabel="total locus length kept (%)",
+                   title=title_b, ax=axs[1])
     handles, names = axs[0].get_legend_handles_labels()  # below the panels: never over a bar
     fig.legend(handles, names, loc="outside lower center", ncol=2, fontsize=9, frameon=False)
     return fig
