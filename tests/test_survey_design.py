@@ -15,13 +15,19 @@ pytest.importorskip("pyproj")
 
 from sss_locus.experiments import survey_design as sd  # noqa: E402
 from sss_locus.experiments.platforms import load_platform  # noqa: E402
-from sss_locus.experiments.survey_area import area_from_vertices, load_area  # noqa: E402
+from sss_locus.experiments.survey_area import area_from_vertices, load_area, with_water_depth  # noqa: E402
 from sss_locus.experiments.survey_coverage import coverage  # noqa: E402
 from sss_locus.experiments.survey_lines import line_set, track_length, uturn_length_m  # noqa: E402
-from sss_locus.experiments.survey_plans import Plan, load_settings, plan_grid  # noqa: E402
+from sss_locus.experiments.survey_plans import Plan, load_settings, plan_grid, standard_plan  # noqa: E402
 from sss_locus.experiments.terrain import flat_terrain  # noqa: E402
 
 RECT = [[0.0, 0.0], [800.0, 0.0], [800.0, 500.0], [0.0, 500.0]]
+WATER_M = 30.0
+
+
+def deep(area, depth_m=WATER_M):
+    """``area`` with a water depth (the design refuses an area without one)."""
+    return with_water_depth(area, depth_m, "test")
 SMALL_GRID = dict(headings_deg=[0.0, 90.0], spacing_fractions=[1.2], crossing_angles_deg=[math.nan, 90.0],
                   cross_spacing_factors=[1.0], altitude_fractions=[0.08, 0.14, 0.5], pitches_deg=[0.0, 30.0, 60.0])
 
@@ -53,33 +59,70 @@ def test_lines_and_track_of_a_rectangle_by_hand():
     assert len(third) == 2 and third.x0_m.iloc[0] < third.x0_m.iloc[1]
 
 
-def test_standard_plan_coverage_matches_a_hand_calculation():
-    """Boat on a flat floor, rectangle: each line sees the band near <= |y - y_line| <= far, with
-    near = lateral + H / tan(tilt + fan/2) and far = lateral + sqrt(range^2 - H^2)."""
-    boat = load_platform("boat")
-    area = area_from_vertices(RECT)
-    settings = load_settings()
-    water = settings["water_depth_m"]
-    plan = Plan(0.0, 240.0, 0.0, 240.0, water, 0.0, "standard")
-    lines = plan.lines(area)
-    grid_m = 10.0
-    cov = coverage(boat, flat_terrain(), area, lines, water, 0.0, True, grid_m=grid_m, seed=3)
+HARBOUR = [[0, 0], [900, 0], [900, 380], [520, 560], [300, 250], [0, 450]]  # concave: a notch
+ISLAND = [[600, 120], [700, 120], [700, 200], [600, 200]]
+
+
+def _hand_counts(boat, water, lines, xy):
+    """Lines that see each point ``xy`` on a flat floor, computed here from the swath's closed
+    form: a segment sees the band near <= |across| <= far abeam of it (0 <= along <= length),
+    near = lateral + H / tan(tilt + fan/2), far = lateral + sqrt(range^2 - H^2)."""
     t = boat.transducers["port"]
     H = water - t.depth_m
     near = t.lateral_offset_m + H / math.tan(math.radians(t.tilt_deg + boat.sonar.azimuth_deg / 2))
     far = t.lateral_offset_m + math.sqrt(boat.sonar.max_range_m ** 2 - H ** 2)
+    seen = np.zeros((len(xy), lines.line.max() + 1 + 1000 * (lines["set"] != "main").any()), bool)
+    for _, r in lines.iterrows():
+        h = math.radians(r.heading_deg)
+        e, n = np.array([math.cos(h), math.sin(h)]), np.array([-math.sin(h), math.cos(h)])
+        d = xy - [r.x0_m, r.y0_m]
+        along, across = d @ e, np.abs(d @ n)
+        col = r.line + (1000 if r["set"] != "main" else 0)
+        seen[:, col] |= (along >= 0) & (along <= r.length_m) & (across >= near) & (across <= far)
+    return seen.sum(axis=1), near
+
+
+@pytest.mark.parametrize("vertices, holes", [(RECT, []), (HARBOUR, [ISLAND])])
+def test_standard_plan_coverage_matches_a_hand_calculation(vertices, holes):
+    """The standard plan as flown over a rectangle and over a concave harbour with an island: the
+    coverage the chapter measures (exact pings) against the swath's closed form on the same
+    grid; over the convex area every point is seen by two lines (200 %), which the old
+    placement (first line half a spacing inside, lines stopped at the edge) missed."""
+    import shapely
+
+    boat = load_platform("boat")
+    area = area_from_vertices(vertices, holes_m=holes)
+    settings = {**load_settings(), "water_depth_m": 30.0}
+    std = standard_plan(boat, area, flat_terrain(), settings, np.zeros(1))
+    lines = std.lines(area)
+    grid_m = 10.0
+    cov = coverage(boat, flat_terrain(), area, lines, std.altitude_m, 0.0, True, grid_m=grid_m, seed=3)
+    x0, y0, x1, y1 = area.polygon.bounds
+    X, Y = np.meshgrid(np.arange(x0 + grid_m / 2, x1, grid_m), np.arange(y0 + grid_m / 2, y1, grid_m))
+    xy = np.column_stack([X.ravel(), Y.ravel()])
+    xy = xy[shapely.contains_xy(area.polygon, xy[:, 0], xy[:, 1])]
+    n_lines, near = _hand_counts(boat, std.altitude_m, lines, xy)
     assert cov["nadir_gap_m"] == pytest.approx(near)
-    y = (np.arange(50) + 0.5) * grid_m
-    d = np.abs(y[:, None] - lines.y0_m.to_numpy()[None, :])
-    n_lines = ((d >= near) & (d <= far)).sum(axis=1)
-    tol = 1.0 / len(y) + 1e-9  # one row of cells at a swath edge
+    tol = 5.0 / len(xy)  # a few cells exactly on a swath edge
     assert cov["once"] == pytest.approx(np.mean(n_lines >= 1), abs=tol)
     assert cov["twice"] == pytest.approx(np.mean(n_lines >= 2), abs=tol)
     assert cov["holes"] == pytest.approx(np.mean(n_lines == 0), abs=tol)
+    # lines extend past the area: some line lies outside it across, each runs beyond it along
+    assert lines.y0_m.min() < y0 and lines.y0_m.max() > y1
+    assert min(lines.x0_m.min(), lines.x1_m.min()) < x0 - std.run_m + 1e-6
+    if not holes:  # 200 %: every point of the area seen by two lines
+        assert np.mean(n_lines >= 2) == 1.0
+        assert cov["twice"] == 1.0
+        old = Plan(std.heading_deg, std.spacing_m, 0.0, std.spacing_m, std.altitude_m).lines(area)
+        assert np.mean(_hand_counts(boat, std.altitude_m, old, xy)[0] >= 2) < 0.9
+    else:  # no segment crosses the island
+        for _, r in lines.iterrows():
+            seg = shapely.LineString([(r.x0_m, r.y0_m), (r.x1_m, r.y1_m)])
+            assert seg.intersection(shapely.Polygon(ISLAND)).length < 1e-6
 
 
 def test_every_plan_respects_the_platform_limits():
-    settings = load_settings()
+    settings = {**load_settings(), "water_depth_m": WATER_M}
     area = area_from_vertices(RECT)
     for key in ("auv", "boat"):
         pf = load_platform(key)
@@ -101,7 +144,7 @@ def test_every_plan_respects_the_platform_limits():
 def test_search_finds_the_cheapest_covering_heading_of_a_long_strip():
     """A 2 km x 300 m strip: lines along it (heading 0) cover it with a fraction of the turns, so
     the cheapest plan of the front and the recommended plan run along the strip."""
-    strip = area_from_vertices([[0, 0], [2000, 0], [2000, 300], [0, 300]], name="strip")
+    strip = deep(area_from_vertices([[0, 0], [2000, 0], [2000, 300], [0, 300]], name="strip"))
     grid = dict(headings_deg=[0.0, 90.0], spacing_fractions=[0.8, 1.2], crossing_angles_deg=[math.nan],
                 cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
     res = sd.design(load_platform("auv"), strip, "flat", grid=grid, n_features=40, seed=0, grid_m=40.0)
@@ -190,7 +233,7 @@ def test_bad_areas_are_refused_in_one_line(tmp_path, doc, message):
 
 def test_bad_design_inputs_are_refused_before_work(tmp_path):
     auv = load_platform("auv")
-    area = area_from_vertices(RECT)
+    area = deep(area_from_vertices(RECT))
     for kwargs, message in ((dict(objective="shortest"), "objective must be one of"),):
         with pytest.raises(ValueError, match=message):
             sd.design(auv, area, "flat", grid=SMALL_GRID, n_features=20, **kwargs)
@@ -207,9 +250,10 @@ def test_bad_design_inputs_are_refused_before_work(tmp_path):
         sd.design(auv, area, "flat", grid={**SMALL_GRID, "spacing_fractions": [0.0]}, n_features=20)
     with pytest.raises(ValueError, match="grid must be a dict with exactly the keys"):
         sd.design(auv, area, "flat", grid={"headings_deg": [0.0]}, n_features=20)
-    tiny = area_from_vertices([[0, 0], [100, 0], [100, 20], [0, 20]])
-    with pytest.raises(ValueError, match="too small for one line"):
-        sd.design(auv, tiny, "flat", grid=SMALL_GRID, n_features=20)
+    with pytest.raises(ValueError, match="no water depth: give the area file a water_depth_m"):
+        sd.design(auv, area_from_vertices(RECT), "flat", grid=SMALL_GRID, n_features=20)
+    with pytest.raises(ValueError, match=r"test must be a number of metres in \(0, 12000\]"):
+        deep(area, -3.0)
 
 
 def test_search_finds_the_best_crossing_angle_of_the_survey_chapters_curve():
@@ -226,7 +270,7 @@ def test_search_finds_the_best_crossing_angle_of_the_survey_chapters_curve():
     env = load_envelope("auv").with_pitch(0.0, 0.0).with_altitude(21.0, 21.0)
     samples, _ = simulate_passes(auv, env, OffsetModel("independent"), angles, 512, 0)
     curve = samples.groupby("crossing_angle_deg").locus_length_m.median()
-    square = area_from_vertices([[0, 0], [1000, 0], [1000, 1000], [0, 1000]])
+    square = deep(area_from_vertices([[0, 0], [1000, 0], [1000, 1000], [0, 1000]]))
     grid = dict(headings_deg=[0.0], spacing_fractions=[4.0], crossing_angles_deg=angles,
                 cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
     t = sd.design(auv, square, "flat", grid=grid, n_features=300, seed=0, grid_m=100.0).plans

@@ -29,9 +29,9 @@ resolved by three views; ``"reconstruction"`` the median 3-D error, under the no
 the flat-seafloor prior; the N-view estimate ``all`` is reported too, but it needs three views
 off one plane and leaves most features of a surface vessel unestimated).
 
-Front and recommendation (the rule): a plan is *eligible* when it shows at least
-``min(min_two_view_share, the standard plan's share)`` of the features to two or more lines (no
-worse a two-view survey than the standard, nor than the data file's target); the Pareto front
+Front and recommendation (the rule): a plan is *eligible* when at least
+``min(min_two_view_share, the standard plan's share)`` of the area is seen by two or more of its
+lines, measured on the coverage grid (no worse a 200 % survey than the standard plan as flown); the Pareto front
 is the eligible plans no other eligible plan beats in both track length and objective. The
 **recommended plan** is the eligible plan with the smallest objective among those whose track is
 no longer than the standard plan's (ties: the shorter track); when no eligible plan is that
@@ -53,7 +53,7 @@ from .survey_coverage import coverage, observe_lines
 from .survey_lines import track_length
 from .survey_objectives import pair_loci, reconstruction_errors, three_view_closure
 from .survey_plans import (Plan, check_mission, lawnmower_plan, load_settings, plan_grid, plan_ok,
-                           standard_plan)
+                           standard_plan, water_depth)
 from .terrain import KINDS, load_terrain_config, terrain_from_config
 
 OBJECTIVES = {"locus": "locus_median_m", "three_view": "unresolved_share", "reconstruction": "error_two_median_m"}
@@ -106,6 +106,19 @@ def check_grid(grid) -> dict:
             for v in [grid[k]]}
 
 
+def depth_settings(area: SurveyArea, settings: dict) -> dict:
+    """``settings`` with the water depth of the area (given by its file or the run) or, failing
+    that, of a user's ``survey_design.water_depth_m``; ``water_depth_source`` says which. No
+    depth at all is refused in one line."""
+    out = dict(settings)
+    if area.water_depth_m is not None:
+        out["water_depth_m"], out["water_depth_source"] = area.water_depth_m, area.water_depth_source
+    elif out.get("water_depth_m") is not None:
+        out["water_depth_source"] = "survey_design.water_depth_m of the run's data"
+    water_depth(out)
+    return out
+
+
 def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: int, seed: int,
                  grid_m: float, settings: dict | None = None) -> Setting:
     """Validate the inputs and draw the features (module docstring)."""
@@ -119,7 +132,7 @@ def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: i
     n = _ints("n_features", n_features, 10)
     seed = _ints("seed", seed, 0)
     grid_m = _floats("grid_m", grid_m, 1e-3)[0]
-    settings = load_settings() if settings is None else settings
+    settings = depth_settings(area, load_settings() if settings is None else settings)
     c = area.polygon.centroid
     x0, y0, x1, y1 = area.polygon.bounds
     terrain = terrain_from_config(terrain_kind, load_terrain_config(),
@@ -167,6 +180,13 @@ def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dic
         row["error_two_median_m"] = float(err["error_two_m"].median())
         row["estimated_share"] = float(err["error_all_m"].notna().mean())
     return row
+
+
+def eligible(table: pd.DataFrame, settings: dict) -> pd.Series:
+    """The rule's eligibility (module docstring): the share of the area seen by two or more lines
+    at least the standard plan's (capped at ``min_two_view_share``)."""
+    need = min(settings["min_two_view_share"], float(table.loc[table.kind == "standard", "covered_twice"].iloc[0]))
+    return table["covered_twice"] >= need
 
 
 def pareto_front(cost, value, eligible) -> np.ndarray:
@@ -236,8 +256,7 @@ def search(s: Setting, objective: str, grid: dict, *, noise=None, progress=None)
         if progress is not None:
             progress(k + 1, len(plans))
     table = pd.DataFrame(rows)
-    need = min(s.settings["min_two_view_share"], float(table.loc[table.kind == "standard", "two_view_share"].iloc[0]))
-    table["eligible"] = table["two_view_share"] >= need
+    table["eligible"] = eligible(table, s.settings)
     col = OBJECTIVES[objective]
     table["front"] = pareto_front(table["total_m"], table[col], table["eligible"])
     return table
@@ -311,8 +330,7 @@ def seed_stability(platform, area_key: dict, terrain: str, plans: pd.DataFrame, 
         s = make_setting(platform, area, terrain, n_features=n_features, seed=int(sd), grid_m=grid_m)
         t = pd.DataFrame([{**evaluate(s, plan_from_row(r)), "kind": r["kind"]} for _, r in pick.iterrows()],
                          index=pick.index)
-        need = min(s.settings["min_two_view_share"], float(t.loc[t.kind == "standard", "two_view_share"].iloc[0]))
-        t["eligible"] = t["two_view_share"] >= need
+        t["eligible"] = eligible(t, s.settings)
         t["front"] = pareto_front(t["total_m"], t[col], t["eligible"])
         k = recommend(t, objective, float(t.loc[t.kind == "standard", "total_m"].iloc[0]))
         std = float(t.loc[t.kind == "standard", col].iloc[0])

@@ -94,7 +94,12 @@ def three_view_closure(views: Views, seen, aperture) -> np.ndarray:
 
 def reconstruction_errors(views: Views, seen, sensor_height_m, noise, aperture, seed: int) -> pd.DataFrame:
     """Per feature, the 3-D error of the ``all`` and ``two`` estimates under ``noise`` (NaN where
-    not estimated): columns ``error_all_m``, ``error_two_m``."""
+    not estimated): columns ``error_all_m``, ``error_two_m``. A plan of one segment estimates
+    nothing (every feature NaN)."""
+    seen = np.asarray(seen, bool)
+    if seen.shape[1] < 2:
+        nan = np.full(seen.shape[0], np.nan)
+        return pd.DataFrame({"error_all_m": nan, "error_two_m": nan.copy()})
     table = reconstruct(views, seen, sensor_height_m, noise, aperture, n_views=(3,), seed=seed)
     pick = lambda name: table.loc[table.estimator == name, "error_3d_m"].to_numpy()  # noqa: E731
     return pd.DataFrame({"error_all_m": pick("all"), "error_two_m": pick("two")})

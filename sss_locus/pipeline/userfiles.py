@@ -95,6 +95,10 @@ def check_files(parameters: dict) -> None:
             from sss_locus.experiments.survey_area import load_area
 
             area = load_area(path)
+            if parameters.get("water_depth_m"):
+                from sss_locus.experiments.survey_area import with_water_depth
+
+                area = with_water_depth(area, parameters["water_depth_m"], "-p water_depth_m")
             for key in parameters.get("platforms", []):
                 sd.standard_for(sd.make_setting(load_platform(key), area, parameters["terrain"], seed=parameters["seed"],
                                                 n_features=parameters["n_features"], grid_m=parameters["grid_m"]))
