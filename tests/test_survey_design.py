@@ -142,12 +142,16 @@ def test_every_plan_respects_the_platform_limits():
 
 
 def test_search_finds_the_cheapest_covering_heading_of_a_long_strip():
-    """A 2 km x 300 m strip: lines along it (heading 0) cover it with a fraction of the turns, so
-    the cheapest plan of the front and the recommended plan run along the strip."""
+    """A 2 km x 300 m strip and a vehicle of wide turns (60 m radius): lines along it (heading 0)
+    cover it with a fraction of the turns and run-ins, so the cheapest plan of the front and the
+    recommended plan run along the strip. (With the AUV's 10 m turns, the 200 % coverage of a
+    strip two swaths wide needs about four lines along it, and lines across cost about as much.)"""
+    import dataclasses
     strip = deep(area_from_vertices([[0, 0], [2000, 0], [2000, 300], [0, 300]], name="strip"))
     grid = dict(headings_deg=[0.0, 90.0], spacing_fractions=[0.8, 1.2], crossing_angles_deg=[math.nan],
                 cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
-    res = sd.design(load_platform("auv"), strip, "flat", grid=grid, n_features=40, seed=0, grid_m=40.0)
+    wide = dataclasses.replace(load_platform("auv"), turn_radius_m=60.0)
+    res = sd.design(wide, strip, "flat", grid=grid, n_features=40, seed=0, grid_m=40.0)
     t = res.plans
     front = t[t.front].sort_values("total_m")
     assert front.heading_deg.iloc[0] % 180 == 0.0
@@ -159,9 +163,10 @@ def test_search_finds_the_cheapest_covering_heading_of_a_long_strip():
     mow_plan = sd.plan_from_row(t[t.kind == "lawnmower"].iloc[0])
     assert mow <= std
     n = mow_plan.lines(strip).line.nunique()
-    denser = Plan(0.0, 300.0 / (n + 1), math.nan, 1.0, mow_plan.altitude_m)
-    assert denser.lines(strip).line.nunique() == n + 1
-    assert track_length(denser.lines(strip), 10.0)["total_m"] > std
+    spacing = next(sp for sp in np.linspace(mow_plan.spacing_m, 0.5 * mow_plan.spacing_m, 200)
+                   if dataclasses.replace(mow_plan, spacing_m=sp).lines(strip).line.nunique() > n)
+    denser = dataclasses.replace(mow_plan, spacing_m=spacing).lines(strip)
+    assert track_length(denser, wide.turn_radius_m)["total_m"] > std
 
 
 def test_pareto_front_and_rule_on_a_constructed_table():
@@ -342,3 +347,24 @@ def test_the_comparison_says_when_the_recommendation_is_the_lawnmower_baseline(w
     assert text.startswith("For the Kestrel AUV, the recommended plan")
     assert ("lawn-mower baseline itself" in text) == (winner == "lawnmower")
     assert ("0.150 m" if winner == "lawnmower" else "0.148 m") in text and "0.163 m" in text
+
+
+def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
+    """A 260 m x 200 m area is inside one swath of either platform: a plan of main lines only
+    runs one line over it, and the whole chapter's computation (search, noise re-evaluation,
+    seed stability) completes (it raised IndexError in the reconstruction of a one-line plan)."""
+    from sss_locus.experiments.noise import load_noise_model
+
+    small = deep(area_from_vertices([[0, 0], [260, 0], [260, 200], [0, 200]], name="pond"))
+    grid = dict(headings_deg=[0.0], spacing_fractions=[1.6, 3.0], crossing_angles_deg=[math.nan, 0.0],
+                cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
+    for key in ("boat", "auv"):
+        pf = load_platform(key)
+        plans = sd.search_plans(pf, small.key(), "flat", "locus", grid, n_features=30, seed=0, grid_m=20.0)
+        one = plans[plans.n_segments == 1]
+        assert len(one), plans[["spacing_m", "crossing_deg", "n_segments"]]
+        assert sd.plan_from_row(one.iloc[0]).lines(small).line.nunique() == 1
+        noisy = sd.with_noise(pf, small.key(), "flat", plans.assign(front=True), load_noise_model(key),
+                              n_features=30, seed=0, grid_m=20.0)
+        assert len(noisy) == len(plans)
+        assert noisy.loc[noisy.plan_index.isin(one.index), "error_two_median_m"].isna().all()

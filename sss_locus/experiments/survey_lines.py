@@ -15,10 +15,12 @@ edge of the area is not run), each clipped to the polygon with ``shapely``
 Consecutive lines are run in opposite directions (a lawn-mower, boustrophedon pattern).
 
 **Lines as surveyors fly them** (``reach_m > 0``): with ``reach_m`` the horizontal reach of the
-swath (its far edge), every line of the set whose swath reaches the area is run, also lines
-outside it (``c`` in ``(c_min - reach, c_max + reach)``; the lines lie at ``c_min + (k + 1/2 +
-offset) spacing`` for every integer ``k``), so that the area's edge is covered by the same
-number of lines as its interior; a line runs over the along-track extent of the part of the area
+swath (its far edge) and ``near_m`` its near edge (the nadir gap), the lines lie at ``c_min + (k +
+1/2 + offset) spacing`` for every integer ``k`` whose swath reaches the area, also outside it, so
+that the area's edge is seen by as many lines as its interior (:func:`flown_positions`: of the
+lines outside, from the farthest in, a line is dropped when every across-track position of the
+area is still seen by at least ``m`` lines of the plan's sets run at this heading, ``m`` the
+fewest the unbounded pattern gives any position; e.g. 2 for a 200 % plan); a line runs over the along-track extent of the part of the area
 its swath reaches (the area cut by the band ``|c' - c| <= reach``; a concave area can give
 several pieces), extended by ``run_m`` before and after (the run-in and run-out); the line is
 then cut where it would cross a hole of the area (an island or an exclusion zone: the vehicle
@@ -104,10 +106,46 @@ def _line_pieces(area: SurveyArea, c: float, e, n, a0: float, a1: float, reach_m
     return out
 
 
+def _count(u, cs, near_m: float, reach_m: float) -> np.ndarray:
+    d = np.abs(u[:, None] - np.asarray(cs)[None, :])
+    return ((d >= near_m) & (d <= reach_m)).sum(axis=1)
+
+
+def flown_positions(c_min: float, c_max: float, sets, reach_m: float, near_m: float) -> list[np.ndarray]:
+    """Across-track positions (m, along the heading's left normal) of the lines of ``sets``
+    (``(spacing_m, offset)`` pairs run at one heading) as flown (module docstring), one array per
+    set, increasing."""
+    pos = lambda sp, off, lo, hi: c_min + (np.arange(math.floor((lo - c_min) / sp - 0.5 - off),  # noqa: E731
+                                                      math.ceil((hi - c_min) / sp - 0.5 - off) + 1) + 0.5 + off) * sp
+    step = min(1.0, (c_max - c_min) / 100.0) if c_max > c_min else 1.0
+    u = np.linspace(c_min, c_max, max(2, int(math.ceil((c_max - c_min) / step)) + 1))
+    wide = np.concatenate([pos(sp, off, c_min - reach_m - 2 * sp, c_max + reach_m + 2 * sp) for sp, off in sets])
+    m = int(_count(u, wide, near_m, reach_m).min())
+    cand = [c[(c > c_min - reach_m) & (c < c_max + reach_m)] for c in (pos(sp, off, c_min - reach_m - sp,
+                                                                          c_max + reach_m + sp) for sp, off in sets)]
+    keep = [np.ones(len(c), bool) for c in cand]
+    outside = sorted(((max(c_min - c, c - c_max), i, j) for i, cs in enumerate(cand) for j, c in enumerate(cs)
+                      if c < c_min or c > c_max), reverse=True)
+    for _, i, j in outside:
+        keep[i][j] = False
+        if _count(u, np.concatenate([c[k] for c, k in zip(cand, keep)]), near_m, reach_m).min() < m:
+            keep[i][j] = True
+    return [c[k] for c, k in zip(cand, keep)]
+
+
+def across_extent(area: SurveyArea, heading_deg: float) -> tuple[float, float]:
+    """The area's extent across lines of ``heading_deg`` (along the left normal), m."""
+    _, n = _unit(float(heading_deg))
+    across = np.asarray(area.polygon.exterior.coords) @ n
+    return float(across.min()), float(across.max())
+
+
 def line_set(area: SurveyArea, heading_deg: float, spacing_m: float, *, offset: float = 0.0,
-             name: str = "main", reach_m: float = 0.0, run_m: float = 0.0) -> pd.DataFrame:
+             name: str = "main", reach_m: float = 0.0, run_m: float = 0.0, near_m: float = 0.0,
+             across_m=None) -> pd.DataFrame:
     """Parallel lines over ``area`` (module docstring; ``reach_m`` > 0: the lines as flown, with
-    the swath's reach and a run-in/run-out of ``run_m``); one row per segment, columns
+    the swath's reach and a run-in/run-out of ``run_m``; ``across_m`` the lines' across-track
+    positions, default :func:`flown_positions` of this set alone); one row per segment, columns
     :data:`LINE_COLUMNS` (``set`` is ``name``; ``line`` counts the lines from 0 in run order)."""
     if not (isinstance(spacing_m, (int, float, np.floating)) and math.isfinite(spacing_m) and spacing_m > 0):
         raise ValueError(f"spacing_m must be a finite number > 0; got {spacing_m!r}")
@@ -121,11 +159,10 @@ def line_set(area: SurveyArea, heading_deg: float, spacing_m: float, *, offset: 
     across, along = xy @ n, xy @ e
     c_min, c_max = across.min(), across.max()
     a0, a1 = along.min() - 1.0 - run_m, along.max() + 1.0 + run_m
-    if reach_m > 0:  # every line whose swath reaches the area
-        k = np.arange(math.floor((-reach_m) / spacing_m - 0.5 - offset),
-                      math.ceil((c_max - c_min + reach_m) / spacing_m - 0.5 - offset) + 1)
-        cs = c_min + (k + 0.5 + offset) * spacing_m
-        cs = cs[(cs > c_min - reach_m) & (cs < c_max + reach_m)]
+    if across_m is not None:
+        cs = np.sort(np.asarray(across_m, float))
+    elif reach_m > 0:  # the lines whose swath reaches the area, as flown
+        cs = flown_positions(c_min, c_max, [(spacing_m, offset)], reach_m, near_m)[0]
     else:  # the first line half a spacing inside; a line on the far edge adds nothing inside
         k = np.arange(int(math.floor((c_max - c_min) / spacing_m - 0.5 - offset)) + 2)
         cs = c_min + (k + 0.5 + offset) * spacing_m

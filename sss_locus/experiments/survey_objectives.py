@@ -94,12 +94,17 @@ def three_view_closure(views: Views, seen, aperture) -> np.ndarray:
 
 def reconstruction_errors(views: Views, seen, sensor_height_m, noise, aperture, seed: int) -> pd.DataFrame:
     """Per feature, the 3-D error of the ``all`` and ``two`` estimates under ``noise`` (NaN where
-    not estimated): columns ``error_all_m``, ``error_two_m``. A plan of one segment estimates
-    nothing (every feature NaN)."""
+    not estimated): columns ``error_all_m``, ``error_two_m``. A plan of fewer than three segments
+    is padded with unseen copies of its last segment (the estimators index three views), so a
+    one-segment plan estimates nothing (every feature NaN) and a two-segment plan no ``all``."""
     seen = np.asarray(seen, bool)
-    if seen.shape[1] < 2:
-        nan = np.full(seen.shape[0], np.nan)
-        return pd.DataFrame({"error_all_m": nan, "error_two_m": nan.copy()})
+    if seen.shape[1] < 3:
+        pad = [seen.shape[1] - 1] * (3 - seen.shape[1])
+        views = views.select(*range(seen.shape[1]), *pad)
+        seen = np.concatenate([seen, np.zeros((seen.shape[0], len(pad)), bool)], axis=1)
+        sensor_height_m = np.asarray(sensor_height_m)
+        if sensor_height_m.ndim == 2:
+            sensor_height_m = sensor_height_m[:, list(range(sensor_height_m.shape[1])) + pad]
     table = reconstruct(views, seen, sensor_height_m, noise, aperture, n_views=(3,), seed=seed)
     pick = lambda name: table.loc[table.estimator == name, "error_3d_m"].to_numpy()  # noqa: E731
     return pd.DataFrame({"error_all_m": pick("all"), "error_two_m": pick("two")})

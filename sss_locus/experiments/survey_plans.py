@@ -44,7 +44,7 @@ import pandas as pd
 from . import datadoc
 from .inputs import sourced, table
 from .survey_area import SurveyArea, principal_heading_deg
-from .survey_lines import line_set, track_length
+from .survey_lines import across_extent, flown_positions, line_set, track_length
 
 SETTINGS = (("range_scale_fraction", 1e-3, 10.0), ("standard_spacing_fraction", 1e-3, 10.0),
             ("standard_offset_fraction", 0.0, 1.0), ("standard_altitude_min_fraction", 0.0, 1.0),
@@ -89,17 +89,24 @@ class Plan:
     name: str = ""
     reach_m: float = 0.0
     run_m: float = 0.0
+    near_m: float = 0.0
 
     def lines(self, area: SurveyArea) -> pd.DataFrame:
         """The plan's segments in run order: main lines, then cross lines (as flown when
         ``reach_m`` > 0: :func:`~sss_locus.experiments.survey_lines.line_set`)."""
-        fly = dict(reach_m=self.reach_m, run_m=self.run_m)
-        main = line_set(area, self.heading_deg, self.spacing_m, name="main", **fly)
+        fly = dict(reach_m=self.reach_m, run_m=self.run_m, near_m=self.near_m)
+        repeat = not math.isnan(self.crossing_deg) and self.crossing_deg % 180.0 == 0.0
+        at = [None, None]
+        if repeat and self.reach_m > 0:  # the two sets at one heading are trimmed together
+            lo, hi = across_extent(area, self.heading_deg)
+            at = flown_positions(lo, hi, [(self.spacing_m, 0.0), (self.cross_spacing_m, 0.5)], self.reach_m,
+                                 self.near_m)
+        main = line_set(area, self.heading_deg, self.spacing_m, name="main", across_m=at[0], **fly)
         if math.isnan(self.crossing_deg):
             return main
-        offset = 0.5 if self.crossing_deg % 180.0 == 0.0 else 0.0
+        offset = 0.5 if repeat else 0.0
         cross = line_set(area, (self.heading_deg + self.crossing_deg) % 360.0, self.cross_spacing_m,
-                         offset=offset, name="cross", **fly)
+                         offset=offset, name="cross", across_m=at[1], **fly)
         return pd.concat([main, cross], ignore_index=True)
 
     def row(self) -> dict:
@@ -127,7 +134,10 @@ def flown(platform, settings, plan: Plan) -> Plan:
     :mod:`~sss_locus.experiments.survey_lines`)."""
     from dataclasses import replace
 
-    return replace(plan, reach_m=swath_reach_m(platform, settings, plan.altitude_m),
+    from .straight_pass import swath_m
+
+    near = max(0.0, min(float(swath_m(platform, [port], [plan.altitude_m])[0][0]) for port in (True, False)))
+    return replace(plan, reach_m=swath_reach_m(platform, settings, plan.altitude_m), near_m=near,
                    run_m=settings["run_in_turn_radii"] * platform.turn_radius_m)
 
 
@@ -200,7 +210,7 @@ def lawnmower_plan(platform, area: SurveyArea, standard: Plan) -> Plan:
     """Parallel lines only, spaced so the track is as long as the standard plan's (bisection)."""
     target = track_length(standard.lines(area), platform.turn_radius_m)["total_m"]
     mk = lambda s: Plan(standard.heading_deg, s, math.nan, s, standard.altitude_m, 0.0, "lawnmower",  # noqa: E731
-                        standard.reach_m, standard.run_m)
+                        standard.reach_m, standard.run_m, standard.near_m)
     lo, hi = 1.0, standard.spacing_m * 4
     for _ in range(40):
         mid = 0.5 * (lo + hi)
