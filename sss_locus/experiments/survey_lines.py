@@ -23,8 +23,8 @@ area is still seen by at least ``m`` lines of the plan's sets run at this headin
 fewest the unbounded pattern gives any position; e.g. 2 for a 200 % plan); a line runs over the along-track extent of the part of the area
 its swath reaches (the area cut by the band ``|c' - c| <= reach``; a concave area can give
 several pieces), extended by ``run_m`` before and after (the run-in and run-out); the line is
-then cut where it would cross a hole of the area (an island or an exclusion zone: the vehicle
-does not cross it).
+then cut where it would come within ``run_m`` of a hole of the area (an island or an exclusion
+zone: the vehicle does not cross it, and runs out before it).
 
 Track (:func:`track_length`)
 ----------------------------
@@ -98,7 +98,7 @@ def _line_pieces(area: SurveyArea, c: float, e, n, a0: float, a1: float, reach_m
     seen = band.intersection(area.polygon)
     parts = [g for g in getattr(seen, "geoms", [seen]) if g.geom_type == "Polygon" and not g.is_empty]
     lines = [shapely.LineString([c * n + a * e, c * n + b * e]) for a, b in _intervals(parts, e, run_m)]
-    holes = shapely.MultiPolygon([shapely.Polygon(r) for r in area.polygon.interiors])
+    holes = shapely.MultiPolygon([shapely.Polygon(r).buffer(run_m) for r in area.polygon.interiors])
     out = []
     for g in lines:
         cut = g.difference(holes) if not holes.is_empty else g

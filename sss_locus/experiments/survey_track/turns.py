@@ -1,0 +1,67 @@
+"""U-turns between anti-parallel survey lines as points on the vehicle's path.
+
+A vehicle of minimum turning radius ``R`` leaves a line at ``P`` heading ``e`` and joins the
+next line, a lateral distance ``d`` away, heading ``-e`` (:func:`uturn_points`):
+
+* ``d >= 2R``: a quarter circle toward the next line, a straight of ``d - 2R``, a quarter circle
+  (length ``pi R + d - 2R``);
+* ``d < 2R``: the bulb (omega) turn: an arc turning away from the next line by ``alpha``, an arc
+  the other way by ``pi + 2 alpha`` and an arc by ``alpha`` again, ``cos(alpha) = (d + 2R) /
+  (4R)`` (length ``R (pi + 4 alpha)``, the shortest Dubins path for these end poses; the same
+  formulas as :func:`sss_locus.experiments.survey_lines.uturn_length_m`).
+
+An along-track stagger between the two line ends is run straight, before the turn when the next
+line starts further on, after it otherwise. Arcs are sampled every ``step_deg`` degrees.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def _arc(centre, start, sense: float, sweep_rad: float, step_deg: float) -> np.ndarray:
+    """Points after ``start`` on the circle about ``centre``, turning ``sweep_rad`` in
+    ``sense`` (+1 counter-clockwise), the end point included."""
+    r = np.asarray(start, float) - centre
+    k = max(1, int(math.ceil(math.degrees(sweep_rad) / step_deg)))
+    a = math.atan2(r[1], r[0]) + sense * sweep_rad * np.arange(1, k + 1) / k
+    return centre + np.linalg.norm(r) * np.column_stack([np.cos(a), np.sin(a)])
+
+
+def uturn_points(p_end, heading_deg: float, q_start, radius_m: float, *, step_deg: float = 15.0) -> np.ndarray:
+    """The path from ``p_end`` (end of a line of heading ``heading_deg``, deg counter-clockwise
+    from east) to ``q_start`` (start of the next, anti-parallel line), both ``(2,)`` m, as the
+    points after ``p_end`` up to and including ``q_start`` (module docstring); ``(k, 2)``."""
+    P, Q = np.asarray(p_end, float), np.asarray(q_start, float)
+    h = math.radians(heading_deg)
+    e = np.array([math.cos(h), math.sin(h)])
+    gap = Q - P
+    a, lat = float(gap @ e), float(gap @ np.array([-e[1], e[0]]))
+    s = 1.0 if lat >= 0 else -1.0
+    n = s * np.array([-e[1], e[0]])  # toward the next line
+    d, R = abs(lat), float(radius_m)
+    pts = []
+    start = P + max(a, 0.0) * e
+    if a > 0:
+        pts.append(start)
+    if R <= 0:
+        pts += [start + d * n]
+    elif d >= 2 * R:
+        c1 = start + R * n
+        sense = 1.0 if np.cross(start - c1, e) > 0 else -1.0
+        pts += list(_arc(c1, start, sense, math.pi / 2, step_deg))
+        c3 = start + (d - R) * n
+        pts += list(_arc(c3, c3 + R * e, sense, math.pi / 2, step_deg))
+    else:
+        alpha = math.acos((d + 2 * R) / (4 * R))
+        c1 = start - R * n
+        c3 = start + (d + R) * n
+        c2 = 0.5 * (c1 + c3) + math.sqrt(4 * R ** 2 - (0.5 * (d + 2 * R)) ** 2) * e
+        sense = 1.0 if np.cross(start - c1, e) > 0 else -1.0
+        pts += list(_arc(c1, start, sense, alpha, step_deg))
+        pts += list(_arc(c2, pts[-1], -sense, math.pi + 2 * alpha, step_deg))
+        pts += list(_arc(c3, pts[-1], sense, alpha, step_deg))
+    pts.append(Q)
+    return np.asarray(pts)
