@@ -50,7 +50,7 @@ def uturn_points(p_end, heading_deg: float, q_start, radius_m: float, *, step_de
         pts += [start + d * n]
     elif d >= 2 * R:
         c1 = start + R * n
-        sense = 1.0 if np.cross(start - c1, e) > 0 else -1.0
+        sense = 1.0 if (start - c1)[0] * e[1] - (start - c1)[1] * e[0] > 0 else -1.0
         pts += list(_arc(c1, start, sense, math.pi / 2, step_deg))
         c3 = start + (d - R) * n
         pts += list(_arc(c3, c3 + R * e, sense, math.pi / 2, step_deg))
@@ -59,7 +59,7 @@ def uturn_points(p_end, heading_deg: float, q_start, radius_m: float, *, step_de
         c1 = start - R * n
         c3 = start + (d + R) * n
         c2 = 0.5 * (c1 + c3) + math.sqrt(4 * R ** 2 - (0.5 * (d + 2 * R)) ** 2) * e
-        sense = 1.0 if np.cross(start - c1, e) > 0 else -1.0
+        sense = 1.0 if (start - c1)[0] * e[1] - (start - c1)[1] * e[0] > 0 else -1.0
         pts += list(_arc(c1, start, sense, alpha, step_deg))
         pts += list(_arc(c2, pts[-1], -sense, math.pi + 2 * alpha, step_deg))
         pts += list(_arc(c3, pts[-1], sense, alpha, step_deg))
