@@ -310,43 +310,48 @@ def test_the_front_of_one_platform_titles_it_on_one_line():
     plt.close(fig)
 
 
-def test_the_plan_caption_names_the_mission_files_and_why_some_are_missing():
-    """An area in metres without an origin gets the CSV only (the others need longitude/latitude):
-    the plan's caption says which files are beside it and why the others are not."""
+def test_the_plan_caption_names_the_mission_files_the_depth_and_why_some_are_missing():
+    """An area in metres without an origin gets the CSV only (the others need longitude/latitude);
+    a vehicle without ArduPilot gets no ArduPilot mission: the plan's caption says which files are
+    beside it and why the others are not, and the water depth it used and where it came from."""
     from sss_locus.report.survey_design import plan_caption
 
     pf = load_platform("auv")
     row = pd.Series(dict(heading_deg=0.0, spacing_m=120.0, crossing_deg=math.nan, cross_spacing_m=120.0,
-                         altitude_m=15.0, pitch_deg=0.0, total_m=5000.0, time_h=0.9))
+                         altitude_m=15.0, pitch_deg=0.0, total_m=5000.0, time_h=0.9, run_m=20.0))
     cov = dict(once=0.99, twice=0.5, n_holes=0)
     area = area_from_vertices(RECT, name="mine")
-    local = plan_caption(pf, area, "my_area.toml", row, cov, ["mission.csv"])
+    depth = dict(water_depth_m=12.5, depth_source="my_area.toml: water_depth_m")
+    local = plan_caption(pf, area, "my_area.toml", row, cov, ["mission.csv"], **depth)
     assert "`mission.csv`" in local and "origin_lonlat" in local and "`mission.plan`" not in local
-    everything = plan_caption(pf, area_from_vertices(RECT, origin_lonlat=(-111.8, 40.2)), "my_area.toml", row, cov,
-                              ["mission.csv", "mission.geojson", "mission.plan", "mission.waypoints"])
+    assert "water depth 12.5 m (my_area.toml: water_depth_m)" in local
+    assert "090°/270° lines" in local  # a line heading east is a compass heading of 090°
+    placed = area_from_vertices(RECT, origin_lonlat=(-111.8, 40.2))
+    everything = plan_caption(pf, placed, "my_area.toml", row, cov,
+                              ["mission.csv", "mission.geojson", "mission.plan", "mission.waypoints"], **depth)
     assert "`mission.waypoints`" in everything and "origin_lonlat" not in everything
     assert pf.name in everything and "5.00 km" in everything
+    own = plan_caption(pf, placed, "my_area.toml", row, cov, ["mission.csv", "mission.geojson"], ardupilot=False,
+                       **depth)
+    assert "does not run ArduPilot" in own
 
 
-@pytest.mark.parametrize("winner", ["lawnmower", "search"])
-def test_the_comparison_says_when_the_recommendation_is_the_lawnmower_baseline(winner):
-    """A recommendation that is the lawn-mower baseline itself is a finding (no searched plan
-    beats it): the sentence says so, and says nothing of the kind for a searched plan."""
-    from types import SimpleNamespace
+def test_the_verdict_sentence_says_whether_the_interval_excludes_the_standard_plans():
+    from sss_locus.experiments.surveydesign.scoring import recommend_under_noise
+    from sss_locus.report.survey_design import noise_verdict_sentence, verdict_words
 
-    from sss_locus.report.survey_design import comparison_sentence
-
-    t = pd.DataFrame({"kind": ["standard", "lawnmower", "search"],
-                      "recommended": [False, winner == "lawnmower", winner == "search"],
-                      "locus_median_m": [0.163, 0.150, 0.148], "total_m": [4092.0, 4007.0, 4000.0],
-                      "two_view_share": [0.75, 0.805, 0.78], "heading_deg": [0.0, 0.0, 45.0],
-                      "spacing_m": [240.0, 124.0, 130.0], "crossing_deg": [0.0, math.nan, math.nan],
-                      "cross_spacing_m": [240.0, 124.0, math.nan], "altitude_m": [21.0, 21.0, 21.0],
-                      "pitch_deg": [0.0, 0.0, 0.0]})
-    text = comparison_sentence(t, "locus", SimpleNamespace(name="Kestrel AUV"))
-    assert text.startswith("For the Kestrel AUV, the recommended plan")
-    assert ("lawn-mower baseline itself" in text) == (winner == "lawnmower")
-    assert ("0.150 m" if winner == "lawnmower" else "0.148 m") in text and "0.163 m" in text
+    pf = load_platform("auv")
+    plans = pd.DataFrame({"heading_deg": [0.0, 90.0], "spacing_m": [240.0, 200.0], "crossing_deg": [0.0, math.nan],
+                          "cross_spacing_m": [240.0, 200.0], "altitude_m": [21.0, 21.0], "pitch_deg": [0.0, 0.0]})
+    std = (0, "standard", 1000.0, True, 3.0, 2.8, 3.2)
+    for row, holds in (((1, "search", 900.0, True, 2.9, 2.6, 3.0), False), ((1, "search", 900.0, True, 2.0, 1.8, 2.2), True)):
+        summary = _summary([std, row]).assign(error_all_m=np.nan)
+        v = recommend_under_noise(summary)
+        text = noise_verdict_sentence(summary, v, plans, pf)
+        assert ("so it is recommended" in text) == holds and ("the standard plan is kept" in text) == (not holds)
+        assert "000°/180° lines 200 m apart" in text and "3.0 (95 % CI 2.8–3.2) m" in text and "10.0 % shorter" in text
+        assert verdict_words({"auv": v}, {"auv": pf}) == ("A plan beats the standard plan (auv)" if holds
+                                                          else "Standard plan kept (auv)")
 
 
 def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
@@ -368,3 +373,59 @@ def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
                               n_features=30, seed=0, grid_m=20.0)
         assert len(noisy) == len(plans)
         assert noisy.loc[noisy.plan_index.isin(one.index), "error_two_median_m"].isna().all()
+
+
+def _summary(rows):
+    cols = ["plan_index", "kind", "total_m", "eligible", "error_two_m", "error_two_lo_m", "error_two_hi_m"]
+    return pd.DataFrame(rows, columns=cols).set_index("plan_index").assign(n_seeds=5)
+
+
+def test_a_plan_is_recommended_over_the_standard_only_where_its_interval_excludes_it():
+    """The rule on constructed summaries: a smaller mean whose interval overlaps the standard
+    plan's keeps the standard plan; an interval wholly below it recommends the plan; a longer or
+    ineligible plan is never picked; a seed of too few features gives no verdict."""
+    from sss_locus.experiments.surveydesign.scoring import recommend_under_noise
+
+    std = (0, "standard", 1000.0, True, 3.0, 2.8, 3.2)
+    overlap = recommend_under_noise(_summary([std, (1, "search", 900.0, True, 2.9, 2.6, 3.0)]))
+    assert (overlap["best"], overlap["holds"], overlap["recommended"], overlap["reason"]) == (1, False, 0, "intervals overlap")
+    below = recommend_under_noise(_summary([std, (1, "search", 900.0, True, 2.0, 1.8, 2.2),
+                                            (2, "search", 1100.0, True, 1.0, 0.9, 1.1),   # longer
+                                            (3, "search", 800.0, False, 1.0, 0.9, 1.1)]))  # not eligible
+    assert (below["recommended"], below["holds"]) == (1, True)
+    kept = recommend_under_noise(_summary([std, (1, "lawnmower", 1000.0, True, 3.5, 3.1, 3.9)]))
+    assert kept["recommended"] == 0 and kept["reason"] == "the standard plan is the best"
+    few = recommend_under_noise(_summary([(0, "standard", 1000.0, True, np.nan, np.nan, np.nan),
+                                          (1, "search", 900.0, True, 2.0, 1.8, 2.2)]))
+    assert few["reason"] == "too few features" and few["recommended"] == 0
+
+
+def test_scores_drop_medians_of_fewer_than_30_features_and_intervals_come_from_the_seeds():
+    """Scored on three seeds over a small area: each median over fewer than 30 features is NaN,
+    and the interval of every plan is the t interval of its per-seed medians, computed here."""
+    from scipy import stats
+
+    from sss_locus.experiments.noise import load_noise_model
+    from sss_locus.experiments.surveydesign import scoring
+
+    area = deep(area_from_vertices([[0, 0], [500, 0], [500, 300], [0, 300]], name="bay"))
+    grid = dict(headings_deg=[0.0], spacing_fractions=[1.6], crossing_angles_deg=[math.nan, 90.0],
+                cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
+    pf = load_platform("auv")
+    plans = sd.search_plans(pf, area.key(), "flat", "locus", grid, n_features=40, seed=0, grid_m=40.0)
+    scores = scoring.score_plans(pf, area.key(), "flat", plans, load_noise_model("auv"), seeds=[4, 5, 6],
+                                 n_features=40, grid_m=40.0, objective_col="locus_median_m")
+    assert set(scores.seed) == {4, 5, 6}
+    for name, (col, n_col) in scoring.ERRORS.items():
+        assert scores.loc[scores[n_col] < 30, col].isna().all()
+        assert scores.loc[scores[n_col] >= 30, col].notna().all()
+    summary = scoring.summarise(scores)
+    for i, g in scores.groupby("plan_index"):
+        v = g.error_two_median_m.to_numpy()
+        if np.all(np.isfinite(v)):
+            half = stats.t.ppf(0.975, 2) * v.std(ddof=1) / math.sqrt(3)
+            assert summary.loc[i, "error_two_lo_m"] == pytest.approx(v.mean() - half)
+            assert summary.loc[i, "error_two_hi_m"] == pytest.approx(v.mean() + half)
+    with pytest.raises(ValueError, match="noise_seeds must be at least 3 distinct seeds"):
+        scoring.score_plans(pf, area.key(), "flat", plans, load_noise_model("auv"), seeds=[1, 1, 2],
+                            n_features=40, grid_m=40.0, objective_col="locus_median_m")

@@ -125,6 +125,14 @@ class SurveyArea:
         lon, lat = inv.transform(np.asarray(x, float), np.asarray(y, float))
         return np.asarray(lon), np.asarray(lat)
 
+    def to_local(self, lon, lat) -> tuple[np.ndarray, np.ndarray]:
+        """Longitude/latitude degrees to local east/north metres; refused without an origin."""
+        if self.origin_lonlat is None:
+            raise ValueError(f"area {self.name!r} has no origin: longitude/latitude need origin_lonlat = [lon, lat]")
+        fwd, _ = _projection(tuple(self.origin_lonlat))
+        x, y = fwd.transform(np.asarray(lon, float), np.asarray(lat, float))
+        return np.asarray(x), np.asarray(y)
+
     def key(self) -> dict:
         """A JSON-able description (for caches and manifests)."""
         return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,

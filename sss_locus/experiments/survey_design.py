@@ -179,6 +179,8 @@ def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dic
         row["error_all_median_m"] = float(err["error_all_m"].median())
         row["error_two_median_m"] = float(err["error_two_m"].median())
         row["estimated_share"] = float(err["error_all_m"].notna().mean())
+        row["n_two_estimated"] = int(err["error_two_m"].notna().sum())
+        row["n_all_estimated"] = int(err["error_all_m"].notna().sum())
     return row
 
 

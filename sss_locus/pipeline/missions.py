@@ -7,14 +7,14 @@ published beside the plan's figure with its manifest and BibTeX entry
 provenance: commit, parameters, data files with SHA-256.
 
 Waypoints (:func:`waypoints`): the whole track of
-:func:`sss_locus.experiments.survey_track.route.flight_path` in flying order: the start and end
+:func:`sss_locus.experiments.surveydesign.route.flight_path` in flying order: the start and end
 of every segment, the points of every U-turn of the platform's turn radius, and the transit
 legs (inside the fence, around holes). ``kind`` says which. Depth is the vehicle reference
 point's depth below the sea surface over the mean seafloor (``water depth - altitude``; 0 for a
 surface vessel). ``course_true_deg`` is the **compass course** from a waypoint to the next:
 degrees clockwise from true north (the geodesic's initial azimuth on WGS 84); the last
 waypoint repeats its predecessor's. Every point is checked inside the inclusion fence and
-outside the exclusion fences (:func:`~sss_locus.experiments.survey_track.route.check_inside`)
+outside the exclusion fences (:func:`~sss_locus.experiments.surveydesign.route.check_inside`)
 before any file is made.
 
 Formats (:data:`FORMATS`):
@@ -68,7 +68,7 @@ MAV_TYPE_SURFACE_BOAT = 11
 def waypoints(area, lines: pd.DataFrame, depth_m: float, turn_radius_m: float):
     """The plan's waypoints (module docstring), with ``lon``/``lat``/``course_true_deg`` when
     ``area`` has an origin; also the inclusion fence and the exclusion fences (local metres)."""
-    from sss_locus.experiments.survey_track.route import check_inside, flight_path
+    from sss_locus.experiments.surveydesign.route import check_inside, flight_path
 
     path, fence, holes = flight_path(area, lines, turn_radius_m)
     check_inside(path, fence, holes, what=f"the track over {area.name!r}")
