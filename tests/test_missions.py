@@ -258,3 +258,31 @@ def test_attachments_are_listed_in_the_figure_manifest(tmp_path):
     with pytest.raises(ValueError, match="attachments must map"):
         export_figure(fig, "fig-mission-test", pd.DataFrame({"a": [1]}), caption="A test.", parameters={},
                       out_dir=tmp_path, attachments={"../evil": "x"})
+
+
+def test_a_harbour_with_a_shore_keeps_the_track_in_its_water():
+    """An L-shaped harbour with an island whose water ends 10 m past its edge (water_beyond_m):
+    every waypoint and leg (lines, turns, transits) within that water, none across the island,
+    read back from the .plan in a projection made here; the fence is no wider than the water
+    grown by a few metres."""
+    import dataclasses
+
+    import shapely
+
+    harbour = [[0, 0], [600, 0], [600, 330], [300, 330], [300, 660], [0, 660]]
+    island = [[380, 120], [460, 120], [460, 200], [380, 200]]
+    origin = (-70.671, 41.524)
+    area = dataclasses.replace(area_from_vertices(harbour, holes_m=[island], origin_lonlat=origin, name="cove"),
+                               water_beyond_m=10.0)
+    for heading in (0.0, 90.0, 30.0):
+        files = mission_files(area, _plan(area, heading), ardupilot=True, **BOAT)
+        doc = json.loads(files["mission.plan"])
+        local = _local(origin)
+        items = [i for i in doc["mission"]["items"] if i["command"] == 16]
+        track = shapely.LineString(local([i["params"][5] for i in items], [i["params"][4] for i in items]))
+        water = shapely.Polygon(harbour).buffer(10.0)
+        assert water.buffer(0.05).covers(track), (heading, track.difference(water).length)
+        assert not track.intersects(shapely.Polygon(island).buffer(-0.01))
+        fence = doc["geoFence"]["polygons"][0]["polygon"]
+        fence_xy = shapely.Polygon(local([q[1] for q in fence], [q[0] for q in fence]))
+        assert fence_xy.covers(track) and fence_xy.difference(water).area < 0.05 * water.area

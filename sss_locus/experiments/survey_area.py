@@ -20,11 +20,14 @@ TOML::
     # vertices_lonlat = [[-111.80, 40.25], ...]              # WGS 84 degrees, lon first
     origin_lonlat = [-111.80, 40.25]                         # optional with vertices_m
     water_depth_m = 12.0                                     # mean water depth over the area, m
+    water_beyond_m = 50.0                                    # optional: navigable water past the edge, m
 
 ``water_depth_m`` (optional; also a GeoJSON feature's property) is the mean depth of the
 seafloor below the sea surface over the area, which sets the altitudes a vehicle can fly; a run
 may give it instead (:func:`with_water_depth`). An area without one is refused by the survey
-design (no hidden default).
+design (no hidden default). ``water_beyond_m`` (optional) is how far past the area's outer edge
+the water is navigable: survey lines, run-ins and turns stay within it (0: the edge is a shore);
+without it the water around the area is open and lines run as far as their swath reaches.
 
 GeoJSON (RFC 7946: longitude/latitude, WGS 84): a ``Polygon``, or a ``Feature`` /
 ``FeatureCollection`` whose first polygon is the area; its origin is the polygon's first vertex
@@ -101,6 +104,8 @@ class SurveyArea:
         Mean water depth over the area, m (``None``: not given).
     water_depth_source : str
         Where the depth comes from (the area file, a run parameter).
+    water_beyond_m : float or None
+        Navigable water past the outer edge, m (``None``: open water).
     """
 
     polygon: object
@@ -111,6 +116,7 @@ class SurveyArea:
     path: str = ""
     water_depth_m: float | None = None
     water_depth_source: str = ""
+    water_beyond_m: float | None = None
 
     @property
     def area_m2(self) -> float:
@@ -137,7 +143,7 @@ class SurveyArea:
         """A JSON-able description (for caches and manifests)."""
         return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
                 "source": self.source, "sha256": self.sha256, "water_depth_m": self.water_depth_m,
-                "water_depth_source": self.water_depth_source}
+                "water_depth_source": self.water_depth_source, "water_beyond_m": self.water_beyond_m}
 
 
 def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str = "survey area",
@@ -202,6 +208,11 @@ def _from_geojson(doc, source: str) -> SurveyArea:
 
 
 def _depth_from(area: SurveyArea, doc, source: str) -> SurveyArea:
+    if "water_beyond_m" in doc:
+        v = doc["water_beyond_m"]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (0 <= v <= 1e5):
+            raise ValueError(f"{source}: water_beyond_m must be a number of metres in [0, 100000]; got {v!r}")
+        area = replace(area, water_beyond_m=float(v))
     if "water_depth_m" not in doc:
         return area
     return with_water_depth(area, doc["water_depth_m"], f"{source}: water_depth_m")
@@ -250,10 +261,10 @@ def _load_area(p: Path, source: str) -> SurveyArea:
     if not isinstance(area, dict):
         raise ValueError(f"{source}: missing table [area] (with vertices_m or vertices_lonlat)")
     unknown = set(area) - {"name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "source",
-                           "assumption", "water_depth_m"}
+                           "assumption", "water_depth_m", "water_beyond_m"}
     if unknown:
         raise ValueError(f"{source}: unknown keys in [area]: {sorted(unknown)} (allowed: name, vertices_m, "
-                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m)")
+                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m, water_beyond_m)")
     if ("vertices_m" in area) == ("vertices_lonlat" in area):
         raise ValueError(f"{source}: [area] needs exactly one of vertices_m or vertices_lonlat")
     name = str(area.get("name", p.stem))
@@ -274,7 +285,7 @@ def area_from_key(key: dict) -> SurveyArea:
                               holes_m=[np.asarray(r.coords) for r in poly.interiors],
                               name=key.get("name", "survey area"), source=key.get("source", "vertices"))
     return replace(area, sha256=key.get("sha256", ""), water_depth_m=key.get("water_depth_m"),
-                   water_depth_source=key.get("water_depth_source", ""))
+                   water_depth_source=key.get("water_depth_source", ""), water_beyond_m=key.get("water_beyond_m"))
 
 
 def principal_heading_deg(area: SurveyArea) -> float:

@@ -24,7 +24,8 @@ fewest the unbounded pattern gives any position; e.g. 2 for a 200 % plan); a lin
 its swath reaches (the area cut by the band ``|c' - c| <= reach``; a concave area can give
 several pieces), extended by ``run_m`` before and after (the run-in and run-out); the line is
 then cut where it would come within ``run_m`` of a hole of the area (an island or an exclusion
-zone: the vehicle does not cross it, and runs out before it).
+zone: the vehicle does not cross it, and runs out before it) and, when the area gives
+``water_beyond_m``, where it would leave the water that far past the area's edge (a shore).
 
 Track (:func:`track_length`)
 ----------------------------
@@ -99,9 +100,11 @@ def _line_pieces(area: SurveyArea, c: float, e, n, a0: float, a1: float, reach_m
     parts = [g for g in getattr(seen, "geoms", [seen]) if g.geom_type == "Polygon" and not g.is_empty]
     lines = [shapely.LineString([c * n + a * e, c * n + b * e]) for a, b in _intervals(parts, e, run_m)]
     holes = shapely.MultiPolygon([shapely.Polygon(r).buffer(run_m) for r in area.polygon.interiors])
+    water = None if area.water_beyond_m is None else shapely.Polygon(area.polygon.exterior).buffer(area.water_beyond_m)
     out = []
     for g in lines:
-        cut = g.difference(holes) if not holes.is_empty else g
+        cut = g.intersection(water) if water is not None else g
+        cut = cut.difference(holes) if not holes.is_empty else cut
         out += [h for h in getattr(cut, "geoms", [cut]) if h.geom_type == "LineString"]
     return out
 

@@ -61,9 +61,11 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water
         why = (" (no `.plan` or `.waypoints`: this vehicle does not run ArduPilot; convert the CSV or GeoJSON "
                "into its own planner's mission format)")
     return (f"Recommended plan for the {platform.name} over {area.name}: {plan_label(row)}; water depth "
-            f"{water_depth_m:g} m ({depth_source}); lines run past the area by their swath's reach and a run-in "
-            f"of {row.run_m:.0f} m; "
-            f"{row.total_m / 1e3:.2f} km including turns of radius {platform.turn_radius_m:g} m, "
+            f"{water_depth_m:g} m ({depth_source}); " + (
+                f"lines run past the area by their swath's reach and a run-in of {row.run_m:.0f} m; "
+                if area.water_beyond_m is None else
+                f"lines, run-ins and turns stay within {area.water_beyond_m:g} m of the area's edge (its water_beyond_m); ")
+            + f"{row.total_m / 1e3:.2f} km including turns of radius {platform.turn_radius_m:g} m, "
             f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "
             f"{fmt_percent(cov['twice'])} of the area, holes: {cov['n_holes']}. Grey dotted: WGS 84 meridians and "
             f"parallels. Area file `{area_file}` "

@@ -10,8 +10,10 @@ inclusion fence shrunk by the turn radius and outside every hole grown by the tu
 
 Fences (:func:`fences`): the **inclusion fence** is the area's outer ring joined with every line
 and U-turn of the track, grown by ``R + margin_m`` (room for the vehicle's own turns and for the
-transits), its outer ring simplified to at most ``max_vertices`` vertices while still containing
-it; the **exclusion fences** are the area's holes. :func:`check_inside` is the check every mission writer runs: every point of
+transits), or, when the area gives ``water_beyond_m`` (a shore that far past its edge), the area
+grown by that much, a U-turn that would leave it replaced by a transit inside it; its outer ring
+simplified to at most ``max_vertices`` vertices while still containing it; the **exclusion
+fences** are the area's holes. :func:`check_inside` is the check every mission writer runs: every point of
 the track inside the inclusion fence and outside every exclusion fence, else a one-line error.
 """
 
@@ -34,7 +36,10 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
     import shapely
 
     outer = shapely.Polygon(area.polygon.exterior)
-    grown = shapely.union_all([outer, legs]).buffer(turn_radius_m + margin_m, quad_segs=4)
+    if area.water_beyond_m is not None:  # the navigable water is the fence
+        grown = outer.buffer(area.water_beyond_m, quad_segs=4)
+    else:
+        grown = shapely.union_all([outer, legs]).buffer(turn_radius_m + margin_m, quad_segs=4)
     grown = shapely.Polygon(grown.exterior) if grown.geom_type == "Polygon" else shapely.Polygon(
         max(grown.geoms, key=lambda g: g.area).exterior)
     tol, fence = margin_m, grown
@@ -83,20 +88,25 @@ def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: fl
 
     R = float(turn_radius_m)
     L = lines.reset_index(drop=True)
+    water = None if area.water_beyond_m is None else \
+        shapely.Polygon(area.polygon.exterior).buffer(area.water_beyond_m + 0.01, quad_segs=4)
     joins: dict[int, tuple[str, np.ndarray]] = {}
     for k in range(1, len(L)):
         a, b = L.iloc[k - 1], L.iloc[k]
         dh = (b.heading_deg - a.heading_deg + 180.0) % 360.0 - 180.0
         if abs(abs(dh) - 180.0) < 1e-6:
-            joins[k] = ("turn", uturn_points([a.x1_m, a.y1_m], a.heading_deg, [b.x0_m, b.y0_m], R, step_deg=step_deg))
+            pts = uturn_points([a.x1_m, a.y1_m], a.heading_deg, [b.x0_m, b.y0_m], R, step_deg=step_deg)
+            if water is None or water.covers(shapely.LineString(np.vstack([[a.x1_m, a.y1_m], pts]))):
+                joins[k] = ("turn", pts)  # else a transit inside the water
     legs = [shapely.LineString([(r.x0_m, r.y0_m), (r.x1_m, r.y1_m)]) for r in L.itertuples()]
     legs += [shapely.LineString(np.vstack([[L.x1_m[k - 1], L.y1_m[k - 1]], p])) for k, (_, p) in joins.items()]
     fence, holes = fences(area, shapely.union_all(legs), R, margin_m=margin_m)
-    free = fence.buffer(-R, join_style="mitre")
-    water = fence
+    navigable = fence if water is None else water  # a shore: transits stay in the water itself
+    free = navigable.buffer(-R, join_style="mitre")
+    room = navigable
     if holes:
         free = free.difference(shapely.union_all([h.buffer(R + margin_m, quad_segs=2) for h in holes]))
-        water = fence.difference(shapely.union_all(holes).buffer(1.0))
+        room = navigable.difference(shapely.union_all(holes).buffer(1.0))
     rings = [free] if free.geom_type == "Polygon" else list(getattr(free, "geoms", []))
     nodes = np.vstack([np.asarray(r.coords)[:-1] for p in rings for r in (p.exterior, *p.interiors)]) if rings \
         else np.zeros((0, 2))
@@ -108,7 +118,7 @@ def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: fl
             end = np.array([L.x1_m[k - 1], L.y1_m[k - 1]])
             kind, pts = joins.get(k, ("transit", None))
             if pts is None:
-                pts = np.asarray(_transit(end, p0, free, nodes, (R + margin_m + 1.0, water)))
+                pts = np.asarray(_transit(end, p0, free, nodes, (R + margin_m + 1.0, room)))
             rows += [(kind, *tag, float(x), float(y)) for x, y in pts[:-1] if np.hypot(x - end[0], y - end[1]) > 1e-6]
         rows += [("line start", *tag, *map(float, p0)), ("line end", *tag, *map(float, p1))]
     return pd.DataFrame(rows, columns=list(PATH_COLUMNS)), fence, holes
