@@ -429,3 +429,23 @@ def test_scores_drop_medians_of_fewer_than_30_features_and_intervals_come_from_t
     with pytest.raises(ValueError, match="noise_seeds must be at least 3 distinct seeds"):
         scoring.score_plans(pf, area.key(), "flat", plans, load_noise_model("auv"), seeds=[1, 1, 2],
                             n_features=40, grid_m=40.0, objective_col="locus_median_m")
+
+
+def test_the_subsets_of_lines_seeing_each_feature_match_a_brute_force_enumeration():
+    """The views' pairs and triples (per feature, from the lines that see it) against every
+    k-subset of all lines tested on every feature, in the same order and with the same cap."""
+    import itertools
+
+    from sss_locus.experiments.survey_objectives import _pairs as pairs
+
+    rng = np.random.default_rng(0)
+    for _ in range(30):
+        seen = rng.random((25, int(rng.integers(1, 10)))) < rng.random()
+        for k, cap in ((2, None), (3, 20), (3, 2)):
+            want, counts = [], np.zeros(len(seen), int)
+            for combo in itertools.combinations(range(seen.shape[1]), k):
+                for f in range(len(seen)):
+                    if seen[f, list(combo)].all() and (cap is None or counts[f] < cap):
+                        want.append((f, *combo))
+                        counts[f] += 1
+            assert pairs(seen, k, cap).tolist() == [list(w) for w in want]

@@ -106,7 +106,7 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
     -------
     dict
         ``once``, ``twice`` (shares of the area seen by >= 1, >= 2 lines), ``holes`` (share seen
-        by none), ``n_holes`` (connected unseen groups), ``nadir_gap_m`` (half-width),
+        by none), ``n_holes`` (connected unseen groups), ``nadir_gap_m`` (half-width), ``grid_m``,
         ``grid``: a DataFrame ``x_m, y_m, n_lines`` of the grid cells inside the area.
     """
     from scipy import ndimage
@@ -129,5 +129,5 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
     _, n_holes = ndimage.label(unseen.reshape(shape))
     return {"once": float(np.mean(count >= 1)), "twice": float(np.mean(count >= 2)),
             "holes": float(np.mean(count == 0)), "n_holes": int(n_holes),
-            "nadir_gap_m": nadir_gap_m(platform, altitude_m),
+            "nadir_gap_m": nadir_gap_m(platform, altitude_m), "grid_m": float(grid_m),
             "grid": pd.DataFrame({"x_m": xy[:, 0], "y_m": xy[:, 1], "n_lines": count})}

@@ -18,7 +18,8 @@ survey_lines` (lines and turns), :mod:`~sss_locus.experiments.survey_coverage` (
 
 Evaluation (:func:`evaluate`): ``n_features`` features uniform over the area (seeded), on the
 terrain, observed by every segment of the plan; cost from the track (lines and turns) and the
-platform's speed; coverage measured on a grid; the objectives of every feature seen twice.
+platform's speed; coverage measured on a grid (of ``grid_m``, coarser over an area that would
+need more than :data:`MAX_COVERAGE_CELLS` cells: :func:`coverage_grid_m`); the objectives of every feature seen twice.
 Every plan is evaluated on the same features (common random numbers), so plans are compared
 on equal terms.
 
@@ -106,6 +107,17 @@ def check_grid(grid) -> dict:
             for v in [grid[k]]}
 
 
+MAX_COVERAGE_CELLS = 20_000
+"""Most coverage cells over an area: a larger area is measured on a coarser grid
+(:func:`coverage_grid_m`), so a km-scale area is planned in minutes."""
+
+
+def coverage_grid_m(area: SurveyArea, grid_m: float) -> float:
+    """The coverage grid's spacing over ``area``: ``grid_m``, or the spacing that puts
+    :data:`MAX_COVERAGE_CELLS` cells over it when ``grid_m`` would put more, m."""
+    return float(max(grid_m, math.sqrt(area.area_m2 / MAX_COVERAGE_CELLS)))
+
+
 def depth_settings(area: SurveyArea, settings: dict) -> dict:
     """``settings`` with the water depth of the area (given by its file or the run) or, failing
     that, of a user's ``survey_design.water_depth_m``; ``water_depth_source`` says which. No
@@ -131,7 +143,7 @@ def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: i
     check_mission(platform)
     n = _ints("n_features", n_features, 10)
     seed = _ints("seed", seed, 0)
-    grid_m = _floats("grid_m", grid_m, 1e-3)[0]
+    grid_m = coverage_grid_m(area, _floats("grid_m", grid_m, 1e-3)[0])
     settings = depth_settings(area, load_settings() if settings is None else settings)
     c = area.polygon.centroid
     x0, y0, x1, y1 = area.polygon.bounds
@@ -311,7 +323,7 @@ def plan_coverage(platform, area: SurveyArea, terrain: str, row, *, grid_m: floa
     plan = plan_from_row(row)
     lines = plan.lines(area)
     cov = coverage(platform, s.terrain, area, lines, plan.altitude_m, plan.pitch_deg, platform.fixed_depth,
-                   grid_m=grid_m, seed=seed, centre=s.centre)
+                   grid_m=s.grid_m, seed=seed, centre=s.centre)
     return lines, cov
 
 
