@@ -393,6 +393,9 @@ def test_a_plan_is_recommended_over_the_standard_only_where_its_interval_exclude
                                             (2, "search", 1100.0, True, 1.0, 0.9, 1.1),   # longer
                                             (3, "search", 800.0, False, 1.0, 0.9, 1.1)]))  # not eligible
     assert (below["recommended"], below["holds"]) == (1, True)
+    wide = recommend_under_noise(_summary([std, (1, "search", 900.0, True, 1.5, 0.1, 2.9),   # smallest mean, overlaps
+                                           (2, "search", 950.0, True, 2.5, 2.4, 2.6)]))  # excludes the standard's
+    assert (wide["best"], wide["recommended"], wide["holds"]) == (2, 2, True)
     kept = recommend_under_noise(_summary([std, (1, "lawnmower", 1000.0, True, 3.5, 3.1, 3.9)]))
     assert kept["recommended"] == 0 and kept["reason"] == "the standard plan is the best"
     few = recommend_under_noise(_summary([(0, "standard", 1000.0, True, np.nan, np.nan, np.nan),

@@ -18,9 +18,9 @@ rule recommends, and the ``n_best`` eligible plans no longer than the standard p
 smallest noise-free objective (a pre-selection, stated).
 
 The recommendation (:func:`recommend_under_noise`): among the eligible scored plans no longer
-than the standard plan, the one of smallest mean two-view error; it is **recommended over the
-standard plan only when its interval lies wholly below the standard plan's** (the intervals do
-not overlap); otherwise the standard plan is kept. The all-views error is reported beside it
+than the standard plan, a plan is **recommended over the standard plan only when the interval of
+its two-view error lies wholly below the standard plan's** (the intervals do not overlap; of
+several such plans, the one of smallest mean); otherwise the standard plan is kept. The all-views error is reported beside it
 and never decides (it leaves most features of a surface vessel unestimated).
 """
 
@@ -98,21 +98,24 @@ def summarise(scores: pd.DataFrame) -> pd.DataFrame:
 
 
 def recommend_under_noise(summary: pd.DataFrame) -> dict:
-    """The rule of the module docstring on a :func:`summarise` table: ``best`` (plan index of
-    the smallest mean two-view error among eligible plans no longer than the standard plan),
-    ``standard`` (its index), ``holds`` (the best plan's interval lies below the standard
-    plan's), ``recommended`` (``best`` when it holds, else ``standard``) and ``reason``
-    (``"interval below the standard plan's"``, ``"intervals overlap"``, ``"the standard plan
-    is the best"``, ``"too few features"``)."""
+    """The rule of the module docstring on a :func:`summarise` table. ``standard``: its index;
+    among the eligible plans no longer than the standard plan, those whose two-view interval lies
+    wholly below the standard plan's **hold**; ``best``: the holding plan of smallest mean, or,
+    when none holds, the plan of smallest mean (shown beside the standard plan); ``holds``;
+    ``recommended`` (``best`` when it holds, else ``standard``); ``reason`` (``"interval below
+    the standard plan's"``, ``"intervals overlap"``, ``"the standard plan is the best"``, ``"too
+    few features"``)."""
     std = summary.index[summary.kind == "standard"][0]
     s = summary.loc[std]
     cand = summary[summary.eligible & (summary.total_m <= s.total_m) & summary.error_two_m.notna()]
     if cand.empty or not np.isfinite(s.error_two_hi_m):
         return {"best": None, "standard": std, "holds": False, "recommended": std, "reason": "too few features"}
-    best = cand.sort_values(["error_two_m", "total_m"], kind="stable").index[0]
-    b = summary.loc[best]
-    if best == std:
-        return {"best": best, "standard": std, "holds": False, "recommended": std, "reason": "the standard plan is the best"}
-    holds = bool(np.isfinite(b.error_two_hi_m) and b.error_two_hi_m < s.error_two_lo_m)
-    return {"best": best, "standard": std, "holds": holds, "recommended": best if holds else std,
-            "reason": "interval below the standard plan's" if holds else "intervals overlap"}
+    order = ["error_two_m", "total_m"]
+    holding = cand[np.isfinite(cand.error_two_hi_m) & (cand.error_two_hi_m < s.error_two_lo_m)]
+    if not holding.empty:
+        best = holding.sort_values(order, kind="stable").index[0]
+        return {"best": best, "standard": std, "holds": True, "recommended": best,
+                "reason": "interval below the standard plan's"}
+    best = cand.sort_values(order, kind="stable").index[0]
+    reason = "the standard plan is the best" if best == std else "intervals overlap"
+    return {"best": best, "standard": std, "holds": False, "recommended": std, "reason": reason}
