@@ -452,3 +452,11 @@ def test_the_subsets_of_lines_seeing_each_feature_match_a_brute_force_enumeratio
                         want.append((f, *combo))
                         counts[f] += 1
             assert pairs(seen, k, cap).tolist() == [list(w) for w in want]
+
+
+def test_published_headings_are_compass_headings():
+    from sss_locus.report.survey_design import with_compass
+
+    t = with_compass(pd.DataFrame({"set": ["main"] * 4, "heading_deg": [0.0, 90.0, 180.0, 300.0], "x": 1}))
+    assert list(t.columns) == ["set", "heading_compass_deg", "x"]
+    assert t.heading_compass_deg.tolist() == [90.0, 0.0, 270.0, 150.0]  # east, north, west, south-south-east

@@ -219,3 +219,15 @@ def verdict_words(verdicts: dict, platforms: dict) -> str:
              for k, v in verdicts.items() if k in platforms]
     text = "; ".join(parts)
     return text[0].upper() + text[1:]
+
+
+def with_compass(frame: pd.DataFrame) -> pd.DataFrame:
+    """``frame`` with its ``heading_deg`` (degrees counter-clockwise from east, the computation's
+    convention) replaced by ``heading_compass_deg``: degrees clockwise from north of the area's
+    local frame (true north at its origin), as written in every published table."""
+    if "heading_deg" not in frame:
+        return frame
+    at = list(frame.columns).index("heading_deg")
+    out = frame.drop(columns="heading_deg")
+    out.insert(at, "heading_compass_deg", (90.0 - frame["heading_deg"].to_numpy(float)) % 360.0)
+    return out
