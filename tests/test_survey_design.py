@@ -460,3 +460,22 @@ def test_published_headings_are_compass_headings():
     t = with_compass(pd.DataFrame({"set": ["main"] * 4, "heading_deg": [0.0, 90.0, 180.0, 300.0], "x": 1}))
     assert list(t.columns) == ["set", "heading_compass_deg", "x"]
     assert t.heading_compass_deg.tolist() == [90.0, 0.0, 270.0, 150.0]  # east, north, west, south-south-east
+
+
+def test_the_water_depth_comes_from_the_area_file_the_run_or_the_users_data(tmp_path):
+    toml = tmp_path / "a.toml"
+    toml.write_text("[area]\nvertices_m = [[0, 0], [400, 0], [400, 300], [0, 300]]\nwater_depth_m = 12.5\n")
+    gj = tmp_path / "a.geojson"
+    gj.write_text(json.dumps({"type": "Feature", "properties": {"water_depth_m": 7},
+                              "geometry": {"type": "Polygon", "coordinates": [[[-70.67, 41.51], [-70.66, 41.51],
+                                                                               [-70.66, 41.52], [-70.67, 41.51]]]}}))
+    settings = load_settings()
+    assert "water_depth_m" not in settings  # no shipped constant
+    from_file = sd.depth_settings(load_area(toml), settings)
+    assert from_file["water_depth_m"] == 12.5 and from_file["water_depth_source"].endswith("a.toml: water_depth_m")
+    assert sd.depth_settings(load_area(gj), settings)["water_depth_m"] == 7.0
+    run = sd.depth_settings(with_water_depth(load_area(toml), 20.0, "-p water_depth_m"), settings)
+    assert (run["water_depth_m"], run["water_depth_source"]) == (20.0, "-p water_depth_m")
+    bare = area_from_vertices(RECT)
+    users = sd.depth_settings(bare, {**settings, "water_depth_m": 40.0})
+    assert users["water_depth_m"] == 40.0 and "survey_design.water_depth_m" in users["water_depth_source"]

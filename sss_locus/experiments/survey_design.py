@@ -234,7 +234,7 @@ class DesignResult:
 
 def standard_for(s: Setting) -> Plan:
     """The standard plan of setting ``s``; refused in one line when no altitude of the platform
-    fits or the area is too small for one of its lines (checked before any work by the runner)."""
+    fits or no line of it is left (checked before any work by the runner)."""
     std = standard_plan(s.platform, s.area, s.terrain, s.settings, s.heights_m)
     if not plan_ok(s.platform, s.settings, s.heights_m, std):
         raise ValueError(f"no altitude of platform {s.platform.key!r} fits water_depth_m = "
@@ -242,9 +242,9 @@ def standard_for(s: Setting) -> Plan:
                          f"{s.platform.depth_min_m:g}-{s.platform.depth_max_m:g} m)")
     if std.lines(s.area).empty:
         x0, y0, x1, y1 = s.area.polygon.bounds
-        raise ValueError(f"area {s.area.name!r} is too small for one line of the standard plan of {s.platform.key!r}: "
-                         f"its lines are {std.spacing_m:.0f} m apart (standard_spacing_fraction x the range scale) and "
-                         f"the first lies half a spacing inside the area, which spans {x1 - x0:.0f} m x {y1 - y0:.0f} m")
+        raise ValueError(f"area {s.area.name!r} leaves no line of the standard plan of {s.platform.key!r}: "
+                         f"the area spans {x1 - x0:.0f} m x {y1 - y0:.0f} m and its water_beyond_m or holes leave no "
+                         "line of at least 1 m")
     return std
 
 

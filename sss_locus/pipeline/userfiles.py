@@ -80,7 +80,7 @@ def file_parameters(parameters: dict) -> dict[str, str]:
 
 def check_files(parameters: dict) -> None:
     """Read the user's files of a run (:func:`file_parameters`) as its chapter will, before a
-    kernel starts: a bad area (not a valid polygon, too small for one line of a platform's
+    kernel starts: a bad area (not a valid polygon, no water depth, no line of a platform's
     standard plan) or bad observations (a row, column or XTF byte offset) are refused in one line
     naming the parameter. The data files (``--data``) must be in use (they define the platforms)."""
     name = "area" if "area_sha256" in parameters else "observations" if "observations_sha256" in parameters else None
