@@ -207,7 +207,7 @@ def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataF
         return (f"For the {name}, the best plan as short as the standard plan under the noise model ({label}) has a "
                 f"two-view error of {_err(b)} against the standard plan's {_err(std)} (means over {k} seeds), on "
                 f"{length}: the intervals overlap, so the standard plan is kept.")
-    return (f"For the {name}, {label} has a two-view error of {_err(b)} against the standard plan's {_err(std)} "
+    return (f"For the {name}, the plan of {label} has a two-view error of {_err(b)} against the standard plan's {_err(std)} "
             f"(means over {k} seeds), on {length}: its interval lies below the standard plan's, so it is recommended.")
 
 
