@@ -85,7 +85,7 @@ def plot_front(fronts: dict, objective: str, platforms: dict):
         s = t[t.kind == "search"]
         ax.scatter(s.total_m[s.eligible] / 1e3, s[col][s.eligible], s=16, color="0.55", label="searched plan")
         ax.scatter(s.total_m[~s.eligible] / 1e3, s[col][~s.eligible], s=16, facecolors="none",
-                   edgecolors="0.65", label="less of the area seen twice than the standard plan")
+                   edgecolors="0.65", label="less seen twice than standard")
         f = t[t.front].sort_values("total_m")
         ax.plot(f.total_m / 1e3, f[col], "-", color="black", lw=1.2, label="Pareto front", zorder=3)
         for kind, (name, marker, colour, size) in BASELINES.items():
@@ -170,7 +170,7 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     if nadir_gap_m > 0:
         handles.append(PolygonPatch([[0, 0], [1, 0], [1, 1]], fill=False, hatch="////", edgecolor="0.3"))
         labels.append(f"nadir gap (±{nadir_gap_m:.0f} m)")
-    ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
+    ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9, frameon=False)
     return ax.figure
 
 

@@ -26,8 +26,8 @@ def _deg(value: float, pos: str, neg: str) -> str:
 
 
 def add_graticule(ax, area, *, colour: str = "0.45") -> None:
-    """Meridians and parallels of the area's neighbourhood on ``ax`` (local metres), labelled at
-    the axes' edges; nothing without an origin."""
+    """Meridians and parallels of the area's neighbourhood on ``ax`` (local metres), labelled
+    inside the axes (meridians at the top, parallels at the left); nothing without an origin."""
     if area.origin_lonlat is None:
         return
     x0, x1 = ax.get_xlim()
@@ -46,12 +46,14 @@ def add_graticule(ax, area, *, colour: str = "0.45") -> None:
             wrapped = (v + 180.0) % 360.0 - 180.0
             label = _deg(wrapped, "E", "W") if is_lon else _deg(v, "N", "S")
             if is_lon:
-                k = int(np.argmin(gy))
-                ax.annotate(label, (gx[k], y0), xytext=(0, 2), textcoords="offset points", fontsize=7,
-                            color=colour, ha="center", va="bottom")
+                k = int(np.argmax(gy))
+                if gx[k] > x0 + 0.85 * (x1 - x0):  # its label would run out of the axes
+                    continue
+                ax.annotate(label, (gx[k], y1), xytext=(2, -2), textcoords="offset points", fontsize=9,
+                            color=colour, ha="left", va="top")
             else:
                 k = int(np.argmin(gx))
-                ax.annotate(label, (x0, gy[k]), xytext=(2, 2), textcoords="offset points", fontsize=7,
+                ax.annotate(label, (x0, gy[k]), xytext=(2, 2), textcoords="offset points", fontsize=9,
                             color=colour, ha="left", va="bottom")
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
@@ -66,5 +68,5 @@ def add_scale_bar(ax, *, loc: str = "lower right") -> float:
     length = _nice_step(x1 - x0, 5)
     text = f"{length / 1e3:g} km" if length >= 1000 else f"{length:g} m"
     ax.add_artist(AnchoredSizeBar(ax.transData, length, text, loc=loc, pad=0.4, frameon=True, size_vertical=0,
-                                  fontproperties={"size": 8}))
+                                  fontproperties={"size": 9}))
     return length
