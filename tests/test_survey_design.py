@@ -356,9 +356,10 @@ def test_the_verdict_sentence_says_whether_the_interval_excludes_the_standard_pl
 
 def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
     """A 260 m x 200 m area is inside one swath of either platform: a plan of main lines only
-    runs one line over it, and the whole chapter's computation (search, noise re-evaluation,
-    seed stability) completes (it raised IndexError in the reconstruction of a one-line plan)."""
+    runs one line over it, and the whole chapter's computation (search and
+    scoring under noise) completes (it raised IndexError in the reconstruction of a one-line plan)."""
     from sss_locus.experiments.noise import load_noise_model
+    from sss_locus.experiments.surveydesign import scoring
 
     small = deep(area_from_vertices([[0, 0], [260, 0], [260, 200], [0, 200]], name="pond"))
     grid = dict(headings_deg=[0.0], spacing_fractions=[1.6, 3.0], crossing_angles_deg=[math.nan, 0.0],
@@ -369,10 +370,11 @@ def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
         one = plans[plans.n_segments == 1]
         assert len(one), plans[["spacing_m", "crossing_deg", "n_segments"]]
         assert sd.plan_from_row(one.iloc[0]).lines(small).line.nunique() == 1
-        noisy = sd.with_noise(pf, small.key(), "flat", plans.assign(front=True), load_noise_model(key),
-                              n_features=30, seed=0, grid_m=20.0)
-        assert len(noisy) == len(plans)
-        assert noisy.loc[noisy.plan_index.isin(one.index), "error_two_median_m"].isna().all()
+        scores = scoring.score_plans(pf, small.key(), "flat", plans.assign(front=True), load_noise_model(key),
+                                     seeds=[0, 1, 2], n_features=30, grid_m=20.0, objective_col="locus_median_m")
+        assert set(scores.plan_index) == set(plans.index)
+        assert scores.loc[scores.plan_index.isin(one.index), "error_two_median_m"].isna().all()
+        assert (scores.loc[scores.plan_index.isin(one.index), "n_two_estimated"] == 0).all()
 
 
 def _summary(rows):

@@ -36,9 +36,9 @@ lines, measured on the coverage grid (no worse a 200 % survey than the standard 
 is the eligible plans no other eligible plan beats in both track length and objective. The
 **recommended plan** is the eligible plan with the smallest objective among those whose track is
 no longer than the standard plan's (ties: the shorter track); when no eligible plan is that
-short, the shortest plan on the front (and the chapter says how much longer it is). The front and the baselines are then evaluated under the noise model
-(:func:`with_noise`). Seed stability (:func:`seed_stability`): the whole search rerun on other
-seeds (other features and in-beam elevations), the recommendation compared.
+short, the shortest plan on the front. This is the search's candidate; the recommendation is
+decided under the noise model over independent seeds
+(:mod:`sss_locus.experiments.surveydesign.scoring`).
 """
 
 from __future__ import annotations
@@ -298,19 +298,6 @@ def search_plans(platform, area_key: dict, terrain: str, objective: str, grid: d
     return res.plans.assign(recommended=res.plans.index == res.recommended)
 
 
-def with_noise(platform, area_key: dict, terrain: str, plans: pd.DataFrame, noise, *, n_features: int,
-               seed: int, grid_m: float) -> pd.DataFrame:
-    """The front, the baselines and the recommended plan of ``plans`` (:func:`search_plans`)
-    re-evaluated on the same features with the noise model ``noise``: their rows with
-    ``error_all_median_m``, ``error_two_median_m``, ``estimated_share`` and ``plan_index``."""
-    s = make_setting(platform, area_from_key(area_key), terrain, n_features=n_features, seed=seed, grid_m=grid_m)
-    pick = plans.front | (plans.kind != "search")
-    if "recommended" in plans:
-        pick |= plans.recommended
-    return pd.DataFrame([{**evaluate(s, plan_from_row(r), noise=noise), "kind": r["kind"], "plan_index": i}
-                         for i, r in plans[pick].iterrows()])
-
-
 def plan_from_row(row) -> Plan:
     """The :class:`~sss_locus.experiments.survey_plans.Plan` of a row of the plans table."""
     return Plan(**{k: row[k] for k in Plan.__dataclass_fields__})
@@ -325,35 +312,6 @@ def plan_coverage(platform, area: SurveyArea, terrain: str, row, *, grid_m: floa
     cov = coverage(platform, s.terrain, area, lines, plan.altitude_m, plan.pitch_deg, platform.fixed_depth,
                    grid_m=s.grid_m, seed=seed, centre=s.centre)
     return lines, cov
-
-
-def seed_stability(platform, area_key: dict, terrain: str, plans: pd.DataFrame, *, objective: str,
-                   seeds, n_features: int, grid_m: float) -> pd.DataFrame:
-    """The recommendation redone on other seeds (other features, in-beam elevations, coverage
-    grid draws). Only the plans the rule can pick are re-evaluated: the baselines, the front and
-    every plan no longer than the standard plan (the rule depends on no other). One row per seed:
-    the recommended plan, its objective, the standard plan's and their ratio, and whether it is
-    the plan recommended on the first seed (``same``)."""
-    col = OBJECTIVES[objective]
-    std_total = float(plans.loc[plans.kind == "standard", "total_m"].iloc[0])
-    pick = plans[(plans.kind != "search") | plans.front | (plans.total_m <= std_total)]
-    first = plans.index[plans["recommended"]] if "recommended" in plans else []
-    area = area_from_key(area_key)
-    rows = []
-    for sd in seeds:
-        s = make_setting(platform, area, terrain, n_features=n_features, seed=int(sd), grid_m=grid_m)
-        t = pd.DataFrame([{**evaluate(s, plan_from_row(r)), "kind": r["kind"]} for _, r in pick.iterrows()],
-                         index=pick.index)
-        t["eligible"] = eligible(t, s.settings)
-        t["front"] = pareto_front(t["total_m"], t[col], t["eligible"])
-        k = recommend(t, objective, float(t.loc[t.kind == "standard", "total_m"].iloc[0]))
-        std = float(t.loc[t.kind == "standard", col].iloc[0])
-        rec = t.loc[k] if k is not None else None
-        rows.append({"seed": int(sd), "plan_index": k, "same": k is not None and k in list(first),
-                     **{c: (rec[c] if rec is not None else math.nan) for c in Plan.__dataclass_fields__ if c != "name"},
-                     "recommended_value": rec[col] if rec is not None else math.nan, "standard_value": std,
-                     "ratio": (rec[col] / std) if rec is not None and std > 0 else math.nan})
-    return pd.DataFrame(rows)
 
 
 def by_crossing_angle(plans: pd.DataFrame, objective: str) -> pd.DataFrame:
