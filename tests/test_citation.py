@@ -48,9 +48,13 @@ def test_markdown_emphasis_becomes_latex():
         r"\textbf{widened} \emph{beam} \texttt{f\_x}"
 
 
-def test_character_without_latex_equivalent_is_named():
-    with pytest.raises(ValueError, match="U\\+1F30A"):
-        citation.latex_escape("wave \U0001F30A")
+def test_a_name_in_any_script_becomes_ascii_latex_instead_of_an_error():
+    """Issue 38: an area or file name in any script must reach BibTeX (it raised "has no LaTeX
+    equivalent" and no such input could run): accented letters stay LaTeX accents, digits of any
+    script become digits, characters without an ASCII form their code point, each distinct."""
+    assert citation.latex_escape("港 Harbour á ١٢ wave \U0001F30A") == "U+6E2F Harbour {\\'a} 12 wave U+1F30A"
+    assert citation.latex_escape("港口") != citation.latex_escape("港湾")
+    assert all(ord(c) < 128 for c in citation.latex_escape("مرفأ 港 Ωmega"))
 
 
 def test_short_caption_is_the_first_clause_and_short():
@@ -95,7 +99,7 @@ def test_bad_base_url_is_rejected(tmp_path):
 @pytest.mark.skipif(not (shutil.which("pdflatex") and shutil.which("bibtex")), reason="no TeX installation")
 def test_entries_compile_with_latex(tmp_path):
     captions = [NASTY, "Plain caption.", "Width {in} m; 100% of \\alpha, café, ≈ 5 µm. Rest.",
-                "Unbalanced $ dollar and }brace{. Rest."]
+                "Unbalanced $ dollar and }brace{. Rest.", "Plans over 港口 á ١٢ مرفأ Ωmega. Rest."]
     bib = "\n".join(citation.figure_bibtex(manifest(f"fig-n{i}", caption=c)) for i, c in enumerate(captions))
     keys = [f"sss-locus:fig-n{i}" for i in range(len(captions))]
     assert set(parse(bib).entries) == set(keys)
@@ -165,3 +169,13 @@ def test_launch_links_need_a_github_repository(tmp_path):
         "Binder": "https://mybinder.org/v2/gh/owner/sss-locus/dev?labpath=notebooks/concept.ipynb",
         "Colab": "https://colab.research.google.com/github/owner/sss-locus/blob/dev/notebooks/concept.ipynb",
     }
+
+
+def test_a_figure_of_an_area_named_in_any_script_gets_an_entry(tmp_path):
+    """The survey-design tables' captions name the area (issue 38: ``港``, ``á``, Arabic digits
+    stopped publish_table); the entry parses and is ASCII."""
+    config = tmp_path / "_config.yml"
+    config.write_text("html:\n  baseurl: ''\n")
+    bib = citation.figure_bibtex(manifest("tab-x", caption="Plans over 港口 á ١٢ مرفأ: headings."), config=config)
+    assert bib.isascii()
+    assert "U+6E2F" in parse(bib).entries["sss-locus:tab-x"].fields["title"]

@@ -218,3 +218,22 @@ def test_bad_input_is_named(kwargs, match):
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         solve_ranges(**args)
+
+
+@pytest.mark.parametrize("k", [0, 1, 2, 4])
+def test_fewer_than_three_views_everywhere_is_too_few_views_not_an_index_error(k):
+    """Issue 38: a survey too small or narrow for three views of any feature (``k < 3`` view
+    slots, or no feature with three) gets the documented result: every feature at its prior,
+    status TOO_FEW_VIEWS, infinite covariance."""
+    n = 5
+    rng = np.random.default_rng(0)
+    W = np.broadcast_to(np.eye(3), (n, k, 3, 3)).copy()
+    o = rng.normal(0, 50, (n, k, 3))
+    mask = np.zeros((n, k), bool)
+    mask[:, :min(k, 2)] = True
+    prior = rng.normal(0, 10, (n, 3))
+    res = multiview_points(W, o, np.full((n, k), 30.0), np.full((n, k), 0.1), mask, OPEN, prior=prior)
+    assert np.all(res.status == MultiViewStatus.TOO_FEW_VIEWS)
+    np.testing.assert_array_equal(res.point, prior)
+    np.testing.assert_array_equal(res.n_views, mask.sum(axis=1))
+    assert np.all(np.isinf(res.covariance))

@@ -252,3 +252,24 @@ def test_the_method_says_how_each_platform_of_the_run_flies(tmp_path):
     assert f"the {boat.name} holds one height" in text and f"the {auv.name} follows the terrain" in text
     flipped = height_sentence([auv], [dataclasses.replace(ea, same_altitude=True)])
     assert f"the {auv.name} holds one height" in flipped and "follows" not in flipped
+
+
+@pytest.mark.parametrize("lines", [1, 2])
+def test_a_survey_of_one_or_two_lines_gives_too_few_views_not_an_index_error(lines):
+    """Issue 38: a narrow area (2000 m x 130 m) is covered by one line: every feature has at
+    most one view slot, so every estimator beyond the flat one says "too few views"."""
+    from sss_locus.experiments.view_sets import Views
+
+    pf, env, noise = load_platform("boat"), load_envelope("boat"), load_noise_model("boat")
+    ter = flat_terrain()
+    f = place_features(ter, 40, LAYOUT.area_m, seed=3)
+    views, seen, info = observe_features(pf, ter, f, LAYOUT, 15.0, env.same_altitude, seed=4)
+    cut = Views(views.W[:, :lines], views.origin[:, :lines], views.vehicle[:, :lines], views.feature)
+    seen = seen[:, :lines]
+    tab = reconstruct(cut, seen, info["sensor_height_m"][:, :lines], noise, pf.sonar.aperture(), seed=5)
+    few = tab[tab.estimator.isin(["n3", "all"])]
+    assert (few.status == "too few views").all() and not few.estimated.any()
+    two = tab[tab.estimator == "two"]
+    assert (two.status == "too few views").all() == (lines == 1)
+    flat = tab[tab.estimator == "flat"].set_index("feature")
+    assert np.array_equal(flat.estimated.to_numpy(), seen.any(axis=1))

@@ -16,6 +16,25 @@ from pathlib import Path
 from typing import Any
 
 
+def missing_file(path: str | Path, what: str) -> str:
+    """Why ``path`` cannot be read as the input file ``what`` (e.g. ``"area file"``), in one
+    line: an empty path, a directory, a FIFO, a device or socket, a broken link, or a path that
+    does not exist. For a regular file: ``""``."""
+    import stat
+
+    if not str(path).strip():
+        return f"{what}: the path is empty; give the file's name"
+    p = Path(path)
+    try:
+        mode = p.stat().st_mode
+    except OSError:
+        return f"{what} {path} is a broken link" if p.is_symlink() else f"{what} {path} does not exist"
+    kinds = [(stat.S_ISREG, ""), (stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+             (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"), (stat.S_ISSOCK, "a socket")]
+    kind = next((name for test, name in kinds if test(mode)), "not a regular file")
+    return f"{what} {path} is {kind}, not a file" if kind else ""
+
+
 def read_toml(path: str | Path) -> dict[str, Any]:
     """Parse a TOML file (UTF-8, a byte-order mark allowed); a syntax error becomes a
     ``ValueError`` naming the file."""

@@ -33,13 +33,17 @@ column names, and a column whose name has the right quantity but another unit
     or empty cell is refused unless the run says ``missing_attitude="level"`` (then it is taken
     as 0 and the sighting is flagged ``attitude_assumed``): never a silent zero.
 ``slant_range_m`` *or* ``sample``, ``range_setting_m``, ``n_samples``
-    the slant range, or the sample index (0-based) in a ping of ``n_samples`` samples over
+    the slant range, or the sample index (0-based, counted from the near end) in a ping of ``n_samples`` samples over
     ``range_setting_m``: ``r = (sample + 1/2) range_setting_m / n_samples`` (the sample's centre,
     an open choice; :func:`slant_range_from_sample`).
 ``range_sigma_m`` (optional)
     the standard deviation of the range (> 0); default the run's ``range_sigma_m``.
 ``time_s`` (optional)
     any time stamp in seconds, carried through.
+``layback_m`` (optional, >= 0; empty is 0)
+    a towed sensor: the position columns are the tow point's (the ship's) and the sensor is
+    this far behind it along ``heading_deg``
+    (:func:`~sss_locus.experiments.towfish.apply_layback`).
 
 Every cell is checked before any work; the first bad one is refused in one line naming the file,
 its line (the header is line 1), its column and the valid range (:func:`read_sightings`).
@@ -55,6 +59,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .inputs import missing_file
+
 MISSING_ATTITUDE = ("refuse", "level")
 SIDES = ("port", "starboard")
 #: Numeric columns: (name, lo, hi, lo inclusive).
@@ -63,7 +69,7 @@ NUMBERS = {
     "depth_m": (0.0, 11000.0), "altitude_m": (1e-3, 11000.0), "heading_deg": (-360.0, 360.0),
     "pitch_deg": (-90.0, 90.0), "roll_deg": (-180.0, 180.0), "slant_range_m": (1e-3, 1e5),
     "sample": (0.0, 1e9), "range_setting_m": (1e-3, 1e5), "n_samples": (1.0, 1e9),
-    "range_sigma_m": (1e-9, 1e3), "time_s": (-1e12, 1e12),
+    "range_sigma_m": (1e-9, 1e3), "time_s": (-1e12, 1e12), "layback_m": (0.0, 1e4),
 }
 TEXT = ("feature", "platform", "side")
 #: Column names sharing a quantity with a numeric column but in another unit are refused.
@@ -72,7 +78,7 @@ ATTITUDE = ("pitch_deg", "roll_deg")
 #: The columns every reader returns (the sightings table, one row per sighting).
 COLUMNS = ("feature", "platform", "side", "east_m", "north_m", "lon_deg", "lat_deg", "depth_m",
            "altitude_m", "heading_deg", "grid_heading_deg", "pitch_deg", "roll_deg", "slant_range_m",
-           "range_sigma_m", "time_s", "attitude_assumed", "source", "line")
+           "range_sigma_m", "time_s", "layback_m", "attitude_assumed", "source", "line")
 
 
 class ObservationError(ValueError):
@@ -80,8 +86,10 @@ class ObservationError(ValueError):
 
 
 def slant_range_from_sample(sample, range_setting_m, n_samples) -> np.ndarray:
-    """Slant range (m) of a sample index: ``(sample + 1/2) range_setting_m / n_samples``, the
-    centre of the sample's range cell (recording assumed to start at transmission)."""
+    """Slant range (m) of a sample index counted from the near end (sample 0 the first after
+    transmission): ``(sample + 1/2) range_setting_m / n_samples``, the centre of the sample's
+    range cell (recording assumed to start at transmission). An XTF channel stored far-to-near
+    is turned round first (:mod:`~sss_locus.experiments.sample_order`)."""
     return (np.asarray(sample, float) + 0.5) * np.asarray(range_setting_m, float) / np.asarray(n_samples, float)
 
 
@@ -135,8 +143,42 @@ class LocalFrame:
 
 
 def survey_frame(lon_deg, lat_deg) -> LocalFrame:
-    """The default frame: the mean position of the sightings rounded to 0.001 deg."""
-    return LocalFrame(round(float(np.mean(lon_deg)), 3), round(float(np.mean(lat_deg)), 3))
+    """The default frame: the mean position of the sightings rounded to 0.001 deg, longitudes
+    averaged as directions (the circular mean), so a survey across the antimeridian (+-180 deg)
+    gets its origin among its sightings, not half the globe away."""
+    lam = np.radians(np.asarray(lon_deg, float))
+    lon = math.degrees(math.atan2(float(np.mean(np.sin(lam))), float(np.mean(np.cos(lam)))))
+    lon = round(lon, 3)
+    return LocalFrame(-180.0 if lon == 180.0 else lon, round(float(np.mean(lat_deg)), 3))
+
+
+#: Farthest a sighting may lie from its frame's origin, metres: the transverse-Mercator frame's
+#: scale error grows as (d / 6371 km)^2 / 2 across its meridian, 1.2e-4 (12 cm per km) at 100 km;
+#: thousands of km away positions and spreads change by percents.
+MAX_FRAME_DISTANCE_M = 100_000.0
+
+
+def frame_from_origin(origin) -> LocalFrame | None:
+    """The frame of a run's ``origin`` parameter (``[lon_deg, lat_deg]``; ``[]``: ``None``),
+    refused in one line unless it is two finite numbers in range."""
+    if origin is None or (isinstance(origin, (list, tuple)) and len(origin) == 0):
+        return None
+    ok = (isinstance(origin, (list, tuple)) and len(origin) == 2
+          and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in origin))
+    if not ok:
+        raise ValueError(f"origin must be [lon_deg, lat_deg], two numbers (or [] for the sightings' mean); got {origin!r}")
+    return LocalFrame(float(origin[0]), float(origin[1]))
+
+
+def _check_frame_distance(t: pd.DataFrame, frame: LocalFrame) -> None:
+    d = np.hypot(t["east_m"].to_numpy(float), t["north_m"].to_numpy(float))
+    i = int(np.argmax(d))
+    if d[i] > MAX_FRAME_DISTANCE_M:
+        raise ObservationError(
+            f"{t['source'].iloc[i] if 'source' in t else 'sightings'} line {t['line'].iloc[i] if 'line' in t else i + 2}: the sighting lies {d[i] / 1000:,.0f} km from the local "
+            f"frame's origin (lon {frame.lon0_deg:g}, lat {frame.lat0_deg:g}); every sighting must be within "
+            f"{MAX_FRAME_DISTANCE_M / 1000:g} km of it (the frame's distortion grows with the distance): give "
+            "-p origin near the survey, or split the survey")
 
 
 def _fail(source, line, column, message):
@@ -197,6 +239,9 @@ def parse_sightings(raw: pd.DataFrame, source: str, *, missing_attitude: str = "
 
     need(*TEXT, "depth_m", "altitude_m", "heading_deg")
     geo = "lon_deg" in cols or "lat_deg" in cols
+    if geo and ("east_m" in cols or "north_m" in cols):
+        _fail(source, hdr, "east_m" if "east_m" in cols else "north_m",
+              "give the position once: lon_deg and lat_deg, or east_m and north_m, not both")
     need(*(("lon_deg", "lat_deg") if geo else ("east_m", "north_m")), why=" (a position needs lon_deg and lat_deg, or east_m and north_m)")
     direct = "slant_range_m" in cols
     if not direct:
@@ -243,6 +288,8 @@ def parse_sightings(raw: pd.DataFrame, source: str, *, missing_attitude: str = "
     sig = _numbers(raw, "range_sigma_m", source, optional=True) if "range_sigma_m" in cols else np.full(len(raw), np.nan)
     out["range_sigma_m"] = np.where(np.isnan(sig), float(range_sigma_m), sig)
     out["time_s"] = _numbers(raw, "time_s", source, optional=True) if "time_s" in cols else np.full(len(raw), np.nan)
+    lb = _numbers(raw, "layback_m", source, optional=True) if "layback_m" in cols else np.zeros(len(raw))
+    out["layback_m"] = np.where(np.isnan(lb), 0.0, lb)
     for name in ("east_m", "north_m", "lon_deg", "lat_deg"):
         out.setdefault(name, np.full(len(raw), np.nan))
     out["grid_heading_deg"] = np.full(len(raw), np.nan)
@@ -261,14 +308,54 @@ def to_local_frame(table: pd.DataFrame, origin: LocalFrame | None = None) -> tup
     if geo.all():
         frame = origin or survey_frame(t["lon_deg"], t["lat_deg"])
         t["east_m"], t["north_m"] = frame.to_local(t["lon_deg"], t["lat_deg"])
+        _check_frame_distance(t, frame)
         t["grid_heading_deg"] = frame.grid_heading_deg(t["heading_deg"], t["lon_deg"], t["lat_deg"])
         return t, frame
     if geo.any():
         raise ObservationError("sightings mix longitude/latitude and local metres; use one")
     t["grid_heading_deg"] = t["heading_deg"]
     if origin is not None:
+        _check_frame_distance(t, origin)
         t["lon_deg"], t["lat_deg"] = origin.to_lonlat(t["east_m"], t["north_m"])
     return t, origin
+
+
+#: Longest text cell (a feature identifier, a platform key), characters.
+MAX_TEXT_CHARS = 200
+
+
+def _check_fields(kept: list[tuple[int, str]], source: str) -> None:
+    """Refuse a header naming a column twice and rows with more fields than the header (a
+    trailing comma shifts every column), naming the line."""
+    import csv
+
+    def fields_of(line: int, text: str) -> list[str]:
+        if len(text) > 100 * MAX_TEXT_CHARS:
+            raise ObservationError(f"{source} line {line}: {len(text):,} characters; a row of sightings needs far fewer "
+                                   f"(a value holds at most {MAX_TEXT_CHARS})")
+        try:
+            return next(csv.reader([text]))
+        except (csv.Error, StopIteration) as exc:
+            raise ObservationError(f"{source} line {line}: not a CSV row ({exc})") from None
+
+    header = [c.strip() for c in fields_of(*kept[0])]
+    seen: dict[str, int] = {}
+    for k, name in enumerate(header):
+        if name in seen:
+            raise ObservationError(f"{source} line {kept[0][0]}: column {name!r} appears twice (columns {seen[name] + 1} "
+                                   f"and {k + 1}); keep one")
+        seen[name] = k
+    for line, text in kept[1:]:
+        fields = fields_of(line, text)
+        if len(fields) > len(header):
+            extra = "a trailing comma?" if all(not f.strip() for f in fields[len(header):]) else "a comma inside a value?"
+            raise ObservationError(f"{source} line {line}: {len(fields)} fields but the header (line {kept[0][0]}) "
+                                   f"names {len(header)} columns ({extra})")
+        long = [f for f in fields if len(f) > MAX_TEXT_CHARS]
+        if long:
+            column = header[fields.index(long[0])] if fields.index(long[0]) < len(header) else "?"
+            raise ObservationError(f"{source} line {line}, column {column}: a value of {len(long[0]):,} characters; "
+                                   f"at most {MAX_TEXT_CHARS}")
 
 
 def read_table(path: Path) -> pd.DataFrame:
@@ -281,8 +368,10 @@ def read_table(path: Path) -> pd.DataFrame:
     kept = [(k + 1, ln) for k, ln in enumerate(text.splitlines()) if ln.strip() and not ln.lstrip().startswith("#")]
     if not kept:
         raise ObservationError(f"{path.name}: no header line")
+    _check_fields(kept, path.name)
     try:
-        raw = pd.read_csv(io.StringIO("\n".join(ln for _, ln in kept)), dtype=str, keep_default_na=False)
+        raw = pd.read_csv(io.StringIO("\n".join(ln for _, ln in kept)), dtype=str, keep_default_na=False,
+                          index_col=False)
     except (pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
         raise ObservationError(f"{path.name}: not a readable CSV file: {str(exc).strip().splitlines()[-1]}") from None
     raw.attrs["lines"] = [k for k, _ in kept[1:]]
@@ -295,6 +384,6 @@ def read_sightings(path, *, missing_attitude: str = "refuse", range_sigma_m: flo
     in one line naming the file, line, column and valid range otherwise."""
     path = Path(path)
     if not path.is_file():
-        raise ObservationError(f"observations file {path} does not exist")
+        raise ObservationError(missing_file(path, "observations file"))
     return parse_sightings(read_table(path), path.name, missing_attitude=missing_attitude,
                            range_sigma_m=range_sigma_m)

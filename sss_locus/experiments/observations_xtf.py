@@ -26,63 +26,77 @@ column, or the XTF file and the byte offset of a truncated or malformed packet.
 from __future__ import annotations
 
 import ctypes
-import io
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from .observations import ObservationError, line_of, parse_sightings
+from . import sample_order as so
+from . import towfish as tf
+from .observations import NUMBERS, ObservationError, line_of, parse_sightings
+from .xtf_packets import CHANNEL_TYPES, channel_types, read_pings  # noqa: F401  read_pings: the public reader
 
 MATCH_COLUMNS = ("feature", "platform", "file", "ping", "channel", "sample")
-_SONAR = 0  # XTFHeaderType.sonar
 _NAV_UNITS = {0: ("east_m", "north_m"), 3: ("lon_deg", "lat_deg")}
 
 
-def read_pings(path) -> tuple[object, dict[int, object]]:
-    """The file header and the sonar pings by ``PingNumber`` of one XTF file (``pyxtf``
-    structures); a truncated or malformed packet is refused naming its byte offset."""
-    import pyxtf
-
-    path = Path(path)
-    if not path.is_file():
-        raise ObservationError(f"XTF file {path} does not exist")
-    data = path.read_bytes()
-    size_header = ctypes.sizeof(pyxtf.XTFFileHeader)
-    if len(data) < size_header:
-        raise ObservationError(f"{path.name}: truncated at byte {len(data)}: the file header needs {size_header} bytes")
-    header = pyxtf.XTFFileHeader.create_from_buffer(data[:size_header])
-    if header.FileFormat != 0x7B:
-        raise ObservationError(f"{path.name} byte 0: not an XTF file (format byte {header.FileFormat:#x}, expected 0x7b)")
-    if header.NavUnits not in _NAV_UNITS:
-        raise ObservationError(f"{path.name} byte 0: NavUnits {header.NavUnits} not supported (0 metres or 3 lon/lat)")
-    pings: dict[int, object] = {}
-    start_size = ctypes.sizeof(pyxtf.XTFPacketStart)
-    pos = size_header
-    while pos < len(data):
-        if pos + start_size > len(data):
-            raise ObservationError(f"{path.name}: truncated at byte {len(data)}: packet at byte {pos} has no complete header")
-        start = pyxtf.XTFPacketStart.from_buffer_copy(data[pos:pos + start_size])
-        if start.MagicNumber != 0xFACE:
-            raise ObservationError(f"{path.name} byte {pos}: not an XTF packet (no 0xFACE)")
-        end = pos + start.NumBytesThisRecord
-        if start.NumBytesThisRecord < start_size or end > len(data):
-            raise ObservationError(f"{path.name}: truncated at byte {len(data)}: the packet at byte {pos} "
-                                   f"needs {start.NumBytesThisRecord} bytes")
-        if start.HeaderType == _SONAR:
-            try:
-                ping = pyxtf.XTFPingHeader.create_from_buffer(io.BytesIO(data[pos:end]), file_header=header)
-            except RuntimeError as exc:
-                raise ObservationError(f"{path.name} byte {pos}: malformed sonar packet ({exc})") from None
-            pings[int(ping.PingNumber)] = ping
-        pos = end
-    return header, pings
+_FIELDS = (("SensorXcoordinate", None), ("SensorYcoordinate", None), ("SensorDepth", "depth_m"),
+           ("SensorPrimaryAltitude", "altitude_m"), ("SensorHeading", "heading_deg"), ("SensorPitch", "pitch_deg"),
+           ("SensorRoll", "roll_deg"))
 
 
-def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse",
-                       range_sigma_m: float = 0.1) -> pd.DataFrame:
+def _check_fields(ping, nav_units: int, name: str, where: str) -> None:
+    """The matched ping's navigation and attitude fields in range, or one line naming the XTF
+    field, the file, the ping and its byte offset."""
+    x, y = _NAV_UNITS[nav_units]
+    for field, col in _FIELDS:
+        col = col or (x if field == "SensorXcoordinate" else y)
+        lo, hi = NUMBERS[col]
+        v = float(getattr(ping, field))
+        if not (np.isfinite(v) and lo <= v <= hi):
+            raise ObservationError(f"{where}: {field} of ping {ping.PingNumber} of {name} (packet at byte {ping.offset}) "
+                                   f"is {v:g}; it must be in [{lo:g}, {hi:g}]"
+                                   + (" (0: no altitude recorded for this ping; match another ping)"
+                                      if field == "SensorPrimaryAltitude" and v == 0 else ""))
+
+
+DETECT_PINGS = 2000
+"""At most about this many pings of a channel are read to detect its sample order."""
+
+
+def channel_order(pings: dict, header, ch: int, choice: str, name: str) -> tuple[str, str]:
+    """The sample order of channel ``ch`` of one file (:mod:`~sss_locus.experiments.sample_order`)
+    and how it was decided; a file the data cannot decide is refused, saying how to set it."""
+    kind = channel_types(header)[ch]
+    if choice != "detect":
+        return so.chosen(choice, kind), f"sample_order {choice!r}"
+    n = pd.Series([len(p.data[ch]) for p in pings.values() if len(p.data) > ch]).mode()
+    rows = [p for p in pings.values() if len(p.data) > ch and len(p.data[ch]) == n.iloc[0]]
+    rows = rows[::max(1, len(rows) // DETECT_PINGS)]  # evenly spread over the file: enough to decide
+    data = np.stack([p.data[ch].astype(float) for p in rows])
+    rng = np.array([p.ping_chan_headers[ch].SlantRange for p in rows], float)
+    alt = np.array([p.SensorPrimaryAltitude for p in rows], float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        bottom = np.where((alt > 0) & (rng > 0), alt / rng * data.shape[1], np.nan)
+    order, evidence = so.detect(data, bottom)
+    if order is None:
+        side = CHANNEL_TYPES.get(kind, str(kind))
+        raise ObservationError(f"{name}: cannot tell which end of channel {ch} ({side}) is the near end from the data "
+                               f"({evidence}); set it: -p sample_order '\"port_far_first\"' (port stored far-to-near) "
+                               "or '\"near_first\"' (every channel near-to-far)")
+    return order, f"detected: {evidence}"
+
+
+def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse", range_sigma_m: float = 0.1,
+                       sample_order: str = "detect", towfish: str = "auto") -> pd.DataFrame:
     """Sightings from XTF files and the user's matches (module docstring): the table of
-    :func:`~sss_locus.experiments.observations.parse_sightings`."""
+    :func:`~sss_locus.experiments.observations.parse_sightings`, with each sighting's
+    ``sample_stored`` (as in the file), ``sample_order`` and how it was decided, and how its
+    position was read (``towfish``)."""
+    if sample_order not in so.CHOICES:
+        raise ValueError(f"sample_order must be one of {list(so.CHOICES)}; got {sample_order!r}")
+    if towfish not in tf.CHOICES:
+        raise ValueError(f"towfish must be one of {list(tf.CHOICES)}; got {towfish!r}")
     matches_path = Path(matches_path)
     if not matches_path.is_file():
         raise ObservationError(f"matches file {matches_path} does not exist")
@@ -94,15 +108,22 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse",
         if c not in raw.columns:
             raise ObservationError(f"{src} line {raw.attrs.get('header_line', 1)}, column {c}: missing; an XTF matches file needs {list(MATCH_COLUMNS)}")
     files: dict[str, tuple] = {}
-    rows = []
+    orders: dict[tuple, tuple] = {}
+    rows, extra = [], []
     for i in range(len(raw)):
         line = line_of(raw, i)
         name = str(raw["file"].iloc[i]).strip()
         if name not in files:
             files[name] = read_pings(matches_path.parent / name)
+            units = files[name][0].NavUnits
+            if units not in _NAV_UNITS:
+                import pyxtf
+
+                raise ObservationError(f"{name} byte {pyxtf.XTFFileHeader.NavUnits.offset}: NavUnits {units} not "
+                                       "supported (0 metres or 3 longitude/latitude)")
         header, pings = files[name]
         values = {}
-        for col in ("ping", "channel"):
+        for col in ("ping", "channel", "sample"):
             text = str(raw[col].iloc[i]).strip()
             if not text.isdigit():
                 raise ObservationError(f"{src} line {line}, column {col}: must be an integer >= 0; got {text!r}")
@@ -117,12 +138,27 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse",
             raise ObservationError(f"{src} line {line}, column channel: must be in [0, {len(ping.ping_chan_headers) - 1}] "
                                    f"for ping {values['ping']} of {name}; got {ch}")
         chan = ping.ping_chan_headers[ch]
-        kind = header.sonar_info[ch].TypeOfChannel if ch < len(header.sonar_info) else -1
+        kind = channel_types(header)[ch]
         if kind not in (1, 2):
             raise ObservationError(f"{src} line {line}, column channel: channel {ch} of {name} is not a port or starboard sidescan channel")
         if chan.TimeDelay != 0:
             raise ObservationError(f"{src} line {line}, column channel: channel {ch} of {name} was recorded with a "
                                    f"TimeDelay of {chan.TimeDelay:g} s (not supported: the sample-to-range rule assumes 0)")
+        if values["sample"] >= chan.NumSamples:
+            raise ObservationError(f"{src} line {line}, column sample: must be in [0, {chan.NumSamples - 1}] for channel "
+                                   f"{ch} of ping {values['ping']} of {name}; got {values['sample']}")
+        if not chan.SlantRange > 0:
+            raise ObservationError(f"{src} line {line}: SlantRange of channel {ch} of ping {values['ping']} of {name} "
+                                   f"(packet at byte {ping.offset}) is {chan.SlantRange:g}; it must be > 0")
+        _check_fields(ping, header.NavUnits, name, f"{src} line {line}")
+        if (name, ch) not in orders:
+            orders[name, ch] = channel_order(pings, header, ch, sample_order, name)
+        order, how = orders[name, ch]
+        layback, lb_source, apart = tf.xtf_layback(ping, header.NavUnits)
+        try:
+            shift, read_as = tf.towfish_decision(layback, apart, towfish)
+        except ValueError as exc:
+            raise ObservationError(f"{src} line {line}: ping {values['ping']} of {name}: {exc}") from None
         x, y = _NAV_UNITS[header.NavUnits]
         f = lambda v: repr(float(v))  # noqa: E731  exact: every float32/float64 as its double
         rows.append({
@@ -131,13 +167,18 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse",
             x: f(ping.SensorXcoordinate), y: f(ping.SensorYcoordinate),
             "depth_m": f(ping.SensorDepth), "altitude_m": f(ping.SensorPrimaryAltitude),
             "heading_deg": f(ping.SensorHeading), "pitch_deg": f(ping.SensorPitch), "roll_deg": f(ping.SensorRoll),
-            "sample": raw["sample"].iloc[i], "range_setting_m": f(chan.SlantRange), "n_samples": str(chan.NumSamples),
+            "sample": str(so.from_near(values["sample"], int(chan.NumSamples), order)),
+            "range_setting_m": f(chan.SlantRange), "n_samples": str(chan.NumSamples),
             "range_sigma_m": raw["range_sigma_m"].iloc[i] if "range_sigma_m" in raw.columns else "",
-            "time_s": f(ping_time_s(ping)),
+            "time_s": f(ping_time_s(ping)), "layback_m": f(shift),
         })
+        extra.append({"xtf_file": name, "ping": values["ping"], "channel": ch, "sample_stored": values["sample"],
+                      "sample_order": order, "sample_order_how": how, "xtf_layback_m": layback,
+                      "layback_from": lb_source, "position_read_as": read_as})
     table = pd.DataFrame(rows, dtype=object)
     table.attrs.update(raw.attrs)
-    return parse_sightings(table, src, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
+    out = parse_sightings(table, src, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
+    return pd.concat([out, pd.DataFrame(extra, index=out.index)], axis=1)
 
 
 def ping_time_s(ping) -> float:
@@ -145,15 +186,21 @@ def ping_time_s(ping) -> float:
     return 3600.0 * ping.Hour + 60.0 * ping.Minute + ping.Second + ping.HSeconds / 100.0
 
 
-def write_xtf(path, pings: pd.DataFrame, *, nav_units: int = 3, note: str = "") -> None:
+def write_xtf(path, pings: pd.DataFrame, *, nav_units: int = 3, note: str = "", port_order: str = "far_first") -> None:
     """Write a small two-channel (port, starboard) XTF file with ``pyxtf``'s structures.
 
     ``pings`` has one row per ping: ``ping`` (``PingNumber``), the position (``lon_deg``,
     ``lat_deg`` for ``nav_units`` 3, ``east_m``, ``north_m`` for 0), ``depth_m``,
     ``altitude_m``, ``heading_deg``, ``pitch_deg``, ``roll_deg``, ``time_s`` (seconds of the
-    day), ``range_setting_m``, ``n_samples`` and optionally ``echo_port``/``echo_starboard``
-    (a sample index drawn bright; -1 none). Angles, depth and altitude are stored as float32
-    (as XTF does), positions as float64.
+    day), ``range_setting_m``, ``n_samples``, optionally ``echo_port``/``echo_starboard`` (a
+    sample index counted from the near end, drawn bright; -1 none) and the tow fields
+    ``layback_m``, ``cable_out_m``, ``ship_x``, ``ship_y`` (``Layback``, ``CableOut``,
+    ``ShipX/Ycoordinate``). Each channel is drawn as a sonar records it: a saturated transmit
+    pulse at the near end, a dark water column down to the altitude, then seafloor
+    backscatter (seeded by the ping number); the port channel is stored ``port_order``
+    (``"far_first"`` as the real file and ``pyxtf``'s convention, or ``"near_first"``), the
+    starboard one near-first. Angles, depth and altitude are stored as float32 (as XTF does),
+    positions as float64.
     """
     import pyxtf
 
@@ -176,19 +223,25 @@ def write_xtf(path, pings: pd.DataFrame, *, nav_units: int = 3, note: str = "") 
         ping.Hour, ping.Minute = int(t // 3600), int(t % 3600 // 60)
         ping.Second, ping.HSeconds = int(t % 60), int(round((t % 1) * 100)) % 100
         ping.SensorXcoordinate, ping.SensorYcoordinate = float(p[x]), float(p[y])
+        ping.ShipXcoordinate, ping.ShipYcoordinate = float(p.get("ship_x", 0.0)), float(p.get("ship_y", 0.0))
+        ping.Layback, ping.CableOut = float(p.get("layback_m", 0.0)), int(p.get("cable_out_m", 0))
         ping.SensorDepth, ping.SensorPrimaryAltitude = float(p["depth_m"]), float(p["altitude_m"])
         ping.SensorHeading, ping.SensorPitch, ping.SensorRoll = (float(p[c]) for c in ("heading_deg", "pitch_deg", "roll_deg"))
         n = int(p["n_samples"])
+        rng = np.random.default_rng(int(p["ping"]))
+        bottom = int(np.clip(float(p["altitude_m"]) / float(p["range_setting_m"]) * n, 0, n))
         ping.ping_chan_headers, ping.data = [], []
         for k, side in enumerate(("port", "starboard")):
             chan = pyxtf.XTFPingChanHeader()
             chan.ChannelNumber, chan.SlantRange, chan.NumSamples = k, float(p["range_setting_m"]), n
-            samples = np.full(n, 200, np.uint16)
+            near = rng.integers(60, 140, n).astype(np.uint16)  # water column
+            near[bottom:] = rng.integers(3000, 9000, n - bottom)  # seafloor
+            near[:max(4, n // 128) + 1] = 65535  # transmit pulse
             echo = int(p.get(f"echo_{side}", -1))
             if 0 <= echo < n:
-                samples[max(echo - 1, 0):echo + 2] = 60000
+                near[max(echo - 1, 0):echo + 2] = 60000
             ping.ping_chan_headers.append(chan)
-            ping.data.append(samples)
+            ping.data.append(near[::-1].copy() if side == "port" and port_order == "far_first" else near)
         ping.NumBytesThisRecord = ctypes.sizeof(pyxtf.XTFPingHeader) + 2 * (ctypes.sizeof(pyxtf.XTFPingChanHeader) + 2 * n)
         out.append(ping.to_bytes())
     Path(path).write_bytes(b"".join(out))
@@ -206,7 +259,9 @@ def read_observations(path, **kw) -> pd.DataFrame:
         raise ObservationError(f"{path.name}: give the matches CSV (feature, platform, file, ping, channel, "
                                "sample) that names the XTF file's pings, not the XTF file itself")
     cols = set(read_table(path).columns.str.strip())
-    return read_xtf_sightings(path, **kw) if {"file", "ping"} <= cols else read_sightings(path, **kw)
+    if {"file", "ping"} <= cols:
+        return read_xtf_sightings(path, **kw)
+    return read_sightings(path, **{k: v for k, v in kw.items() if k not in ("sample_order", "towfish")})
 
 
 def observation_files(path) -> list[Path]:

@@ -177,9 +177,10 @@ def _estimates(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture:
 
     # two views and the prior: the locus point nearest the mean of their flat estimates
     has2 = n_seen >= 2
-    r1, r2 = np.where(has2, r_hat[:, 0], 1.0), np.where(has2, r_hat[:, 1], 1.0)
-    _, near, two = two_view_points(W_hat[:, 0], o_hat[:, 0], W_hat[:, 1], o_hat[:, 1], r1, r2,
-                                   0.5 * (flat[:, 0] + flat[:, 1]), aperture, aperture)
+    b = min(1, L - 1)  # the second view's slot; with one view slot no feature has two (all "too few views")
+    r1, r2 = np.where(has2, r_hat[:, 0], 1.0), np.where(has2, r_hat[:, b], 1.0)
+    _, near, two = two_view_points(W_hat[:, 0], o_hat[:, 0], W_hat[:, b], o_hat[:, b], r1, r2,
+                                   0.5 * (flat[:, 0] + flat[:, b]), aperture, aperture)
     names = np.array(["locus", "circle", "sphere"])
     add("two", two, has2, np.where(has2, names[near["status"]], "too few views"), np.minimum(n_seen, 2),
         locus_length_m=np.where(has2, near["length_m"], np.nan))

@@ -33,9 +33,15 @@ GeoJSON (RFC 7946: longitude/latitude, WGS 84): a ``Polygon``, or a ``Feature`` 
 ``FeatureCollection`` whose first polygon is the area; its origin is the polygon's first vertex
 unless the feature's properties give ``origin_lonlat``. Holes (inner rings) are kept.
 
-Validation: every ring closed or not, at least three distinct vertices, a valid polygon
-(:func:`shapely.is_valid`: no self-intersection) and an area of at least :data:`MIN_AREA_M2`;
-each refused in one line naming the file and the rule.
+``holes_m`` (rings in metres of the local frame) may go with either kind of vertices; with
+``vertices_lonlat`` they are in the frame around the origin.
+
+Validation: every ring closed or not, at least three distinct vertices of numbers (not booleans
+or strings), a valid polygon (:func:`shapely.is_valid`: no self-intersection), an area of at
+least :data:`MIN_AREA_M2`, at most :data:`MAX_VERTICES` vertices in a file of at most
+:data:`MAX_FILE_BYTES`, every vertex within :data:`MAX_ORIGIN_DISTANCE_M` of the origin when
+there is one, GeoJSON members of their RFC 7946 types; each refused in one line naming the file
+and the rule.
 """
 
 from __future__ import annotations
@@ -48,10 +54,19 @@ from pathlib import Path
 
 import numpy as np
 
-from .inputs import read_toml
+from .inputs import missing_file, read_toml
 
 MIN_AREA_M2 = 100.0
 """Smallest area accepted, m^2 (10 m x 10 m): smaller is taken for a unit mistake."""
+MAX_VERTICES = 100_000
+"""Most vertices (all rings) an area may have: a survey boundary needs far fewer; more (a
+coastline traced at centimetres) would make every coverage test slow."""
+MAX_FILE_BYTES = 16_000_000
+"""Largest area file read, bytes (a file of :data:`MAX_VERTICES` vertices is about 4 MB)."""
+MAX_ORIGIN_DISTANCE_M = 100_000.0
+"""Farthest a vertex may lie from ``origin_lonlat``, metres: the azimuthal equidistant projection
+keeps distances from the origin exact and distorts others by about (d / 6371 km)^2 / 6, under
+4e-5 (4 cm per km) within 100 km; thousands of km away a 900 m line would come out 676 m."""
 
 
 @functools.lru_cache(maxsize=32)
@@ -77,10 +92,23 @@ def _check_origin(origin, where: str):
 
 
 def _numeric(value) -> bool:
-    try:
-        return np.asarray(value, float).dtype.kind == "f"
-    except (TypeError, ValueError):
+    """Whether ``value`` is a number or (nested) list of numbers: ``true`` and ``"380"`` are not."""
+    if isinstance(value, (bool, np.bool_, str, bytes)):
         return False
+    if isinstance(value, (int, float, np.integer, np.floating)):
+        return True
+    if isinstance(value, (list, tuple, np.ndarray)):
+        if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
+            return True
+        return len(value) > 0 and all(_numeric(v) for v in value)
+    return False
+
+
+def _check_vertex_count(rings, where: str) -> None:
+    count = sum(len(r) if isinstance(r, (list, tuple, np.ndarray)) else 0 for r in rings)
+    if count > MAX_VERTICES:
+        raise ValueError(f"{where}: the area has {count:,} vertices, more than {MAX_VERTICES:,}; "
+                         "simplify its boundary (e.g. shapely's simplify or QGIS's Simplify)")
 
 
 @dataclass(frozen=True)
@@ -152,7 +180,10 @@ def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str 
     import shapely
 
     where = source if source != "vertices" else "area"
+    if not isinstance(holes_m, (list, tuple)) or not all(isinstance(h, (list, tuple, np.ndarray)) for h in holes_m):
+        raise ValueError(f"{where}: holes_m must be a list of rings, each a list of [x, y] pairs; got {holes_m!r:.80}")
     rings = [vertices_m, *holes_m]
+    _check_vertex_count(rings, where)
     clean = []
     for ring in rings:
         v = np.asarray(ring, float) if _numeric(ring) else None
@@ -170,38 +201,83 @@ def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str 
     if poly.area < MIN_AREA_M2:
         raise ValueError(f"{where}: the polygon's area is {poly.area:.3g} m^2, below {MIN_AREA_M2:g} m^2 "
                          "(are the vertices in metres?)")
-    return SurveyArea(poly, _check_origin(origin_lonlat, where), str(name), source)
+    origin = _check_origin(origin_lonlat, where)
+    reach = float(np.max(np.hypot(*np.vstack(clean).T)))
+    if origin is not None and reach > MAX_ORIGIN_DISTANCE_M * (1 + 1e-9):
+        raise ValueError(f"{where}: a vertex lies {reach / 1000:,.0f} km from the local origin (origin_lonlat "
+                         f"{list(origin)}); with an origin every vertex must be within {MAX_ORIGIN_DISTANCE_M / 1000:g} km "
+                         "of it (the local frame's distortion grows with the distance)")
+    return SurveyArea(poly, origin, str(name), source)
 
 
-def area_from_lonlat(vertices_lonlat, origin_lonlat=None, *, holes_lonlat=(), name: str = "survey area",
-                     source: str = "vertices") -> SurveyArea:
+def area_from_lonlat(vertices_lonlat, origin_lonlat=None, *, holes_lonlat=(), holes_m=(),
+                     name: str = "survey area", source: str = "vertices") -> SurveyArea:
     """A :class:`SurveyArea` from longitude/latitude vertices (degrees); the origin defaults to
-    the first vertex."""
+    the first vertex. Holes may be given in longitude/latitude (``holes_lonlat``) or in metres
+    of the local frame around the origin (``holes_m``). Every vertex must lie within
+    :data:`MAX_ORIGIN_DISTANCE_M` of the origin."""
+    import pyproj
+
+    if not isinstance(holes_lonlat, (list, tuple)) or not all(isinstance(h, (list, tuple)) for h in holes_lonlat):
+        raise ValueError(f"{source}: holes must be a list of rings of [longitude, latitude] pairs; got {holes_lonlat!r:.80}")
+    _check_vertex_count([vertices_lonlat, *holes_lonlat, *(holes_m if isinstance(holes_m, (list, tuple)) else ())], source)
     rings = []
     for ring in (vertices_lonlat, *holes_lonlat):
         v = np.asarray(ring, float) if _numeric(ring) else None
-        if v is None or v.ndim != 2 or v.shape[1] != 2 or np.any(np.abs(v) > [180, 90]):
-            raise ValueError(f"{source}: vertices_lonlat must be [longitude, latitude] pairs in degrees; "
-                             f"got {ring!r:.80}")
+        if v is None or v.ndim != 2 or v.shape[1] != 2 or not np.all(np.isfinite(v)) or np.any(np.abs(v) > [180, 90]):
+            raise ValueError(f"{source}: vertices_lonlat must be [longitude, latitude] pairs of finite numbers in "
+                             f"degrees (|lon| <= 180, |lat| <= 90); got {ring!r:.80}")
         rings.append(v)
     origin = _check_origin(rings[0][0] if origin_lonlat is None else origin_lonlat, source)
+    every = np.vstack(rings)
+    _, _, dist = pyproj.Geod(ellps="WGS84").inv(np.full(len(every), origin[0]), np.full(len(every), origin[1]),
+                                                 every[:, 0], every[:, 1])
+    far = int(np.argmax(dist))
+    if dist[far] > MAX_ORIGIN_DISTANCE_M:
+        raise ValueError(f"{source}: vertex {every[far].tolist()} lies {dist[far] / 1000:,.0f} km from origin_lonlat "
+                         f"{list(origin)}; every vertex must be within {MAX_ORIGIN_DISTANCE_M / 1000:g} km of it "
+                         "(the local frame's distortion grows with the distance); put the origin in the area")
     fwd, _ = _projection(origin)
     local = [np.stack(fwd.transform(r[:, 0], r[:, 1]), -1) for r in rings]
-    return area_from_vertices(local[0], origin_lonlat=origin, holes_m=local[1:], name=name, source=source)
+    return area_from_vertices(local[0], origin_lonlat=origin, holes_m=[*local[1:], *holes_m], name=name,
+                              source=source)
+
+
+def _member(doc: dict, key: str, kind: type, source: str, where: str):
+    """``doc[key]`` if it is absent/None (returned as None) or of type ``kind``, else a one-line
+    refusal naming the member and the type found."""
+    value = doc.get(key)
+    if value is not None and not isinstance(value, kind):
+        raise ValueError(f"{source}: GeoJSON {where}{key!r} must be {_KIND_NAMES[kind]}; got "
+                         f"{type(value).__name__} {value!r:.60}")
+    return value
+
+
+_KIND_NAMES = {dict: "an object", list: "an array", str: "a string"}
 
 
 def _from_geojson(doc, source: str) -> SurveyArea:
     geom, props = doc, {}
     if doc.get("type") == "FeatureCollection":
-        polys = [f for f in doc.get("features", []) if (f.get("geometry") or {}).get("type") == "Polygon"]
+        features = _member(doc, "features", list, source, "") or []
+        for i, f in enumerate(features):
+            if not isinstance(f, dict):
+                raise ValueError(f"{source}: GeoJSON features[{i}] must be an object (a Feature); got "
+                                 f"{type(f).__name__} {f!r:.60}")
+            _member(f, "geometry", dict, source, f"features[{i}].")
+        polys = [f for f in features if (f.get("geometry") or {}).get("type") == "Polygon"]
         if not polys:
             raise ValueError(f"{source}: the FeatureCollection holds no Polygon feature")
         doc = polys[0]
     if doc.get("type") == "Feature":
-        geom, props = doc.get("geometry") or {}, doc.get("properties") or {}
+        geom = _member(doc, "geometry", dict, source, "Feature.") or {}
+        props = _member(doc, "properties", dict, source, "Feature.") or {}
     if geom.get("type") != "Polygon" or not geom.get("coordinates"):
         raise ValueError(f"{source}: expected a GeoJSON Polygon (or a Feature of one); got type {geom.get('type')!r}")
     rings = geom["coordinates"]
+    if not isinstance(rings, list) or not all(isinstance(r, list) for r in rings):
+        raise ValueError(f"{source}: GeoJSON Polygon 'coordinates' must be an array of rings (arrays of "
+                         f"[longitude, latitude] positions); got {rings!r:.60}")
     area = area_from_lonlat(rings[0], props.get("origin_lonlat"), holes_lonlat=rings[1:],
                             name=str(props.get("name", Path(source).stem)), source=source)
     return _depth_from(area, props, source)
@@ -242,7 +318,10 @@ def load_area(path: str | Path) -> SurveyArea:
         tries = [Path.cwd(), Path(os.environ.get(CALLER_DIR_ENV) or Path.cwd()), REPO_ROOT]
         p = next((d / p for d in tries if (d / p).is_file()), p)
     if not p.is_file():
-        raise ValueError(f"area file {path} does not exist")
+        raise ValueError(missing_file(path if str(path).strip() else "", "area file"))
+    if p.stat().st_size > MAX_FILE_BYTES:
+        raise ValueError(f"area file {path} has {p.stat().st_size:,} bytes, more than {MAX_FILE_BYTES:,}; "
+                         f"an area needs at most {MAX_VERTICES:,} vertices: simplify its boundary")
     area = _load_area(p, str(path))
     return replace(area, sha256=hashlib.sha256(p.read_bytes()).hexdigest(), path=str(p.resolve()))
 
@@ -253,6 +332,9 @@ def _load_area(p: Path, source: str) -> SurveyArea:
             doc = json.loads(p.read_text(encoding="utf-8-sig"))
         except ValueError as exc:
             raise ValueError(f"{source} is not valid JSON: {exc}") from None
+        except RecursionError:
+            raise ValueError(f"{source}: the JSON is nested too deeply to be a GeoJSON area (a Polygon "
+                             "nests three arrays)") from None
         if not isinstance(doc, dict):
             raise ValueError(f"{source}: a GeoJSON object is expected")
         return _from_geojson(doc, source)
@@ -272,7 +354,8 @@ def _load_area(p: Path, source: str) -> SurveyArea:
         out = area_from_vertices(area["vertices_m"], origin_lonlat=area.get("origin_lonlat"),
                                  holes_m=area.get("holes_m", ()), name=name, source=source)
     else:
-        out = area_from_lonlat(area["vertices_lonlat"], area.get("origin_lonlat"), name=name, source=source)
+        out = area_from_lonlat(area["vertices_lonlat"], area.get("origin_lonlat"), holes_m=area.get("holes_m", []),
+                               name=name, source=source)
     return _depth_from(out, area, source)
 
 

@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any
 
 from . import datadoc, schema
+from . import inputs as inputs_module
 from .datadoc import (KEY_PATTERN, SET_NOTE, SHIPPED_FILES, USER_TABLES, DataInputs, activate, active,  # noqa: F401
                       check_user_document, document, file_sha256, files_read, label_key, make_inputs,
                       merge, parse_set, shipped_document)
@@ -49,7 +50,7 @@ def validate(inputs: DataInputs) -> dict[str, Any]:
         if Path(path).is_dir():
             raise ValueError(f"data file {path} is a directory, not a TOML file")
         if not Path(path).is_file():
-            raise ValueError(f"data file {path} does not exist")
+            raise ValueError(inputs_module.missing_file(path, "data file"))
     try:
         doc = document(inputs)
         schema.check_known_keys(doc)

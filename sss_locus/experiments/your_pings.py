@@ -17,8 +17,10 @@ Per feature (sightings in file order; **data association is the user's**):
     *spread*: the largest horizontal distance between two of them (what a mosaic of the lines
     would disagree by);
 ``two``
-    with two or more sightings, the locus of the first two
-    (:func:`~sss_locus.geometry.locus.two_view_locus` with the platform's aperture and, with
+    with two or more sightings, the locus of the best pair
+    (:func:`~sss_locus.experiments.your_pings_views.best_pairs`: the two lines of sight most
+    different at the mean flat position; ``two_view_pair`` names the pair's sightings, 1-based
+    in file order) (:func:`~sss_locus.geometry.locus.two_view_locus` with the platform's aperture and, with
     ``sea_surface``, cropped to the water below the sea surface ``z = 0``): its arcs
     as points, total length and number of arcs, and the point of it nearest the mean of the two
     flat positions (:func:`~sss_locus.geometry.slant_range.two_view_points`, as the
@@ -38,7 +40,7 @@ Per feature (sightings in file order; **data association is the user's**):
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -47,10 +49,13 @@ import pandas as pd
 from ..geometry import sea_surface_half_space
 from ..geometry.multiview_points import multiview_points
 from ..geometry.slant_range import flat_seafloor_points, two_view_points
+from . import your_pings_views as views
 from .observations import LocalFrame
 from .reconstruction import STATUS_NAMES
 
-TWO_VIEW_NAMES = ("locus", "circle", "sphere")
+TWO_VIEW_NAMES = ("locus", "empty locus: circle point", "empty locus: sphere point")
+"""``two_view_status``: the point lies on the non-empty locus, or (the locus is empty: the two
+sightings do not agree within the beams) the fallback point on the circle or sphere."""
 
 
 @dataclass(frozen=True)
@@ -61,6 +66,9 @@ class PingResults:
     sightings: pd.DataFrame
     locus: pd.DataFrame
     frame: LocalFrame | None
+    excluded: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(
+        columns=["feature", "where", "slant_range_m", "transducer_height_m", "reason"]))
+    """Sightings set aside, each named (:mod:`~sss_locus.experiments.your_pings_views`)."""
 
 
 def sensor_poses(table: pd.DataFrame, platform) -> dict:
@@ -76,6 +84,14 @@ def sensor_poses(table: pd.DataFrame, platform) -> dict:
                                          table["roll_deg"].to_numpy(float)[rows])
     height = table["altitude_m"].to_numpy(float) + o[:, 2] - ref[:, 2]
     return dict(W=W, origin=o, ranges=table["slant_range_m"].to_numpy(float), height=height)
+
+
+def _squeeze(loc):
+    """A locus result of shape (n, 1) as one of shape (n,)."""
+    import dataclasses
+
+    return dataclasses.replace(loc, **{f.name: getattr(loc, f.name)[:, 0] for f in dataclasses.fields(loc)
+                                        if isinstance(getattr(loc, f.name), np.ndarray)})
 
 
 def _ellipse(cov):
@@ -100,6 +116,14 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
         raise ValueError(f"aperture_margin_deg must be a finite number >= 0; got {aperture_margin_deg!r}")
     if int(n_arc_points) < 2:
         raise ValueError(f"n_arc_points must be an integer >= 2; got {n_arc_points!r}")
+    pose = sensor_poses(table, platform)
+    bad = views.impossible(pose["ranges"], pose["height"])
+    excluded = views.excluded_table(table, pose["height"], bad)
+    if bad.all():
+        raise ValueError("no sighting left: " + views.excluded_sentence(excluded))
+    if bad.any():
+        table = table[~bad].reset_index(drop=True)
+        pose = sensor_poses(table, platform)
     names, fid = np.unique(table["feature"].to_numpy(str), return_inverse=True)
     first = pd.Series(np.arange(len(table))).groupby(fid).min().to_numpy()
     order = np.argsort(first, kind="stable")  # features in order of their first sighting
@@ -109,10 +133,9 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
     names = names[order]
     n = names.size
     slot = pd.Series(fid).groupby(fid).cumcount().to_numpy()
-    K = int(slot.max()) + 1
+    K = max(int(slot.max()) + 1, 3)  # three columns at least: the two- and N-view steps read them
     mask = np.zeros((n, K), bool)
     mask[fid, slot] = True
-    pose = sensor_poses(table, platform)
     aperture = platform.sonar.aperture()
 
     def grid(a, fill=0.0):
@@ -130,14 +153,23 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
     dh = np.linalg.norm(fp[:, :, None, :2] - fp[:, None, :, :2], axis=-1)
     spread = np.max(np.where(mask[:, :, None] & mask[:, None, :], dh, 0.0), axis=(1, 2))
 
-    # two views: the first two sightings of each feature
-    has2 = count >= 2
-    hs = {}
-    if sea_surface:  # the locus is cropped to the water: below the sea surface z = 0
-        normals, offsets = sea_surface_half_space(np.maximum(-o[:, 0, 2], 0.0), W[:, 0])
-        hs = dict(half_space_normals=normals, half_space_offsets=offsets)
-    loc, near, two = two_view_points(W[:, 0], o[:, 0], W[:, 1], o[:, 1], r[:, 0], r[:, 1], 0.5 * (fp[:, 0] + fp[:, 1]),
-                                     aperture, aperture, **hs)
+    # two views: the best pair of each feature's sightings (your_pings_views.best_pairs)
+    def pair_loci(i, j):  # the loci of the pairs of slots (i, j), cropped to the water
+        Wi, oi = W[np.arange(n)[:, None], i], o[np.arange(n)[:, None], i]
+        hs = {}
+        if sea_surface:  # the locus is cropped to the water: below the sea surface z = 0
+            normals, offsets = sea_surface_half_space(np.maximum(-oi[..., 2], 0.0), Wi)
+            hs = dict(half_space_normals=normals, half_space_offsets=offsets)
+        k = np.arange(n)[:, None]
+        return Wi, oi, two_view_points(Wi, oi, W[k, j], o[k, j], r[k, i], r[k, j], 0.5 * (fp[k, i] + fp[k, j]),
+                                       aperture, aperture, **hs)
+
+    a, b = views.pair_slots(K)
+    every = pair_loci(np.broadcast_to(a, (n, a.size)), np.broadcast_to(b, (n, b.size)))[2][0]
+    pi, pj, has2 = views.best_pairs(o, mean_flat, mask, np.nan_to_num(every.length))
+    W1, o1, (loc, near, two) = pair_loci(pi[:, None], pj[:, None])
+    W1, o1, two = W1[:, 0], o1[:, 0], two[:, 0]
+    loc, near = _squeeze(loc), {k: v[:, 0] for k, v in near.items()}
 
     # N views: every sighting of each feature with three or more
     res = multiview_points(W, o, r, sig, mask, aperture, prior=mean_flat, aperture_margin_deg=aperture_margin_deg,
@@ -148,12 +180,13 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
     feats = pd.DataFrame({"feature": names, "n_sightings": count,
                           "flat_east_m": mean_flat[:, 0], "flat_north_m": mean_flat[:, 1], "flat_up_m": mean_flat[:, 2],
                           "flat_spread_m": spread,
-                          "two_view_status": np.where(has2, np.array(TWO_VIEW_NAMES)[near["status"]], "too few views"),
+                          "two_view_status": np.where(has2, np.array(TWO_VIEW_NAMES)[near["status"]], views.ONE_SIGHTING),
+                          "two_view_pair": np.where(has2, [f"{a + 1}+{b + 1}" for a, b in zip(pi, pj)], ""),
                           "locus_length_m": np.where(has2, loc.length, np.nan),
                           "locus_arcs": np.where(has2, loc.n_arcs, 0)})
     for j, axis in enumerate(("east", "north", "up")):
         feats[f"two_view_{axis}_m"] = np.where(has2, two[:, j], np.nan)
-    feats["nview_status"] = [STATUS_NAMES[int(s)] for s in res.status]
+    feats["nview_status"] = np.where(count >= 2, [STATUS_NAMES[int(s)] for s in res.status], views.ONE_SIGHTING)
     for j, axis in enumerate(("east", "north", "up")):
         feats[f"nview_{axis}_m"] = nview[:, j]
     feats["nview_cost"] = np.where(res.estimated, res.cost, np.nan)
@@ -175,7 +208,7 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
                           transducer_height_m=pose["height"], flat_east_m=flat["point"][:, 0],
                           flat_north_m=flat["point"][:, 1], flat_up_m=flat["point"][:, 2],
                           flat_below_altitude=flat["below_altitude"])
-    locus = locus_points(loc, W[:, 0], o[:, 0], names, has2, int(n_arc_points))
+    locus = locus_points(loc, W1, o1, names, has2, int(n_arc_points))
     if frame is not None:
         for tab, pre in ((feats, "flat"), (feats, "two_view"), (feats, "nview"), (sights, "flat"), (sights, "sensor"),
                          (locus, "")):
@@ -183,17 +216,21 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
             lon, lat = frame.to_lonlat(tab[e], tab[nn])
             tab[e.replace("east_m", "lon_deg")] = np.where(np.isfinite(tab[e]), lon, np.nan)
             tab[nn.replace("north_m", "lat_deg")] = np.where(np.isfinite(tab[nn]), lat, np.nan)
-    return PingResults(features=feats, sightings=sights, locus=locus, frame=frame)
+    return PingResults(features=feats, sightings=sights, locus=locus, frame=frame, excluded=excluded)
 
 
-def read_checked(path, platform=None, *, missing_attitude: str = "refuse", range_sigma_m: float = 0.1):
+def read_checked(path, platform=None, *, missing_attitude: str = "refuse", range_sigma_m: float = 0.1,
+                 sample_order: str = "detect", towfish: str = "auto"):
     """The validated sightings of a CSV or XTF matches file
     (:func:`~sss_locus.experiments.observations_xtf.read_observations`) and the platform they
     name (default: the file's platform key, from the data files); a slant range outside the
-    sonar's range limits is refused naming its line. Returns ``(table, platform)``."""
+    sonar's range limits is refused naming its line. ``sample_order`` and ``towfish``: how an
+    XTF file's channels and positions are read (:mod:`~sss_locus.experiments.sample_order`,
+    :mod:`~sss_locus.experiments.towfish`). Returns ``(table, platform)``."""
     from .observations_xtf import read_observations
 
-    table = read_observations(path, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
+    table = read_observations(path, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m,
+                              sample_order=sample_order, towfish=towfish)
     key, where = table["platform"].iloc[0], f"{Path(path).name} line {table['line'].iloc[0]}, column platform"
     if platform is None:  # only this platform's data entries are read (a run is stale only when they change)
         from .platforms import load_platform
@@ -212,17 +249,29 @@ def read_checked(path, platform=None, *, missing_attitude: str = "refuse", range
         raise ValueError(f"{Path(path).name} line {r['line']}: slant range {r['slant_range_m']:.6g} m is {how} range: "
                          f"{platform.key!r} ({sonar.name}) sees [{sonar.min_range_m:g}, {sonar.max_range_m:g}] m "
                          f"(sonars.{sonar.key} in the data files)")
+    from .observations import to_local_frame
+
+    pose = sensor_poses(to_local_frame(table)[0], platform)
+    bad = views.impossible(pose["ranges"], pose["height"])
+    if bad.all():
+        raise ValueError(f"{Path(path).name}: no sighting left: "
+                         + views.excluded_sentence(views.excluded_table(table, pose["height"], bad)))
     return table, platform
 
 
 def run(path, platform=None, origin: LocalFrame | None = None, *, missing_attitude: str = "refuse",
-        range_sigma_m: float = 0.1, **kw) -> PingResults:
+        range_sigma_m: float = 0.1, sample_order: str = "detect", towfish: str = "auto", **kw) -> PingResults:
     """Read a sightings CSV or an XTF matches file and check it (:func:`read_checked`), put it in
-    the local frame and :func:`analyse` it with ``platform`` (default: the file's platform key)."""
+    the local frame, move towed sensors back by their layback
+    (:func:`~sss_locus.experiments.towfish.apply_layback`) and :func:`analyse` it with
+    ``platform`` (default: the file's platform key)."""
     from .observations import to_local_frame
+    from .towfish import apply_layback
 
-    table, platform = read_checked(path, platform, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
+    table, platform = read_checked(path, platform, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m,
+                                   sample_order=sample_order, towfish=towfish)
     table, frame = to_local_frame(table, origin)
+    table = apply_layback(table)
     return analyse(table, platform, frame, **kw)
 
 

@@ -101,17 +101,21 @@ def _rotation(V):
     return Rotation.from_matrix(V)
 
 
-def xtf_tables(sights: pd.DataFrame, file_name: str) -> tuple[pd.DataFrame, pd.DataFrame]:
+def xtf_tables(sights: pd.DataFrame, file_name: str, port_order: str = "far_first") -> tuple[pd.DataFrame, pd.DataFrame]:
     """One XTF ping per sighting (the return drawn at its sample on its side), and the matches
     table that names it: ``(pings, matches)`` for
-    :func:`~sss_locus.experiments.observations_xtf.write_xtf` and the matches CSV."""
+    :func:`~sss_locus.experiments.observations_xtf.write_xtf` (with the same ``port_order``)
+    and the matches CSV, whose ``sample`` is the index as stored (a port sample of a
+    far-to-near channel counted from the far end)."""
     k = np.arange(len(sights))
     port = (sights["side"] == "port").to_numpy()
     pings = sights[["lon_deg", "lat_deg", "depth_m", "altitude_m", "heading_deg", "pitch_deg", "roll_deg",
                     "time_s", "range_setting_m", "n_samples"]].assign(
         ping=k, echo_port=np.where(port, sights["sample"], -1), echo_starboard=np.where(port, -1, sights["sample"]))
     matches = pd.DataFrame({"feature": sights["feature"], "platform": sights["platform"], "file": file_name,
-                            "ping": k, "channel": np.where(port, 0, 1), "sample": sights["sample"],
+                            "ping": k, "channel": np.where(port, 0, 1),
+                            "sample": np.where(port & (port_order == "far_first"),
+                                               sights["n_samples"] - 1 - sights["sample"], sights["sample"]),
                             "range_sigma_m": sights["range_sigma_m"]})
     return pings, matches
 

@@ -5,7 +5,7 @@ the sea surface, m, negative below) and the comparison with a known truth (the w
 GeoJSON features (``properties.kind``):
 
 ``locus``
-    one LineString per arc of a feature's two-view locus (first two sightings), with the
+    one LineString per arc of a feature's two-view locus (its best pair of sightings), with the
     feature's locus length and arc count;
 ``nview``
     the N-view position (where estimated), with its status, cost and the 1-sigma uncertainty
@@ -13,6 +13,9 @@ GeoJSON features (``properties.kind``):
     ``ellipse_azimuth_deg`` (major axis, clockwise from grid north), ``sigma_up_m``;
 ``two_view``
     the point of the locus nearest the mean flat-seafloor position (two or more sightings);
+``two_view_empty_locus``
+    where that locus is empty (the pair does not agree within the beams): the fallback point on
+    the circle or sphere, which is not a locus point;
 ``flat_mean`` and ``flat``
     the mean flat-seafloor position with the spread, and each sighting's.
 """
@@ -24,6 +27,7 @@ import json
 import numpy as np
 import pandas as pd
 
+from .inputs import missing_file
 from .your_pings import PingResults
 
 #: Decimal places of written coordinates: 1e-9 deg is about 0.1 mm; heights to 0.1 mm.
@@ -67,7 +71,8 @@ def geojson(res: PingResults, *, notice: str = "") -> dict:
                 ellipse_azimuth_deg=r["ellipse_azimuth_deg"], sigma_up_m=r["sigma_up_m"])
         if np.isfinite(r["two_view_east_m"]):
             add({"type": "Point", "coordinates": _point(r["two_view_lon_deg"], r["two_view_lat_deg"], r["two_view_up_m"])},
-                kind="two_view", feature=r["feature"], status=r["two_view_status"], locus_length_m=r["locus_length_m"])
+                kind="two_view" if r["two_view_status"] == "locus" else "two_view_empty_locus",
+                feature=r["feature"], status=r["two_view_status"], locus_length_m=r["locus_length_m"])
         add({"type": "Point", "coordinates": _point(r["flat_lon_deg"], r["flat_lat_deg"], r["flat_up_m"])},
             kind="flat_mean", feature=r["feature"], n_sightings=int(r["n_sightings"]), flat_spread_m=r["flat_spread_m"])
     for _, s in res.sightings.iterrows():
@@ -94,6 +99,8 @@ def against_truth(res: PingResults, truth: pd.DataFrame) -> pd.DataFrame:
     for est in ("flat", "two_view", "nview"):
         d = t[[f"{est}_east_m", f"{est}_north_m", f"{est}_up_m"]].to_numpy() - t[["east_m", "north_m", "up_m"]].to_numpy()
         ok = np.isfinite(d).all(axis=1)
+        if est == "two_view":  # an empty locus has no locus point (its fallback is not one)
+            ok &= (t["two_view_status"] == "locus").to_numpy()
         rows.append(pd.DataFrame({"feature": t["feature"][ok], "estimator": est, "n_sightings": t["n_sightings"][ok],
                                   "error_h_m": np.hypot(d[ok, 0], d[ok, 1]), "error_up_m": d[ok, 2]}))
     return pd.concat(rows, ignore_index=True)
@@ -114,9 +121,24 @@ def read_truth(truth, observations) -> pd.DataFrame | None:
     if truth.resolve().parent == example and observations.resolve().parent != example:
         return None
     if not truth.is_file():
-        raise ValueError(f"truth file {truth} does not exist")
-    table = pd.read_csv(truth, comment="#")
+        raise ValueError(missing_file(truth, "truth file"))
+    try:
+        table = pd.read_csv(truth, comment="#", dtype={"feature": str})
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"truth file {truth.name}: not UTF-8 text (byte {exc.start})") from None
+    except (pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
+        raise ValueError(f"truth file {truth.name}: not a readable CSV file ({str(exc).strip().splitlines()[-1]})") from None
     missing = [c for c in ("feature", "east_m", "north_m", "up_m") if c not in table.columns]
     if missing:
-        raise ValueError(f"{truth.name}: missing column(s) {missing}")
+        raise ValueError(f"truth file {truth.name}: missing column(s) {missing}; the header has {list(table.columns)}")
+    for c in ("east_m", "north_m", "up_m"):
+        values = pd.to_numeric(table[c], errors="coerce")
+        bad = ~np.isfinite(values.to_numpy(float))
+        if bad.any():
+            raise ValueError(f"truth file {truth.name} row {int(np.flatnonzero(bad)[0]) + 1}, column {c}: "
+                             f"must be a finite number of metres; got {table[c].iloc[int(np.flatnonzero(bad)[0])]!r}")
+        table[c] = values.astype(float)
+    if table["feature"].duplicated().any():
+        raise ValueError(f"truth file {truth.name}: feature {table['feature'][table['feature'].duplicated()].iloc[0]!r} "
+                         "appears twice")
     return table.astype({"feature": str})

@@ -143,6 +143,15 @@ def _starts(W, o, r, mask, prior):
     return start0, start1, has1, res.status.astype(np.int8), res.plane_angle_deg
 
 
+def _too_few_views(prior, counts) -> MultiViewResult:
+    """The result when no feature has three views: each at its ``prior``, status TOO_FEW_VIEWS."""
+    n = len(counts)
+    return MultiViewResult(point=np.array(prior, float), status=np.full(n, MultiViewStatus.TOO_FEW_VIEWS, np.int8),
+                           covariance=np.full((n, 3, 3), np.inf), cost=np.zeros(n), n_views=counts,
+                           n_admissible=np.zeros(n, np.int64), three_view_status=np.full(n, -1, np.int8),
+                           plane_angle_deg=np.zeros(n), n_iter=np.zeros(n, np.int64))
+
+
 def multiview_points(W, origin, ranges, sigmas, mask, aperture: Aperture, *, prior=None,
                      cost_limit=np.inf, aperture_margin_deg=0.0, ceiling_m=np.inf,
                      max_iter: int = 100) -> MultiViewResult:
@@ -204,6 +213,8 @@ def multiview_points(W, origin, ranges, sigmas, mask, aperture: Aperture, *, pri
 
     ok3 = counts >= 3
     idx = np.flatnonzero(ok3)
+    if idx.size == 0:  # no feature has three views (e.g. fewer than three view slots): every one
+        return _too_few_views(prior, counts)  # is TOO_FEW_VIEWS at its prior, as documented
     m = idx.size
     Wi, oi, ri, mi = W[idx], o[idx], r[idx], mask[idx]
     si = np.where(mi, s[idx], 1.0)

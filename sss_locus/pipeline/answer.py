@@ -20,6 +20,7 @@ from typing import Any
 import pandas as pd
 
 from sss_locus.experiments.pose_stats import round_sig
+from sss_locus.pipeline import budgets
 from sss_locus.pipeline.registry import ParameterError, get_entry
 
 #: The chapters whose computations the answer repeats, and the parameter naming the platform.
@@ -41,6 +42,7 @@ def _parameters(profile: str, key: str, pairs: list[list[str]]) -> tuple[dict[st
         mine = {n: v for n, v in overrides.items() if n in entry.parameters()}
         mine["platforms"] = f'["{key}"]'
         out.append(entry.resolve(profile, mine, from_text=True))
+        budgets.check_parameters(out[-1])
     return out[0], out[1]
 
 
@@ -100,12 +102,22 @@ def answer(key: str, profile: str = "quick", pairs: list[list[str]] | None = Non
     log(text_table(bands_rows(result["bands"])) if len(result["bands"]) else "  (no bands: the curve is flat)")
     log("")
     log(f"Top drivers of locus length (Spearman rho over {result['n_pose']:,} pose-space samples, "
-        f"sampling profile {pose['profile']!r}, seed {pose['seed']}; 95 % interval from {pose['n_batches']} replicate batches):")
+        f"sampling profile {pose['profile']!r}, seed {pose['seed']}; 95 % interval from {_batches(result, pose)}):")
     log(text_table(driver_rows(result["rho"], top)))
     log("")
     log(f"computed in {time.perf_counter() - start:.1f} s (planning and pose_space chapters' code, profile "
         f"{profile!r}; `sss-locus book --name NAME` draws the figures)")
     return result
+
+
+def _batches(result: dict[str, Any], pose: dict[str, Any]) -> str:
+    """The replicate batches the interval used (fewer than asked when there are too few samples
+    for batches of three rows), said as such."""
+    used = int(result["rho"].attrs.get("n_batches", pose["n_batches"]))
+    if used == pose["n_batches"]:
+        return f"{used} replicate batches"
+    return (f"{used} replicate batches (n_batches = {pose['n_batches']} asked; {result['n_pose']:,} samples "
+            "make at most one batch of three rows per three samples)")
 
 
 def _sig(x: float) -> str:

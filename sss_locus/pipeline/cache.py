@@ -276,12 +276,15 @@ def prune(cache_dir: Path | None = None) -> dict[str, int]:
     are broken); and temporary folders whose writing process is gone. Returns the counts of
     :func:`usage` (taken before deleting) plus ``removed`` and ``freed`` bytes. With the default
     cache it also deletes the build area's staging folders of runs that were killed
-    (:func:`sss_locus.pipeline.orphans.remove_stale_staging`)."""
+    (:func:`sss_locus.pipeline.orphans.remove_stale_staging`) and the hidden files of commits
+    killed midway beside its figures and executed copies
+    (:func:`sss_locus.pipeline.orphans.remove_stale_temporaries`)."""
     report = usage(cache_dir, prune_unreachable=True)
     if cache_dir is None:
-        removed, freed = orphans.remove_stale_staging(paths.build_dir() / "tmp")
-        report["removed"] += removed
-        report["freed"] += freed
+        for removed, freed in (orphans.remove_stale_staging(paths.build_dir() / "tmp"),
+                               orphans.remove_stale_temporaries(paths.figures_dir(), paths.executed_dir())):
+            report["removed"] += removed
+            report["freed"] += freed
     return report
 
 

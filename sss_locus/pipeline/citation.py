@@ -15,7 +15,9 @@ DOI) is generated from ``CITATION.cff``; regenerate it after editing the CFF fil
     .venv/bin/python -m sss_locus.pipeline.citation --check  # exit 1 if it is out of date
 
 Every BibTeX field is valid LaTeX: TeX specials outside ``$...$`` math are escaped, non-ASCII
-characters become LaTeX commands (``latexcodec``, a dependency of ``sphinxcontrib-bibtex``) and
+characters become LaTeX commands (``latexcodec``, a dependency of ``sphinxcontrib-bibtex``), or, for
+characters LaTeX has none for (a name in any script), ASCII
+(:func:`sss_locus.pipeline.latex_ascii.transliterate`), and
 the Markdown emphasis of captions becomes ``\\emph``/``\\textbf``/``\\texttt``.
 """
 
@@ -31,6 +33,7 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
+from sss_locus.pipeline.latex_ascii import transliterate
 
 ZENODO_FILE: Path = paths.REPO_ROOT / ".zenodo.json"
 #: Site folder (``_extra/notebooks``) holding the executed notebooks offered for download.
@@ -59,10 +62,7 @@ def _escape_text(text: str) -> str:
             try:
                 out.append("{" + codecs.encode(char, "ulatex+ascii") + "}")
             except UnicodeEncodeError:
-                raise ValueError(
-                    f"character {char!r} (U+{ord(char):04X}) has no LaTeX equivalent; "
-                    "use ASCII, $...$ math or a common accented letter or symbol"
-                ) from None
+                out.append(transliterate(char, _SPECIALS))
     return "".join(out)
 
 

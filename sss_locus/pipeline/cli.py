@@ -11,9 +11,12 @@ Examples::
     sss-locus run pose_space --data my.toml -p platforms '["my_auv"]' --name my_auv  # your sonar and vehicle
     sss-locus book --data my.toml -p platforms '["my_auv"]' --name my_auv  # its book: _build/my_auv/html
     sss-locus answer --data my.toml -p platform my_auv  # bands and drivers in the terminal, no book
+    sss-locus xtf survey.xtf             # channels, sample order, pings, layback of an XTF file
 
 A run on other inputs than the paper's (--data, --set, other platforms) goes into a build area of
 its own with --name; into the reproduction (_build/) it is refused unless --replace-reproduction.
+A side run (--output PATH) writes only beside PATH, which must lie outside _build/ (the
+reproduction and every named area, whatever --name says); --replace-reproduction is refused with it.
 
 Every parameter value is checked (type, range, allowed values, memory) before a kernel starts.
 A failing notebook is reported in one line (cell and error); add --verbose for the traceback.
@@ -109,6 +112,12 @@ def _parser() -> argparse.ArgumentParser:
     ans.add_argument("--top", type=int, default=5, help="drivers shown (default: 5)")
     _data_arguments(ans)
 
+    xtf = sub.add_parser("xtf", help="a one-screen summary of an XTF file (channels, sides, sample order, range, "
+                         "pings, time, layback), for writing a matches file")
+    xtf.add_argument("file", help="the XTF file")
+    xtf.add_argument("--sample-order", default="detect", choices=("detect", "near_first", "port_far_first"),
+                     help="which end of each channel is the near end (default: detect it from the data)")
+
     sub.add_parser("list", help="list the registered notebooks")
     return parser
 
@@ -122,7 +131,11 @@ def _run(args: argparse.Namespace) -> int:
     if args.output is None:
         parameters = resolve_parameters(entry, args.profile, overrides, from_text=True, data=data)
         areas.check_reproduction([(entry, parameters)], replace=args.replace_reproduction)
-    _say_area()
+        _say_area()
+    elif args.replace_reproduction:  # one rule: a side run writes beside --output and nowhere else
+        raise ValueError("--replace-reproduction and --output contradict each other: a side run writes only "
+                         "beside --output (outside every build area) and never replaces the reproduction; "
+                         "drop one of them")
     run_notebook(entry, args.profile, overrides, from_text=True, output=args.output, data=data)
     if args.output:  # a side run leaves the book as it was: nothing to rebuild
         return 0
@@ -208,6 +221,13 @@ def _answer(args: argparse.Namespace) -> int:
     return 0
 
 
+def _xtf(args: argparse.Namespace) -> int:
+    from sss_locus.pipeline.xtfinfo import summary_lines
+
+    print("\n".join(summary_lines(args.file, args.sample_order)))
+    return 0
+
+
 def _list(_: argparse.Namespace) -> int:
     for entry in load_registry().values():
         print(f"{entry.name:20s} {entry.source_relative:35s} profiles: {', '.join(entry.profiles)}")
@@ -226,13 +246,24 @@ def _cache(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check_cache_folder() -> None:
+    """The result cache must be a folder this process can write (or create), before any work."""
+    from sss_locus.pipeline.preflight import check_writable
+
+    given = os.environ.get(paths.CACHE_DIR_ENV)
+    check_writable(paths.cache_dir(), f"result cache ({paths.CACHE_DIR_ENV})" if given else "result cache")
+
+
 def main(argv: list[str] | None = None) -> int:
     from sss_locus.pipeline.runner import NotebookFailed
 
     args = _parser().parse_args(argv)
     handler = {"run": _run, "book": _book, "params": _params, "list": _list, "cache": _cache,
-               "answer": _answer}[args.command]
+               "answer": _answer, "xtf": _xtf}[args.command]
     try:
+        if args.command in ("run", "answer") or (args.command == "book" and not args.no_run) or \
+                (args.command == "cache" and args.prune):
+            _check_cache_folder()
         with areas.entered(getattr(args, "name", None)):
             if args.command in ("run", "book"):
                 with scaleout.scheduler_environment(args):

@@ -3,8 +3,11 @@
 A side run's ``--output`` (:func:`check_side_output`) must:
 
 * name a notebook file (``.ipynb``), not an existing directory;
-* lie outside the build area, outside ``notebooks/`` and not over a file git tracks (the
-  committed notebooks, data and book pages are sources, never outputs);
+* lie outside every build area: the reproduction's (``_build/``, or ``$SSS_LOCUS_BUILD_DIR``
+  without ``--name``) with all its named areas ``_build/NAME``, whatever ``--name`` is given
+  (:func:`build_roots`), and its ``figures/`` folder too (a link there is followed); outside the
+  result cache, outside ``notebooks/`` and not over a file git tracks (the committed notebooks,
+  data and book pages are sources, never outputs);
 * lie in a folder this process can write (the nearest existing folder is probed);
 * not take the folder of another side run of the same notebook: the figures of a side run go
   into ``figures/`` beside its notebook, one set per notebook, so a second ``--output`` in the
@@ -54,6 +57,32 @@ def check_writable(folder: Path, what: str) -> None:
     os.unlink(probe)
 
 
+def build_roots() -> list[Path]:
+    """Folders no side run may write into: the reproduction's build area (which holds every named
+    area, ``_build/NAME``) as this process sees it, and the repository's default ``_build/``."""
+    current = paths.build_dir().resolve()
+    reproduction = current.parent if paths.build_name() else current
+    return list(dict.fromkeys([reproduction, (paths.REPO_ROOT / "_build").resolve()]))
+
+
+def _within(path: Path, folder: Path) -> bool:
+    return path == folder or folder in path.parents
+
+
+def _check_outside_builds(path: Path) -> None:
+    figures = (path.parent / paths.FIGURES_SUBDIR).resolve()  # follows a link named figures/
+    for root in build_roots():
+        for written, what in ((path, "is"), (figures, "would put its figures")):
+            if _within(written, root):
+                raise OutputError(
+                    f"--output {path} {what} inside the build area {root}{' (' + str(written) + ')' if written != path else ''}, "
+                    "which holds the reproduction and every named area (--name): a side run must write "
+                    "elsewhere (run without --output to update a book)")
+    cache = paths.cache_dir().resolve()
+    if _within(path, cache) or _within(figures, cache):
+        raise OutputError(f"--output {path} is inside the result cache {cache}: write side runs elsewhere")
+
+
 def _tracked(path: Path) -> bool:
     """Whether git tracks ``path`` in the project's repository (False without git)."""
     try:
@@ -101,9 +130,7 @@ def check_side_output(output: str | Path, entry: Any) -> Path:
                           f"{path / (entry.name + '.ipynb')}")
     if path.suffix != ".ipynb":
         raise OutputError(f"--output {path}: name a notebook file ending in .ipynb")
-    if paths.build_dir().resolve() in path.parents:
-        raise OutputError(f"--output {path} is inside the build area {paths.build_dir()}: "
-                          "side runs must go elsewhere (run without --output to update the book)")
+    _check_outside_builds(path)
     if paths.NOTEBOOKS_DIR.resolve() in path.parents:
         raise OutputError(f"--output {path} is inside {paths.NOTEBOOKS_DIR}, the notebooks' sources: "
                           "write side runs elsewhere")

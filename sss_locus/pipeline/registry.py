@@ -196,6 +196,10 @@ def _from_text(param: Parameter, text: str) -> Any:
     except (ValueError, SyntaxError):
         if param.type == "any":
             return text
+        word = re.search(r"(?i)\b(nan|inf|infinity)\b", text)
+        if word:
+            raise ParameterError(f"parameter {param.name!r} = {text!r}: {word.group(0)!r} is not a number here; "
+                                 f"every number must be finite{_allowed(param)}") from None
         raise ParameterError(f"parameter {param.name!r} = {text!r}: expected a value of type "
                              f"{param.type}{_allowed(param)}") from None
 

@@ -37,8 +37,8 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import (atomic, export, faults, kernels, orphans, outputs, paperinputs, paramcell, preflight,
-                                progress, provenance, userfiles)
+from sss_locus.pipeline import (atomic, budgets, export, faults, kernels, orphans, outputs, paperinputs, paramcell,
+                                preflight, progress, provenance, userfiles)
 from sss_locus.pipeline.kernels import KERNEL_NAME, hermetic_env, install_kernelspec
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
@@ -65,6 +65,7 @@ def resolve_parameters(entry: NotebookEntry, profile: str, overrides: dict[str, 
     (``data``, a :class:`sss_locus.experiments.userdata.DataInputs` from ``--data``/``--set``)
     as the ``data_files``/``data_set`` parameters of a notebook that declares them."""
     parameters = entry.resolve(profile, overrides, from_text=from_text)
+    budgets.check_parameters(parameters)  # memory and time the parameters alone would take
     parameters.update(userfiles.file_parameters(parameters))  # a user's observations or area file, read
     if data is not None and not data.is_default:
         for name, value in (("data_files", list(data.files)), ("data_set", list(data.sets))):
@@ -214,10 +215,13 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     figures = executed.parent / paths.FIGURES_SUBDIR if side else paths.figures_dir()
     if not side:
         preflight.check_writable(paths.build_dir(), "build area")
+        for folder, what in ((executed.parent, "executed-copies folder"), (figures, "figures folder")):
+            preflight.check_writable(folder, what)  # a read-only one found now, not at the commit
     executed.parent.mkdir(parents=True, exist_ok=True)
     tmp_root = executed.parent if side else paths.build_dir() / "tmp"
     tmp_root.mkdir(parents=True, exist_ok=True)
     orphans.remove_stale_staging(tmp_root)  # left by runs that were killed (SIGKILL)
+    orphans.remove_stale_temporaries(figures, executed.parent)  # ... during their commit
     staging = tmp_root / f".run-{entry.name}-{os.getpid()}-{uuid.uuid4().hex[:12]}"
     key = run_key(entry, profile, parameters)
     env = hermetic_env()

@@ -70,6 +70,9 @@ def file_parameters(parameters: dict) -> dict[str, str]:
     its ``*_sha256`` parameter), resolved and hashed (:func:`observation_parameters`,
     :func:`area_parameters`), after reading the files as the chapter will (:func:`check_files`)."""
     out = {}
+    for name in ("observations", "area"):
+        if name in parameters and f"{name}_sha256" in parameters and not _unquote(str(parameters[name])):
+            raise ValueError(f"-p {name}: the path is empty; give the {name} file's name")
     if "observations" in parameters and "observations_sha256" in parameters:
         out.update(observation_parameters(parameters["observations"], parameters.get("truth")))
     if "area" in parameters and "area_sha256" in parameters:
@@ -81,31 +84,55 @@ def file_parameters(parameters: dict) -> dict[str, str]:
 def check_files(parameters: dict) -> None:
     """Read the user's files of a run (:func:`file_parameters`) as its chapter will, before a
     kernel starts: a bad area (not a valid polygon, no water depth, no line of a platform's
-    standard plan) or bad observations (a row, column or XTF byte offset) are refused in one line
-    naming the parameter. The data files (``--data``) must be in use (they define the platforms)."""
+    standard plan, over the memory or time budget: :mod:`sss_locus.pipeline.budgets`), bad
+    observations (a row, column or XTF byte offset, a sighting far from the frame's origin), a
+    bad ``origin`` or ``truth`` file are refused in one line naming the parameter. The data files (``--data``) must be in use (they define the platforms)."""
     name = "area" if "area_sha256" in parameters else "observations" if "observations_sha256" in parameters else None
     if name is None or name not in parameters:
         return
     given = Path(parameters[name])  # resolved (file_parameters), or as typed when not found
     path = paths.REPO_ROOT / given if (paths.REPO_ROOT / given).is_file() else given
+    if not path.is_file():  # say what it is: a folder, a FIFO, a device ...
+        from sss_locus.experiments.inputs import missing_file
+
+        raise ValueError(f"-p {name}: {missing_file(path, f'{name} file')}")
     try:
         if name == "area":
             from sss_locus.experiments import survey_design as sd
             from sss_locus.experiments.platforms import load_platform
             from sss_locus.experiments.survey_area import load_area
+            from sss_locus.experiments.survey_plans import load_settings
+            from sss_locus.pipeline.budgets import check_survey_design
 
             area = load_area(path)
             if parameters.get("water_depth_m"):
                 from sss_locus.experiments.survey_area import with_water_depth
 
                 area = with_water_depth(area, parameters["water_depth_m"], "-p water_depth_m")
-            for key in parameters.get("platforms", []):
-                sd.standard_for(sd.make_setting(load_platform(key), area, parameters["terrain"], seed=parameters["seed"],
+            platforms = [load_platform(key) for key in parameters.get("platforms", [])]
+            check_survey_design(parameters, area, platforms, load_settings())  # before the features are drawn
+            for platform in platforms:
+                sd.standard_for(sd.make_setting(platform, area, parameters["terrain"], seed=parameters["seed"],
                                                 n_features=parameters["n_features"], grid_m=parameters["grid_m"]))
         else:
+            from sss_locus.experiments.observations import frame_from_origin, to_local_frame
             from sss_locus.experiments.your_pings import read_checked
+            from sss_locus.experiments.your_pings_files import read_truth
 
-            read_checked(path, missing_attitude=parameters["missing_attitude"], range_sigma_m=parameters["range_sigma_m"])
+            table, _ = read_checked(path, missing_attitude=parameters["missing_attitude"],
+                                    range_sigma_m=parameters["range_sigma_m"],
+                                    **{k: parameters[k] for k in ("sample_order", "towfish") if k in parameters})
+            # a file where no feature is seen twice is valid: each feature gets its flat-seafloor
+            # positions and the status "one sighting: no locus" (issue 36)
+            name, observed, path = "origin", path, Path("")
+            frame = frame_from_origin(parameters.get("origin"))
+            name, path = "observations", observed
+            to_local_frame(table, frame)  # every sighting near the frame's origin
+            if parameters.get("truth"):
+                name = "truth"
+                truth = Path(parameters["truth"])
+                path = truth if truth.is_absolute() else paths.REPO_ROOT / truth
+                read_truth(path, observed)
     except ValueError as exc:
-        shown = path.name if path.name not in str(exc) else ""  # the file, once
+        shown = path.name if path.name and path.name not in str(exc) else ""  # the file, once
         raise ValueError(f"-p {name}{' ' + shown if shown else ''}: {exc}") from None

@@ -16,12 +16,15 @@ import pandas as pd
 from matplotlib.colors import to_hex
 from matplotlib.patches import Ellipse
 
+from ..experiments.your_pings_views import ONE_SIGHTING, excluded_sentence
 from .style import PAGE_WIDTH_IN, platform_title
 from .text import fmt_sig
 
 ESTIMATES = {"flat": ("flat seafloor, mean of the sightings", "black", "s"),
-             "two_view": ("two views: locus point nearest the flat mean", "tab:orange", "^"),
+             "two_view": ("two views (best pair): locus point nearest the flat mean, non-empty loci only", "tab:orange", "^"),
              "nview": ("N views, least squares (1-sigma ellipse x 3)", "tab:blue", "D")}
+MIN_HALF_WIDTH_M = 1.0
+"""A feature's panel shows at least this far (m) around its flat-seafloor mean."""
 ELLIPSE_SCALE = 3.0
 """The drawn ellipses are this many standard deviations (1-sigma ones would be invisible)."""
 
@@ -35,12 +38,14 @@ def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str =
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(PAGE_WIDTH_IN, 4.2), width_ratios=(1.2, 1.0), layout="constrained")
     ax.scatter(s["sensor_east_m"], s["sensor_north_m"], s=6, c="0.6", marker=".", label="sensor at each sighting")
     for key, (name, colour, marker) in ESTIMATES.items():
-        ax.scatter(f[f"{key}_east_m"], f[f"{key}_north_m"], s=22, c=colour, marker=marker, label=name, zorder=3)
+        g = drawn(f, key)
+        ax.scatter(g[f"{key}_east_m"], g[f"{key}_north_m"], s=22, c=colour, marker=marker, label=name, zorder=3)
     if truth is not None:
         ax.scatter(truth["east_m"], truth["north_m"], s=40, c="gold", marker="*", edgecolors="k", linewidths=0.4,
                    label="truth (synthetic example)", zorder=4)
     for _, r in f.iterrows():
-        ax.annotate(r["feature"], (r["flat_east_m"], r["flat_north_m"]), xytext=(4, 4), textcoords="offset points",
+        ax.annotate(r["feature"] + ("\n(" + ONE_SIGHTING + ")" if r["n_sightings"] == 1 else ""),
+                    (r["flat_east_m"], r["flat_north_m"]), xytext=(4, 4), textcoords="offset points",
                     fontsize=8.5)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("grid east (m)")
@@ -52,6 +57,9 @@ def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str =
         d = data[data["estimator"] == key].set_index("feature").reindex(f["feature"])
         bx.barh(y + (j - (len(keys) - 1) / 2) * 0.8 / len(keys), d["distance_h_m"], height=0.8 / len(keys),
                 color=ESTIMATES[key][1])
+    if not len(data):
+        bx.text(0.5, 0.5, "no second estimate to compare with:\nevery feature seen once\n(" + ONE_SIGHTING + ")",
+                ha="center", va="center", transform=bx.transAxes, fontsize=8.5)
     bx.set_yticks(y, f["feature"])
     bx.invert_yaxis()
     bx.set_xlabel("horizontal error against the truth (m)" if truth is not None
@@ -79,8 +87,9 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
         for _, arc in res.locus[res.locus["feature"] == r["feature"]].groupby("arc"):
             ax.plot(arc["east_m"] - e0, arc["north_m"] - n0, color="tab:red", lw=2)
         for key, (name, colour, marker) in ESTIMATES.items():
-            ax.scatter([r[f"{key}_east_m"] - e0], [r[f"{key}_north_m"] - n0], s=28, c=colour, marker=marker, label=name,
-                       zorder=3)
+            g = drawn(r.to_frame().T, key)
+            ax.scatter(g[f"{key}_east_m"].astype(float) - e0, g[f"{key}_north_m"].astype(float) - n0, s=28, c=colour,
+                       marker=marker, label=name, zorder=3)
         if np.isfinite(r["ellipse_major_m"]):
             ax.add_patch(Ellipse((r["nview_east_m"] - e0, r["nview_north_m"] - n0), 2 * ELLIPSE_SCALE * r["ellipse_major_m"],
                                  2 * ELLIPSE_SCALE * r["ellipse_minor_m"], angle=90.0 - r["ellipse_azimuth_deg"],
@@ -89,7 +98,9 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
             t = truth.set_index("feature").loc[r["feature"]]
             ax.scatter([t["east_m"] - e0], [t["north_m"] - n0], s=60, c="gold", marker="*", edgecolors="k",
                        linewidths=0.4, label="truth (synthetic example)", zorder=4)
-        ax.set_title(f"{r['feature']}: {int(r['n_sightings'])} sightings, {r['nview_status']}", fontsize=8.5)
+        ax.set_title(f"{r['feature']}: {panel_status(r)}", fontsize=8.5)
+        ax.update_datalim([[-MIN_HALF_WIDTH_M, -MIN_HALF_WIDTH_M], [MIN_HALF_WIDTH_M, MIN_HALF_WIDTH_M]])
+        ax.autoscale_view()
         ax.set_aspect("equal", adjustable="datalim")
         ax.tick_params(labelsize=8.5)
         out.append(sg[["feature", "line", "flat_east_m", "flat_north_m"]].assign(flat_east_m=lambda d: d.flat_east_m - e0,
@@ -99,20 +110,36 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
     for k, ax in enumerate(axes.ravel()[:n]):
         if k + cols >= n:  # the lowest panel of its column
             ax.set_xlabel("grid east (m)", fontsize=8.5)
-    fig.supylabel("grid north from the feature's flat-seafloor mean (m)", fontsize=9)
+    fig.supylabel("grid north from the flat mean (m)", fontsize=9)
     handles, labels = axes.ravel()[0].get_legend_handles_labels()
     handles.insert(1, plt.Line2D([], [], color="tab:red", lw=2))
-    labels.insert(1, "two-view locus (first two sightings)")
+    labels.insert(1, "two-view locus (best pair)")
     fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=8.5, frameon=False)
     return fig, pd.concat(out, ignore_index=True)
+
+
+def drawn(f: pd.DataFrame, key: str) -> pd.DataFrame:
+    """The features whose ``key`` estimate is drawn: the two-view point only on a non-empty
+    locus (where the locus is empty it is a fallback on the circle or sphere, not a locus point)."""
+    return f[f["two_view_status"] == "locus"] if key == "two_view" else f
+
+
+def panel_status(r) -> str:
+    """A feature's statuses in a few words: one sighting, or the two-view locus (its pair,
+    empty or not) and the N-view status."""
+    n = int(r["n_sightings"])
+    if n == 1:
+        return "\n" + ONE_SIGHTING
+    two = "locus" if r["two_view_status"] == "locus" else "empty locus"
+    return f"{n} sightings\n2 views ({r['two_view_pair']}): {two}\nN views: {r['nview_status']}"
 
 
 def _distances(res, truth):
     f = res.features
     rows = []
     if truth is not None:
-        t = f.merge(truth, on="feature", suffixes=("", "_true"))
         for key in ESTIMATES:
+            t = drawn(f, key).merge(truth, on="feature", suffixes=("", "_true"))
             d = np.hypot(t[f"{key}_east_m"] - t["east_m"], t[f"{key}_north_m"] - t["north_m"])
             rows.append(pd.DataFrame({"feature": t["feature"], "estimator": key, "distance_h_m": d,
                                       "distance_up_m": t[f"{key}_up_m"] - t["up_m"]}))
@@ -147,14 +174,27 @@ def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
     errors of each estimator."""
     f = res.features
     st = f["nview_status"].value_counts()
-    parts = [f"{len(f)} features from {len(res.sightings)} sightings",
-             f"N-view positions for {int(st.get('resolved', 0))} (resolved) and {int(st.get('ambiguous', 0))} "
-             f"(ambiguous) of the {int((f['n_sightings'] >= 3).sum())} seen three or more times",
-             f"{int((f['locus_arcs'] > 0).sum())} of {int((f['n_sightings'] >= 2).sum())} two-view loci non-empty "
-             f"(median length {fmt_sig(np.nanmedian(f['locus_length_m']) if (f['n_sightings'] >= 2).any() else np.nan)} m)",
-             f"the flat-seafloor positions of one feature disagree by up to {fmt_sig(f['flat_spread_m'].max())} m "
-             f"(median over features {fmt_sig(f['flat_spread_m'].median())} m)"]
+    nonempty = f["locus_arcs"] > 0
+    once = int((f["n_sightings"] == 1).sum())
+    parts = [f"{len(f)} features from {len(res.sightings)} sightings"]
+    if once:
+        parts.append(f"{once} seen once ({ONE_SIGHTING}: a flat-seafloor position only)")
+    if (f["n_sightings"] >= 3).any():
+        parts.append(f"N-view positions for {int(st.get('resolved', 0))} (resolved) and {int(st.get('ambiguous', 0))} "
+                     f"(ambiguous) of the {int((f['n_sightings'] >= 3).sum())} seen three or more times")
+    if (f["n_sightings"] >= 2).any():
+        parts.append(f"{int(nonempty.sum())} of {int((f['n_sightings'] >= 2).sum())} two-view loci (best pair) non-empty"
+                     + (f" (median length of those {fmt_sig(f.loc[nonempty, 'locus_length_m'].median())} m)"
+                        if nonempty.any() else ""))
+    multi = f["n_sightings"] >= 2
+    if multi.any():
+        parts.append(f"the flat-seafloor positions of one feature disagree by up to "
+                     f"{fmt_sig(f.loc[multi, 'flat_spread_m'].max())} m (median over the features seen more than once "
+                     f"{fmt_sig(f.loc[multi, 'flat_spread_m'].median())} m)")
     text = "; ".join(parts) + "."
+    excluded = getattr(res, "excluded", None)
+    if excluded is not None and len(excluded):
+        text += " " + excluded_sentence(excluded)
     if errors is not None and len(errors):
         med = errors.groupby("estimator", sort=False).agg(h=("error_h_m", "median"), v=("error_up_m", lambda x: x.abs().median()),
                                                           n=("feature", "size"))
@@ -192,8 +232,9 @@ def view_3d(res, *, truth: pd.DataFrame | None = None):
             v.extend([*arc[c].tolist(), None])
     traces.append(go.Scatter3d(x=xs, y=ys, z=zs, mode="lines", line=dict(color="crimson", width=6), name="two-view locus"))
     for key, (name, colour, _) in ESTIMATES.items():
-        traces.append(go.Scatter3d(x=f[f"{key}_east_m"], y=f[f"{key}_north_m"], z=f[f"{key}_up_m"], mode="markers",
-                                   marker=dict(size=4, color=to_hex(colour)), name=name.split(" (")[0], text=f["feature"]))
+        g = drawn(f, key)
+        traces.append(go.Scatter3d(x=g[f"{key}_east_m"], y=g[f"{key}_north_m"], z=g[f"{key}_up_m"], mode="markers",
+                                   marker=dict(size=4, color=to_hex(colour)), name=name.split(" (")[0], text=g["feature"]))
     if truth is not None:
         traces.append(go.Scatter3d(x=truth["east_m"], y=truth["north_m"], z=truth["up_m"], mode="markers",
                                    marker=dict(size=5, color="gold", symbol="diamond", line=dict(color="black", width=1)),

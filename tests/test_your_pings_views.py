@@ -1,0 +1,92 @@
+"""Which sightings the your-pings estimates use: the best pair of the two-view locus (against a
+brute force over every pair, each locus computed on its own) and empty loci shown as what they
+are (not as locus points)."""
+
+from __future__ import annotations
+
+import matplotlib
+import numpy as np
+import pytest
+
+from sss_locus.experiments import your_pings as yp
+from sss_locus.paths import DATA_DIR
+
+matplotlib.use("Agg")
+EXAMPLE = DATA_DIR / "examples" / "your_pings" / "example_sightings.csv"
+
+
+@pytest.fixture(scope="module")
+def example():
+    return yp.run(EXAMPLE, aperture_margin_deg=10.0)
+
+
+def test_the_best_pair_is_the_shortest_non_empty_locus(example):
+    """Brute force: every pair of each feature's sightings through two_view_locus on its own."""
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.geometry import sea_surface_half_space
+    from sss_locus.geometry.locus import two_view_locus
+    from sss_locus.geometry.poses import relative_pose
+
+    platform = load_platform("auv")
+    ap = platform.sonar.aperture()
+    s = example.sightings
+    pose = yp.sensor_poses(s, platform)
+    checked = 0
+    for _, f in example.features.iterrows():
+        rows = np.flatnonzero(s["feature"].to_numpy() == f["feature"])
+        lengths = {}
+        for a in range(len(rows)):
+            for b in range(a + 1, len(rows)):
+                i, j = rows[a], rows[b]
+                R, t = relative_pose(pose["W"][i], pose["origin"][i], pose["W"][j], pose["origin"][j])
+                n, off = sea_surface_half_space(max(-pose["origin"][i][2], 0.0), pose["W"][i])
+                loc = two_view_locus(R, t, pose["ranges"][i], pose["ranges"][j], ap, ap,
+                                     half_space_normals=n, half_space_offsets=off)
+                lengths[f"{a + 1}+{b + 1}"] = float(loc.length)
+        nonempty = {k: v for k, v in lengths.items() if v > 0}
+        if nonempty:
+            best = min(nonempty, key=nonempty.get)
+            assert f["two_view_pair"] == best and f["locus_length_m"] == pytest.approx(nonempty[best], rel=1e-9)
+            checked += 1
+        else:
+            assert f["two_view_status"].startswith("empty locus") and f["locus_length_m"] == 0
+    assert checked >= 3  # the comparison is not vacuous
+
+
+def test_empty_loci_are_not_drawn_counted_or_compared_as_locus_points(example):
+    from sss_locus.experiments.your_pings_files import against_truth, read_truth
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.report.your_pings import ESTIMATES, feature_panels, plan_view, summary_sentence
+
+    f = example.features
+    empty = f["two_view_status"] != "locus"
+    assert empty.any() and (~empty).any() and np.isfinite(f.loc[empty, "two_view_east_m"]).all()  # fallbacks exist
+    fig, _ = plan_view(example, load_platform("auv"))
+    label = ESTIMATES["two_view"][0]
+    drawn = [c for c in fig.axes[0].collections if c.get_label() == label][0].get_offsets()
+    assert len(drawn) == (~empty).sum()
+    assert np.allclose(np.sort(drawn[:, 0]), np.sort(f.loc[~empty, "two_view_east_m"]))
+    truth = read_truth(DATA_DIR / "examples" / "your_pings" / "example_truth.csv", EXAMPLE)
+    errors = against_truth(example, truth)
+    assert set(errors.loc[errors["estimator"] == "two_view", "feature"]) == set(f.loc[~empty, "feature"])
+    text = summary_sentence(example)
+    assert f"{(~empty).sum()} of {len(f)} two-view loci (best pair) non-empty" in text
+    med = f.loc[~empty, "locus_length_m"].median()
+    assert "median length of those" in text and f"{med:.2g}" in text
+    fig, _ = feature_panels(example)
+    titles = [ax.get_title() for ax in fig.axes if ax.get_visible() and ax.get_title()]
+    assert sum("empty locus" in t for t in titles) == empty.sum()
+    assert all("N views:" in t for t in titles)
+
+
+def test_geojson_does_not_call_a_fallback_a_locus_point(example):
+    import json
+
+    from sss_locus.experiments.your_pings_files import geojson_text
+
+    doc = json.loads(geojson_text(example))
+    kinds = {f["properties"]["feature"]: f["properties"]["kind"] for f in doc["features"]
+             if f["properties"]["kind"].startswith("two_view")}
+    status = example.features.set_index("feature")["two_view_status"]
+    assert kinds and all((k == "two_view") == (status[f] == "locus") for f, k in kinds.items())
+    assert "two_view_empty_locus" in kinds.values()
