@@ -71,12 +71,12 @@ def test_an_edited_area_file_makes_the_survey_design_run_stale(tmp_path, monkeyp
 
     entry = REGISTRY["survey_design"]
     area = tmp_path / "my_area.toml"
-    area.write_text('[area]\nvertices_m = [[0, 0], [900, 0], [900, 400], [0, 400]]\n')
+    area.write_text('[area]\nvertices_m = [[0, 0], [900, 0], [900, 400], [0, 400]]\nwater_depth_m = 20.0\n')
     monkeypatch.chdir(tmp_path)
     first = resolve_parameters(entry, "quick", {"area": "my_area.toml"}, from_text=True)
     assert first["area"] == str(area)  # resolved where the command was typed
     assert first["area_sha256"] == hashlib.sha256(area.read_bytes()).hexdigest()
-    area.write_text('[area]\nvertices_m = [[0, 0], [900, 0], [900, 500], [0, 400]]\n')
+    area.write_text('[area]\nvertices_m = [[0, 0], [900, 0], [900, 500], [0, 400]]\nwater_depth_m = 20.0\n')
     second = resolve_parameters(entry, "quick", {"area": "my_area.toml"}, from_text=True)
     assert run_key(entry, "quick", second) != run_key(entry, "quick", first)
 
@@ -192,7 +192,9 @@ def test_answer_needs_one_known_platform(build_area, capsys):
 
 BAD_AREAS = {  # file name, contents, what the one-line refusal says
     "bowtie.toml": ("[area]\nvertices_m = [[0, 0], [900, 400], [900, 0], [0, 400]]\n", "the polygon is not valid"),
-    "tiny.toml": ("[area]\nvertices_m = [[0, 0], [400, 0], [400, 12], [0, 12]]\n", "too small for one line"),
+    "nodepth.toml": ("[area]\nvertices_m = [[0, 0], [400, 0], [400, 200], [0, 200]]\n", "no water depth"),
+    "baddepth.toml": ("[area]\nvertices_m = [[0, 0], [400, 0], [400, 200], [0, 200]]\nwater_depth_m = -4\n",
+                      "water_depth_m must be a number of metres in (0, 12000]"),
     "bowtie.geojson": ('{"type": "Polygon", "coordinates": [[[-70.67, 41.51], [-70.66, 41.52], [-70.66, 41.51], '
                        '[-70.67, 41.52], [-70.67, 41.51]]]}', "the polygon is not valid"),
     "missing.toml": (None, "does not exist"),

@@ -29,7 +29,7 @@ def machine_24gb(monkeypatch):
 
 def _area(tmp_path, vertices, name="big.toml"):
     path = tmp_path / name
-    path.write_text(f"[area]\nname = '{name}'\nvertices_m = {vertices}\n", encoding="utf-8")
+    path.write_text(f"[area]\nname = '{name}'\nvertices_m = {vertices}\nwater_depth_m = 30.0\n", encoding="utf-8")
     return str(path)
 
 

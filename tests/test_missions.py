@@ -1,6 +1,7 @@
 """Mission files of a survey plan read back by independent readers: pymavlink's waypoint loader
-(.waypoints), the keys QGroundControl requires (.plan), shapely (GeoJSON); a missing origin
-refused; the files published with the figure's manifest."""
+(.waypoints, field by field), the keys QGroundControl requires (.plan), shapely (fences, GeoJSON
+read back), RFC 7946's rules; convex, concave, holed and antimeridian areas; a vehicle without
+ArduPilot and a missing origin refused; the files published with the figure's manifest."""
 
 from __future__ import annotations
 
@@ -20,35 +21,67 @@ from sss_locus.pipeline.missions import mission_files  # noqa: E402
 
 ORIGIN = (-111.811, 40.234)
 VERTS = [[0.0, 0.0], [900.0, 0.0], [900.0, 380.0], [520.0, 560.0], [0.0, 450.0]]
+HARBOUR = [[0, 0], [900, 0], [900, 380], [520, 560], [300, 250], [0, 450]]  # concave: a notch
+ISLAND = [[600, 120], [700, 120], [700, 200], [600, 200]]
+AREAS = {  # name: vertices, holes, origin (lon, lat)
+    "convex": (VERTS, [], ORIGIN),
+    "concave": (HARBOUR, [], ORIGIN),
+    "holed": (HARBOUR, [ISLAND], ORIGIN),
+    "antimeridian": (HARBOUR, [ISLAND], (179.997, -16.5)),  # the area spans lon 180 (Fiji)
+}
+BOAT = dict(depth_m=0.0, turn_radius_m=3.0, speed_m_s=1.5)
+
+
+def _plan(area, heading=30.0):
+    """Main lines and cross lines at 90 deg, flown as the design flies them (reach, run-in)."""
+    return Plan(heading, 150.0, 90.0, 300.0, 20.0, 0.0, "", 140.0, 6.0, 10.0).lines(area)
 
 
 @pytest.fixture(scope="module")
 def plan_files():
-    area = area_from_vertices(VERTS, origin_lonlat=ORIGIN, name="test area")
-    lines = Plan(0.0, 150.0, 90.0, 300.0, 20.0).lines(area)
-    files = mission_files(area, lines, depth_m=10.0, submerged=True, speed_m_s=1.5)
-    return area, lines, files
+    verts, holes, origin = AREAS["holed"]
+    area = area_from_vertices(verts, holes_m=holes, origin_lonlat=origin, name="test area")
+    lines = _plan(area)
+    return area, lines, mission_files(area, lines, ardupilot=True, **BOAT)
 
 
-def _ends_lonlat(area, lines):
-    x = np.ravel(np.column_stack([lines.x0_m, lines.x1_m]))
-    y = np.ravel(np.column_stack([lines.y0_m, lines.y1_m]))
-    return area.to_lonlat(x, y)
+def _local(origin):
+    """lon/lat -> local metres, built here with pyproj (independent of the area's own transform)."""
+    from pyproj import Transformer
+
+    t = Transformer.from_crs("EPSG:4326", f"+proj=aeqd +lat_0={origin[1]} +lon_0={origin[0]} +ellps=WGS84",
+                             always_xy=True)
+    return lambda lon, lat: np.column_stack(t.transform(np.asarray(lon, float), np.asarray(lat, float)))
 
 
-def test_waypoints_read_back_by_pymavlink(plan_files, tmp_path):
+def _csv(files):
+    import io
+
+    return pd.read_csv(io.StringIO(files["mission.csv"]))
+
+
+def test_waypoints_read_back_by_pymavlink_field_by_field(plan_files, tmp_path):
     mavwp = pytest.importorskip("pymavlink.mavwp")
     area, lines, files = plan_files
     path = tmp_path / "m.waypoints"
     path.write_text(files["mission.waypoints"])
     loader = mavwp.MAVWPLoader()
-    assert loader.load(str(path)) == 2 * len(lines) + 1
+    points = _csv(files)
+    assert loader.load(str(path)) == len(points) + 3  # home, speed, the waypoints, return to launch
     items = [loader.wp(i) for i in range(loader.count())]
-    assert items[0].frame == 0 and items[0].z == 0.0  # home, row 0
-    lon, lat = _ends_lonlat(area, lines)
-    assert np.allclose([w.x for w in items[1:]], lat, atol=1e-7)
-    assert np.allclose([w.y for w in items[1:]], lon, atol=1e-7)
-    assert {w.command for w in items} == {16} and {w.z for w in items[1:]} == {-10.0}
+    assert items[0].frame == 0 and items[0].command == 16 and items[0].z == 0.0  # home, row 0
+    speed = items[1]
+    assert (speed.command, speed.param1, speed.param2, speed.param3) == (178, 1.0, BOAT["speed_m_s"], -1.0)
+    assert items[-1].command == 20  # the end of the mission: return to launch
+    wps = items[2:-1]
+    assert {w.command for w in wps} == {16} and {w.frame for w in wps} == {3} and {w.z for w in wps} == {0.0}
+    assert [w.seq for w in items] == list(range(len(items)))
+    lon, lat = area.to_lonlat(points.east_m.to_numpy(), points.north_m.to_numpy())
+    assert np.allclose([w.x for w in wps], lat, atol=1e-7) and np.allclose([w.y for w in wps], lon, atol=1e-7)
+    # every segment's ends are waypoints, in run order
+    ends = points[points.kind.isin(["line start", "line end"])][["east_m", "north_m"]].to_numpy()
+    want = np.column_stack([lines[["x0_m", "y0_m"]].to_numpy(), lines[["x1_m", "y1_m"]].to_numpy()]).reshape(-1, 2)
+    assert np.allclose(ends, want)
     for line in files["mission.waypoints"].splitlines()[1:]:
         assert len(line.split("\t")) == 12
 
@@ -60,15 +93,114 @@ def test_plan_has_every_key_qgroundcontrol_requires(plan_files):
     mission = doc["mission"]
     assert {"items", "plannedHomePosition", "firmwareType", "vehicleType", "cruiseSpeed", "hoverSpeed",
             "version"} <= set(mission)
-    assert len(mission["plannedHomePosition"]) == 3
-    lon, lat = _ends_lonlat(area, lines)
-    assert len(mission["items"]) == len(lon)
-    for item, x, y in zip(mission["items"], lat, lon):
-        assert item["type"] == "SimpleItem" and item["command"] == 16 and len(item["params"]) == 7
+    assert mission["vehicleType"] == 11 and mission["firmwareType"] == 3  # an ArduPilot surface boat
+    points = _csv(files)
+    cmds = [i["command"] for i in mission["items"]]
+    assert cmds == [178] + [16] * len(points) + [20]
+    assert mission["items"][0]["params"][:3] == [1.0, BOAT["speed_m_s"], -1.0]
+    for item, (_, p) in zip(mission["items"][1:-1], points.iterrows()):
+        assert item["type"] == "SimpleItem" and len(item["params"]) == 7
         assert {"autoContinue", "doJumpId", "frame", "AltitudeMode", "Altitude"} <= set(item)
-        assert item["params"][4] == pytest.approx(x, abs=1e-9) and item["params"][5] == pytest.approx(y, abs=1e-9)
-    fence = doc["geoFence"]["polygons"][0]
-    assert fence["inclusion"] and len(fence["polygon"]) == len(VERTS)
+        assert item["params"][4] == pytest.approx(p.lat, abs=1e-7) and item["params"][5] == pytest.approx(p.lon, abs=1e-7)
+    fences = doc["geoFence"]["polygons"]
+    assert [f["inclusion"] for f in fences] == [True, False]  # the area's one hole is an exclusion fence
+
+
+@pytest.mark.parametrize("name", AREAS)
+def test_every_waypoint_and_turn_is_inside_the_written_fence(name):
+    """Read back from the files: every waypoint and every leg between them (lines, U-turns,
+    transits) inside the .plan's inclusion fence and outside its exclusion fences, in local
+    metres of a projection made here; U-turns no tighter than the turn radius; the legs of a
+    line's two segments do not cross the island."""
+    import shapely
+
+    verts, holes, origin = AREAS[name]
+    area = area_from_vertices(verts, holes_m=holes, origin_lonlat=origin, name=name)
+    files = mission_files(area, _plan(area), ardupilot=True, **BOAT)
+    doc = json.loads(files["mission.plan"])
+    local = _local(origin)
+    items = [i for i in doc["mission"]["items"] if i["command"] == 16]
+    xy = local([i["params"][5] for i in items], [i["params"][4] for i in items])
+    fence = [shapely.Polygon(local([q[1] for q in f["polygon"]], [q[0] for q in f["polygon"]]))
+             for f in doc["geoFence"]["polygons"]]
+    track = shapely.LineString(xy)
+    assert fence[0].buffer(0.01).covers(track), track.difference(fence[0]).length
+    assert len(fence) == 1 + len(holes)
+    for f, hole in zip(fence[1:], holes):
+        assert f.equals_exact(shapely.Polygon(hole), 0.01) and not track.intersects(f.buffer(-0.01))
+    # the turns: the circle through three consecutive turn points is no tighter than the radius
+    kind = _csv(files).kind.to_numpy()
+    for k in np.flatnonzero((kind[1:-1] == "turn") & (kind[:-2] == "turn") & (kind[2:] == "turn")) + 1:
+        a, b, c = xy[k - 1], xy[k], xy[k + 1]
+        area2 = abs((b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0])
+        if area2 > 1e-6:
+            radius = np.linalg.norm(b - a) * np.linalg.norm(c - b) * np.linalg.norm(c - a) / (2 * area2)
+            assert radius >= 0.98 * BOAT["turn_radius_m"]
+
+
+def _positions(geom):
+    c = geom["coordinates"]
+    depth = {"Point": 0, "LineString": 1, "Polygon": 2, "MultiLineString": 2, "MultiPolygon": 3}[geom["type"]]
+    for _ in range(depth - 1):
+        c = [x for part in c for x in part]
+    return c
+
+
+@pytest.mark.parametrize("name", ["holed", "antimeridian", "polar"])
+def test_geojson_follows_rfc_7946(name):
+    """RFC 7946: lon/lat in range, at most 7 decimals, exteriors counter-clockwise and holes
+    clockwise, rings closed, nothing jumping across the antimeridian (cut there instead), and
+    the track's lon/lat chords within 0.1 m of the local straight legs (densified)."""
+    import re
+
+    import shapely
+
+    verts, holes, origin = AREAS[name] if name != "polar" else (HARBOUR, [ISLAND], (20.0, 86.0))  # lon/lat chords bend
+    area = area_from_vertices(verts, holes_m=holes, origin_lonlat=origin, name=name)
+    files = mission_files(area, _plan(area), ardupilot=False, **BOAT)
+    text = files["mission.geojson"]
+    assert not re.search(r"\d\.\d{8,}", text)  # at most 7 decimals
+    doc = json.loads(text)
+    signed = lambda r: 0.5 * np.sum(r[:-1, 0] * r[1:, 1] - r[1:, 0] * r[:-1, 1])  # noqa: E731
+    types = set()
+    for f in doc["features"]:
+        g = f["geometry"]
+        types.add(g["type"])
+        pos = np.asarray(_positions(g))
+        assert np.all(np.abs(pos[:, 0]) <= 180.0) and np.all(np.abs(pos[:, 1]) <= 90.0)
+        polys = [g["coordinates"]] if g["type"] == "Polygon" else g["coordinates"] if g["type"] == "MultiPolygon" else []
+        for poly in polys:
+            rings = [np.asarray(r) for r in poly]
+            assert all(np.array_equal(r[0], r[-1]) for r in rings)
+            assert signed(rings[0]) > 0 and all(signed(r) < 0 for r in rings[1:])
+        parts = [g["coordinates"]] if g["type"] == "LineString" else g["coordinates"] if g["type"] == "MultiLineString" \
+            else [r for poly in polys for r in poly]
+        for part in parts:
+            assert np.all(np.abs(np.diff(np.asarray(part)[:, 0])) < 180.0)
+    if name == "antimeridian":
+        assert {"MultiLineString", "MultiPolygon"} <= types
+    # densified: every chord of the track within 0.1 m (+ 1 cm of rounding) of the flown legs
+    local = _local(origin)
+    pts = _csv(files)
+    legs = shapely.LineString(pts[["east_m", "north_m"]].to_numpy())
+    track = next(f["geometry"] for f in doc["features"] if f["properties"].get("role") == "track")
+    for part in ([track["coordinates"]] if track["type"] == "LineString" else track["coordinates"]):
+        p = np.asarray(part)
+        mid = local(0.5 * (p[1:, 0] + p[:-1, 0]), 0.5 * (p[1:, 1] + p[:-1, 1]))
+        assert shapely.distance(legs, shapely.points(mid)).max() <= 0.11
+    # compass courses: a line of local heading 30 deg (from east) runs at about 60 deg true
+    lines = [f["properties"] for f in doc["features"] if f["properties"].get("role") == "survey line"]
+    main = {round(p["course_true_deg"]) for p in lines if p["set"] == "main"}
+    assert main <= {60, 240}, main
+
+
+def test_a_vehicle_without_ardupilot_gets_csv_and_geojson_only(plan_files):
+    area, lines, _ = plan_files
+    files = mission_files(area, lines, ardupilot=False, **BOAT)
+    assert list(files) == ["mission.csv", "mission.geojson"]
+    with pytest.raises(ValueError, match="does not run ArduPilot") as err:
+        mission_files(area, lines, ardupilot=False, formats=["plan"], **BOAT)
+    assert "\n" not in str(err.value)
 
 
 def test_geojson_round_trips_through_shapely(plan_files, tmp_path):
@@ -76,31 +208,33 @@ def test_geojson_round_trips_through_shapely(plan_files, tmp_path):
 
     area, lines, files = plan_files
     doc = json.loads(files["mission.geojson"])
-    polygons = [shape(f["geometry"]) for f in doc["features"] if f["geometry"]["type"] == "Polygon"]
-    segments = [shape(f["geometry"]) for f in doc["features"] if f["geometry"]["type"] == "LineString"]
-    assert len(polygons) == 1 and len(segments) == len(lines)
-    ring = np.asarray(area.polygon.exterior.coords)
-    assert np.allclose(np.asarray(polygons[0].exterior.coords), np.column_stack(area.to_lonlat(*ring.T)))
-    assert all(polygons[0].buffer(1e-6).contains(s) for s in segments)  # 1e-6 deg: 0.1 m
+    roles = [f["properties"]["role"] for f in doc["features"]]
+    assert roles.count("survey line") == len(lines) and roles.count("exclusion fence") == 1
+    polygon = shape(doc["features"][0]["geometry"])
+    rings = [np.column_stack(area.to_lonlat(*np.asarray(r.coords).T)).tolist()
+             for r in (area.polygon.exterior, *area.polygon.interiors)]
+    assert shape({"type": "Polygon", "coordinates": rings}).symmetric_difference(polygon).area < 1e-4 * polygon.area
+    fence = shape(doc["features"][1]["geometry"])
+    assert all(fence.buffer(1e-7).contains(shape(f["geometry"])) for f in doc["features"][3:])
     # read back as a survey area: the same polygon in local metres
     path = tmp_path / "back.geojson"
     path.write_text(files["mission.geojson"])
     back = load_area(path)
     assert back.origin_lonlat == pytest.approx(ORIGIN)
-    assert back.polygon.hausdorff_distance(area.polygon) < 1e-6
+    assert back.polygon.hausdorff_distance(area.polygon) < 0.05
 
 
 def test_geographic_formats_need_an_origin():
     area = area_from_vertices(VERTS)
     lines = Plan(0.0, 150.0, math.nan, 150.0, 20.0).lines(area)
-    only_csv = mission_files(area, lines, depth_m=0.0, submerged=False, speed_m_s=1.0)
+    only_csv = mission_files(area, lines, ardupilot=True, **BOAT)
     assert "-0.0" not in only_csv["mission.csv"]
     assert list(only_csv) == ["mission.csv"]
     assert list(pd.read_csv(__import__("io").StringIO(only_csv["mission.csv"])).columns) == [
-        "seq", "set", "line", "segment", "point", "east_m", "north_m", "depth_m"]
+        "seq", "kind", "set", "line", "segment", "east_m", "north_m", "depth_m"]
     for fmt in ("plan", "waypoints", "geojson"):
         with pytest.raises(ValueError, match="has no origin") as err:
-            mission_files(area, lines, depth_m=0.0, submerged=False, speed_m_s=1.0, formats=[fmt])
+            mission_files(area, lines, ardupilot=True, formats=[fmt], **BOAT)
         assert "\n" not in str(err.value)
 
 
@@ -124,3 +258,31 @@ def test_attachments_are_listed_in_the_figure_manifest(tmp_path):
     with pytest.raises(ValueError, match="attachments must map"):
         export_figure(fig, "fig-mission-test", pd.DataFrame({"a": [1]}), caption="A test.", parameters={},
                       out_dir=tmp_path, attachments={"../evil": "x"})
+
+
+def test_a_harbour_with_a_shore_keeps_the_track_in_its_water():
+    """An L-shaped harbour with an island whose water ends 10 m past its edge (water_beyond_m):
+    every waypoint and leg (lines, turns, transits) within that water, none across the island,
+    read back from the .plan in a projection made here; the fence is no wider than the water
+    grown by a few metres."""
+    import dataclasses
+
+    import shapely
+
+    harbour = [[0, 0], [600, 0], [600, 330], [300, 330], [300, 660], [0, 660]]
+    island = [[380, 120], [460, 120], [460, 200], [380, 200]]
+    origin = (-70.671, 41.524)
+    area = dataclasses.replace(area_from_vertices(harbour, holes_m=[island], origin_lonlat=origin, name="cove"),
+                               water_beyond_m=10.0)
+    for heading in (0.0, 90.0, 30.0):
+        files = mission_files(area, _plan(area, heading), ardupilot=True, **BOAT)
+        doc = json.loads(files["mission.plan"])
+        local = _local(origin)
+        items = [i for i in doc["mission"]["items"] if i["command"] == 16]
+        track = shapely.LineString(local([i["params"][5] for i in items], [i["params"][4] for i in items]))
+        water = shapely.Polygon(harbour).buffer(10.0)
+        assert water.buffer(0.05).covers(track), (heading, track.difference(water).length)
+        assert not track.intersects(shapely.Polygon(island).buffer(-0.01))
+        fence = doc["geoFence"]["polygons"][0]["polygon"]
+        fence_xy = shapely.Polygon(local([q[1] for q in fence], [q[0] for q in fence]))
+        assert fence_xy.covers(track) and fence_xy.difference(water).area < 0.05 * water.area

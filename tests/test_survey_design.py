@@ -15,13 +15,19 @@ pytest.importorskip("pyproj")
 
 from sss_locus.experiments import survey_design as sd  # noqa: E402
 from sss_locus.experiments.platforms import load_platform  # noqa: E402
-from sss_locus.experiments.survey_area import area_from_vertices, load_area  # noqa: E402
+from sss_locus.experiments.survey_area import area_from_vertices, load_area, with_water_depth  # noqa: E402
 from sss_locus.experiments.survey_coverage import coverage  # noqa: E402
 from sss_locus.experiments.survey_lines import line_set, track_length, uturn_length_m  # noqa: E402
-from sss_locus.experiments.survey_plans import Plan, load_settings, plan_grid  # noqa: E402
+from sss_locus.experiments.survey_plans import Plan, load_settings, plan_grid, standard_plan  # noqa: E402
 from sss_locus.experiments.terrain import flat_terrain  # noqa: E402
 
 RECT = [[0.0, 0.0], [800.0, 0.0], [800.0, 500.0], [0.0, 500.0]]
+WATER_M = 30.0
+
+
+def deep(area, depth_m=WATER_M):
+    """``area`` with a water depth (the design refuses an area without one)."""
+    return with_water_depth(area, depth_m, "test")
 SMALL_GRID = dict(headings_deg=[0.0, 90.0], spacing_fractions=[1.2], crossing_angles_deg=[math.nan, 90.0],
                   cross_spacing_factors=[1.0], altitude_fractions=[0.08, 0.14, 0.5], pitches_deg=[0.0, 30.0, 60.0])
 
@@ -53,33 +59,70 @@ def test_lines_and_track_of_a_rectangle_by_hand():
     assert len(third) == 2 and third.x0_m.iloc[0] < third.x0_m.iloc[1]
 
 
-def test_standard_plan_coverage_matches_a_hand_calculation():
-    """Boat on a flat floor, rectangle: each line sees the band near <= |y - y_line| <= far, with
-    near = lateral + H / tan(tilt + fan/2) and far = lateral + sqrt(range^2 - H^2)."""
-    boat = load_platform("boat")
-    area = area_from_vertices(RECT)
-    settings = load_settings()
-    water = settings["water_depth_m"]
-    plan = Plan(0.0, 240.0, 0.0, 240.0, water, 0.0, "standard")
-    lines = plan.lines(area)
-    grid_m = 10.0
-    cov = coverage(boat, flat_terrain(), area, lines, water, 0.0, True, grid_m=grid_m, seed=3)
+HARBOUR = [[0, 0], [900, 0], [900, 380], [520, 560], [300, 250], [0, 450]]  # concave: a notch
+ISLAND = [[600, 120], [700, 120], [700, 200], [600, 200]]
+
+
+def _hand_counts(boat, water, lines, xy):
+    """Lines that see each point ``xy`` on a flat floor, computed here from the swath's closed
+    form: a segment sees the band near <= |across| <= far abeam of it (0 <= along <= length),
+    near = lateral + H / tan(tilt + fan/2), far = lateral + sqrt(range^2 - H^2)."""
     t = boat.transducers["port"]
     H = water - t.depth_m
     near = t.lateral_offset_m + H / math.tan(math.radians(t.tilt_deg + boat.sonar.azimuth_deg / 2))
     far = t.lateral_offset_m + math.sqrt(boat.sonar.max_range_m ** 2 - H ** 2)
+    seen = np.zeros((len(xy), lines.line.max() + 1 + 1000 * (lines["set"] != "main").any()), bool)
+    for _, r in lines.iterrows():
+        h = math.radians(r.heading_deg)
+        e, n = np.array([math.cos(h), math.sin(h)]), np.array([-math.sin(h), math.cos(h)])
+        d = xy - [r.x0_m, r.y0_m]
+        along, across = d @ e, np.abs(d @ n)
+        col = r.line + (1000 if r["set"] != "main" else 0)
+        seen[:, col] |= (along >= 0) & (along <= r.length_m) & (across >= near) & (across <= far)
+    return seen.sum(axis=1), near
+
+
+@pytest.mark.parametrize("vertices, holes", [(RECT, []), (HARBOUR, [ISLAND])])
+def test_standard_plan_coverage_matches_a_hand_calculation(vertices, holes):
+    """The standard plan as flown over a rectangle and over a concave harbour with an island: the
+    coverage the chapter measures (exact pings) against the swath's closed form on the same
+    grid; over the convex area every point is seen by two lines (200 %), which the old
+    placement (first line half a spacing inside, lines stopped at the edge) missed."""
+    import shapely
+
+    boat = load_platform("boat")
+    area = area_from_vertices(vertices, holes_m=holes)
+    settings = {**load_settings(), "water_depth_m": 30.0}
+    std = standard_plan(boat, area, flat_terrain(), settings, np.zeros(1))
+    lines = std.lines(area)
+    grid_m = 10.0
+    cov = coverage(boat, flat_terrain(), area, lines, std.altitude_m, 0.0, True, grid_m=grid_m, seed=3)
+    x0, y0, x1, y1 = area.polygon.bounds
+    X, Y = np.meshgrid(np.arange(x0 + grid_m / 2, x1, grid_m), np.arange(y0 + grid_m / 2, y1, grid_m))
+    xy = np.column_stack([X.ravel(), Y.ravel()])
+    xy = xy[shapely.contains_xy(area.polygon, xy[:, 0], xy[:, 1])]
+    n_lines, near = _hand_counts(boat, std.altitude_m, lines, xy)
     assert cov["nadir_gap_m"] == pytest.approx(near)
-    y = (np.arange(50) + 0.5) * grid_m
-    d = np.abs(y[:, None] - lines.y0_m.to_numpy()[None, :])
-    n_lines = ((d >= near) & (d <= far)).sum(axis=1)
-    tol = 1.0 / len(y) + 1e-9  # one row of cells at a swath edge
+    tol = 5.0 / len(xy)  # a few cells exactly on a swath edge
     assert cov["once"] == pytest.approx(np.mean(n_lines >= 1), abs=tol)
     assert cov["twice"] == pytest.approx(np.mean(n_lines >= 2), abs=tol)
     assert cov["holes"] == pytest.approx(np.mean(n_lines == 0), abs=tol)
+    # lines extend past the area: some line lies outside it across, each runs beyond it along
+    assert lines.y0_m.min() < y0 and lines.y0_m.max() > y1
+    assert min(lines.x0_m.min(), lines.x1_m.min()) < x0 - std.run_m + 1e-6
+    if not holes:  # 200 %: every point of the area seen by two lines
+        assert np.mean(n_lines >= 2) == 1.0
+        assert cov["twice"] == 1.0
+        old = Plan(std.heading_deg, std.spacing_m, 0.0, std.spacing_m, std.altitude_m).lines(area)
+        assert np.mean(_hand_counts(boat, std.altitude_m, old, xy)[0] >= 2) < 0.9
+    else:  # no segment crosses the island
+        for _, r in lines.iterrows():
+            seg = shapely.LineString([(r.x0_m, r.y0_m), (r.x1_m, r.y1_m)])
+            assert seg.intersection(shapely.Polygon(ISLAND)).length < 1e-6
 
 
 def test_every_plan_respects_the_platform_limits():
-    settings = load_settings()
+    settings = {**load_settings(), "water_depth_m": WATER_M}
     area = area_from_vertices(RECT)
     for key in ("auv", "boat"):
         pf = load_platform(key)
@@ -99,12 +142,16 @@ def test_every_plan_respects_the_platform_limits():
 
 
 def test_search_finds_the_cheapest_covering_heading_of_a_long_strip():
-    """A 2 km x 300 m strip: lines along it (heading 0) cover it with a fraction of the turns, so
-    the cheapest plan of the front and the recommended plan run along the strip."""
-    strip = area_from_vertices([[0, 0], [2000, 0], [2000, 300], [0, 300]], name="strip")
+    """A 2 km x 300 m strip and a vehicle of wide turns (60 m radius): lines along it (heading 0)
+    cover it with a fraction of the turns and run-ins, so the cheapest plan of the front and the
+    recommended plan run along the strip. (With the AUV's 10 m turns, the 200 % coverage of a
+    strip two swaths wide needs about four lines along it, and lines across cost about as much.)"""
+    import dataclasses
+    strip = deep(area_from_vertices([[0, 0], [2000, 0], [2000, 300], [0, 300]], name="strip"))
     grid = dict(headings_deg=[0.0, 90.0], spacing_fractions=[0.8, 1.2], crossing_angles_deg=[math.nan],
                 cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
-    res = sd.design(load_platform("auv"), strip, "flat", grid=grid, n_features=40, seed=0, grid_m=40.0)
+    wide = dataclasses.replace(load_platform("auv"), turn_radius_m=60.0)
+    res = sd.design(wide, strip, "flat", grid=grid, n_features=40, seed=0, grid_m=40.0)
     t = res.plans
     front = t[t.front].sort_values("total_m")
     assert front.heading_deg.iloc[0] % 180 == 0.0
@@ -116,9 +163,10 @@ def test_search_finds_the_cheapest_covering_heading_of_a_long_strip():
     mow_plan = sd.plan_from_row(t[t.kind == "lawnmower"].iloc[0])
     assert mow <= std
     n = mow_plan.lines(strip).line.nunique()
-    denser = Plan(0.0, 300.0 / (n + 1), math.nan, 1.0, mow_plan.altitude_m)
-    assert denser.lines(strip).line.nunique() == n + 1
-    assert track_length(denser.lines(strip), 10.0)["total_m"] > std
+    spacing = next(sp for sp in np.linspace(mow_plan.spacing_m, 0.5 * mow_plan.spacing_m, 200)
+                   if dataclasses.replace(mow_plan, spacing_m=sp).lines(strip).line.nunique() > n)
+    denser = dataclasses.replace(mow_plan, spacing_m=spacing).lines(strip)
+    assert track_length(denser, wide.turn_radius_m)["total_m"] > std
 
 
 def test_pareto_front_and_rule_on_a_constructed_table():
@@ -190,7 +238,7 @@ def test_bad_areas_are_refused_in_one_line(tmp_path, doc, message):
 
 def test_bad_design_inputs_are_refused_before_work(tmp_path):
     auv = load_platform("auv")
-    area = area_from_vertices(RECT)
+    area = deep(area_from_vertices(RECT))
     for kwargs, message in ((dict(objective="shortest"), "objective must be one of"),):
         with pytest.raises(ValueError, match=message):
             sd.design(auv, area, "flat", grid=SMALL_GRID, n_features=20, **kwargs)
@@ -207,9 +255,10 @@ def test_bad_design_inputs_are_refused_before_work(tmp_path):
         sd.design(auv, area, "flat", grid={**SMALL_GRID, "spacing_fractions": [0.0]}, n_features=20)
     with pytest.raises(ValueError, match="grid must be a dict with exactly the keys"):
         sd.design(auv, area, "flat", grid={"headings_deg": [0.0]}, n_features=20)
-    tiny = area_from_vertices([[0, 0], [100, 0], [100, 20], [0, 20]])
-    with pytest.raises(ValueError, match="too small for one line"):
-        sd.design(auv, tiny, "flat", grid=SMALL_GRID, n_features=20)
+    with pytest.raises(ValueError, match="no water depth: give the area file a water_depth_m"):
+        sd.design(auv, area_from_vertices(RECT), "flat", grid=SMALL_GRID, n_features=20)
+    with pytest.raises(ValueError, match=r"test must be a number of metres in \(0, 12000\]"):
+        deep(area, -3.0)
 
 
 def test_search_finds_the_best_crossing_angle_of_the_survey_chapters_curve():
@@ -226,7 +275,7 @@ def test_search_finds_the_best_crossing_angle_of_the_survey_chapters_curve():
     env = load_envelope("auv").with_pitch(0.0, 0.0).with_altitude(21.0, 21.0)
     samples, _ = simulate_passes(auv, env, OffsetModel("independent"), angles, 512, 0)
     curve = samples.groupby("crossing_angle_deg").locus_length_m.median()
-    square = area_from_vertices([[0, 0], [1000, 0], [1000, 1000], [0, 1000]])
+    square = deep(area_from_vertices([[0, 0], [1000, 0], [1000, 1000], [0, 1000]]))
     grid = dict(headings_deg=[0.0], spacing_fractions=[4.0], crossing_angles_deg=angles,
                 cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
     t = sd.design(auv, square, "flat", grid=grid, n_features=300, seed=0, grid_m=100.0).plans
@@ -261,40 +310,174 @@ def test_the_front_of_one_platform_titles_it_on_one_line():
     plt.close(fig)
 
 
-def test_the_plan_caption_names_the_mission_files_and_why_some_are_missing():
-    """An area in metres without an origin gets the CSV only (the others need longitude/latitude):
-    the plan's caption says which files are beside it and why the others are not."""
+def test_the_plan_caption_names_the_mission_files_the_depth_and_why_some_are_missing():
+    """An area in metres without an origin gets the CSV only (the others need longitude/latitude);
+    a vehicle without ArduPilot gets no ArduPilot mission: the plan's caption says which files are
+    beside it and why the others are not, and the water depth it used and where it came from."""
     from sss_locus.report.survey_design import plan_caption
 
     pf = load_platform("auv")
     row = pd.Series(dict(heading_deg=0.0, spacing_m=120.0, crossing_deg=math.nan, cross_spacing_m=120.0,
-                         altitude_m=15.0, pitch_deg=0.0, total_m=5000.0, time_h=0.9))
+                         altitude_m=15.0, pitch_deg=0.0, total_m=5000.0, time_h=0.9, run_m=20.0))
     cov = dict(once=0.99, twice=0.5, n_holes=0)
     area = area_from_vertices(RECT, name="mine")
-    local = plan_caption(pf, area, "my_area.toml", row, cov, ["mission.csv"])
+    depth = dict(water_depth_m=12.5, depth_source="my_area.toml: water_depth_m")
+    local = plan_caption(pf, area, "my_area.toml", row, cov, ["mission.csv"], **depth)
     assert "`mission.csv`" in local and "origin_lonlat" in local and "`mission.plan`" not in local
-    everything = plan_caption(pf, area_from_vertices(RECT, origin_lonlat=(-111.8, 40.2)), "my_area.toml", row, cov,
-                              ["mission.csv", "mission.geojson", "mission.plan", "mission.waypoints"])
+    assert "water depth 12.5 m (my_area.toml: water_depth_m)" in local
+    assert "090°/270° lines" in local  # a line heading east is a compass heading of 090°
+    placed = area_from_vertices(RECT, origin_lonlat=(-111.8, 40.2))
+    everything = plan_caption(pf, placed, "my_area.toml", row, cov,
+                              ["mission.csv", "mission.geojson", "mission.plan", "mission.waypoints"], **depth)
     assert "`mission.waypoints`" in everything and "origin_lonlat" not in everything
     assert pf.name in everything and "5.00 km" in everything
+    own = plan_caption(pf, placed, "my_area.toml", row, cov, ["mission.csv", "mission.geojson"], ardupilot=False,
+                       **depth)
+    assert "does not run ArduPilot" in own
 
 
-@pytest.mark.parametrize("winner", ["lawnmower", "search"])
-def test_the_comparison_says_when_the_recommendation_is_the_lawnmower_baseline(winner):
-    """A recommendation that is the lawn-mower baseline itself is a finding (no searched plan
-    beats it): the sentence says so, and says nothing of the kind for a searched plan."""
-    from types import SimpleNamespace
+def test_the_verdict_sentence_says_whether_the_interval_excludes_the_standard_plans():
+    from sss_locus.experiments.surveydesign.scoring import recommend_under_noise
+    from sss_locus.report.survey_design import noise_verdict_sentence, verdict_words
 
-    from sss_locus.report.survey_design import comparison_sentence
+    pf = load_platform("auv")
+    plans = pd.DataFrame({"heading_deg": [0.0, 90.0], "spacing_m": [240.0, 200.0], "crossing_deg": [0.0, math.nan],
+                          "cross_spacing_m": [240.0, 200.0], "altitude_m": [21.0, 21.0], "pitch_deg": [0.0, 0.0]})
+    std = (0, "standard", 1000.0, True, 3.0, 2.8, 3.2)
+    for row, holds in (((1, "search", 900.0, True, 2.9, 2.6, 3.0), False), ((1, "search", 900.0, True, 2.0, 1.8, 2.2), True)):
+        summary = _summary([std, row]).assign(error_all_m=np.nan)
+        v = recommend_under_noise(summary)
+        text = noise_verdict_sentence(summary, v, plans, pf)
+        assert ("so it is recommended" in text) == holds and ("the standard plan is kept" in text) == (not holds)
+        assert "000°/180° lines 200 m apart" in text and "3.0 (95 % CI 2.8–3.2) m" in text and "10.0 % shorter" in text
+        assert verdict_words({"auv": v}, {"auv": pf}) == ("A plan beats the standard plan (auv)" if holds
+                                                          else "Standard plan kept (auv)")
 
-    t = pd.DataFrame({"kind": ["standard", "lawnmower", "search"],
-                      "recommended": [False, winner == "lawnmower", winner == "search"],
-                      "locus_median_m": [0.163, 0.150, 0.148], "total_m": [4092.0, 4007.0, 4000.0],
-                      "two_view_share": [0.75, 0.805, 0.78], "heading_deg": [0.0, 0.0, 45.0],
-                      "spacing_m": [240.0, 124.0, 130.0], "crossing_deg": [0.0, math.nan, math.nan],
-                      "cross_spacing_m": [240.0, 124.0, math.nan], "altitude_m": [21.0, 21.0, 21.0],
-                      "pitch_deg": [0.0, 0.0, 0.0]})
-    text = comparison_sentence(t, "locus", SimpleNamespace(name="Kestrel AUV"))
-    assert text.startswith("For the Kestrel AUV, the recommended plan")
-    assert ("lawn-mower baseline itself" in text) == (winner == "lawnmower")
-    assert ("0.150 m" if winner == "lawnmower" else "0.148 m") in text and "0.163 m" in text
+
+def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
+    """A 260 m x 200 m area is inside one swath of either platform: a plan of main lines only
+    runs one line over it, and the whole chapter's computation (search and
+    scoring under noise) completes (it raised IndexError in the reconstruction of a one-line plan)."""
+    from sss_locus.experiments.noise import load_noise_model
+    from sss_locus.experiments.surveydesign import scoring
+
+    small = deep(area_from_vertices([[0, 0], [260, 0], [260, 200], [0, 200]], name="pond"))
+    grid = dict(headings_deg=[0.0], spacing_fractions=[1.6, 3.0], crossing_angles_deg=[math.nan, 0.0],
+                cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
+    for key in ("boat", "auv"):
+        pf = load_platform(key)
+        plans = sd.search_plans(pf, small.key(), "flat", "locus", grid, n_features=30, seed=0, grid_m=20.0)
+        one = plans[plans.n_segments == 1]
+        assert len(one), plans[["spacing_m", "crossing_deg", "n_segments"]]
+        assert sd.plan_from_row(one.iloc[0]).lines(small).line.nunique() == 1
+        scores = scoring.score_plans(pf, small.key(), "flat", plans.assign(front=True), load_noise_model(key),
+                                     seeds=[0, 1, 2], n_features=30, grid_m=20.0, objective_col="locus_median_m")
+        assert set(scores.plan_index) == set(plans.index)
+        assert scores.loc[scores.plan_index.isin(one.index), "error_two_median_m"].isna().all()
+        assert (scores.loc[scores.plan_index.isin(one.index), "n_two_estimated"] == 0).all()
+
+
+def _summary(rows):
+    cols = ["plan_index", "kind", "total_m", "eligible", "error_two_m", "error_two_lo_m", "error_two_hi_m"]
+    return pd.DataFrame(rows, columns=cols).set_index("plan_index").assign(n_seeds=5)
+
+
+def test_a_plan_is_recommended_over_the_standard_only_where_its_interval_excludes_it():
+    """The rule on constructed summaries: a smaller mean whose interval overlaps the standard
+    plan's keeps the standard plan; an interval wholly below it recommends the plan; a longer or
+    ineligible plan is never picked; a seed of too few features gives no verdict."""
+    from sss_locus.experiments.surveydesign.scoring import recommend_under_noise
+
+    std = (0, "standard", 1000.0, True, 3.0, 2.8, 3.2)
+    overlap = recommend_under_noise(_summary([std, (1, "search", 900.0, True, 2.9, 2.6, 3.0)]))
+    assert (overlap["best"], overlap["holds"], overlap["recommended"], overlap["reason"]) == (1, False, 0, "intervals overlap")
+    below = recommend_under_noise(_summary([std, (1, "search", 900.0, True, 2.0, 1.8, 2.2),
+                                            (2, "search", 1100.0, True, 1.0, 0.9, 1.1),   # longer
+                                            (3, "search", 800.0, False, 1.0, 0.9, 1.1)]))  # not eligible
+    assert (below["recommended"], below["holds"]) == (1, True)
+    wide = recommend_under_noise(_summary([std, (1, "search", 900.0, True, 1.5, 0.1, 2.9),   # smallest mean, overlaps
+                                           (2, "search", 950.0, True, 2.5, 2.4, 2.6)]))  # excludes the standard's
+    assert (wide["best"], wide["recommended"], wide["holds"]) == (2, 2, True)
+    kept = recommend_under_noise(_summary([std, (1, "lawnmower", 1000.0, True, 3.5, 3.1, 3.9)]))
+    assert kept["recommended"] == 0 and kept["reason"] == "the standard plan is the best"
+    few = recommend_under_noise(_summary([(0, "standard", 1000.0, True, np.nan, np.nan, np.nan),
+                                          (1, "search", 900.0, True, 2.0, 1.8, 2.2)]))
+    assert few["reason"] == "too few features" and few["recommended"] == 0
+
+
+def test_scores_drop_medians_of_fewer_than_30_features_and_intervals_come_from_the_seeds():
+    """Scored on three seeds over a small area: each median over fewer than 30 features is NaN,
+    and the interval of every plan is the t interval of its per-seed medians, computed here."""
+    from scipy import stats
+
+    from sss_locus.experiments.noise import load_noise_model
+    from sss_locus.experiments.surveydesign import scoring
+
+    area = deep(area_from_vertices([[0, 0], [500, 0], [500, 300], [0, 300]], name="bay"))
+    grid = dict(headings_deg=[0.0], spacing_fractions=[1.6], crossing_angles_deg=[math.nan, 90.0],
+                cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
+    pf = load_platform("auv")
+    plans = sd.search_plans(pf, area.key(), "flat", "locus", grid, n_features=40, seed=0, grid_m=40.0)
+    scores = scoring.score_plans(pf, area.key(), "flat", plans, load_noise_model("auv"), seeds=[4, 5, 6],
+                                 n_features=40, grid_m=40.0, objective_col="locus_median_m")
+    assert set(scores.seed) == {4, 5, 6}
+    for name, (col, n_col) in scoring.ERRORS.items():
+        assert scores.loc[scores[n_col] < 30, col].isna().all()
+        assert scores.loc[scores[n_col] >= 30, col].notna().all()
+    summary = scoring.summarise(scores)
+    for i, g in scores.groupby("plan_index"):
+        v = g.error_two_median_m.to_numpy()
+        if np.all(np.isfinite(v)):
+            half = stats.t.ppf(0.975, 2) * v.std(ddof=1) / math.sqrt(3)
+            assert summary.loc[i, "error_two_lo_m"] == pytest.approx(v.mean() - half)
+            assert summary.loc[i, "error_two_hi_m"] == pytest.approx(v.mean() + half)
+    with pytest.raises(ValueError, match="noise_seeds must be at least 3 distinct seeds"):
+        scoring.score_plans(pf, area.key(), "flat", plans, load_noise_model("auv"), seeds=[1, 1, 2],
+                            n_features=40, grid_m=40.0, objective_col="locus_median_m")
+
+
+def test_the_subsets_of_lines_seeing_each_feature_match_a_brute_force_enumeration():
+    """The views' pairs and triples (per feature, from the lines that see it) against every
+    k-subset of all lines tested on every feature, in the same order and with the same cap."""
+    import itertools
+
+    from sss_locus.experiments.survey_objectives import _pairs as pairs
+
+    rng = np.random.default_rng(0)
+    for _ in range(30):
+        seen = rng.random((25, int(rng.integers(1, 10)))) < rng.random()
+        for k, cap in ((2, None), (3, 20), (3, 2)):
+            want, counts = [], np.zeros(len(seen), int)
+            for combo in itertools.combinations(range(seen.shape[1]), k):
+                for f in range(len(seen)):
+                    if seen[f, list(combo)].all() and (cap is None or counts[f] < cap):
+                        want.append((f, *combo))
+                        counts[f] += 1
+            assert pairs(seen, k, cap).tolist() == [list(w) for w in want]
+
+
+def test_published_headings_are_compass_headings():
+    from sss_locus.report.survey_design import with_compass
+
+    t = with_compass(pd.DataFrame({"set": ["main"] * 4, "heading_deg": [0.0, 90.0, 180.0, 300.0], "x": 1}))
+    assert list(t.columns) == ["set", "heading_compass_deg", "x"]
+    assert t.heading_compass_deg.tolist() == [90.0, 0.0, 270.0, 150.0]  # east, north, west, south-south-east
+
+
+def test_the_water_depth_comes_from_the_area_file_the_run_or_the_users_data(tmp_path):
+    toml = tmp_path / "a.toml"
+    toml.write_text("[area]\nvertices_m = [[0, 0], [400, 0], [400, 300], [0, 300]]\nwater_depth_m = 12.5\n")
+    gj = tmp_path / "a.geojson"
+    gj.write_text(json.dumps({"type": "Feature", "properties": {"water_depth_m": 7},
+                              "geometry": {"type": "Polygon", "coordinates": [[[-70.67, 41.51], [-70.66, 41.51],
+                                                                               [-70.66, 41.52], [-70.67, 41.51]]]}}))
+    settings = load_settings()
+    assert "water_depth_m" not in settings  # no shipped constant
+    from_file = sd.depth_settings(load_area(toml), settings)
+    assert from_file["water_depth_m"] == 12.5 and from_file["water_depth_source"].endswith("a.toml: water_depth_m")
+    assert sd.depth_settings(load_area(gj), settings)["water_depth_m"] == 7.0
+    run = sd.depth_settings(with_water_depth(load_area(toml), 20.0, "-p water_depth_m"), settings)
+    assert (run["water_depth_m"], run["water_depth_source"]) == (20.0, "-p water_depth_m")
+    bare = area_from_vertices(RECT)
+    users = sd.depth_settings(bare, {**settings, "water_depth_m": 40.0})
+    assert users["water_depth_m"] == 40.0 and "survey_design.water_depth_m" in users["water_depth_source"]

@@ -19,6 +19,15 @@ TOML::
     vertices_m = [[0, 0], [800, 0], [800, 500], [0, 500]]    # or:
     # vertices_lonlat = [[-111.80, 40.25], ...]              # WGS 84 degrees, lon first
     origin_lonlat = [-111.80, 40.25]                         # optional with vertices_m
+    water_depth_m = 12.0                                     # mean water depth over the area, m
+    water_beyond_m = 50.0                                    # optional: navigable water past the edge, m
+
+``water_depth_m`` (optional; also a GeoJSON feature's property) is the mean depth of the
+seafloor below the sea surface over the area, which sets the altitudes a vehicle can fly; a run
+may give it instead (:func:`with_water_depth`). An area without one is refused by the survey
+design (no hidden default). ``water_beyond_m`` (optional) is how far past the area's outer edge
+the water is navigable: survey lines, run-ins and turns stay within it (0: the edge is a shore);
+without it the water around the area is open and lines run as far as their swath reaches.
 
 GeoJSON (RFC 7946: longitude/latitude, WGS 84): a ``Polygon``, or a ``Feature`` /
 ``FeatureCollection`` whose first polygon is the area; its origin is the polygon's first vertex
@@ -37,6 +46,7 @@ and the rule.
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 from dataclasses import dataclass, replace
@@ -59,7 +69,9 @@ keeps distances from the origin exact and distorts others by about (d / 6371 km)
 4e-5 (4 cm per km) within 100 km; thousands of km away a 900 m line would come out 676 m."""
 
 
+@functools.lru_cache(maxsize=32)
 def _projection(origin_lonlat):
+    """Forward and inverse transformers of the area's local frame (cached: making one costs ~25 ms)."""
     from pyproj import Transformer
 
     lon, lat = origin_lonlat
@@ -116,6 +128,12 @@ class SurveyArea:
         SHA-256 of the file it was read from (``""`` if none).
     path : str
         That file, found (:func:`load_area`; ``""`` if none).
+    water_depth_m : float or None
+        Mean water depth over the area, m (``None``: not given).
+    water_depth_source : str
+        Where the depth comes from (the area file, a run parameter).
+    water_beyond_m : float or None
+        Navigable water past the outer edge, m (``None``: open water).
     """
 
     polygon: object
@@ -124,6 +142,9 @@ class SurveyArea:
     source: str = "vertices"
     sha256: str = ""
     path: str = ""
+    water_depth_m: float | None = None
+    water_depth_source: str = ""
+    water_beyond_m: float | None = None
 
     @property
     def area_m2(self) -> float:
@@ -134,14 +155,23 @@ class SurveyArea:
         if self.origin_lonlat is None:
             raise ValueError(f"area {self.name!r} has no origin: longitude/latitude outputs need "
                              "origin_lonlat = [lon, lat] in the area file")
-        _, inv = _projection(self.origin_lonlat)
+        _, inv = _projection(tuple(self.origin_lonlat))
         lon, lat = inv.transform(np.asarray(x, float), np.asarray(y, float))
         return np.asarray(lon), np.asarray(lat)
+
+    def to_local(self, lon, lat) -> tuple[np.ndarray, np.ndarray]:
+        """Longitude/latitude degrees to local east/north metres; refused without an origin."""
+        if self.origin_lonlat is None:
+            raise ValueError(f"area {self.name!r} has no origin: longitude/latitude need origin_lonlat = [lon, lat]")
+        fwd, _ = _projection(tuple(self.origin_lonlat))
+        x, y = fwd.transform(np.asarray(lon, float), np.asarray(lat, float))
+        return np.asarray(x), np.asarray(y)
 
     def key(self) -> dict:
         """A JSON-able description (for caches and manifests)."""
         return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
-                "source": self.source, "sha256": self.sha256}
+                "source": self.source, "sha256": self.sha256, "water_depth_m": self.water_depth_m,
+                "water_depth_source": self.water_depth_source, "water_beyond_m": self.water_beyond_m}
 
 
 def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str = "survey area",
@@ -248,8 +278,28 @@ def _from_geojson(doc, source: str) -> SurveyArea:
     if not isinstance(rings, list) or not all(isinstance(r, list) for r in rings):
         raise ValueError(f"{source}: GeoJSON Polygon 'coordinates' must be an array of rings (arrays of "
                          f"[longitude, latitude] positions); got {rings!r:.60}")
-    return area_from_lonlat(rings[0], props.get("origin_lonlat"), holes_lonlat=rings[1:],
+    area = area_from_lonlat(rings[0], props.get("origin_lonlat"), holes_lonlat=rings[1:],
                             name=str(props.get("name", Path(source).stem)), source=source)
+    return _depth_from(area, props, source)
+
+
+def _depth_from(area: SurveyArea, doc, source: str) -> SurveyArea:
+    if "water_beyond_m" in doc:
+        v = doc["water_beyond_m"]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (0 <= v <= 1e5):
+            raise ValueError(f"{source}: water_beyond_m must be a number of metres in [0, 100000]; got {v!r}")
+        area = replace(area, water_beyond_m=float(v))
+    if "water_depth_m" not in doc:
+        return area
+    return with_water_depth(area, doc["water_depth_m"], f"{source}: water_depth_m")
+
+
+def with_water_depth(area: SurveyArea, depth_m, source: str) -> SurveyArea:
+    """``area`` with its mean water depth ``depth_m`` (m, in (0, 12000]) from ``source``; a bad
+    value is refused in one line naming ``source``."""
+    if isinstance(depth_m, bool) or not isinstance(depth_m, (int, float)) or not (0 < depth_m <= 12000):
+        raise ValueError(f"{source} must be a number of metres in (0, 12000]; got {depth_m!r}")
+    return replace(area, water_depth_m=float(depth_m), water_depth_source=source)
 
 
 def load_area(path: str | Path) -> SurveyArea:
@@ -293,18 +343,20 @@ def _load_area(p: Path, source: str) -> SurveyArea:
     if not isinstance(area, dict):
         raise ValueError(f"{source}: missing table [area] (with vertices_m or vertices_lonlat)")
     unknown = set(area) - {"name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "source",
-                           "assumption"}
+                           "assumption", "water_depth_m", "water_beyond_m"}
     if unknown:
         raise ValueError(f"{source}: unknown keys in [area]: {sorted(unknown)} (allowed: name, vertices_m, "
-                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption)")
+                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m, water_beyond_m)")
     if ("vertices_m" in area) == ("vertices_lonlat" in area):
         raise ValueError(f"{source}: [area] needs exactly one of vertices_m or vertices_lonlat")
     name = str(area.get("name", p.stem))
     if "vertices_m" in area:
-        return area_from_vertices(area["vertices_m"], origin_lonlat=area.get("origin_lonlat"),
-                                  holes_m=area.get("holes_m", ()), name=name, source=source)
-    return area_from_lonlat(area["vertices_lonlat"], area.get("origin_lonlat"), holes_m=area.get("holes_m", []),
-                            name=name, source=source)
+        out = area_from_vertices(area["vertices_m"], origin_lonlat=area.get("origin_lonlat"),
+                                 holes_m=area.get("holes_m", ()), name=name, source=source)
+    else:
+        out = area_from_lonlat(area["vertices_lonlat"], area.get("origin_lonlat"), holes_m=area.get("holes_m", []),
+                               name=name, source=source)
+    return _depth_from(out, area, source)
 
 
 def area_from_key(key: dict) -> SurveyArea:
@@ -315,7 +367,8 @@ def area_from_key(key: dict) -> SurveyArea:
     area = area_from_vertices(np.asarray(poly.exterior.coords), origin_lonlat=key.get("origin_lonlat"),
                               holes_m=[np.asarray(r.coords) for r in poly.interiors],
                               name=key.get("name", "survey area"), source=key.get("source", "vertices"))
-    return replace(area, sha256=key.get("sha256", ""))
+    return replace(area, sha256=key.get("sha256", ""), water_depth_m=key.get("water_depth_m"),
+                   water_depth_source=key.get("water_depth_source", ""), water_beyond_m=key.get("water_beyond_m"))
 
 
 def principal_heading_deg(area: SurveyArea) -> float:

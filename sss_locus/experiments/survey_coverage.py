@@ -12,6 +12,9 @@ actually passes abeam of it inside the area.
 Coverage (:func:`coverage`) is **measured** on a square grid of points inside the area (the
 cell centres of spacing ``grid_m``): the share of the area seen by at least one line, by two or
 more, and the share seen by none (holes, counted as connected groups of unseen cells, 4-connected).
+Each segment is observed against the cells within the sonar's maximum range of it only (no ping
+reaches farther; the in-beam elevations seeded per segment), so the cost grows with the area, not
+with the area times the number of lines.
 Where the lines' swaths overlap the nadir gap is filled; where they do not, it shows as holes.
 The nadir gap of a line is the band ``|offset| < near`` under the vehicle that neither side's
 fan reaches, ``near`` from :func:`~sss_locus.experiments.straight_pass.swath_m` on a flat
@@ -103,18 +106,28 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
     -------
     dict
         ``once``, ``twice`` (shares of the area seen by >= 1, >= 2 lines), ``holes`` (share seen
-        by none), ``n_holes`` (connected unseen groups), ``nadir_gap_m`` (half-width),
+        by none), ``n_holes`` (connected unseen groups), ``nadir_gap_m`` (half-width), ``grid_m``,
         ``grid``: a DataFrame ``x_m, y_m, n_lines`` of the grid cells inside the area.
     """
     from scipy import ndimage
 
     xy, flat, shape = grid_points(area, grid_m)
-    _, seen, _ = observe_lines(platform, terrain, xy, lines, altitude_m, pitch_deg, same_altitude, seed, centre)
-    count = seen.sum(axis=1)
+    count = np.zeros(len(xy), np.int64)
+    reach = float(platform.sonar.max_range_m)  # no ping reaches farther from the vehicle
+    for j, (h, x0, y0, length) in enumerate(lines[["heading_deg", "x0_m", "y0_m", "length_m"]].to_numpy(float)):
+        e = np.array([math.cos(math.radians(h)), math.sin(math.radians(h))])
+        d = xy - [x0, y0]
+        along, across = d @ e, d @ np.array([-e[1], e[0]])
+        near = np.flatnonzero((along >= -reach) & (along <= length + reach) & (np.abs(across) <= reach))
+        if near.size:
+            sd = int(np.random.SeedSequence([seed, j]).generate_state(1)[0])
+            _, seen, _ = observe_lines(platform, terrain, xy[near], lines.iloc[[j]], altitude_m, pitch_deg,
+                                       same_altitude, sd, centre)
+            count[near] += seen[:, 0]
     unseen = np.zeros(shape[0] * shape[1], bool)
     unseen[flat[count == 0]] = True
     _, n_holes = ndimage.label(unseen.reshape(shape))
     return {"once": float(np.mean(count >= 1)), "twice": float(np.mean(count >= 2)),
             "holes": float(np.mean(count == 0)), "n_holes": int(n_holes),
-            "nadir_gap_m": nadir_gap_m(platform, altitude_m),
+            "nadir_gap_m": nadir_gap_m(platform, altitude_m), "grid_m": float(grid_m),
             "grid": pd.DataFrame({"x_m": xy[:, 0], "y_m": xy[:, 1], "n_lines": count})}

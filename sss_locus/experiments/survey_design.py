@@ -18,7 +18,8 @@ survey_lines` (lines and turns), :mod:`~sss_locus.experiments.survey_coverage` (
 
 Evaluation (:func:`evaluate`): ``n_features`` features uniform over the area (seeded), on the
 terrain, observed by every segment of the plan; cost from the track (lines and turns) and the
-platform's speed; coverage measured on a grid; the objectives of every feature seen twice.
+platform's speed; coverage measured on a grid (of ``grid_m``, coarser over an area that would
+need more than :data:`MAX_COVERAGE_CELLS` cells: :func:`coverage_grid_m`); the objectives of every feature seen twice.
 Every plan is evaluated on the same features (common random numbers), so plans are compared
 on equal terms.
 
@@ -29,15 +30,15 @@ resolved by three views; ``"reconstruction"`` the median 3-D error, under the no
 the flat-seafloor prior; the N-view estimate ``all`` is reported too, but it needs three views
 off one plane and leaves most features of a surface vessel unestimated).
 
-Front and recommendation (the rule): a plan is *eligible* when it shows at least
-``min(min_two_view_share, the standard plan's share)`` of the features to two or more lines (no
-worse a two-view survey than the standard, nor than the data file's target); the Pareto front
+Front and recommendation (the rule): a plan is *eligible* when at least
+``min(min_two_view_share, the standard plan's share)`` of the area is seen by two or more of its
+lines, measured on the coverage grid (no worse a 200 % survey than the standard plan as flown); the Pareto front
 is the eligible plans no other eligible plan beats in both track length and objective. The
 **recommended plan** is the eligible plan with the smallest objective among those whose track is
 no longer than the standard plan's (ties: the shorter track); when no eligible plan is that
-short, the shortest plan on the front (and the chapter says how much longer it is). The front and the baselines are then evaluated under the noise model
-(:func:`with_noise`). Seed stability (:func:`seed_stability`): the whole search rerun on other
-seeds (other features and in-beam elevations), the recommendation compared.
+short, the shortest plan on the front. This is the search's candidate; the recommendation is
+decided under the noise model over independent seeds
+(:mod:`sss_locus.experiments.surveydesign.scoring`).
 """
 
 from __future__ import annotations
@@ -53,7 +54,7 @@ from .survey_coverage import coverage, observe_lines
 from .survey_lines import track_length
 from .survey_objectives import pair_loci, reconstruction_errors, three_view_closure
 from .survey_plans import (Plan, check_mission, lawnmower_plan, load_settings, plan_grid, plan_ok,
-                           standard_plan)
+                           standard_plan, water_depth)
 from .terrain import KINDS, load_terrain_config, terrain_from_config
 
 OBJECTIVES = {"locus": "locus_median_m", "three_view": "unresolved_share", "reconstruction": "error_two_median_m"}
@@ -106,6 +107,30 @@ def check_grid(grid) -> dict:
             for v in [grid[k]]}
 
 
+MAX_COVERAGE_CELLS = 20_000
+"""Most coverage cells over an area: a larger area is measured on a coarser grid
+(:func:`coverage_grid_m`), so a km-scale area is planned in minutes."""
+
+
+def coverage_grid_m(area: SurveyArea, grid_m: float) -> float:
+    """The coverage grid's spacing over ``area``: ``grid_m``, or the spacing that puts
+    :data:`MAX_COVERAGE_CELLS` cells over it when ``grid_m`` would put more, m."""
+    return float(max(grid_m, math.sqrt(area.area_m2 / MAX_COVERAGE_CELLS)))
+
+
+def depth_settings(area: SurveyArea, settings: dict) -> dict:
+    """``settings`` with the water depth of the area (given by its file or the run) or, failing
+    that, of a user's ``survey_design.water_depth_m``; ``water_depth_source`` says which. No
+    depth at all is refused in one line."""
+    out = dict(settings)
+    if area.water_depth_m is not None:
+        out["water_depth_m"], out["water_depth_source"] = area.water_depth_m, area.water_depth_source
+    elif out.get("water_depth_m") is not None:
+        out["water_depth_source"] = "survey_design.water_depth_m of the run's data"
+    water_depth(out)
+    return out
+
+
 def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: int, seed: int,
                  grid_m: float, settings: dict | None = None) -> Setting:
     """Validate the inputs and draw the features (module docstring)."""
@@ -118,8 +143,8 @@ def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: i
     check_mission(platform)
     n = _ints("n_features", n_features, 10)
     seed = _ints("seed", seed, 0)
-    grid_m = _floats("grid_m", grid_m, 1e-3)[0]
-    settings = load_settings() if settings is None else settings
+    grid_m = coverage_grid_m(area, _floats("grid_m", grid_m, 1e-3)[0])
+    settings = depth_settings(area, load_settings() if settings is None else settings)
     c = area.polygon.centroid
     x0, y0, x1, y1 = area.polygon.bounds
     terrain = terrain_from_config(terrain_kind, load_terrain_config(),
@@ -166,7 +191,16 @@ def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dic
         row["error_all_median_m"] = float(err["error_all_m"].median())
         row["error_two_median_m"] = float(err["error_two_m"].median())
         row["estimated_share"] = float(err["error_all_m"].notna().mean())
+        row["n_two_estimated"] = int(err["error_two_m"].notna().sum())
+        row["n_all_estimated"] = int(err["error_all_m"].notna().sum())
     return row
+
+
+def eligible(table: pd.DataFrame, settings: dict) -> pd.Series:
+    """The rule's eligibility (module docstring): the share of the area seen by two or more lines
+    at least the standard plan's (capped at ``min_two_view_share``)."""
+    need = min(settings["min_two_view_share"], float(table.loc[table.kind == "standard", "covered_twice"].iloc[0]))
+    return table["covered_twice"] >= need
 
 
 def pareto_front(cost, value, eligible) -> np.ndarray:
@@ -200,7 +234,7 @@ class DesignResult:
 
 def standard_for(s: Setting) -> Plan:
     """The standard plan of setting ``s``; refused in one line when no altitude of the platform
-    fits or the area is too small for one of its lines (checked before any work by the runner)."""
+    fits or no line of it is left (checked before any work by the runner)."""
     std = standard_plan(s.platform, s.area, s.terrain, s.settings, s.heights_m)
     if not plan_ok(s.platform, s.settings, s.heights_m, std):
         raise ValueError(f"no altitude of platform {s.platform.key!r} fits water_depth_m = "
@@ -208,9 +242,9 @@ def standard_for(s: Setting) -> Plan:
                          f"{s.platform.depth_min_m:g}-{s.platform.depth_max_m:g} m)")
     if std.lines(s.area).empty:
         x0, y0, x1, y1 = s.area.polygon.bounds
-        raise ValueError(f"area {s.area.name!r} is too small for one line of the standard plan of {s.platform.key!r}: "
-                         f"its lines are {std.spacing_m:.0f} m apart (standard_spacing_fraction x the range scale) and "
-                         f"the first lies half a spacing inside the area, which spans {x1 - x0:.0f} m x {y1 - y0:.0f} m")
+        raise ValueError(f"area {s.area.name!r} leaves no line of the standard plan of {s.platform.key!r}: "
+                         f"the area spans {x1 - x0:.0f} m x {y1 - y0:.0f} m and its water_beyond_m or holes leave no "
+                         "line of at least 1 m")
     return std
 
 
@@ -236,8 +270,7 @@ def search(s: Setting, objective: str, grid: dict, *, noise=None, progress=None)
         if progress is not None:
             progress(k + 1, len(plans))
     table = pd.DataFrame(rows)
-    need = min(s.settings["min_two_view_share"], float(table.loc[table.kind == "standard", "two_view_share"].iloc[0]))
-    table["eligible"] = table["two_view_share"] >= need
+    table["eligible"] = eligible(table, s.settings)
     col = OBJECTIVES[objective]
     table["front"] = pareto_front(table["total_m"], table[col], table["eligible"])
     return table
@@ -265,19 +298,6 @@ def search_plans(platform, area_key: dict, terrain: str, objective: str, grid: d
     return res.plans.assign(recommended=res.plans.index == res.recommended)
 
 
-def with_noise(platform, area_key: dict, terrain: str, plans: pd.DataFrame, noise, *, n_features: int,
-               seed: int, grid_m: float) -> pd.DataFrame:
-    """The front, the baselines and the recommended plan of ``plans`` (:func:`search_plans`)
-    re-evaluated on the same features with the noise model ``noise``: their rows with
-    ``error_all_median_m``, ``error_two_median_m``, ``estimated_share`` and ``plan_index``."""
-    s = make_setting(platform, area_from_key(area_key), terrain, n_features=n_features, seed=seed, grid_m=grid_m)
-    pick = plans.front | (plans.kind != "search")
-    if "recommended" in plans:
-        pick |= plans.recommended
-    return pd.DataFrame([{**evaluate(s, plan_from_row(r), noise=noise), "kind": r["kind"], "plan_index": i}
-                         for i, r in plans[pick].iterrows()])
-
-
 def plan_from_row(row) -> Plan:
     """The :class:`~sss_locus.experiments.survey_plans.Plan` of a row of the plans table."""
     return Plan(**{k: row[k] for k in Plan.__dataclass_fields__})
@@ -290,38 +310,8 @@ def plan_coverage(platform, area: SurveyArea, terrain: str, row, *, grid_m: floa
     plan = plan_from_row(row)
     lines = plan.lines(area)
     cov = coverage(platform, s.terrain, area, lines, plan.altitude_m, plan.pitch_deg, platform.fixed_depth,
-                   grid_m=grid_m, seed=seed, centre=s.centre)
+                   grid_m=s.grid_m, seed=seed, centre=s.centre)
     return lines, cov
-
-
-def seed_stability(platform, area_key: dict, terrain: str, plans: pd.DataFrame, *, objective: str,
-                   seeds, n_features: int, grid_m: float) -> pd.DataFrame:
-    """The recommendation redone on other seeds (other features, in-beam elevations, coverage
-    grid draws). Only the plans the rule can pick are re-evaluated: the baselines, the front and
-    every plan no longer than the standard plan (the rule depends on no other). One row per seed:
-    the recommended plan, its objective, the standard plan's and their ratio, and whether it is
-    the plan recommended on the first seed (``same``)."""
-    col = OBJECTIVES[objective]
-    std_total = float(plans.loc[plans.kind == "standard", "total_m"].iloc[0])
-    pick = plans[(plans.kind != "search") | plans.front | (plans.total_m <= std_total)]
-    first = plans.index[plans["recommended"]] if "recommended" in plans else []
-    area = area_from_key(area_key)
-    rows = []
-    for sd in seeds:
-        s = make_setting(platform, area, terrain, n_features=n_features, seed=int(sd), grid_m=grid_m)
-        t = pd.DataFrame([{**evaluate(s, plan_from_row(r)), "kind": r["kind"]} for _, r in pick.iterrows()],
-                         index=pick.index)
-        need = min(s.settings["min_two_view_share"], float(t.loc[t.kind == "standard", "two_view_share"].iloc[0]))
-        t["eligible"] = t["two_view_share"] >= need
-        t["front"] = pareto_front(t["total_m"], t[col], t["eligible"])
-        k = recommend(t, objective, float(t.loc[t.kind == "standard", "total_m"].iloc[0]))
-        std = float(t.loc[t.kind == "standard", col].iloc[0])
-        rec = t.loc[k] if k is not None else None
-        rows.append({"seed": int(sd), "plan_index": k, "same": k is not None and k in list(first),
-                     **{c: (rec[c] if rec is not None else math.nan) for c in Plan.__dataclass_fields__ if c != "name"},
-                     "recommended_value": rec[col] if rec is not None else math.nan, "standard_value": std,
-                     "ratio": (rec[col] / std) if rec is not None and std > 0 else math.nan})
-    return pd.DataFrame(rows)
 
 
 def by_crossing_angle(plans: pd.DataFrame, objective: str) -> pd.DataFrame:

@@ -14,6 +14,19 @@ edge of the area is not run), each clipped to the polygon with ``shapely``
 (a concave area or a hole can cut a line into several segments, run in order along the line).
 Consecutive lines are run in opposite directions (a lawn-mower, boustrophedon pattern).
 
+**Lines as surveyors fly them** (``reach_m > 0``): with ``reach_m`` the horizontal reach of the
+swath (its far edge) and ``near_m`` its near edge (the nadir gap), the lines lie at ``c_min + (k +
+1/2 + offset) spacing`` for every integer ``k`` whose swath reaches the area, also outside it, so
+that the area's edge is seen by as many lines as its interior (:func:`flown_positions`: of the
+lines outside, from the farthest in, a line is dropped when every across-track position of the
+area is still seen by at least ``m`` lines of the plan's sets run at this heading, ``m`` the
+fewest the unbounded pattern gives any position; e.g. 2 for a 200 % plan); a line runs over the along-track extent of the part of the area
+its swath reaches (the area cut by the band ``|c' - c| <= reach``; a concave area can give
+several pieces), extended by ``run_m`` before and after (the run-in and run-out); the line is
+then cut where it would come within ``run_m`` of a hole of the area (an island or an exclusion
+zone: the vehicle does not cross it, and runs out before it) and, when the area gives
+``water_beyond_m``, where it would leave the water that far past the area's edge (a shore).
+
 Track (:func:`track_length`)
 ----------------------------
 The lines in order, joined by turns of a vehicle with minimum turning radius ``R``:
@@ -57,30 +70,109 @@ def _unit(heading_deg):
     return np.array([math.cos(h), math.sin(h)]), np.array([-math.sin(h), math.cos(h)])
 
 
-def line_set(area: SurveyArea, heading_deg: float, spacing_m: float, *, offset: float = 0.0,
-             name: str = "main") -> pd.DataFrame:
-    """Parallel lines over ``area`` (module docstring); one row per segment, columns
-    :data:`LINE_COLUMNS` (``set`` is ``name``; ``line`` counts the lines from 0 in run order)."""
+def _intervals(pieces, e, run_m: float) -> list[tuple[float, float]]:
+    """Along-track intervals (along ``e``) covered by the projections of ``pieces`` (shapely
+    geometries), each widened by ``run_m``, overlapping ones merged, in increasing order."""
+    spans = []
+    for g in pieces:
+        a = np.asarray(g.exterior.coords if g.geom_type == "Polygon" else g.coords) @ e
+        spans.append([a.min() - run_m, a.max() + run_m])
+    spans.sort()
+    out: list[list[float]] = []
+    for a, b in spans:
+        if out and a <= out[-1][1]:
+            out[-1][1] = max(out[-1][1], b)
+        else:
+            out.append([a, b])
+    return [(a, b) for a, b in out]
+
+
+def _line_pieces(area: SurveyArea, c: float, e, n, a0: float, a1: float, reach_m: float, run_m: float):
+    """The pieces (shapely LineStrings) of the line at across position ``c`` (module docstring)."""
     import shapely
 
+    if reach_m <= 0:  # the line clipped to the area
+        piece = shapely.LineString([c * n + a0 * e, c * n + a1 * e]).intersection(area.polygon)
+        return [g for g in getattr(piece, "geoms", [piece]) if g.geom_type == "LineString"]
+    band = shapely.Polygon([(c - reach_m) * n + a0 * e, (c - reach_m) * n + a1 * e,
+                            (c + reach_m) * n + a1 * e, (c + reach_m) * n + a0 * e])
+    seen = band.intersection(area.polygon)
+    parts = [g for g in getattr(seen, "geoms", [seen]) if g.geom_type == "Polygon" and not g.is_empty]
+    lines = [shapely.LineString([c * n + a * e, c * n + b * e]) for a, b in _intervals(parts, e, run_m)]
+    holes = shapely.MultiPolygon([shapely.Polygon(r).buffer(run_m) for r in area.polygon.interiors])
+    water = None if area.water_beyond_m is None else shapely.Polygon(area.polygon.exterior).buffer(area.water_beyond_m)
+    out = []
+    for g in lines:
+        cut = g.intersection(water) if water is not None else g
+        cut = cut.difference(holes) if not holes.is_empty else cut
+        out += [h for h in getattr(cut, "geoms", [cut]) if h.geom_type == "LineString"]
+    return out
+
+
+def _count(u, cs, near_m: float, reach_m: float) -> np.ndarray:
+    d = np.abs(u[:, None] - np.asarray(cs)[None, :])
+    return ((d >= near_m) & (d <= reach_m)).sum(axis=1)
+
+
+def flown_positions(c_min: float, c_max: float, sets, reach_m: float, near_m: float) -> list[np.ndarray]:
+    """Across-track positions (m, along the heading's left normal) of the lines of ``sets``
+    (``(spacing_m, offset)`` pairs run at one heading) as flown (module docstring), one array per
+    set, increasing."""
+    pos = lambda sp, off, lo, hi: c_min + (np.arange(math.floor((lo - c_min) / sp - 0.5 - off),  # noqa: E731
+                                                      math.ceil((hi - c_min) / sp - 0.5 - off) + 1) + 0.5 + off) * sp
+    step = min(1.0, (c_max - c_min) / 100.0) if c_max > c_min else 1.0
+    u = np.linspace(c_min, c_max, max(2, int(math.ceil((c_max - c_min) / step)) + 1))
+    wide = np.concatenate([pos(sp, off, c_min - reach_m - 2 * sp, c_max + reach_m + 2 * sp) for sp, off in sets])
+    m = int(_count(u, wide, near_m, reach_m).min())
+    cand = [c[(c > c_min - reach_m) & (c < c_max + reach_m)] for c in (pos(sp, off, c_min - reach_m - sp,
+                                                                          c_max + reach_m + sp) for sp, off in sets)]
+    keep = [np.ones(len(c), bool) for c in cand]
+    outside = sorted(((max(c_min - c, c - c_max), i, j) for i, cs in enumerate(cand) for j, c in enumerate(cs)
+                      if c < c_min or c > c_max), reverse=True)
+    for _, i, j in outside:
+        keep[i][j] = False
+        if _count(u, np.concatenate([c[k] for c, k in zip(cand, keep)]), near_m, reach_m).min() < m:
+            keep[i][j] = True
+    return [c[k] for c, k in zip(cand, keep)]
+
+
+def across_extent(area: SurveyArea, heading_deg: float) -> tuple[float, float]:
+    """The area's extent across lines of ``heading_deg`` (along the left normal), m."""
+    _, n = _unit(float(heading_deg))
+    across = np.asarray(area.polygon.exterior.coords) @ n
+    return float(across.min()), float(across.max())
+
+
+def line_set(area: SurveyArea, heading_deg: float, spacing_m: float, *, offset: float = 0.0,
+             name: str = "main", reach_m: float = 0.0, run_m: float = 0.0, near_m: float = 0.0,
+             across_m=None) -> pd.DataFrame:
+    """Parallel lines over ``area`` (module docstring; ``reach_m`` > 0: the lines as flown, with
+    the swath's reach and a run-in/run-out of ``run_m``; ``across_m`` the lines' across-track
+    positions, default :func:`flown_positions` of this set alone); one row per segment, columns
+    :data:`LINE_COLUMNS` (``set`` is ``name``; ``line`` counts the lines from 0 in run order)."""
     if not (isinstance(spacing_m, (int, float, np.floating)) and math.isfinite(spacing_m) and spacing_m > 0):
         raise ValueError(f"spacing_m must be a finite number > 0; got {spacing_m!r}")
     if not (isinstance(heading_deg, (int, float, np.floating)) and math.isfinite(heading_deg)):
         raise ValueError(f"heading_deg must be a finite number; got {heading_deg!r}")
+    for label, v in (("reach_m", reach_m), ("run_m", run_m)):
+        if not (isinstance(v, (int, float, np.floating)) and math.isfinite(v) and v >= 0):
+            raise ValueError(f"{label} must be a finite number >= 0; got {v!r}")
     e, n = _unit(float(heading_deg))
     xy = np.asarray(area.polygon.exterior.coords)
     across, along = xy @ n, xy @ e
     c_min, c_max = across.min(), across.max()
-    a0, a1 = along.min() - 1.0, along.max() + 1.0
-    k = np.arange(int(math.floor((c_max - c_min) / spacing_m - 0.5 - offset)) + 2)
+    a0, a1 = along.min() - 1.0 - run_m, along.max() + 1.0 + run_m
+    if across_m is not None:
+        cs = np.sort(np.asarray(across_m, float))
+    elif reach_m > 0:  # the lines whose swath reaches the area, as flown
+        cs = flown_positions(c_min, c_max, [(spacing_m, offset)], reach_m, near_m)[0]
+    else:  # the first line half a spacing inside; a line on the far edge adds nothing inside
+        k = np.arange(int(math.floor((c_max - c_min) / spacing_m - 0.5 - offset)) + 2)
+        cs = c_min + (k + 0.5 + offset) * spacing_m
+        cs = cs[cs < c_max - 1e-9 * max(1.0, abs(c_max))]
     rows, line = [], 0
-    for c in c_min + (k + 0.5 + offset) * spacing_m:
-        if c >= c_max - 1e-9 * max(1.0, abs(c_max)):  # a line on the far edge adds nothing inside
-            break
-        full = shapely.LineString([c * n + a0 * e, c * n + a1 * e])
-        piece = full.intersection(area.polygon)
-        parts = [g for g in getattr(piece, "geoms", [piece]) if g.geom_type == "LineString"
-                 and g.length >= MIN_SEGMENT_M]
+    for c in cs:
+        parts = [g for g in _line_pieces(area, c, e, n, a0, a1, reach_m, run_m) if g.length >= MIN_SEGMENT_M]
         if not parts:
             continue
         reverse = line % 2 == 1

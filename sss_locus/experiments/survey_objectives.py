@@ -38,19 +38,17 @@ PAIR_RULES = ("best",)
 
 def _pairs(seen: np.ndarray, k: int, cap: int | None = None):
     """Rows ``(feature, line_1, ..., line_k)`` of every k-subset of the lines seeing each feature
-    (at most ``cap`` per feature, in line order)."""
-    n, L = seen.shape
-    out = []
-    counts = np.zeros(n, np.int64)
-    for combo in itertools.combinations(range(L), k):
-        ok = np.all(seen[:, combo], axis=1)
-        if cap is not None:
-            ok &= counts < cap
-        idx = np.flatnonzero(ok)
-        counts[idx] += 1
-        if idx.size:
-            out.append(np.column_stack([idx, np.tile(combo, (idx.size, 1))]))
-    return np.concatenate(out) if out else np.zeros((0, k + 1), np.int64)
+    (at most ``cap`` per feature, in line order), ordered by the lines' subset, then the feature.
+    Built per feature from the lines that see it, so the cost grows with the views, not with the
+    number of k-subsets of all lines."""
+    rows = []
+    for f in range(seen.shape[0]):
+        combos = itertools.combinations(np.flatnonzero(seen[f]).tolist(), k)
+        rows += [(f, *c) for c in (itertools.islice(combos, cap) if cap is not None else combos)]
+    if not rows:
+        return np.zeros((0, k + 1), np.int64)
+    out = np.asarray(rows, np.int64)
+    return out[np.lexsort((out[:, 0], *(out[:, j] for j in range(k, 0, -1))))]
 
 
 def pair_loci(views: Views, seen, aperture, heading_deg) -> pd.DataFrame:
@@ -94,7 +92,17 @@ def three_view_closure(views: Views, seen, aperture) -> np.ndarray:
 
 def reconstruction_errors(views: Views, seen, sensor_height_m, noise, aperture, seed: int) -> pd.DataFrame:
     """Per feature, the 3-D error of the ``all`` and ``two`` estimates under ``noise`` (NaN where
-    not estimated): columns ``error_all_m``, ``error_two_m``."""
+    not estimated): columns ``error_all_m``, ``error_two_m``. A plan of fewer than three segments
+    is padded with unseen copies of its last segment (the estimators index three views), so a
+    one-segment plan estimates nothing (every feature NaN) and a two-segment plan no ``all``."""
+    seen = np.asarray(seen, bool)
+    if seen.shape[1] < 3:
+        pad = [seen.shape[1] - 1] * (3 - seen.shape[1])
+        views = views.select(*range(seen.shape[1]), *pad)
+        seen = np.concatenate([seen, np.zeros((seen.shape[0], len(pad)), bool)], axis=1)
+        sensor_height_m = np.asarray(sensor_height_m)
+        if sensor_height_m.ndim == 2:
+            sensor_height_m = sensor_height_m[:, list(range(sensor_height_m.shape[1])) + pad]
     table = reconstruct(views, seen, sensor_height_m, noise, aperture, n_views=(3,), seed=seed)
     pick = lambda name: table.loc[table.estimator == name, "error_3d_m"].to_numpy()  # noqa: E731
     return pd.DataFrame({"error_all_m": pick("all"), "error_two_m": pick("two")})

@@ -16,6 +16,9 @@ the platform's pitch limit. Turns use the platform's ``mission.turn_radius_m``
 Baselines (:func:`standard_plan`, :func:`lawnmower_plan`), values in ``data/survey_design.toml``
 with their sources:
 
+Every plan is flown the same way (:func:`flown`): lines extended to wherever their swath reaches
+the area (also lines outside it), with a run-in and run-out of ``run_in_turn_radii`` turn radii.
+
 ``standard``
     the standard sidescan plan: lines ``standard_spacing_fraction`` (1.6) x the range scale
     apart, 200 % coverage by a second set offset by ``standard_offset_fraction`` of a spacing,
@@ -41,12 +44,15 @@ import pandas as pd
 from . import datadoc
 from .inputs import sourced, table
 from .survey_area import SurveyArea, principal_heading_deg
-from .survey_lines import line_set, track_length
+from .survey_lines import across_extent, flown_positions, line_set, track_length
 
 SETTINGS = (("range_scale_fraction", 1e-3, 10.0), ("standard_spacing_fraction", 1e-3, 10.0),
             ("standard_offset_fraction", 0.0, 1.0), ("standard_altitude_min_fraction", 0.0, 1.0),
-            ("standard_altitude_max_fraction", 0.0, 1.0), ("water_depth_m", 0.0, 12000.0),
-            ("min_two_view_share", 0.0, 1.0))
+            ("standard_altitude_max_fraction", 0.0, 1.0), ("min_two_view_share", 0.0, 1.0),
+            ("run_in_turn_radii", 0.0, 1000.0))
+OPTIONAL_SETTINGS = (("water_depth_m", 1e-3, 12000.0),)
+"""Keys a user's ``--data`` file may add: ``water_depth_m`` (the mean water depth, used when
+neither the run nor the area file gives one; no shipped default)."""
 
 
 def load_settings(doc=None) -> dict:
@@ -56,12 +62,13 @@ def load_settings(doc=None) -> dict:
         datadoc.note_read("survey_design")
         doc = datadoc.document()
     t = table(doc, "survey_design", "")
-    unknown = set(t) - {k for k, _, _ in SETTINGS}
+    unknown = set(t) - {k for k, _, _ in SETTINGS + OPTIONAL_SETTINGS}
     if unknown:
         raise ValueError(f"survey_design.{sorted(unknown)[0]} is not a survey-design key; allowed: "
-                         f"{[k for k, _, _ in SETTINGS]}")
+                         f"{[k for k, _, _ in SETTINGS + OPTIONAL_SETTINGS]}")
     prov: dict[str, str] = {}
     out = {k: sourced(t, k, "survey_design", prov, lo=lo, hi=hi) for k, lo, hi in SETTINGS}
+    out.update({k: sourced(t, k, "survey_design", prov, lo=lo, hi=hi) for k, lo, hi in OPTIONAL_SETTINGS if k in t})
     if out["standard_altitude_min_fraction"] > out["standard_altitude_max_fraction"]:
         raise ValueError("survey_design.standard_altitude_min_fraction must not exceed standard_altitude_max_fraction")
     out["provenance"] = prov
@@ -80,15 +87,26 @@ class Plan:
     altitude_m: float
     pitch_deg: float = 0.0
     name: str = ""
+    reach_m: float = 0.0
+    run_m: float = 0.0
+    near_m: float = 0.0
 
     def lines(self, area: SurveyArea) -> pd.DataFrame:
-        """The plan's segments in run order: main lines, then cross lines."""
-        main = line_set(area, self.heading_deg, self.spacing_m, name="main")
+        """The plan's segments in run order: main lines, then cross lines (as flown when
+        ``reach_m`` > 0: :func:`~sss_locus.experiments.survey_lines.line_set`)."""
+        fly = dict(reach_m=self.reach_m, run_m=self.run_m, near_m=self.near_m)
+        repeat = not math.isnan(self.crossing_deg) and self.crossing_deg % 180.0 == 0.0
+        at = [None, None]
+        if repeat and self.reach_m > 0:  # the two sets at one heading are trimmed together
+            lo, hi = across_extent(area, self.heading_deg)
+            at = flown_positions(lo, hi, [(self.spacing_m, 0.0), (self.cross_spacing_m, 0.5)], self.reach_m,
+                                 self.near_m)
+        main = line_set(area, self.heading_deg, self.spacing_m, name="main", across_m=at[0], **fly)
         if math.isnan(self.crossing_deg):
             return main
-        offset = 0.5 if self.crossing_deg % 180.0 == 0.0 else 0.0
+        offset = 0.5 if repeat else 0.0
         cross = line_set(area, (self.heading_deg + self.crossing_deg) % 360.0, self.cross_spacing_m,
-                         offset=offset, name="cross")
+                         offset=offset, name="cross", across_m=at[1], **fly)
         return pd.concat([main, cross], ignore_index=True)
 
     def row(self) -> dict:
@@ -97,6 +115,30 @@ class Plan:
 
 def range_scale_m(platform, settings) -> float:
     return platform.sonar.max_range_m * settings["range_scale_fraction"]
+
+
+def swath_reach_m(platform, settings, altitude_m: float) -> float:
+    """Horizontal reach of the swath (its far edge from the track, the wider side) at
+    ``altitude_m`` over a flat seafloor, within the range scale, m."""
+    from .straight_pass import swath_m
+
+    far = max(float(swath_m(platform, [port], [altitude_m])[1][0]) for port in (True, False))
+    scale = range_scale_m(platform, settings)
+    lateral = max(abs(t.lateral_offset_m) for t in platform.transducers.values())
+    return min(far, lateral + math.sqrt(max(scale ** 2 - altitude_m ** 2, 0.0)))
+
+
+def flown(platform, settings, plan: Plan) -> Plan:
+    """``plan`` as flown: every line whose swath reaches the area, run-in and run-out of
+    ``run_in_turn_radii`` x the turn radius (module docstring of
+    :mod:`~sss_locus.experiments.survey_lines`)."""
+    from dataclasses import replace
+
+    from .straight_pass import swath_m
+
+    near = max(0.0, min(float(swath_m(platform, [port], [plan.altitude_m])[0][0]) for port in (True, False)))
+    return replace(plan, reach_m=swath_reach_m(platform, settings, plan.altitude_m), near_m=near,
+                   run_m=settings["run_in_turn_radii"] * platform.turn_radius_m)
 
 
 def check_mission(platform) -> None:
@@ -110,7 +152,7 @@ def check_mission(platform) -> None:
 def altitude_limits(platform, settings, heights_m) -> tuple[float, float]:
     """The altitudes (above the local seafloor, m) the platform may fly over seafloor heights
     ``heights_m`` (module docstring); ``lo > hi`` when none."""
-    water = settings["water_depth_m"]
+    water = water_depth(settings)
     hmin, hmax = float(np.min(heights_m)), float(np.max(heights_m))
     t_depth = max(t.depth_m for t in platform.transducers.values())
     lo = max(1e-6, t_depth + 1e-6, water - hmin - platform.depth_max_m)
@@ -120,7 +162,16 @@ def altitude_limits(platform, settings, heights_m) -> tuple[float, float]:
 
 def fixed_altitude_m(platform, settings) -> float | None:
     """A platform of fixed depth flies at ``water depth - its depth`` above the mean seafloor."""
-    return settings["water_depth_m"] - platform.depth_min_m if platform.fixed_depth else None
+    return water_depth(settings) - platform.depth_min_m if platform.fixed_depth else None
+
+
+def water_depth(settings) -> float:
+    """The mean water depth of ``settings`` (set from the area or the run by the design), refused
+    in one line when nobody gave one."""
+    if settings.get("water_depth_m") is None:
+        raise ValueError("no water depth: give the area file a water_depth_m (mean water depth over the area, m), "
+                         "or the run -p water_depth_m VALUE (or --set survey_design.water_depth_m=VALUE)")
+    return float(settings["water_depth_m"])
 
 
 def plan_ok(platform, settings, heights_m, plan: Plan) -> bool:
@@ -151,13 +202,15 @@ def standard_plan(platform, area: SurveyArea, terrain, settings, heights_m) -> P
         mid = 0.5 * (settings["standard_altitude_min_fraction"] + settings["standard_altitude_max_fraction"]) * R
         alt = float(np.clip(mid, lo, hi))
     spacing = settings["standard_spacing_fraction"] * R
-    return Plan(standard_heading_deg(area, terrain), spacing, 0.0, spacing, alt, 0.0, "standard")
+    return flown(platform, settings, Plan(standard_heading_deg(area, terrain), spacing, 0.0, spacing, alt, 0.0,
+                                          "standard"))
 
 
 def lawnmower_plan(platform, area: SurveyArea, standard: Plan) -> Plan:
     """Parallel lines only, spaced so the track is as long as the standard plan's (bisection)."""
     target = track_length(standard.lines(area), platform.turn_radius_m)["total_m"]
-    mk = lambda s: Plan(standard.heading_deg, s, math.nan, s, standard.altitude_m, 0.0, "lawnmower")  # noqa: E731
+    mk = lambda s: Plan(standard.heading_deg, s, math.nan, s, standard.altitude_m, 0.0, "lawnmower",  # noqa: E731
+                        standard.reach_m, standard.run_m, standard.near_m)
     lo, hi = 1.0, standard.spacing_m * 4
     for _ in range(40):
         mid = 0.5 * (lo + hi)
@@ -184,5 +237,5 @@ def plan_grid(platform, area: SurveyArea, terrain, settings, heights_m, *, headi
                         for p in pitches_deg:
                             plan = Plan(float(h), float(s) * R, float(g), float(s) * R * float(cf), float(a), float(p))
                             if plan_ok(platform, settings, heights_m, plan):
-                                plans.append(plan)
+                                plans.append(flown(platform, settings, plan))
     return plans

@@ -129,7 +129,8 @@ def check_survey_design(parameters: Mapping[str, Any], area: Any, platforms: lis
     diagonal = math.hypot(x1 - x0, y1 - y0)
     fractions = list(parameters["spacing_fractions"]) + [settings["standard_spacing_fraction"]]
     cross = min(parameters["cross_spacing_factors"]) if parameters["crossing_angles_deg"] else math.inf
-    runs = _plan_count(parameters) * (1 + len(parameters.get("stability_seeds", [])))
+    plans = _plan_count(parameters)  # the search, then a few of them rescored on every noise seed
+    runs = plans + len(parameters.get("noise_seeds", [])) * min(plans, 30)
     for platform in platforms:
         spacing = min(fractions) * platform.sonar.max_range_m * settings["range_scale_fraction"]
         lines = (diagonal / spacing + 1) * (1 + (1 / cross if math.isfinite(cross) else 0))

@@ -83,7 +83,7 @@ def file_parameters(parameters: dict) -> dict[str, str]:
 
 def check_files(parameters: dict) -> None:
     """Read the user's files of a run (:func:`file_parameters`) as its chapter will, before a
-    kernel starts: a bad area (not a valid polygon, too small for one line of a platform's
+    kernel starts: a bad area (not a valid polygon, no water depth, no line of a platform's
     standard plan, over the memory or time budget: :mod:`sss_locus.pipeline.budgets`), bad
     observations (a row, column or XTF byte offset, a sighting far from the frame's origin), a
     bad ``origin`` or ``truth`` file are refused in one line naming the parameter. The data files (``--data``) must be in use (they define the platforms)."""
@@ -105,6 +105,10 @@ def check_files(parameters: dict) -> None:
             from sss_locus.pipeline.budgets import check_survey_design
 
             area = load_area(path)
+            if parameters.get("water_depth_m"):
+                from sss_locus.experiments.survey_area import with_water_depth
+
+                area = with_water_depth(area, parameters["water_depth_m"], "-p water_depth_m")
             platforms = [load_platform(key) for key in parameters.get("platforms", [])]
             check_survey_design(parameters, area, platforms, load_settings())  # before the features are drawn
             for platform in platforms:

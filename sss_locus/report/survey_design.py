@@ -24,18 +24,22 @@ from matplotlib.patches import Polygon as PolygonPatch
 
 from ..experiments.survey_design import OBJECTIVES
 from .style import PAGE_WIDTH_IN, platform_title, themed
-from .text import fmt_percent, fmt_sig
+from .survey_map import add_graticule, add_scale_bar
+from .text import fmt_ci, fmt_percent, fmt_sig
 
 OBJECTIVE_LABELS = {"locus": "median best-pair locus length (m)",
                     "three_view": "share of features not resolved by three views",
                     "reconstruction": "median 3-D error, two views + prior, with noise (m)"}
-BASELINES = {"standard": ("standard plan (NOAA-style, 200 %)", "*", "tab:red", 190),
+BASELINES = {"standard": ("standard plan (NOAA-style, 200 %, as flown)", "*", "tab:red", 190),
              "lawnmower": ("lawn-mower, same track length", "s", "tab:purple", 80)}
 
 
 def plan_label(row) -> str:
-    """A plan in words: ``"0° lines 120 m apart + cross lines at 90°, 240 m; altitude 21 m"``."""
-    text = f"{round(row['heading_deg'] % 180, 1):g}° lines {row['spacing_m']:.0f} m apart"
+    """A plan in words, with the lines' compass heading (degrees clockwise from grid north of
+    the area's local frame): ``"090°/270° lines 120 m apart + cross lines at 90°, 240 m;
+    altitude 21 m"``."""
+    a = round((90.0 - row["heading_deg"]) % 180.0, 1)
+    text = f"{a:03.0f}°/{a + 180:03.0f}° lines {row['spacing_m']:.0f} m apart"
     if not math.isnan(row["crossing_deg"]):
         what = "offset repeat" if row["crossing_deg"] % 180 == 0 else f"cross lines at {row['crossing_deg']:g}°"
         text += f" + {what}, {row['cross_spacing_m']:.0f} m"
@@ -43,17 +47,30 @@ def plan_label(row) -> str:
     return text + (f", pitch {row['pitch_deg']:g}°" if row["pitch_deg"] else "")
 
 
-def plan_caption(platform, area, area_file: str, row, cov: dict, files) -> str:
-    """The caption of a recommended plan's figure: the plan, its cost and coverage (``cov`` of
-    :func:`sss_locus.experiments.survey_design.plan_coverage`), the area file with its SHA-256 and
-    the mission ``files`` beside the figure (without an origin only the CSV, and why)."""
+def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water_depth_m: float,
+                 depth_source: str, ardupilot: bool = True, flown_m: float | None = None) -> str:
+    """The caption of a recommended plan's figure: the plan, the water depth it used and where
+    that came from, its cost and coverage (``cov`` of
+    :func:`sss_locus.experiments.survey_design.plan_coverage`), the area file with its SHA-256
+    and the mission ``files`` beside the figure (without an origin only the CSV, and why; for a
+    vehicle that does not run ArduPilot no ArduPilot mission, and why); ``flown_m`` the length of
+    the mission's own track (its turns and transits as written), beside the plan's cost."""
     names = ", ".join(f"`{n}`" for n in files)
     why = ("" if area.origin_lonlat is not None else
            " (the others need longitude/latitude: give the area file an `origin_lonlat`)")
-    return (f"Recommended plan for the {platform.name} over {area.name}: {plan_label(row)}; "
-            f"{row.total_m / 1e3:.2f} km including turns of radius {platform.turn_radius_m:g} m, "
-            f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "
-            f"{fmt_percent(cov['twice'])} of the area, holes: {cov['n_holes']}. Area file `{area_file}` "
+    if area.origin_lonlat is not None and not ardupilot:
+        why = (" (no `.plan` or `.waypoints`: this vehicle does not run ArduPilot; convert the CSV or GeoJSON "
+               "into its own planner's mission format)")
+    return (f"Recommended plan for the {platform.name} over {area.name}: {plan_label(row)}; water depth "
+            f"{water_depth_m:g} m ({depth_source}); " + (
+                f"lines run past the area by their swath's reach and a run-in of {row.run_m:.0f} m; "
+                if area.water_beyond_m is None else
+                f"lines, run-ins and turns stay within {area.water_beyond_m:g} m of the area's edge (its water_beyond_m); ")
+            + f"{row.total_m / 1e3:.2f} km including turns of radius {platform.turn_radius_m:g} m"
+            + ("" if flown_m is None else f" (the mission's track as written: {flown_m / 1e3:.2f} km)") + ", "
+            + f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "
+            f"{fmt_percent(cov['twice'])} of the area, holes: {cov['n_holes']}. Grey dotted: WGS 84 meridians and "
+            f"parallels. Area file `{area_file}` "
             f"(SHA-256 `{area.sha256[:12]}`); mission files beside the figure: {names}{why}.")
 
 
@@ -70,7 +87,7 @@ def plot_front(fronts: dict, objective: str, platforms: dict):
         s = t[t.kind == "search"]
         ax.scatter(s.total_m[s.eligible] / 1e3, s[col][s.eligible], s=16, color="0.55", label="searched plan")
         ax.scatter(s.total_m[~s.eligible] / 1e3, s[col][~s.eligible], s=16, facecolors="none",
-                   edgecolors="0.65", label="too few features seen twice")
+                   edgecolors="0.65", label="less seen twice than standard")
         f = t[t.front].sort_values("total_m")
         ax.plot(f.total_m / 1e3, f[col], "-", color="black", lw=1.2, label="Pareto front", zorder=3)
         for kind, (name, marker, colour, size) in BASELINES.items():
@@ -92,10 +109,12 @@ AREA_EDGE = "0.3"
 
 
 def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadir_gap_m: float, platform,
-              title: str, ax=None):
+              title: str, ax=None, track: pd.DataFrame | None = None, fence=None):
     """The plan over the area: coverage cells by the number of lines that see them (holes red),
     cut at the area's edge (dashed), the lines as arrows in run order, the nadir gap of each line
-    hatched."""
+    hatched; with ``track`` (the waypoints of :func:`sss_locus.pipeline.missions.waypoints`) the
+    turns and transits, with ``fence`` the inclusion fence; on the area's WGS 84 graticule with a
+    scale bar (:mod:`sss_locus.report.survey_map`)."""
     if ax is None:
         fig, ax = plt.subplots(figsize=(PAGE_WIDTH_IN, 5.2), constrained_layout=True)
     cmap = ListedColormap(["tab:red", "#c6dbef", "#6baed6", "#2171b5"])
@@ -110,6 +129,13 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     xy = np.asarray(area.polygon.exterior.coords)
     mesh.set_clip_path(PolygonPatch(xy, closed=True, transform=ax.transData))  # cells cut at the area's edge
     ax.add_patch(PolygonPatch(xy, closed=True, fill=False, edgecolor=AREA_EDGE, lw=1.3, ls=(0, (5, 2))))
+    for ring in area.polygon.interiors:  # holes of the area: islands, exclusion zones
+        ax.add_patch(PolygonPatch(np.asarray(ring.coords), closed=True, facecolor="0.85", edgecolor=AREA_EDGE,
+                                  lw=1.0, hatch="xx"))
+    if track is not None:
+        ax.plot(track.east_m, track.north_m, color="0.35", lw=0.6, zorder=2)
+    if fence is not None:
+        ax.plot(*fence.exterior.xy, color="tab:red", lw=0.8, ls="--", zorder=2)
     for _, r in lines.iterrows():
         p0, p1 = np.array([r.x0_m, r.y0_m]), np.array([r.x1_m, r.y1_m])
         d = (p1 - p0) / max(r.length_m, 1e-9)
@@ -120,45 +146,90 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
         colour = "black" if r["set"] == "main" else "tab:orange"
         ax.annotate("", p1, p0, arrowprops=dict(arrowstyle="-|>", color=colour, lw=1.1, mutation_scale=9))
     ax.set_aspect("equal")
-    ax.set_xlabel("east (m)")
+    ax.autoscale_view()
+    pad = 0.04 * max(np.ptp(ax.get_xlim()), np.ptp(ax.get_ylim()))
+    ax.set_xlim(ax.get_xlim()[0] - pad, ax.get_xlim()[1] + pad)
+    ax.set_ylim(ax.get_ylim()[0] - pad, ax.get_ylim()[1] + pad)
+    add_graticule(ax, area)
+    add_scale_bar(ax)
+    origin = "" if area.origin_lonlat is None else f" of {area.origin_lonlat[0]:.4f}°, {area.origin_lonlat[1]:.4f}°"
+    ax.set_xlabel(f"east of the origin{origin} (m)")
     ax.set_ylabel("north (m)")
     ax.set_title(title, fontsize=9)
     handles = [plt.Line2D([], [], marker="s", ls="", color=c, markersize=8) for c in cmap.colors]
     labels = ["hole (no line)", "seen by 1 line", "2 lines", "3 or more"]
     handles += [plt.Line2D([], [], color=AREA_EDGE, lw=1.3, ls=(0, (5, 2))), plt.Line2D([], [], color="black")]
     labels += ["survey area", "main line"]
+    if track is not None:
+        handles.append(plt.Line2D([], [], color="0.35", lw=0.6))
+        labels.append("turns and transits")
+    if fence is not None:
+        handles.append(plt.Line2D([], [], color="tab:red", lw=0.8, ls="--"))
+        labels.append("inclusion fence")
     if (lines["set"] != "main").any():
         handles.append(plt.Line2D([], [], color="tab:orange"))
         labels.append("cross / repeat line")
     if nadir_gap_m > 0:
         handles.append(PolygonPatch([[0, 0], [1, 0], [1, 1]], fill=False, hatch="////", edgecolor="0.3"))
         labels.append(f"nadir gap (±{nadir_gap_m:.0f} m)")
-    ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False)
+    ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9, frameon=False)
     return ax.figure
 
 
-def comparison_sentence(t: pd.DataFrame, objective: str, platform) -> str:
-    """How the recommended plan compares with the standard plan, in one or two sentences."""
-    col = OBJECTIVES[objective]
-    std = t[t.kind == "standard"].iloc[0]
-    rec = t[t.recommended]
-    name = platform.name
-    if rec.empty:
-        return f"For the {name}, no plan searched shows as many features twice as the standard plan."
-    r = rec.iloc[0]
-    unit = " m" if col.endswith("_m") else ""
-    show = (lambda v: fmt_sig(v, 3) + unit) if unit else fmt_percent
-    if r.name == std.name or (r[col] >= std[col] and r.total_m >= std.total_m):
-        return (f"For the {name}, no searched plan as short as the standard plan ({std.total_m / 1e3:.2f} km) "
-                f"does better on this objective: the standard plan ({show(std[col])}) is kept.")
-    change = r[col] / std[col] - 1.0 if std[col] > 0 else math.nan
-    longer = r.total_m / std.total_m - 1.0
-    length = (f"on a track {fmt_percent(abs(longer))} {'shorter' if longer < 0 else 'longer'} "
-              f"({r.total_m / 1e3:.2f} km against {std.total_m / 1e3:.2f} km)")
-    which = (f"the recommended plan is the lawn-mower baseline itself ({plan_label(r)}; no plan of the search "
-             f"does better under the same rule): it gives" if r.kind == "lawnmower"
-             else f"the recommended plan ({plan_label(r)}) gives")
-    return (f"For the {name}, {which} {show(r[col])} against the "
-            f"standard plan's {show(std[col])} ({fmt_percent(abs(change))} {'less' if change < 0 else 'more'}) "
-            f"{length}; it shows {fmt_percent(r.two_view_share)} of the features to two lines "
-            f"(standard: {fmt_percent(std.two_view_share)}).")
+def error_text(row, name: str = "two") -> str:
+    """A plan's mean error over the seeds with its 95 % interval (a row of
+    :func:`~sss_locus.experiments.surveydesign.scoring.summarise`), e.g. ``"2.6 (95 % CI 2.4–2.8) m"``;
+    ``"too few features"`` without an interval."""
+    if not math.isfinite(row[f"error_{name}_lo_m"]):
+        return "too few features"
+    return fmt_ci(row[f"error_{name}_m"], row[f"error_{name}_lo_m"], row[f"error_{name}_hi_m"]) + " m"
+
+
+_err = error_text
+
+
+def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataFrame, platform) -> str:
+    """The recommendation under the noise model in one or two sentences
+    (:func:`sss_locus.experiments.surveydesign.scoring.recommend_under_noise`): the two-view
+    errors with their intervals over the seeds, and whether the interval excludes the standard
+    plan's."""
+    name, std = platform.name, summary.loc[verdict["standard"]]
+    k = int(std.n_seeds)
+    if verdict["reason"] == "too few features":
+        return (f"For the {name}, some seed gave fewer than 30 features a two-view estimate: the errors are not "
+                "findings and the standard plan is kept.")
+    if verdict["reason"] == "the standard plan is the best":
+        return (f"For the {name}, no plan as short as the standard plan has a smaller mean two-view error under the "
+                f"noise model: the standard plan ({_err(std)} over {k} seeds) is kept.")
+    b = summary.loc[verdict["best"]]
+    label = plan_label(plans.loc[verdict["best"]])
+    longer = b.total_m / std.total_m - 1.0
+    length = f"a track {fmt_percent(abs(longer))} {'shorter' if longer < 0 else 'longer'}"
+    if not verdict["holds"]:
+        return (f"For the {name}, the best plan as short as the standard plan under the noise model ({label}) has a "
+                f"two-view error of {_err(b)} against the standard plan's {_err(std)} (means over {k} seeds), on "
+                f"{length}: the intervals overlap, so the standard plan is kept.")
+    return (f"For the {name}, the plan of {label} has a two-view error of {_err(b)} against the standard plan's {_err(std)} "
+            f"(means over {k} seeds), on {length}: its interval lies below the standard plan's, so it is recommended.")
+
+
+def verdict_words(verdicts: dict, platforms: dict) -> str:
+    """The claims-page verdict: per platform, whether a plan beat the standard plan under the
+    noise model, the platforms by their keys (``"a plan beats the standard plan (auv); standard plan
+    kept (boat)"``)."""
+    parts = [f"{'a plan beats the standard plan' if v['holds'] else 'standard plan kept'} ({k})"
+             for k, v in verdicts.items() if k in platforms]
+    text = "; ".join(parts)
+    return text[0].upper() + text[1:]
+
+
+def with_compass(frame: pd.DataFrame) -> pd.DataFrame:
+    """``frame`` with its ``heading_deg`` (degrees counter-clockwise from east, the computation's
+    convention) replaced by ``heading_compass_deg``: degrees clockwise from north of the area's
+    local frame (true north at its origin), as written in every published table."""
+    if "heading_deg" not in frame:
+        return frame
+    at = list(frame.columns).index("heading_deg")
+    out = frame.drop(columns="heading_deg")
+    out.insert(at, "heading_compass_deg", (90.0 - frame["heading_deg"].to_numpy(float)) % 360.0)
+    return out

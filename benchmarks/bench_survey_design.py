@@ -1,0 +1,70 @@
+"""Survey design over a km-scale area at the book profile, on one thread (CPU time).
+
+A 5 km x 5 km square (an origin near Utah Lake, water 30 m deep), each platform of the book, the
+survey-design chapter's book-profile parameters (``notebooks/survey_design.ipynb``'s defaults:
+the search grid, 200 features, a 20 m coverage grid, five noise seeds): the search
+(:func:`~sss_locus.experiments.survey_design.search_plans`) and the scoring under the noise model
+(:func:`~sss_locus.experiments.surveydesign.scoring.score_plans`), timed separately, without the
+cache. Also the one-line case: a 260 m x 200 m area planned end to end.
+
+    python benchmarks/bench_survey_design.py            # 5 km x 5 km
+    python benchmarks/bench_survey_design.py --km 1     # a 1 km square: a few seconds
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS"):
+    os.environ[_var] = "1"
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import platform as _platform  # noqa: E402
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+BOOK = dict(headings_deg=[0.0, 45.0, 90.0], spacing_fractions=[0.8, 1.2, 1.6],
+            crossing_angles_deg=[math.nan, 0.0, 20.0, 45.0, 90.0], cross_spacing_factors=[1.0, 2.0],
+            altitude_fractions=[0.08, 0.14], pitches_deg=[0.0])
+"""The notebook's book-profile grid (``no_cross_lines = True`` adds NaN)."""
+
+
+def main() -> None:
+    from sss_locus.experiments import survey_design as sd
+    from sss_locus.experiments.noise import load_noise_model
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.survey_area import area_from_vertices, with_water_depth
+    from sss_locus.experiments.surveydesign import scoring
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--km", type=float, default=5.0, help="side of the square area, km")
+    ap.add_argument("--platforms", default="boat,auv")
+    args = ap.parse_args()
+    side = 1000.0 * args.km
+    area = with_water_depth(area_from_vertices([[0, 0], [side, 0], [side, side], [0, side]], name=f"{args.km:g} km square",
+                                               origin_lonlat=(-111.81, 40.234)), 30.0, "benchmark")
+    print(f"{args.km:g} km x {args.km:g} km, book profile, one thread; CPU {_platform.processor() or _platform.machine()}, "
+          f"numpy {np.__version__}")
+    print("| platform | plans | search (s CPU) | noise scoring (s CPU) | total (s CPU) | recommended |")
+    print("|---|---|---|---|---|---|")
+    for key in args.platforms.split(","):
+        pf = load_platform(key)
+        t0 = time.process_time()
+        plans = sd.search_plans(pf, area.key(), "flat", "locus", BOOK, n_features=200, seed=1, grid_m=20.0)
+        t1 = time.process_time()
+        scores = scoring.score_plans(pf, area.key(), "flat", plans, load_noise_model(key), seeds=[1, 2, 3, 4, 5],
+                                     n_features=200, grid_m=20.0, objective_col="locus_median_m")
+        verdict = scoring.recommend_under_noise(scoring.summarise(scores))
+        t2 = time.process_time()
+        print(f"| {key} | {len(plans)} | {t1 - t0:.1f} | {t2 - t1:.1f} | {t2 - t0:.1f} | {verdict['reason']} |")
+    small = with_water_depth(area_from_vertices([[0, 0], [260, 0], [260, 200], [0, 200]], name="pond"), 30.0, "benchmark")
+    ones = [int((sd.search_plans(load_platform(k), small.key(), "flat", "locus", BOOK, n_features=200, seed=1,
+                                 grid_m=20.0).n_segments == 1).sum()) for k in args.platforms.split(",")]
+    print(json.dumps({"one_line_area_plans_with_one_segment": ones}))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,138 @@
+"""The whole track of a plan, with its fences: what a mission file tells the vehicle to fly.
+
+Track (:func:`flight_path`): the segments of a line table in run order; between two
+anti-parallel lines the U-turn of :func:`~.turns.uturn_points`; any other junction (segments of
+one line on either side of a hole or a notch, the transit from the main to the cross lines) is
+a transit: the shortest polyline from one end to the next start that stays inside the
+inclusion fence shrunk by the turn radius and outside every hole grown by the turn radius plus
+``margin_m`` (a visibility graph over those polygons' vertices, solved with
+:func:`scipy.sparse.csgraph.dijkstra`); a straight leg when that is already free.
+
+Fences (:func:`fences`): the **inclusion fence** is the area's outer ring joined with every line
+and U-turn of the track, grown by ``R + margin_m`` (room for the vehicle's own turns and for the
+transits), or, when the area gives ``water_beyond_m`` (a shore that far past its edge), the area
+grown by that much, a U-turn that would leave it replaced by a transit inside it; its outer ring
+simplified to at most ``max_vertices`` vertices while still containing it; the **exclusion
+fences** are the area's holes. :func:`check_inside` is the check every mission writer runs: every point of
+the track inside the inclusion fence and outside every exclusion fence, else a one-line error.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from .turns import uturn_points
+
+PATH_COLUMNS = ("kind", "set", "line", "segment", "east_m", "north_m")
+"""``kind``: ``line start``, ``line end``, ``turn`` or ``transit``."""
+
+
+def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_vertices: int = 60):
+    """Inclusion fence (shapely Polygon) and exclusion fences (list of Polygons), local metres
+    (module docstring); ``legs`` the lines and turns (a shapely geometry) the fence must hold."""
+    import shapely
+
+    outer = shapely.Polygon(area.polygon.exterior)
+    if area.water_beyond_m is not None:  # the navigable water is the fence
+        grown = outer.buffer(area.water_beyond_m, quad_segs=4)
+    else:
+        grown = shapely.union_all([outer, legs]).buffer(turn_radius_m + margin_m, quad_segs=4)
+    grown = shapely.Polygon(grown.exterior) if grown.geom_type == "Polygon" else shapely.Polygon(
+        max(grown.geoms, key=lambda g: g.area).exterior)
+    tol, fence = margin_m, grown
+    for _ in range(40):  # coarser until few enough vertices, always containing the grown ring
+        cand = grown.buffer(tol, join_style="mitre").simplify(tol)
+        if cand.geom_type == "Polygon" and cand.covers(grown) and len(cand.exterior.coords) - 1 <= max_vertices:
+            fence = shapely.Polygon(cand.exterior)
+            break
+        tol *= 1.5
+    return fence, [shapely.Polygon(r) for r in area.polygon.interiors]
+
+
+def _transit(a, b, free, nodes, room) -> list:
+    """Shortest polyline from ``a`` to ``b`` inside the polygon ``free`` (widened by ``room``
+    about ``a`` and ``b``: the ends may lie near a hole) through ``nodes``."""
+    import shapely
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    ok = free.union(shapely.Point(a).buffer(room[0])).union(shapely.Point(b).buffer(room[0])).intersection(room[1])
+    ok = ok.buffer(1e-6)
+    if ok.covers(shapely.LineString([a, b])):
+        return [b]
+    pts = np.vstack([a, b, nodes])
+    k = len(pts)
+    i, j = np.triu_indices(k, 1)
+    segs = shapely.linestrings(np.stack([pts[i], pts[j]], 1))
+    vis = shapely.covers(ok, segs)
+    w = np.linalg.norm(pts[i] - pts[j], axis=1)
+    g = csr_matrix((w[vis], (i[vis], j[vis])), shape=(k, k))
+    dist, pred = dijkstra(g, directed=False, indices=0, return_predecessors=True)
+    if not np.isfinite(dist[1]):  # no free way: straight (check_inside will say so)
+        return [b]
+    path, node = [], 1
+    while node != 0:
+        path.append(pts[node])
+        node = pred[node]
+    return path[::-1]
+
+
+def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: float = 5.0,
+                step_deg: float = 15.0) -> tuple[pd.DataFrame, object, list]:
+    """The plan's track (module docstring): a table of :data:`PATH_COLUMNS` in flying order, the
+    inclusion fence and the exclusion fences."""
+    import shapely
+
+    R = float(turn_radius_m)
+    L = lines.reset_index(drop=True)
+    water = None if area.water_beyond_m is None else \
+        shapely.Polygon(area.polygon.exterior).buffer(area.water_beyond_m + 0.01, quad_segs=4)
+    joins: dict[int, tuple[str, np.ndarray]] = {}
+    for k in range(1, len(L)):
+        a, b = L.iloc[k - 1], L.iloc[k]
+        dh = (b.heading_deg - a.heading_deg + 180.0) % 360.0 - 180.0
+        if abs(abs(dh) - 180.0) < 1e-6:
+            pts = uturn_points([a.x1_m, a.y1_m], a.heading_deg, [b.x0_m, b.y0_m], R, step_deg=step_deg)
+            if water is None or water.covers(shapely.LineString(np.vstack([[a.x1_m, a.y1_m], pts]))):
+                joins[k] = ("turn", pts)  # else a transit inside the water
+    legs = [shapely.LineString([(r.x0_m, r.y0_m), (r.x1_m, r.y1_m)]) for r in L.itertuples()]
+    legs += [shapely.LineString(np.vstack([[L.x1_m[k - 1], L.y1_m[k - 1]], p])) for k, (_, p) in joins.items()]
+    fence, holes = fences(area, shapely.union_all(legs), R, margin_m=margin_m)
+    navigable = fence if water is None else water  # a shore: transits stay in the water itself
+    free = navigable.buffer(-R, join_style="mitre")
+    room = navigable
+    if holes:
+        free = free.difference(shapely.union_all([h.buffer(R + margin_m, quad_segs=2) for h in holes]))
+        room = navigable.difference(shapely.union_all(holes).buffer(1.0))
+    rings = [free] if free.geom_type == "Polygon" else list(getattr(free, "geoms", []))
+    nodes = np.vstack([np.asarray(r.coords)[:-1] for p in rings for r in (p.exterior, *p.interiors)]) if rings \
+        else np.zeros((0, 2))
+    rows = []
+    for k, r in L.iterrows():
+        tag = (r["set"], int(r.line), int(r.segment))
+        p0, p1 = np.array([r.x0_m, r.y0_m]), np.array([r.x1_m, r.y1_m])
+        if k > 0:
+            end = np.array([L.x1_m[k - 1], L.y1_m[k - 1]])
+            kind, pts = joins.get(k, ("transit", None))
+            if pts is None:
+                pts = np.asarray(_transit(end, p0, free, nodes, (R + margin_m + 1.0, room)))
+            rows += [(kind, *tag, float(x), float(y)) for x, y in pts[:-1] if np.hypot(x - end[0], y - end[1]) > 1e-6]
+        rows += [("line start", *tag, *map(float, p0)), ("line end", *tag, *map(float, p1))]
+    return pd.DataFrame(rows, columns=list(PATH_COLUMNS)), fence, holes
+
+
+def check_inside(path: pd.DataFrame, fence, holes, *, what: str = "track") -> None:
+    """Refuse, in one line, a track with a point or leg outside ``fence`` or inside a hole."""
+    import shapely
+
+    xy = path[["east_m", "north_m"]].to_numpy()
+    legs = shapely.LineString(xy) if len(xy) > 1 else shapely.Point(xy[0])
+    if not fence.buffer(1e-6).covers(legs):
+        raise ValueError(f"{what}: {legs.difference(fence).length:.1f} m of the track leave the inclusion fence")
+    for k, h in enumerate(holes):
+        inside = legs.intersection(h.buffer(-1e-6))
+        if not inside.is_empty:
+            raise ValueError(f"{what}: the track crosses hole {k + 1} of the area for {inside.length:.1f} m")
