@@ -38,7 +38,7 @@ from typing import Any
 
 from sss_locus import paths
 from sss_locus.pipeline import (atomic, export, faults, kernels, orphans, outputs, paperinputs, paramcell, preflight,
-                                progress, provenance, userfiles)
+                                progress, provenance, studies, userfiles)
 from sss_locus.pipeline.kernels import KERNEL_NAME, hermetic_env, install_kernelspec
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
@@ -259,6 +259,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
                     reads.read_text(encoding="utf-8").split() if reads.is_file() else [], inputs)
             record["paper_inputs"] = paperinputs.compare(entry, parameters, list(record.get("data_read", ())))
             _label_injected_cell(staged, profile, parameters, record)
+            studies.drop_skipped(staged)  # a study no platform of the run can fly: a note, not its cells
             paperinputs.adapt_prose(staged, record["paper_inputs"])
             with outputs.build_lock() if not side else _nothing():
                 outputs.commit_run(staged, staging / "figures", executed, figures,
