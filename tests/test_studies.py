@@ -44,3 +44,40 @@ def test_nothing_changes_when_no_study_is_skipped(tmp_path):
     path = _notebook(tmp_path, _md("## Pitch", "study:pitch"), _glue("sp-x", "1"))
     before = path.read_text()
     assert studies.drop_skipped(path) == [] and path.read_text() == before
+
+
+def test_a_failed_chapter_gets_a_page_with_its_error_and_its_figures_leave_the_book(build_area, monkeypatch):
+    """Issue 37: one failed chapter meant no site at all for a named book. Its page now says it
+    failed, with the failing cell, the error and the traceback of the kept notebook."""
+    from sss_locus import paths
+    from sss_locus.pipeline import bookbuild, failedchapters
+    from sss_locus.pipeline.registry import load_registry
+
+    monkeypatch.setenv(paths.BUILD_NAME_ENV, "myboat")
+    entries = load_registry()
+    entry = entries["survey_passes"]
+    error = {"output_type": "error", "ename": "ValueError", "evalue": "envelope pitch exceeds the limit",
+             "traceback": ["Traceback (most recent call last)", "----> 3 up = band_samples(auv)",
+                           "ValueError: envelope pitch exceeds the limit"]}
+    nb = {"cells": [{"cell_type": "code", "metadata": {}, "source": "up = band_samples(auv)",
+                     "execution_count": 3, "outputs": [error]}], "metadata": {}, "nbformat": 4, "nbformat_minor": 5}
+    (paths.build_dir() / "failed").mkdir(parents=True)
+    (paths.build_dir() / "failed" / "survey_passes.ipynb").write_text(json.dumps(nb))
+    failed = failedchapters.failed_chapters([entry, entries["concept"]])
+    assert set(failed) == {"survey_passes", "concept"}  # failed before ever succeeding: missing copies
+    root = paths.source_dir()
+    excluded = failedchapters.stage_stubs(root, {"survey_passes": failed["survey_passes"]}, entries)
+    assert excluded == ["executed/survey_passes.ipynb"]
+    page = (root / "executed" / "survey_passes.md").read_text()
+    assert page.startswith("# Survey passes: locus length against crossing angle")
+    assert "This chapter failed in this build" in page and "`myboat`" in page
+    assert "ValueError: envelope pitch exceeds the limit" in page and "up = band_samples(auv)" in page
+    assert str(paths.build_dir()) not in page  # no local absolute path on a page
+    assert failedchapters.stage_stubs(root, {}, entries) == [] and not (root / "executed" / "survey_passes.md").exists()
+    manifests = [{"notebook": entry.source_relative, "label": "fig-survey-passes"},
+                 {"notebook": entries["concept"].source_relative, "label": "fig-concept"}]
+    assert [m["label"] for m in failedchapters.without_chapters(manifests, {"survey_passes": ""}, entries)] == [
+        "fig-concept"]
+    bookbuild.stage_config(root, excluded)
+    import yaml
+    assert "executed/survey_passes.ipynb" in yaml.safe_load((root / "_config.yml").read_text())["exclude_patterns"]

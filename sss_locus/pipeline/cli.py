@@ -149,6 +149,7 @@ def _book(args: argparse.Namespace) -> int:
 
     start = time.perf_counter()
     entries = load_registry()
+    failure = None
     if not args.no_run:
         from sss_locus.pipeline.runner import declared_overrides, resolve_parameters
 
@@ -172,10 +173,20 @@ def _book(args: argparse.Namespace) -> int:
                       f"data and environment as its executed copy; --force reruns it)")
             else:
                 stale.append(entry)
-        run_many(stale, args.profile, jobs=args.jobs, verbose=args.verbose, overrides=overrides, data=data)
+        try:
+            run_many(stale, args.profile, jobs=args.jobs, verbose=args.verbose, overrides=overrides, data=data)
+        except RuntimeError as exc:  # a named book builds with its failed chapters marked as failed
+            if not paths.build_name():
+                raise
+            failure = exc
+            print(f"sss-locus book: error: {exc}", file=sys.stderr)
     index = bookbuild.build()
     print(f"Built in {time.perf_counter() - start:.0f} s. Open the book:")
     print(index)
+    if failure is not None:
+        print("sss-locus book: the book was built, but the chapter(s) above failed: their pages say so",
+              file=sys.stderr)
+        return 1
     return 0
 
 
