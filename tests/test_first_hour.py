@@ -1,0 +1,45 @@
+"""A new user's first hour with a surface boat of their own (issue 37): the BlueBoat example,
+warnings for legal but odd hardware, the answer's readable names."""
+
+from __future__ import annotations
+
+import pytest
+
+from sss_locus.experiments import userdata
+from sss_locus.paths import REPO_ROOT
+
+BLUEBOAT = REPO_ROOT / "data" / "examples" / "my_blueboat.toml"
+
+
+@pytest.fixture(autouse=True)
+def _shipped_data_afterwards():
+    yield
+    userdata.use()
+
+
+def test_the_blueboat_example_passes_every_check_and_is_a_surface_boat():
+    from sss_locus.experiments.envelopes import load_envelope
+    from sss_locus.experiments.platforms import load_platform
+
+    inputs = userdata.use([BLUEBOAT])
+    assert userdata.hardware_flags(inputs) == []
+    boat, env = load_platform("my_blueboat"), load_envelope("my_blueboat")
+    assert boat.depth_min_m == boat.depth_max_m == 0 and boat.pitch_max_deg == 0
+    assert env.same_altitude and env.pitch_min_deg == env.pitch_max_deg == 0
+
+
+def test_a_fan_reaching_above_the_horizontal_is_flagged_for_the_users_platform_only():
+    """A 20° look-down with an 80° fan: the fan's top edge is 20 - 80/2 = -20°, 20° above the
+    horizontal (the example of the issue). The paper's AUV (130° fan at 25.5°) does the same
+    and is not flagged: only what the user's data adds or changes is."""
+    wide = userdata.make_inputs([BLUEBOAT], ["sonars.omniscan_450_ss.azimuth_deg=80",
+                                             "platforms.my_blueboat.transducers.port.tilt_deg=20"])
+    flags = userdata.hardware_flags(wide)
+    mine = [f for f in flags if f.startswith("platforms.my_blueboat.transducers.port.")]
+    assert len(mine) == 1 and "top 20 deg ABOVE the horizontal" in mine[0]
+    assert any(f.startswith("platforms.my_blueboat.transducers.starboard.") and "top 10 deg ABOVE" in f
+               for f in flags)  # 30 - 40
+    assert not any(f.startswith("platforms.auv.") for f in flags)
+    assert userdata.hardware_flags(userdata.make_inputs([], [])) == []  # the shipped data: silent
+    under = userdata.make_inputs([BLUEBOAT], ["platforms.my_blueboat.transducers.port.tilt_deg=70"])
+    assert any("bottom 5 deg past the vertical" in f for f in userdata.hardware_flags(under))  # 70 + 25 - 90
