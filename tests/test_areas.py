@@ -172,7 +172,7 @@ def test_answer_prints_bands_and_drivers_and_names_the_data(build_area, capsys):
     bands = re.findall(r"^  (prefer|avoid) +(\d+)(?:–(\d+))? ", out, re.M)
     assert {b[0] for b in bands} == {"prefer", "avoid"}
     assert all(0 <= int(lo) <= int(hi or lo) <= 180 for _, lo, hi in bands)
-    drivers = re.findall(r"^  (\d) +([a-z0-9_]+) +(-?\d\.\d\d) +(-?\d\.\d\d) to (-?\d\.\d\d)$", out, re.M)
+    drivers = re.findall(r"^  (\d) +(.+?) +(-?\d\.\d\d) +(-?\d\.\d\d) to (-?\d\.\d\d)$", out, re.M)
     assert [int(d[0]) for d in drivers] == [1, 2, 3, 4, 5]
     rho = [abs(float(d[2])) for d in drivers]
     assert rho == sorted(rho, reverse=True)  # the top drivers, strongest first

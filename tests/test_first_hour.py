@@ -43,3 +43,27 @@ def test_a_fan_reaching_above_the_horizontal_is_flagged_for_the_users_platform_o
     assert userdata.hardware_flags(userdata.make_inputs([], [])) == []  # the shipped data: silent
     under = userdata.make_inputs([BLUEBOAT], ["platforms.my_blueboat.transducers.port.tilt_deg=70"])
     assert any("bottom 5 deg past the vertical" in f for f in userdata.hardware_flags(under))  # 70 + 25 - 90
+
+
+def test_answer_names_every_driver_in_words_and_reads_both_offset_models(build_area, capsys):
+    """Issue 37: the drivers were printed as column names (``abs_psi2_deg``, ``r1_m``) and only the
+    independent-offsets answer was shown (the matched one needed an undocumented
+    ``-p offset_models '["matched:10:same"]'``)."""
+    import re
+
+    from sss_locus.experiments.pose_stats import CANDIDATES
+    from sss_locus.pipeline import answer, cli
+
+    assert set(answer.QUANTITY_WORDS) == set(CANDIDATES)  # a word for every quantity ranked
+    code = cli.main(["answer", "--data", str(BLUEBOAT), "-p", "platform", "my_blueboat", "--top", "14"])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    assert not any(re.search(rf"\b{q}\b", out) for q in CANDIDATES), out  # no column name left
+    drivers = re.findall(r"^  (\d+) +(.+?) +(-?\d\.\d\d) +(-?\d\.\d\d) to (-?\d\.\d\d)$", out, re.M)
+    assert drivers and all(d[1] in answer.QUANTITY_WORDS.values() for d in drivers)
+    assert "- independent offsets" in out and "- matched ±10 m, same side offsets" in out
+    assert "lawnmower" in out and "steer pass 2" in out  # which way of flying each answer is for
+    assert cli.main(["answer", "--data", str(BLUEBOAT), "-p", "platform", "my_blueboat",
+                     "--offsets", "matched"]) == 0
+    out = capsys.readouterr().out
+    assert "- matched" in out and "- independent" not in out

@@ -107,6 +107,11 @@ def _parser() -> argparse.ArgumentParser:
                      help="platform KEY (required), or a parameter of the planning/pose_space notebooks")
     ans.add_argument("--profile", default="quick", help="parameter profile of those notebooks (default: quick)")
     ans.add_argument("--top", type=int, default=5, help="drivers shown (default: 5)")
+    ans.add_argument("--offsets", choices=("both", "independent", "matched"), default="both",
+                     help="which way you fly the two passes (default: both answers): 'independent' = survey "
+                     "lines flown without steering for the feature (it falls anywhere in each swath); 'matched' = "
+                     "pass 2 steered to see the feature where pass 1 saw it (same side, about the same distance "
+                     "across the swath)")
     _data_arguments(ans)
 
     sub.add_parser("list", help="list the registered notebooks")
@@ -215,7 +220,7 @@ def _answer(args: argparse.Namespace) -> int:
     if len(keys) != 1:
         raise ParameterError("answer needs exactly one -p platform KEY (a key of the shipped data or of --data)")
     _data_inputs(args)
-    answer(keys[0], args.profile, args.parameter, top=args.top)
+    answer(keys[0], args.profile, args.parameter, top=args.top, offsets=args.offsets)
     return 0
 
 
