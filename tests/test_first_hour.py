@@ -67,3 +67,27 @@ def test_answer_names_every_driver_in_words_and_reads_both_offset_models(build_a
                      "--offsets", "matched"]) == 0
     out = capsys.readouterr().out
     assert "- matched" in out and "- independent" not in out
+
+
+def test_a_users_file_is_published_by_name_and_sha256_never_by_its_local_path(tmp_path, monkeypatch):
+    """Issue 37: manifests carried the absolute local path of the user's data file."""
+    import hashlib
+    import json
+
+    from sss_locus import paths
+    from sss_locus.pipeline import provenance, publish
+
+    mine = tmp_path / "home" / "me" / "myboat.toml"
+    mine.parent.mkdir(parents=True)
+    mine.write_bytes(BLUEBOAT.read_bytes())
+    assert paths.public_path(mine) == "myboat.toml"
+    assert paths.public_path(BLUEBOAT) == "data/examples/my_blueboat.toml"
+    monkeypatch.setenv(provenance.PARAMETERS_ENV, json.dumps(
+        {"data_files": [str(mine)], "area": str(mine), "platforms": ["my_blueboat"], "seed": 1}))
+    params = publish.run_parameters()
+    assert params == {"data_files": ["myboat.toml"], "area": "myboat.toml", "platforms": ["my_blueboat"], "seed": 1}
+    userdata.use([mine])
+    record = userdata.figure_record(["my_blueboat"])
+    user = [f for f in record["files"] if f["role"] == "user"]
+    assert user == [{"path": "myboat.toml", "sha256": hashlib.sha256(mine.read_bytes()).hexdigest(), "role": "user"}]
+    assert str(tmp_path) not in json.dumps(record)

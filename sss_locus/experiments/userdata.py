@@ -28,6 +28,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from ..paths import public_path
 from . import datadoc, schema
 from .datadoc import (KEY_PATTERN, SET_NOTE, SHIPPED_FILES, USER_TABLES, DataInputs, activate, active,  # noqa: F401
                       check_user_document, document, file_sha256, files_read, label_key, make_inputs,
@@ -215,7 +216,7 @@ def figure_record(platform_keys: Iterable[str], inputs: DataInputs | None = None
         return any(key == e or key.startswith(e + ".") for e in entries)
 
     return {"platforms": list(values), "entries": hashes,
-            "files": [f for f in files_read(inputs) if defines(f["path"])],
+            "files": [{**f, "path": public_path(f["path"])} for f in files_read(inputs) if defines(f["path"])],
             "overrides": [o for o in inputs.sets if inside(o)], "values": values}
 
 

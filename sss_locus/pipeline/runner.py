@@ -106,7 +106,8 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
     """Show the run's values in the visible parameters cell (:mod:`.paramcell`) and tag papermill's
     injected-parameters cell, which also names the data files read, so the book shows it collapsed."""
     nb = json.loads(executed.read_text(encoding="utf-8"))
-    paramcell.show_run_values(nb["cells"], parameters, f"# The values this run used (profile '{profile}'); "
+    paramcell.show_run_values(nb["cells"], paths.public_values(parameters),
+                              f"# The values this run used (profile '{profile}'); "
                               "defaults and ranges: `sss-locus params NOTEBOOK`\n")
     for cell in nb["cells"]:
         tags = cell.get("metadata", {}).get("tags", [])
@@ -119,8 +120,10 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
             source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
             header = f"# Parameters of this run (profile '{profile}'), injected by papermill\n"
             if "data" in extra:
-                header += "".join(f"# data file read: {f['path']} ({f['role']}, sha256 {f['sha256']})\n"
-                                  for f in extra["data"]["files"])
+                header += "".join(f"# data file read: {paths.public_path(f['path'])} ({f['role']}, sha256 "
+                                  f"{f['sha256']})\n" for f in extra["data"]["files"])
+                for f in extra["data"]["files"]:  # the page names a user's file, not where it sits
+                    source = source.replace(json.dumps(f["path"])[1:-1], paths.public_path(f["path"]))
                 header += "".join(f"# data override: {o}\n" for o in extra["data"]["overrides"])
             if not source.startswith(header):
                 cell["source"] = header + source
