@@ -311,7 +311,9 @@ def user_book(quick_book, tmp_path_factory):
     before = _snapshot(area)
 
     def run(argv: list[str]) -> subprocess.CompletedProcess:
-        argv = [str(user) if a == "data/examples/my_auv.toml" else a for a in argv[1:]]
+        argv = [str(user) if a == "data/examples/my_auv.toml" else
+                str(shutil.copy(paths.REPO_ROOT / a, work)) if a.startswith("data/examples/") and a.endswith(".toml")
+                else a for a in argv[1:]]
         if argv[0] in ("run", "book") and "--profile" not in argv:
             argv += ["--profile", "quick"]
         return subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli", *argv], env=env, cwd=work,
@@ -362,7 +364,7 @@ def test_user_platform_book_builds_and_places_every_figure(user_book):
     assert pose.count("are left out here: this run does not include") == 1  # the paper's prose: one note
     assert "The raw locus length is ranked first by" in pose  # and findings from the user's own numbers
     figures = (html / "book" / "figures.html").read_text()
-    assert "sss-locus:fig-heatmaps-my-auv" in figures and "sss-locus:fig-heatmaps-boat" not in figures
+    assert "sss-locus:my_auv:fig-heatmaps-my-auv" in figures and "fig-heatmaps-boat" not in figures
 
 
 def test_claims_page_says_the_inputs_are_not_the_papers(user_book):

@@ -274,6 +274,7 @@ def export_figure(
         "dpi": int(dpi),
         "text": text,  # smallest drawn text and picture width: readability on the page
         "run_key": os.environ.get(RUN_KEY_ENV),  # ties the figure to its executed copy
+        "build_area": paths.build_name(),  # None: the reproduction; else the named area (its own BibTeX keys)
         "data_inputs": with_files(data_inputs(params, platforms), input_files),
     }
     bib_path = out / f"{label}.bib"
