@@ -91,3 +91,51 @@ def test_a_users_file_is_published_by_name_and_sha256_never_by_its_local_path(tm
     user = [f for f in record["files"] if f["role"] == "user"]
     assert user == [{"path": "myboat.toml", "sha256": hashlib.sha256(mine.read_bytes()).hexdigest(), "role": "user"}]
     assert str(tmp_path) not in json.dumps(record)
+
+
+def test_a_named_books_front_page_and_every_page_say_what_it_was_built_from(build_area, monkeypatch, tmp_path):
+    """Issue 37: a user's book had the reproduction's title and introduction, nothing naming the
+    build area, the profile or the data."""
+    import hashlib
+    import json
+
+    import yaml
+
+    from sss_locus import paths
+    from sss_locus.pipeline import areanotice, bookbuild
+    from sss_locus.pipeline.registry import load_registry
+
+    monkeypatch.setenv(paths.BUILD_NAME_ENV, "myboat")
+    mine = tmp_path / "home" / "myboat.toml"
+    mine.parent.mkdir()
+    mine.write_bytes(BLUEBOAT.read_bytes())
+    sha = hashlib.sha256(mine.read_bytes()).hexdigest()
+    entries = load_registry()
+    for name in ("rigs", "planning"):
+        path = entries[name].executed_path()
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps({"cells": [], "metadata": {"sss_locus": {
+            "profile": "quick", "parameters": {"platforms": ["boat", "my_blueboat"], "data_files": [str(mine)]},
+            "data": {"files": [{"path": "data/platforms.toml", "sha256": "0" * 64, "role": "shipped"},
+                               {"path": str(mine), "sha256": sha, "role": "user"}], "overrides": []}}}}))
+    summary = areanotice.area_summary(list(entries.values()))
+    assert summary == {"name": "myboat", "profiles": ["quick"], "platforms": ["boat", "my_blueboat"],
+                       "files": {"myboat.toml": sha}, "overrides": [], "chapters": 2}
+    root = paths.source_dir()
+    front = tmp_path / "intro.md"
+    front.write_text("# Two sidescan views of one feature\n\nA sidescan sonar ping ...\n")
+    bookbuild.stage_config(root, [], front_page=front)
+    page = front.read_text()
+    assert page.startswith("# Two sidescan views of one feature\n\n```{important}\n")
+    assert "build area `myboat`" in page and "`quick`" in page and "`my_blueboat`" in page
+    assert f"`myboat.toml` (SHA-256 `{sha[:12]}…`)" in page and str(tmp_path) not in page
+    config = yaml.safe_load((root / "_config.yml").read_text())
+    assert "myboat" in config["title"]
+    assert "Build area &#x27;myboat&#x27;" in config["html"]["announcement"]
+    assert "myboat.toml" in config["html"]["announcement"] and str(tmp_path) not in config["html"]["announcement"]
+    monkeypatch.delenv(paths.BUILD_NAME_ENV)  # the reproduction: nothing added
+    front.write_text("# T\n")
+    bookbuild.stage_config(root, [], front_page=front)
+    assert front.read_text() == "# T\n" and "announcement" not in (yaml.safe_load(
+        (root / "_config.yml").read_text()).get("html") or {}) or not yaml.safe_load(
+        (root / "_config.yml").read_text())["html"].get("announcement")

@@ -23,13 +23,14 @@ from typing import Any
 from urllib.parse import unquote, urlsplit
 
 from sss_locus import paths
-from sss_locus.pipeline import (citation, claimsindex, export, failedchapters, figindex, outputs, paperinputs,
-                                provenance)
+from sss_locus.pipeline import (areanotice, citation, claimsindex, export, failedchapters, figindex, outputs,
+                                paperinputs, provenance)
 from sss_locus.pipeline.buildlog import ANSI, StagingPathFilter
 from sss_locus.pipeline.kernels import hermetic_env
 
 FIGURES_PAGE = "figures.md"
 CLAIMS_PAGE = "claims.md"
+FRONT_PAGE = "intro.md"
 FIGURES_MARKER = "<!-- FIGURES-INDEX -->"
 CITE_PAGE = "cite.md"
 PROJECT_BIBTEX_MARKER = "<!-- PROJECT-BIBTEX -->"
@@ -87,10 +88,12 @@ def stage_figure_pages(root: Path, manifests: list[dict[str, Any]]) -> None:
         shutil.copy2(notebook, target / notebook.name)
 
 
-def stage_config(root: Path, exclude: list[str] | None = None) -> None:
+def stage_config(root: Path, exclude: list[str] | None = None, front_page: Path | None = None) -> None:
     """Copy ``_config.yml``, turning the repository buttons on when ``repository.url`` is set,
     giving the pages the package's version as the substitution ``{{ version }}`` and leaving out
-    the source files ``exclude`` (the executed copies of failed chapters)."""
+    the source files ``exclude`` (the executed copies of failed chapters). In a named build area
+    the staged ``front_page`` and every page's header say what the book was built from
+    (:mod:`sss_locus.pipeline.areanotice`)."""
     import yaml
 
     config = yaml.safe_load(paths.CONFIG_FILE.read_text(encoding="utf-8"))
@@ -99,6 +102,8 @@ def stage_config(root: Path, exclude: list[str] | None = None) -> None:
     config.setdefault("parse", {}).setdefault("myst_substitutions", {})["version"] = provenance.package_version()
     if citation.repository_url():
         config.setdefault("html", {}).update(use_repository_button=True, use_issues_button=True)
+    if front_page is not None:
+        areanotice.stage(root, front_page, config)
     (root / paths.CONFIG_FILE.name).write_text(yaml.safe_dump(config, sort_keys=False), encoding="utf-8")
 
 
@@ -141,7 +146,7 @@ def stage(failed: dict[str, str] | None = None) -> Path:
     failed, entries = failed or {}, load_registry()
     root = paths.source_dir()
     root.mkdir(parents=True, exist_ok=True)
-    stage_config(root, failedchapters.stage_stubs(root, failed, entries))
+    excluded = failedchapters.stage_stubs(root, failed, entries)
 
     def manifests(**kinds) -> list[dict[str, Any]]:
         return failedchapters.without_chapters(export.load_manifests(**kinds), failed, entries)
@@ -150,6 +155,7 @@ def stage(failed: dict[str, str] | None = None) -> Path:
     staged_book = root / paths.BOOK_DIR.name
     shutil.rmtree(staged_book, ignore_errors=True)
     shutil.copytree(paths.BOOK_DIR, staged_book)
+    stage_config(root, excluded, front_page=staged_book / FRONT_PAGE)
     paths.figures_dir().mkdir(parents=True, exist_ok=True)
     copy_mathjax()
     copy_plotly()
