@@ -215,23 +215,14 @@ def data_note(manifest: Mapping[str, Any]) -> str:
     return latex_escape(note)
 
 
-def bibtex_key(manifest: Mapping[str, Any]) -> str:
-    """The BibTeX key of a figure or table: ``sss-locus:<label>`` in the reproduction,
-    ``sss-locus:<build area>:<label>`` in a named build area (a user's figure and the paper's of
-    one label are two entries, and citing both in one document is not a repeated entry)."""
-    area = manifest.get("build_area")
-    return f"sss-locus:{area}:{manifest['label']}" if area else f"sss-locus:{manifest['label']}"
-
-
 def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None = None,
                   config: Path | None = None) -> str:
     """A ``@misc`` BibTeX entry citing one exported figure, from its manifest.
 
     Fields: ``title`` (label and short caption), ``author`` and ``howpublished`` (from
     ``CITATION.cff``), ``year`` (of the run), ``version`` (of the package), ``note`` (notebook,
-    profile and commit; the build area of a named build) and ``url`` when ``html.baseurl`` is
-    configured (only for the reproduction: a named build's figures are not on the public site).
-    Its key is :func:`bibtex_key`.
+    profile, commit, a named build's area) and ``url`` (``html.baseurl``, the reproduction's only).
+    Key ``sss-locus:<label>``, in a named build area ``sss-locus:<area>:<label>`` (two entries).
     """
     from sss_locus.pipeline.provenance import short_commit
 
@@ -241,8 +232,7 @@ def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None 
         except (OSError, ValueError, ImportError):
             cff = {}
     label = manifest["label"]
-    kind = "Table" if label.startswith("tab-") else "Figure"
-    area = manifest.get("build_area")
+    kind, area = "Table" if label.startswith("tab-") else "Figure", manifest.get("build_area")
     fields = {
         "title": "{" + latex_escape(f"{kind} {label}: ") + latex_escape(short_caption(manifest["caption"]),
                                                                        markdown=True) + "}",
@@ -260,7 +250,7 @@ def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None 
     if url:
         fields["url"] = url.replace("%", r"\%").replace("#", r"\#")
     body = ",\n".join(f"  {key} = {{{value}}}" for key, value in fields.items())
-    return f"@misc{{{bibtex_key(manifest)},\n{body}\n}}\n"
+    return f"@misc{{{':'.join(['sss-locus', *filter(None, [area]), label])},\n{body}\n}}\n"
 
 
 def project_bibtex(cff: Mapping[str, Any] | None = None, *, config: Path | None = None) -> str:
