@@ -64,7 +64,7 @@ def test_a_failed_chapter_gets_a_page_with_its_error_and_its_figures_leave_the_b
     (paths.build_dir() / "failed").mkdir(parents=True)
     (paths.build_dir() / "failed" / "survey_passes.ipynb").write_text(json.dumps(nb))
     failed = failedchapters.failed_chapters([entry, entries["concept"]])
-    assert set(failed) == {"survey_passes", "concept"}  # failed before ever succeeding: missing copies
+    assert set(failed) == {"survey_passes"}  # failed before ever succeeding; concept: never run, refused
     root = paths.source_dir()
     excluded = failedchapters.stage_stubs(root, {"survey_passes": failed["survey_passes"]}, entries)
     assert excluded == ["executed/survey_passes.ipynb"]

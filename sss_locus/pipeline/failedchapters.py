@@ -25,11 +25,14 @@ STUB_SUFFIX = ".md"
 
 
 def failed_chapters(entries: Sequence[Any]) -> dict[str, str]:
-    """``{name: problem}`` of the registry ``entries`` whose executed copy is missing or failed."""
+    """``{name: problem}`` of the registry ``entries`` whose executed copy failed, or is missing
+    because its run failed (its notebook kept in ``<build>/failed/``); a chapter never run is not
+    one of them (the book refuses it)."""
     found = {}
     for entry in entries:
         problem = outputs.problems([entry])
-        if problem and any(p.endswith("missing (never run)") or ": failed" in p for p in problem):
+        kept = (paths.build_dir() / "failed" / f"{entry.name}.ipynb").is_file()
+        if problem and any((p.endswith("missing (never run)") and kept) or ": failed" in p for p in problem):
             found[entry.name] = problem[0]
     return found
 
