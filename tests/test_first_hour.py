@@ -118,9 +118,17 @@ def test_a_named_books_front_page_and_every_page_say_what_it_was_built_from(buil
             "profile": "quick", "parameters": {"platforms": ["boat", "my_blueboat"], "data_files": [str(mine)]},
             "data": {"files": [{"path": "data/platforms.toml", "sha256": "0" * 64, "role": "shipped"},
                                {"path": str(mine), "sha256": sha, "role": "user"}], "overrides": []}}}}))
+    path = entries["survey_design"].executed_path()  # the shipped example area is not the user's data
+    path.write_text(json.dumps({"cells": [], "metadata": {"sss_locus": {
+        "profile": "quick", "parameters": {"platforms": ["boat"], "area": "data/examples/survey_area.toml"}}}}))
     summary = areanotice.area_summary(list(entries.values()))
     assert summary == {"name": "myboat", "profiles": ["quick"], "platforms": ["boat", "my_blueboat"],
-                       "files": {"myboat.toml": sha}, "overrides": [], "chapters": 2}
+                       "files": {"myboat.toml": sha}, "overrides": [], "chapters": 3}
+    area = tmp_path / "home" / "bay.toml"
+    area.write_text("[area]\n")
+    path.write_text(path.read_text().replace("data/examples/survey_area.toml", str(area)))
+    assert areanotice.area_summary(list(entries.values()))["files"] == {
+        "myboat.toml": sha, "bay.toml": hashlib.sha256(area.read_bytes()).hexdigest()}
     root = paths.source_dir()
     front = tmp_path / "intro.md"
     front.write_text("# Two sidescan views of one feature\n\nA sidescan sonar ping ...\n")

@@ -23,7 +23,8 @@ from sss_locus.pipeline import outputs
 def area_summary(entries: Sequence[Any]) -> dict[str, Any]:
     """What the executed copies of ``entries`` (registry entries) of the current build area were
     computed from: ``name``, ``profiles``, ``platforms``, ``files`` (``{public name: sha256}`` of
-    the user's data, observations and area files), ``overrides`` (``--set``) and ``chapters``
+    the user's data files and of observations and area files other than the shipped worked
+    examples), ``overrides`` (``--set``) and ``chapters``
     (the number with an executed copy)."""
     profiles, platforms, files, overrides, chapters = [], [], {}, [], 0
     for entry in entries:
@@ -39,12 +40,15 @@ def area_summary(entries: Sequence[Any]) -> dict[str, Any]:
             if f.get("role") != "shipped":
                 files[paths.public_path(f["path"])] = f["sha256"]
         overrides += list((ours.get("data") or {}).get("overrides", []))
-        for name in ("observations", "area"):
-            value = params.get(name)
-            if isinstance(value, str) and value and Path(value).is_file():
+        declared = entry.parameters()
+        for name in ("observations", "area"):  # a user's own file, not the shipped worked example
+            value, default = params.get(name), getattr(declared.get(name), "default", None)
+            full = paths.REPO_ROOT / str(value)
+            if isinstance(value, str) and value and full.is_file() and (
+                    default is None or paths.public_path(full) != paths.public_path(paths.REPO_ROOT / str(default))):
                 from sss_locus.pipeline.provenance import file_sha256
 
-                files.setdefault(paths.public_path(value), file_sha256(Path(value)))
+                files.setdefault(paths.public_path(full), file_sha256(full))
     return {"name": paths.build_name(), "profiles": list(dict.fromkeys(profiles)),
             "platforms": list(dict.fromkeys(platforms)), "files": files,
             "overrides": list(dict.fromkeys(overrides)), "chapters": chapters}
