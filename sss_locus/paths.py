@@ -146,8 +146,11 @@ def site_url(path: Path) -> str:
 def public_path(path: str | os.PathLike) -> str:
     """A file as a published manifest or page names it: relative to the repository when it is
     inside it (``data/examples/my_auv.toml``), else its file name only (``myboat.toml``) — never a
-    local absolute path. The file's SHA-256 beside the name identifies it."""
+    local absolute path. The file's SHA-256 beside the name identifies it. A relative path (the
+    shipped ``data/platforms.toml``) is already public and is returned as it is."""
     p = Path(path)
+    if not p.is_absolute():
+        return p.as_posix()
     try:
         p = p.resolve()
     except OSError:

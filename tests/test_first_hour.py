@@ -147,3 +147,15 @@ def test_a_named_books_front_page_and_every_page_say_what_it_was_built_from(buil
     assert front.read_text() == "# T\n" and "announcement" not in (yaml.safe_load(
         (root / "_config.yml").read_text()).get("html") or {}) or not yaml.safe_load(
         (root / "_config.yml").read_text())["html"].get("announcement")
+
+
+def test_a_shipped_file_keeps_its_repository_path_whatever_the_working_folder(tmp_path, monkeypatch):
+    """A kernel runs in the executed copies' folder: the shipped data/platforms.toml must not be
+    resolved against it (a first version published _build/source/executed/data/platforms.toml)."""
+    from sss_locus import paths
+
+    monkeypatch.chdir(tmp_path)
+    assert paths.public_path("data/platforms.toml") == "data/platforms.toml"
+    userdata.use([])
+    files = userdata.figure_record(["boat"])["files"]
+    assert [f["path"] for f in files] == ["data/platforms.toml"]

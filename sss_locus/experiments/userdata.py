@@ -216,7 +216,8 @@ def figure_record(platform_keys: Iterable[str], inputs: DataInputs | None = None
         return any(key == e or key.startswith(e + ".") for e in entries)
 
     return {"platforms": list(values), "entries": hashes,
-            "files": [{**f, "path": public_path(f["path"])} for f in files_read(inputs) if defines(f["path"])],
+            "files": [{**f, "path": public_path(f["path"]) if f["role"] == "user" else f["path"]}
+                      for f in files_read(inputs) if defines(f["path"])],
             "overrides": [o for o in inputs.sets if inside(o)], "values": values}
 
 
