@@ -10,8 +10,8 @@ import pytest
 
 from sss_locus.pipeline import pdflinks
 
-PAGE = """<html><body><div id="jb-print-toc"><h1>Book</h1><ul>
-<li><a href="#document-executed/planning">Planning survey passes</a></li></ul></div>
+PAGE = """<html><body><div id="jb-print-toc"><div><h2>Contents</h2></div><nav><ul>
+<li><a href="#document-executed/planning">Planning survey passes</a></li></ul></nav></div>
 <span id="document-executed/planning"></span><section id="planning"><h1>Planning</h1>
 <p>See <a class="reference internal" href="book/intro.html#fig-planning-bands">Fig. 3</a>,
 <a href="../executed/planning.html">the chapter</a>, <a href="../executed/planning.html#near">near</a>,

@@ -107,8 +107,8 @@ def build_singlehtml(log=print) -> Path:
         f"external, {counts['unlinked']} left as text" + ("" if citation.base_url() else " (html.baseurl is empty)"))
     cover = pdflinks.cover_html(provenance.package_version(), provenance.short_commit(provenance.git_commit()),
                                 provenance.utc_now()[:10], paths.build_name())
-    toc = html.find('id="jb-print-toc"')
-    title_end = html.find("</h1>", toc) if toc >= 0 else -1
+    cover_page = html.find('id="jb-print-docs-body"')  # the title page: the book's title, then contents
+    title_end = html.find("</h1>", cover_page) if cover_page >= 0 else -1
     if title_end >= 0:
         html = html[:title_end + 5] + cover + html[title_end + 5:]
     for folder in ("figures", "notebooks", "plotly", "mathjax"):

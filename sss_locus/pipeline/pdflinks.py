@@ -74,9 +74,9 @@ def contents_pages(html: str, pages: Mapping[str, int]) -> str:
     """``html`` with the page number of each entry of the printed contents (``#jb-print-toc``)
     whose link text is a key of ``pages`` (page title → first page), right-aligned after it."""
     start = html.find('id="jb-print-toc"')
-    if start < 0:
+    end = html.find("</nav>", start)
+    if start < 0 or end < 0:
         return html
-    end = html.find("</div>", start)
     head, toc, tail = html[:start], html[start:end], html[end:]
 
     def number(match: re.Match) -> str:
