@@ -339,8 +339,10 @@ def test_the_page_runs_a_quick_answer_runs_and_a_book_each_into_its_own_area(use
     commands = [argv[:2] for argv, _ in user_book["outputs"]]
     assert ["sss-locus", "answer"] in commands and ["sss-locus", "book"] in commands
     assert all("--name" in argv for argv, _ in user_book["outputs"] if argv[1] in ("run", "book"))
-    answer = next(out for argv, out in user_book["outputs"] if argv[1] == "answer")
-    assert "my_auv.toml (user, sha256" in answer and "prefer" in answer and "Top drivers" in answer
+    answers = [out for argv, out in user_book["outputs"] if argv[1] == "answer"]
+    assert all("prefer" in a and "Top drivers" in a for a in answers)
+    for name in ("my_auv.toml", "my_blueboat.toml"):  # the AUV and the surface-boat examples
+        assert any(f"{name} (user, sha256" in a for a in answers), name
     assert user_book["refused"] and all(r.returncode == 2 and "add --name NAME" in r.stderr
                                         for r in user_book["refused"])  # the page's refused example is
 
