@@ -48,14 +48,21 @@ PRINT_CSS = """
   span[id^="document-"] + section { break-before: page; }
   caption { min-width: 0 !important; }
   .bd-header-announcement { display: none !important; }
-  .sss-locus-page { float: right; }
-  #jb-print-toc li { clear: both; }
+  #jb-print-toc li.toc-entry { display: flex; }
+  .sss-locus-page { margin-left: auto; padding-left: 1em; }
 }
 @page {
   margin: 14mm 12mm 16mm 12mm;
   @bottom-center { content: counter(page) " / " counter(pages); font-size: 9pt; color: #555; }
 }
 """
+
+
+def public_url() -> str | None:
+    """Where the PDF's data and BibTeX links point: the site's public address (``html.baseurl``)
+    for the reproduction; none for a named build, whose files are not the public site's (a link
+    there would open the paper's figure of the same label)."""
+    return None if paths.build_name() else citation.base_url()
 
 
 def find_browser() -> str:
@@ -101,10 +108,10 @@ def build_singlehtml(log=print) -> Path:
     if not single.is_file():
         raise RuntimeError(f"singlehtml build finished but {single} is missing")
     (site / "_static" / "sss-locus-print.css").write_text(PRINT_CSS, encoding="utf-8")
-    html, counts = pdflinks.rewrite_links(single.read_text(encoding="utf-8"), f"{root_doc}.html",
-                                          citation.base_url())
+    html, counts = pdflinks.rewrite_links(single.read_text(encoding="utf-8"), f"{root_doc}.html", public_url())
     log(f"links: {counts['internal']} internal, {counts['public']} to the public site, {counts['external']} "
-        f"external, {counts['unlinked']} left as text" + ("" if citation.base_url() else " (html.baseurl is empty)"))
+        f"external, {counts['unlinked']} left as text" + ("" if public_url() else " (no public address: html.baseurl "
+                                                          "is empty, or this is a named build, not on the site)"))
     cover = pdflinks.cover_html(provenance.package_version(), provenance.short_commit(provenance.git_commit()),
                                 provenance.utc_now()[:10], paths.build_name())
     cover_page = html.find('id="jb-print-docs-body"')  # the title page: the book's title, then contents
@@ -174,7 +181,7 @@ def main(argv: list[str] | None = None) -> int:
             missing = pdfcheck.missing_tools()
             if not missing:
                 numbered_contents(index, pdf, browser)
-        found = [] if missing else pdfcheck.problems(pdf, index) + pdflinks.link_problems(pdf, citation.base_url())
+            found = [] if missing else pdfcheck.problems(pdf, index) + pdflinks.link_problems(pdf, public_url())
     except (FileNotFoundError, RuntimeError, ValueError, subprocess.TimeoutExpired) as exc:
         print(f"make pdf: {exc}", file=sys.stderr)
         return 1

@@ -112,11 +112,14 @@ def pdf_links(pdf: Path) -> tuple[int, list[str]]:
 
 
 def link_problems(pdf: Path, base_url: str | None, min_internal: int = 1) -> list[str]:
-    """What is wrong with the links of ``pdf``: any link to a local file (``file:``) or to another
-    address than ``base_url`` and the web (``http(s):``, ``mailto:``), and fewer than
-    ``min_internal`` internal links."""
+    """What is wrong with the links of ``pdf``: any link to a local file (``file:``), to neither
+    the web (``http(s):``, ``mailto:``) nor the site, to a figure or notebook of the site when
+    ``base_url`` is ``None`` (no public site), and fewer than ``min_internal`` internal links."""
     internal, uris = pdf_links(pdf)
     found = [f"link to a local file: {u}" for u in uris if u.startswith("file:")]
+    if base_url is None:  # no public site: the site's files must not be linked at all
+        found += [f"link to a site file without a public address: {u}" for u in uris
+                  if re.search(r"/(figures|notebooks)/[^/]+$", u)]
     found += [f"link to neither the web nor the site: {u}" for u in uris
               if not u.startswith(("file:", "http://", "https://", "mailto:"))]
     if internal < min_internal:
