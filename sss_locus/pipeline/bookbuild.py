@@ -285,7 +285,7 @@ def build(log=print) -> Path:
     with outputs.build_lock():
         failed = check_executed(allow_failed=paths.build_name() is not None)
         for name, problem in failed.items():
-            log(f"warning: chapter {problem}; its page in this book says so")
+            log(f"warning: chapter {problem}; the book is built, and that chapter's page says so")
         return _build(log, failed)
 
 

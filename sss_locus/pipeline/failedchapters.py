@@ -32,8 +32,10 @@ def failed_chapters(entries: Sequence[Any]) -> dict[str, str]:
     for entry in entries:
         problem = outputs.problems([entry])
         kept = (paths.build_dir() / "failed" / f"{entry.name}.ipynb").is_file()
-        if problem and any((p.endswith("missing (never run)") and kept) or ": failed" in p for p in problem):
+        if problem and any(": failed" in p for p in problem):
             found[entry.name] = problem[0]
+        elif problem and kept and any(p.endswith("missing (never run)") for p in problem):
+            found[entry.name] = f"{entry.name}: failed (its notebook is kept in failed/{entry.name}.ipynb)"
     return found
 
 
