@@ -396,13 +396,13 @@ def test_user_figures_and_tables_cite_only_the_users_platform_and_inputs(user_bo
         files = {f["path"] for f in inputs["files"] if f.get("role") != "area"}
         if Path(m["notebook"]).stem == "survey_design":  # the area it planned over is an input file too
             assert len([f for f in inputs["files"] if f.get("role") == "area"]) == 1, label
-        assert str(user_book["user"]) in files, label
+        assert user_book["user"].name in files, label
         # a shipped file only for a shipped entry the figure read: the survey's offset models, the
         # seafloors and survey layout of the reconstruction, the survey-design conditions
         shipped = {e for e in inputs["entries"] if not e.endswith(("my_auv", "narrow_fan_450"))}
         assert all(e.startswith("offset_models.") or e in SHIPPED_TABLES for e in shipped), (label, shipped)
         expected = {"data/survey.toml" if e.startswith("offset_models.") else SHIPPED_TABLES[e] for e in shipped}
-        assert files - {str(user_book["user"])} == expected, label
+        assert files - {user_book["user"].name} == expected, label
         bib = (figures / f"{label}.bib").read_text()
         assert "my\\_auv (Example AUV" in bib and "40 x 0.2 deg, 100 m, tilt 15 deg" in bib
         assert "edgetech" not in bib.lower() and "omniscan" not in bib.lower() and "platforms.toml" not in bib
