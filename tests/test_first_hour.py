@@ -160,3 +160,23 @@ def test_a_shipped_file_keeps_its_repository_path_whatever_the_working_folder(tm
     files = userdata.figure_record(["boat"])["files"]
     assert files and all(f["path"] == f"data/{(paths.DATA_DIR / f['path'][5:]).name}" for f in files)
     assert all((paths.REPO_ROOT / f["path"]).is_file() for f in files)
+
+
+def test_the_downloadable_notebooks_carry_no_local_path(build_area, tmp_path):
+    """The site's copies of the executed notebooks (``notebooks/<name>.ipynb``) kept the user's
+    file and papermill's paths in their metadata."""
+    import json
+
+    from sss_locus import paths
+    from sss_locus.pipeline import bookbuild
+
+    mine = tmp_path / "home" / "myboat.toml"
+    executed = paths.executed_dir() / "rigs.ipynb"
+    executed.parent.mkdir(parents=True)
+    executed.write_text(json.dumps({"cells": [], "metadata": {
+        "papermill": {"input_path": str(tmp_path / "stage" / "rigs.ipynb"), "parameters": {"data_files": [str(mine)]}},
+        "sss_locus": {"parameters": {"data_files": [str(mine)], "platforms": ["boat"]}}}}))
+    bookbuild.stage_figure_pages(paths.source_dir(), [])
+    published = (paths.extra_dir() / "notebooks" / "rigs.ipynb").read_text()
+    assert str(tmp_path) not in published and "myboat.toml" in published
+    assert str(tmp_path) in executed.read_text()  # the build area's own copy keeps them (staleness checks)

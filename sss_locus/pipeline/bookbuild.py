@@ -12,6 +12,7 @@ site checks pass.
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
@@ -74,7 +75,8 @@ def copy_plotly() -> Path:
 def stage_figure_pages(root: Path, manifests: list[dict[str, Any]]) -> None:
     """Write the block placed under each figure (``_cite/<label>.md``, see
     :func:`sss_locus.pipeline.citation.cite_block`) and copy the executed notebooks to the site
-    (``notebooks/<name>.ipynb``) for download."""
+    (``notebooks/<name>.ipynb``) for download, each local absolute path of their metadata (the
+    user's files, papermill's paths) replaced by the file's name (:func:`sss_locus.paths.public_values`)."""
     cite_dir = root / citation.CITE_SUBDIR
     shutil.rmtree(cite_dir, ignore_errors=True)
     cite_dir.mkdir(parents=True)
@@ -84,8 +86,10 @@ def stage_figure_pages(root: Path, manifests: list[dict[str, Any]]) -> None:
     target = paths.extra_dir() / citation.NOTEBOOKS_SUBDIR
     shutil.rmtree(target, ignore_errors=True)
     target.mkdir(parents=True)
-    for notebook in sorted(paths.executed_dir().glob("*.ipynb")):
-        shutil.copy2(notebook, target / notebook.name)
+    for notebook in sorted(paths.executed_dir().glob("*.ipynb")):  # for download: no local paths
+        nb = json.loads(notebook.read_text(encoding="utf-8"))
+        nb["metadata"] = paths.public_values(nb.get("metadata") or {})
+        (target / notebook.name).write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
 
 
 def stage_config(root: Path, exclude: list[str] | None = None, front_page: Path | None = None) -> None:
