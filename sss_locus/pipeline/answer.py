@@ -2,8 +2,10 @@
 
 For a platform of the shipped data or of ``--data`` files, prints the crossing angles to prefer
 and to avoid between two straight passes (the planning chapter's bands,
-:func:`sss_locus.experiments.planning.planning_bands`) and the quantities that drive locus length
-most (the pose-space chapter's Spearman table, :func:`sss_locus.experiments.pose_stats.spearman_table`),
+:func:`sss_locus.experiments.planning.planning_bands`) for each of the planning chapter's offset
+models, each with the way of flying it stands for (:data:`HOW_YOU_FLY`; ``--offsets`` picks one),
+and the quantities that drive locus length most, named in words (:data:`QUANTITY_WORDS`; the
+pose-space chapter's Spearman table, :func:`sss_locus.experiments.pose_stats.spearman_table`),
 computed exactly as those chapters compute them, with their ``quick`` profile by default (a
 minute or less; ``--profile book`` for the book's sample sizes), and names the data it used: the
 data entries with their SHA-256 and the files that define them. Results are cached like the
