@@ -48,8 +48,8 @@ PRINT_CSS = """
   span[id^="document-"] + section { break-before: page; }
   caption { min-width: 0 !important; }
   .bd-header-announcement { display: none !important; }
-  #jb-print-toc li.toc-entry { display: flex; }
-  .sss-locus-page { margin-left: auto; padding-left: 1em; }
+  #jb-print-toc li.toc-entry > a { display: inline !important; }
+  .sss-locus-page { padding-left: 0.8em; font-weight: bold; }
 }
 @page {
   margin: 14mm 12mm 16mm 12mm;
