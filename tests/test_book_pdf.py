@@ -8,6 +8,7 @@ tests are skipped and named at the end of the run, and in CI they fail (``confte
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 import sys
@@ -84,8 +85,7 @@ def test_pdf_works_when_sent_links_page_numbers_contents_and_cover(quick_book, q
         "/figures/" in u for u in uris)
     texts = pdfcheck.page_texts(quick_pdf["pdf"])
     n = len(texts)
-    import re  # every page numbered: a line of its own "i / n" (math glyphs may be extracted after it)
-
+    # every page numbered: a line of its own "i / n" (math glyphs may be extracted after it)
     assert all(re.search(rf"^\s*{i} / {n}\s*$", text, re.M) for i, text in enumerate(texts, 1))
     cover = texts[0]
     assert provenance.package_version() in cover and "commit" in cover and "built 20" in cover
