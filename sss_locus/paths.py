@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any
 
 REPO_ROOT: Path = Path(__file__).resolve().parents[1]
 DATA_DIR: Path = REPO_ROOT / "data"
@@ -140,3 +141,30 @@ def cache_dir() -> Path:
 def site_url(path: Path) -> str:
     """URL, relative to the site root, of a file under :func:`extra_dir` (``figures/x.png``)."""
     return path.resolve().relative_to(extra_dir().resolve()).as_posix()
+
+
+def public_path(path: str | os.PathLike) -> str:
+    """A file as a published manifest or page names it: relative to the repository when it is
+    inside it (``data/examples/my_auv.toml``), else its file name only (``myboat.toml``) — never a
+    local absolute path. The file's SHA-256 beside the name identifies it. A relative path (the
+    shipped ``data/platforms.toml``) is already public and is returned as it is."""
+    p = Path(path)
+    if not p.is_absolute():
+        return p.as_posix()
+    try:
+        p = p.resolve()
+    except OSError:
+        pass
+    return p.relative_to(REPO_ROOT).as_posix() if p.is_relative_to(REPO_ROOT) else p.name
+
+
+def public_values(value: Any) -> Any:
+    """``value`` (a parameter value: a string, list or mapping of them) with every absolute path
+    replaced by :func:`public_path`, for what is published (manifests, pages)."""
+    if isinstance(value, str):
+        return public_path(value) if os.path.isabs(value) else value
+    if isinstance(value, (list, tuple)):
+        return [public_values(v) for v in value]
+    if isinstance(value, dict):
+        return {k: public_values(v) for k, v in value.items()}
+    return value

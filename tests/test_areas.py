@@ -125,7 +125,7 @@ def test_a_figure_names_only_its_own_platforms_entries_and_files(tmp_path):
     assert mine["platforms"] == ["my_auv"] and list(mine["values"]) == ["my_auv"]
     assert set(mine["entries"]) == {"platforms.my_auv", "sonars.narrow_fan_450"}  # nothing else read
     assert [(f["path"], f["sha256"]) for f in mine["files"]] == [
-        (str(user), hashlib.sha256(user.read_bytes()).hexdigest())]
+        (user.name, hashlib.sha256(user.read_bytes()).hexdigest())]
     assert mine["overrides"] == []  # the --set changes the AUV, not this platform
     auv = userdata.figure_record(["auv"], inputs, read={"envelopes.auv", "offset_models.matched"})
     assert set(auv["entries"]) == {"platforms.auv", "sonars.edgetech_2205", "envelopes.auv",
@@ -135,7 +135,7 @@ def test_a_figure_names_only_its_own_platforms_entries_and_files(tmp_path):
     both = userdata.figure_record(["auv", "my_auv"], inputs, read={"noise.my_auv"})
     assert set(both["entries"]) == {"platforms.auv", "sonars.edgetech_2205", "platforms.my_auv",
                                     "sonars.narrow_fan_450", "noise.my_auv"}
-    assert [f["path"] for f in both["files"]] == ["data/platforms.toml", str(user)]
+    assert [f["path"] for f in both["files"]] == ["data/platforms.toml", user.name]  # by name, never a local path
 
 
 def test_the_rig_caption_names_the_files_its_platforms_come_from(tmp_path):
@@ -172,7 +172,7 @@ def test_answer_prints_bands_and_drivers_and_names_the_data(build_area, capsys):
     bands = re.findall(r"^  (prefer|avoid) +(\d+)(?:–(\d+))? ", out, re.M)
     assert {b[0] for b in bands} == {"prefer", "avoid"}
     assert all(0 <= int(lo) <= int(hi or lo) <= 180 for _, lo, hi in bands)
-    drivers = re.findall(r"^  (\d) +([a-z0-9_]+) +(-?\d\.\d\d) +(-?\d\.\d\d) to (-?\d\.\d\d)$", out, re.M)
+    drivers = re.findall(r"^  (\d) +(.+?) +(-?\d\.\d\d) +(-?\d\.\d\d) to (-?\d\.\d\d)$", out, re.M)
     assert [int(d[0]) for d in drivers] == [1, 2, 3, 4, 5]
     rho = [abs(float(d[2])) for d in drivers]
     assert rho == sorted(rho, reverse=True)  # the top drivers, strongest first

@@ -311,7 +311,9 @@ def user_book(quick_book, tmp_path_factory):
     before = _snapshot(area)
 
     def run(argv: list[str]) -> subprocess.CompletedProcess:
-        argv = [str(user) if a == "data/examples/my_auv.toml" else a for a in argv[1:]]
+        argv = [str(user) if a == "data/examples/my_auv.toml" else
+                str(shutil.copy(paths.REPO_ROOT / a, work)) if a.startswith("data/examples/") and a.endswith(".toml")
+                else a for a in argv[1:]]
         if argv[0] in ("run", "book") and "--profile" not in argv:
             argv += ["--profile", "quick"]
         return subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli", *argv], env=env, cwd=work,
@@ -337,8 +339,10 @@ def test_the_page_runs_a_quick_answer_runs_and_a_book_each_into_its_own_area(use
     commands = [argv[:2] for argv, _ in user_book["outputs"]]
     assert ["sss-locus", "answer"] in commands and ["sss-locus", "book"] in commands
     assert all("--name" in argv for argv, _ in user_book["outputs"] if argv[1] in ("run", "book"))
-    answer = next(out for argv, out in user_book["outputs"] if argv[1] == "answer")
-    assert "my_auv.toml (user, sha256" in answer and "prefer" in answer and "Top drivers" in answer
+    answers = [out for argv, out in user_book["outputs"] if argv[1] == "answer"]
+    assert all("prefer" in a and "Top drivers" in a for a in answers)
+    for name in ("my_auv.toml", "my_blueboat.toml"):  # the AUV and the surface-boat examples
+        assert any(f"{name} (user, sha256" in a for a in answers), name
     assert user_book["refused"] and all(r.returncode == 2 and "add --name NAME" in r.stderr
                                         for r in user_book["refused"])  # the page's refused example is
 
@@ -362,7 +366,7 @@ def test_user_platform_book_builds_and_places_every_figure(user_book):
     assert pose.count("are left out here: this run does not include") == 1  # the paper's prose: one note
     assert "The raw locus length is ranked first by" in pose  # and findings from the user's own numbers
     figures = (html / "book" / "figures.html").read_text()
-    assert "sss-locus:fig-heatmaps-my-auv" in figures and "sss-locus:fig-heatmaps-boat" not in figures
+    assert "sss-locus:my_auv:fig-heatmaps-my-auv" in figures and "fig-heatmaps-boat" not in figures
 
 
 def test_claims_page_says_the_inputs_are_not_the_papers(user_book):
@@ -392,13 +396,13 @@ def test_user_figures_and_tables_cite_only_the_users_platform_and_inputs(user_bo
         files = {f["path"] for f in inputs["files"] if f.get("role") != "area"}
         if Path(m["notebook"]).stem == "survey_design":  # the area it planned over is an input file too
             assert len([f for f in inputs["files"] if f.get("role") == "area"]) == 1, label
-        assert str(user_book["user"]) in files, label
+        assert user_book["user"].name in files, label
         # a shipped file only for a shipped entry the figure read: the survey's offset models, the
         # seafloors and survey layout of the reconstruction, the survey-design conditions
         shipped = {e for e in inputs["entries"] if not e.endswith(("my_auv", "narrow_fan_450"))}
         assert all(e.startswith("offset_models.") or e in SHIPPED_TABLES for e in shipped), (label, shipped)
         expected = {"data/survey.toml" if e.startswith("offset_models.") else SHIPPED_TABLES[e] for e in shipped}
-        assert files - {str(user_book["user"])} == expected, label
+        assert files - {user_book["user"].name} == expected, label
         bib = (figures / f"{label}.bib").read_text()
         assert "my\\_auv (Example AUV" in bib and "40 x 0.2 deg, 100 m, tilt 15 deg" in bib
         assert "edgetech" not in bib.lower() and "omniscan" not in bib.lower() and "platforms.toml" not in bib

@@ -8,6 +8,7 @@ tests are skipped and named at the end of the run, and in CI they fail (``confte
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 import sys
@@ -70,6 +71,29 @@ def test_pdf_has_every_page_in_order_every_figure_and_typeset_math(quick_book, q
     assert pdfcheck.problems(quick_pdf["pdf"], quick_pdf["html"]) == []
     texts = pdfcheck.page_texts(quick_pdf["pdf"])
     assert len(texts) > len(titles)
+
+
+def test_pdf_works_when_sent_links_page_numbers_contents_and_cover(quick_book, quick_pdf):
+    """Issue 37: 637 links of the PDF were file:// addresses of the build machine, none internal;
+    no page numbers, a contents list without them, a cover with no version, commit or date."""
+    from sss_locus.pipeline import citation, pdflinks, provenance
+
+    assert pdflinks.link_problems(quick_pdf["pdf"], citation.base_url(), min_internal=100) == []
+    internal, uris = pdflinks.pdf_links(quick_pdf["pdf"])
+    base = citation.base_url()
+    assert all(u.startswith(base) for u in uris if "/figures/" in u) if base else not any(
+        "/figures/" in u for u in uris)
+    texts = pdfcheck.page_texts(quick_pdf["pdf"])
+    n = len(texts)
+    # every page numbered: a line of its own "i / n" (math glyphs may be extracted after it)
+    assert all(re.search(rf"^\s*{i} / {n}\s*$", text, re.M) for i, text in enumerate(texts, 1))
+    cover = texts[0]
+    assert provenance.package_version() in cover and "commit" in cover and "built 20" in cover
+    titles = pdfcheck.printed_page(quick_pdf["html"])[0]
+    starts = pdfcheck.chapter_starts(texts, titles)
+    contents = " ".join(" ".join(t.split()) for t in texts[:3])
+    for title in titles[1:4]:  # the contents list the page each page title opens
+        assert f"{' '.join(title.split())} {starts[title][0]}" in contents, title
 
 
 def test_pdf_check_finds_missing_pages_figures_raw_math_and_blank_pages(tmp_path):

@@ -179,3 +179,18 @@ def test_a_figure_of_an_area_named_in_any_script_gets_an_entry(tmp_path):
     bib = citation.figure_bibtex(manifest("tab-x", caption="Plans over 港口 á ١٢ مرفأ: headings."), config=config)
     assert bib.isascii()
     assert "U+6E2F" in parse(bib).entries["sss-locus:tab-x"].fields["title"]
+
+
+def test_a_named_build_areas_keys_differ_from_the_reproductions_and_both_compile_in_one_document(tmp_path):
+    """Issue 37: the user's fig-survey-front and the paper's shared the key sss-locus:fig-survey-front
+    (bibtex: "Repeated entry", one number for two figures)."""
+    paper = manifest()
+    mine = {**manifest(), "build_area": "myboat"}
+    a, b = citation.figure_bibtex(paper), citation.figure_bibtex(mine)
+    entries = parse(a + b).entries
+    assert set(entries) == {"sss-locus:fig-demo", "sss-locus:myboat:fig-demo"}
+    assert "build area" in entries["sss-locus:myboat:fig-demo"].fields["note"]
+    assert "build area" not in entries["sss-locus:fig-demo"].fields["note"]
+    if shutil.which("pdflatex") and shutil.which("bibtex"):  # one LaTeX document cites both: two numbers
+        log = compile_latex(tmp_path, a + b, list(entries))
+        assert "Repeated entry" not in (tmp_path / "doc.blg").read_text() and log

@@ -160,3 +160,15 @@ def test_tagged_cells_are_the_only_markdown_naming_per_platform_glue(name):
         text = "".join(cell["source"])
         for key in ("auv", "boat"):
             assert f"-{key}-" not in text and f"-{key}`" not in text, (name, text[:200])
+
+
+def test_claims_note_never_calls_a_paper_platform_added():
+    """Issue 37: with the user's boat beside the paper's boat, the note said "this build also ran
+    the platform(s) boat, myboat" (concept's default is the AUV alone, so `boat` looked added)."""
+    paper = {n: _record(n, {}) for n in REGISTRY}
+    both = {**paper, **{n: _record(n, {"platforms": [*REGISTRY[n].parameters()["platforms"].default, "myboat"]})
+                        for n in ("rigs", "planning")},
+            "concept": _record("concept", {"platforms": ["auv", "boat"]})}
+    text, replace = paperinputs.claims_notice(both)
+    assert not replace and "`myboat`" in text
+    assert "`boat`" not in text.split("platforms only")[0]

@@ -84,3 +84,23 @@ def test_crossing_angle_curve_small():
     assert cur.at(90)["median"] == pytest.approx(c.loc[2, "locus_length_m_median"])
     with pytest.raises(ValueError, match="grid"):
         cur.at(45)
+
+
+def test_pitch_study_platform_skips_platforms_that_cannot_pitch():
+    """Issue 37: a boat-only run fell back to the boat and crashed ("exceeds platform 'boat''s
+    limit of ±0.0 deg"); a platform qualifies only when the envelope pitches and its limit covers
+    every pitch of the study."""
+    from dataclasses import replace
+
+    from sss_locus.experiments.planning import pitch_study_platform
+
+    pfs = {k: load_platform(k) for k in ("boat", "auv")}
+    envs = {k: load_envelope(k) for k in pfs}
+    assert pfs["boat"].pitch_max_deg == 0 and pfs["auv"].pitch_max_deg >= 15  # the shipped data
+    assert pitch_study_platform({"boat": pfs["boat"]}, envs, [5, 10, 15]) is None
+    assert pitch_study_platform(pfs, envs, [5, 10, 15]) == "auv"
+    low = {"slow": replace(pfs["auv"], pitch_max_deg=10.0)}
+    assert pitch_study_platform(low, {"slow": envs["auv"]}, [5, 10, 15]) is None
+    assert pitch_study_platform(low, {"slow": envs["auv"]}, [-5, 10]) == "slow"
+    flat = {"auv": replace(envs["auv"], pitch_min_deg=0.0, pitch_max_deg=0.0)}
+    assert pitch_study_platform({"auv": pfs["auv"]}, flat, [5]) is None

@@ -37,7 +37,7 @@ def test_a_table_names_only_its_own_platforms_and_files(tmp_path):
     inputs = manifest["data_inputs"]
     assert inputs["platforms"] == ["my_auv"] and "platforms.auv" not in inputs["entries"]
     assert [(f["path"], f["sha256"]) for f in inputs["files"]] == [
-        (str(user), hashlib.sha256(user.read_bytes()).hexdigest())]
+        (user.name, hashlib.sha256(user.read_bytes()).hexdigest())]  # its name, never a local path
     for name, entry in manifest["files"].items():
         assert entry["sha256"] == hashlib.sha256((out / name).read_bytes()).hexdigest()
     bib = (out / "tab-peaks.bib").read_text()

@@ -543,3 +543,18 @@ def band_samples(platform: Platform, envelope: SurveyEnvelope, offset_model: Off
     if angles.size == 0:
         raise ValueError(f"no grid angle inside band_deg {band_deg}")
     return simulate(platform, envelope, offset_model, angles, n_per_angle, seed)[0]
+
+
+def pitch_study_platform(platforms: dict[str, Platform], envelopes: dict[str, SurveyEnvelope],
+                         pitch_levels_deg) -> str | None:
+    """The first platform key of ``platforms`` that can fly the pitch study, or ``None``.
+
+    The study fixes both passes at each pitch of ``pitch_levels_deg`` (degrees, positive
+    nose-up, either sign): a platform qualifies when its envelope draws pitch (a non-empty
+    range) and its pitch limit covers the largest magnitude asked for. ``None`` (no platform of
+    the run pitches, e.g. surface boats only) means the study is skipped, not run on a platform
+    that would be driven past its limit.
+    """
+    need = max((abs(float(p)) for p in pitch_levels_deg), default=0.0)
+    return next((k for k, p in platforms.items()
+                 if envelopes[k].pitch_max_deg > envelopes[k].pitch_min_deg and p.pitch_max_deg >= need), None)

@@ -162,4 +162,29 @@ def hardware_warnings(platforms: Mapping[str, Any]) -> list[str]:
             if 0 < tilt < math.pi / 2 and not float(tilt).is_integer():
                 found.append(f"platforms.{key}.transducers.{side}.tilt_deg = {t.tilt_deg:g} looks like "
                              f"radians (a look-down of {math.degrees(t.tilt_deg):.3g} deg?); tilts are in degrees")
+    return found + [line for _, line in fan_warnings(platforms)]
+
+
+def fan_warnings(platforms: Mapping[str, Any]) -> list[tuple[tuple[str, str, str], str]]:
+    """Transducers whose fan, on a level vehicle, reaches above the horizontal on a surface
+    vessel (``depth_m.max == 0``) or past the vertical: possible, but a surface vessel's fan above
+    the horizontal looks along the sea surface, not at the seafloor, and a fan past the vertical
+    looks under the vehicle. (A submerged vehicle may look up on purpose.) Returns ``((platform, side,
+    kind), line)`` pairs, ``kind`` "above" or "under", so a caller can leave out what the shipped
+    platforms do already."""
+    found = []
+    for key, p in platforms.items():
+        half = p.sonar.azimuth_deg / 2
+        for side, t in p.transducers.items():
+            top, bottom = abs(t.tilt_deg) - half, abs(t.tilt_deg) + half  # look-down of the fan's edges
+            where = (f"platforms.{key}.transducers.{side}.tilt_deg = {t.tilt_deg:g} with the "
+                     f"{p.sonar.azimuth_deg:g} deg fan of sonars.{p.sonar.key}")
+            if top < 0 and p.depth_max_m <= 0:
+                found.append(((key, side, "above"), f"{where} points the fan's top {-top:.3g} deg ABOVE the horizontal "
+                              "(on a surface boat that part looks along the sea surface, not at the seafloor); tilt_deg is the look-down of "
+                              "the fan's centre, azimuth_deg the FULL fan: a tilt of at least half the fan keeps it "
+                              "below the horizontal"))
+            if bottom > 90:
+                found.append(((key, side, "under"), f"{where} points the fan's bottom {bottom - 90:.3g} deg past "
+                              "the vertical (under the vehicle, toward the other side)"))
     return found

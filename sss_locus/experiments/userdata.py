@@ -28,6 +28,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from ..paths import public_path
 from . import datadoc, schema
 from . import inputs as inputs_module
 from .datadoc import (KEY_PATTERN, SET_NOTE, SHIPPED_FILES, USER_TABLES, DataInputs, activate, active,  # noqa: F401
@@ -104,8 +105,15 @@ def use(data_files: Iterable[str | Path] = (), data_set: Iterable[str] = ()) -> 
 
 def hardware_flags(inputs: DataInputs | None = None) -> list[str]:
     """Values of ``inputs`` that are possible but look like a mistake (e.g. a tilt in radians),
-    one line each (:func:`sss_locus.experiments.schema.hardware_warnings`)."""
-    return schema.hardware_warnings(parse_platforms(document(inputs)))
+    one line each (:func:`sss_locus.experiments.schema.hardware_warnings`). A fan that reaches
+    above the horizontal or past the vertical (:func:`~sss_locus.experiments.schema.fan_warnings`)
+    is flagged for the user's platforms only, not where the shipped platform of that key does it
+    already (the paper's AUV: a 130 deg fan at 25.5 deg look-down)."""
+    platforms = parse_platforms(document(inputs))
+    shipped = {kind for kind, _ in schema.fan_warnings(parse_platforms(datadoc.shipped_document()))}
+    user_fans = {line for kind, line in schema.fan_warnings(platforms) if kind not in shipped}
+    all_fans = {line for _, line in schema.fan_warnings(platforms)}
+    return [line for line in schema.hardware_warnings(platforms) if line not in all_fans or line in user_fans]
 
 
 def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = None, *,
@@ -209,7 +217,8 @@ def figure_record(platform_keys: Iterable[str], inputs: DataInputs | None = None
         return any(key == e or key.startswith(e + ".") for e in entries)
 
     return {"platforms": list(values), "entries": hashes,
-            "files": [f for f in files_read(inputs) if defines(f["path"])],
+            "files": [{**f, "path": public_path(f["path"]) if f["role"] == "user" else f["path"]}
+                      for f in files_read(inputs) if defines(f["path"])],
             "overrides": [o for o in inputs.sets if inside(o)], "values": values}
 
 

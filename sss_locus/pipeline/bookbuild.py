@@ -12,6 +12,7 @@ site checks pass.
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
@@ -23,12 +24,14 @@ from typing import Any
 from urllib.parse import unquote, urlsplit
 
 from sss_locus import paths
-from sss_locus.pipeline import citation, claimsindex, export, figindex, outputs, paperinputs, provenance
+from sss_locus.pipeline import (areanotice, citation, claimsindex, export, failedchapters, figindex, outputs,
+                                paperinputs, provenance)
 from sss_locus.pipeline.buildlog import ANSI, StagingPathFilter
 from sss_locus.pipeline.kernels import hermetic_env
 
 FIGURES_PAGE = "figures.md"
 CLAIMS_PAGE = "claims.md"
+FRONT_PAGE = "intro.md"
 FIGURES_MARKER = "<!-- FIGURES-INDEX -->"
 CITE_PAGE = "cite.md"
 PROJECT_BIBTEX_MARKER = "<!-- PROJECT-BIBTEX -->"
@@ -72,7 +75,8 @@ def copy_plotly() -> Path:
 def stage_figure_pages(root: Path, manifests: list[dict[str, Any]]) -> None:
     """Write the block placed under each figure (``_cite/<label>.md``, see
     :func:`sss_locus.pipeline.citation.cite_block`) and copy the executed notebooks to the site
-    (``notebooks/<name>.ipynb``) for download."""
+    (``notebooks/<name>.ipynb``) for download, each local absolute path of their metadata (the
+    user's files, papermill's paths) replaced by the file's name (:func:`sss_locus.paths.public_values`)."""
     cite_dir = root / citation.CITE_SUBDIR
     shutil.rmtree(cite_dir, ignore_errors=True)
     cite_dir.mkdir(parents=True)
@@ -82,19 +86,28 @@ def stage_figure_pages(root: Path, manifests: list[dict[str, Any]]) -> None:
     target = paths.extra_dir() / citation.NOTEBOOKS_SUBDIR
     shutil.rmtree(target, ignore_errors=True)
     target.mkdir(parents=True)
-    for notebook in sorted(paths.executed_dir().glob("*.ipynb")):
-        shutil.copy2(notebook, target / notebook.name)
+    for notebook in sorted(paths.executed_dir().glob("*.ipynb")):  # for download: no local paths
+        nb = json.loads(notebook.read_text(encoding="utf-8"))
+        nb["metadata"] = paths.public_values(nb.get("metadata") or {})
+        (target / notebook.name).write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
 
 
-def stage_config(root: Path) -> None:
-    """Copy ``_config.yml``, turning the repository buttons on when ``repository.url`` is set and
-    giving the pages the package's version as the substitution ``{{ version }}``."""
+def stage_config(root: Path, exclude: list[str] | None = None, front_page: Path | None = None) -> None:
+    """Copy ``_config.yml``, turning the repository buttons on when ``repository.url`` is set,
+    giving the pages the package's version as the substitution ``{{ version }}`` and leaving out
+    the source files ``exclude`` (the executed copies of failed chapters). In a named build area
+    the staged ``front_page`` and every page's header say what the book was built from
+    (:mod:`sss_locus.pipeline.areanotice`)."""
     import yaml
 
     config = yaml.safe_load(paths.CONFIG_FILE.read_text(encoding="utf-8"))
+    if exclude:
+        config["exclude_patterns"] = [*config.get("exclude_patterns", []), *exclude]
     config.setdefault("parse", {}).setdefault("myst_substitutions", {})["version"] = provenance.package_version()
     if citation.repository_url():
         config.setdefault("html", {}).update(use_repository_button=True, use_issues_button=True)
+    if front_page is not None:
+        areanotice.stage(root, front_page, config)
     (root / paths.CONFIG_FILE.name).write_text(yaml.safe_dump(config, sort_keys=False), encoding="utf-8")
 
 
@@ -126,24 +139,36 @@ def stage_claims_notice(page: Path, records: dict[str, Any] | None = None) -> No
     page.write_text("".join([*lines[:head + 1], "\n", notice, *rest]), encoding="utf-8")
 
 
-def stage() -> Path:
-    """Copy the book source into the build area and generate the figures page; return the root."""
+def stage(failed: dict[str, str] | None = None) -> Path:
+    """Copy the book source into the build area and generate the figures page; return the root.
+
+    ``failed`` (``{chapter: problem}``, a named build only) chapters get a page saying so in place
+    of their executed copy, and their figures are left out
+    (:mod:`sss_locus.pipeline.failedchapters`)."""
+    from sss_locus.pipeline.registry import load_registry
+
+    failed, entries = failed or {}, load_registry()
     root = paths.source_dir()
     root.mkdir(parents=True, exist_ok=True)
-    stage_config(root)
+    excluded = failedchapters.stage_stubs(root, failed, entries)
+
+    def manifests(**kinds) -> list[dict[str, Any]]:
+        return failedchapters.without_chapters(export.load_manifests(**kinds), failed, entries)
+
     shutil.copy2(paths.TOC_FILE, root / paths.TOC_FILE.name)
     staged_book = root / paths.BOOK_DIR.name
     shutil.rmtree(staged_book, ignore_errors=True)
     shutil.copytree(paths.BOOK_DIR, staged_book)
+    stage_config(root, excluded, front_page=staged_book / FRONT_PAGE)
     paths.figures_dir().mkdir(parents=True, exist_ok=True)
     copy_mathjax()
     copy_plotly()
-    stage_figure_pages(root, export.load_manifests())
+    stage_figure_pages(root, manifests())
     claimsindex.stage_claims_index(staged_book / CLAIMS_PAGE)  # the notice, if any, goes above it
     stage_claims_notice(staged_book / CLAIMS_PAGE)
     for name, marker, generated in (
             (FIGURES_PAGE, FIGURES_MARKER,
-             lambda: figindex.figures_index(figindex.in_book_order(export.load_manifests(kinds=("fig", "tab"))))),
+             lambda: figindex.figures_index(figindex.in_book_order(manifests(kinds=("fig", "tab"))))),
             (CITE_PAGE, PROJECT_BIBTEX_MARKER, lambda: f"```bibtex\n{citation.project_bibtex()}```")):
         text = (staged_book / name).read_text(encoding="utf-8")
         if marker not in text:
@@ -235,33 +260,41 @@ def site_problems(html_dir: Path) -> list[str]:
     return problems
 
 
-def check_executed() -> None:
+def check_executed(allow_failed: bool = False) -> dict[str, str]:
     """Refuse, in one message, executed copies that cannot make one book (see
-    :func:`sss_locus.pipeline.outputs.problems`)."""
+    :func:`sss_locus.pipeline.outputs.problems`). With ``allow_failed`` (a named build), chapters
+    whose copy failed or is missing are returned (``{name: problem}``) instead of refused."""
     from sss_locus.pipeline.registry import load_registry
 
-    found = outputs.problems(list(load_registry().values()))
+    entries = list(load_registry().values())
+    failed = failedchapters.failed_chapters(entries) if allow_failed else {}
+    found = outputs.problems([e for e in entries if e.name not in failed])
     if found:
         raise ValueError(
             f"cannot build the book: {len(found)} executed cop{'y is' if len(found) == 1 else 'ies are'} "
             "not part of one consistent, successful set (rerun with `sss-locus run <name>` or "
             "`sss-locus book`):\n  " + "\n  ".join(found))
+    return failed
 
 
 def build(log=print) -> Path:
     """Check the executed copies, stage and build the site with ``jupyter-book build -W -n
     --keep-going --all``; return index.html.
 
-    Holds the build area's lock throughout, so no run commits new results mid-build and two
-    builds never share Jupyter Book's output folder.
+    In a named build area a failed chapter does not stop the book: its page says it failed
+    (:mod:`sss_locus.pipeline.failedchapters`), the build runs without ``-W`` and the problems it
+    causes on other pages are listed instead of refused. Holds the build area's lock throughout,
+    so no run commits new results mid-build and two builds never share Jupyter Book's output folder.
     """
     with outputs.build_lock():
-        check_executed()
-        return _build(log)
+        failed = check_executed(allow_failed=paths.build_name() is not None)
+        for name, problem in failed.items():
+            log(f"warning: chapter {problem}; the book is built, and that chapter's page says so")
+        return _build(log, failed)
 
 
-def _build(log) -> Path:
-    root = stage()
+def _build(log, failed: dict[str, str] | None = None) -> Path:
+    root = stage(failed)
     missing = missing_toc_files(root)
     if missing:
         raise FileNotFoundError(
@@ -271,7 +304,8 @@ def _build(log) -> Path:
     jupyter_book = Path(sys.executable).with_name("jupyter-book")
     env = {**os.environ, **hermetic_env()}
     output = paths.jupyter_book_dir()
-    cmd = [str(jupyter_book), "build", str(root), "--path-output", str(output), *JB_FLAGS]
+    flags = [f for f in JB_FLAGS if f != "-W"] if failed else list(JB_FLAGS)
+    cmd = [str(jupyter_book), "build", str(root), "--path-output", str(output), *flags]
     log("$ " + " ".join(cmd))
     problems: list[str] = []
     with subprocess.Popen(cmd, env=env, cwd=root, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
@@ -290,7 +324,9 @@ def _build(log) -> Path:
     if not (built / "index.html").is_file():
         raise RuntimeError(f"jupyter-book build finished but {built / 'index.html'} is missing")
     problems = site_problems(built)
-    if problems:
+    if problems and failed:
+        log("warning: pages that quote the failed chapter(s):\n  " + "\n  ".join(problems))
+    elif problems:
         raise RuntimeError("the built site has broken references:\n  " + "\n  ".join(problems))
     publish_site(built, paths.html_dir())
     return paths.index_html()

@@ -8,8 +8,12 @@ Run after ``make book`` (it uses the executed notebooks and exported figures in 
 The single page is built into ``<build>/singlehtml`` and printed to ``<build>/pdf/sss-locus-book.pdf``
 with Chromium from the operating system (Debian/Ubuntu package ``chromium``, or Google Chrome):
 the figures are the book's own (embedded PNGs), math is typeset by the site's local MathJax, and
-the interactive views and the "cite this figure" dropdowns are left out of the print. The PDF is
-then read back and checked (:mod:`sss_locus.pipeline.pdfcheck`) when poppler-utils is installed.
+the interactive views and the "cite this figure" dropdowns are left out of the print. Its links
+are internal (cross-references, figures, the contents) or go to the site's public address
+(``html.baseurl``) for data and BibTeX files (:mod:`sss_locus.pipeline.pdflinks`); every page is
+numbered, the cover names the version, commit and date, and, when poppler-utils is installed, the
+contents list each page's number (a second print) and the PDF is read back and checked
+(:mod:`sss_locus.pipeline.pdfcheck`).
 """
 
 from __future__ import annotations
@@ -21,7 +25,7 @@ import sys
 from pathlib import Path
 
 from sss_locus import paths
-from sss_locus.pipeline import bookbuild, pdfcheck
+from sss_locus.pipeline import bookbuild, citation, pdfcheck, pdflinks, provenance
 from sss_locus.pipeline.kernels import hermetic_env
 
 PDF_NAME = "sss-locus-book.pdf"
@@ -43,8 +47,22 @@ PRINT_CSS = """
   #jb-print-toc { margin-bottom: 0 !important; }
   span[id^="document-"] + section { break-before: page; }
   caption { min-width: 0 !important; }
+  .bd-header-announcement { display: none !important; }
+  #jb-print-toc li.toc-entry > a { display: inline !important; }
+  .sss-locus-page { padding-left: 0.8em; font-weight: bold; }
+}
+@page {
+  margin: 14mm 12mm 16mm 12mm;
+  @bottom-center { content: counter(page) " / " counter(pages); font-size: 9pt; color: #555; }
 }
 """
+
+
+def public_url() -> str | None:
+    """Where the PDF's data and BibTeX links point: the site's public address (``html.baseurl``)
+    for the reproduction; none for a named build, whose files are not the public site's (a link
+    there would open the paper's figure of the same label)."""
+    return None if paths.build_name() else citation.base_url()
 
 
 def find_browser() -> str:
@@ -90,7 +108,16 @@ def build_singlehtml(log=print) -> Path:
     if not single.is_file():
         raise RuntimeError(f"singlehtml build finished but {single} is missing")
     (site / "_static" / "sss-locus-print.css").write_text(PRINT_CSS, encoding="utf-8")
-    html = single.read_text(encoding="utf-8")
+    html, counts = pdflinks.rewrite_links(single.read_text(encoding="utf-8"), f"{root_doc}.html", public_url())
+    log(f"links: {counts['internal']} internal, {counts['public']} to the public site, {counts['external']} "
+        f"external, {counts['unlinked']} left as text" + ("" if public_url() else " (no public address: html.baseurl "
+                                                          "is empty, or this is a named build, not on the site)"))
+    cover = pdflinks.cover_html(provenance.package_version(), provenance.short_commit(provenance.git_commit()),
+                                provenance.utc_now()[:10], paths.build_name())
+    cover_page = html.find('id="jb-print-docs-body"')  # the title page: the book's title, then contents
+    title_end = html.find("</h1>", cover_page) if cover_page >= 0 else -1
+    if title_end >= 0:
+        html = html[:title_end + 5] + cover + html[title_end + 5:]
     for folder in ("figures", "notebooks", "plotly", "mathjax"):
         html = html.replace(f'"../{folder}/', f'"{folder}/')
     html = html.replace("</head>", '<link rel="stylesheet" href="_static/sss-locus-print.css">\n</head>', 1)
@@ -118,6 +145,24 @@ def print_pdf(index: Path, target: Path, browser: str, timeout_s: float = 300) -
     return target
 
 
+def numbered_contents(index: Path, pdf: Path, browser: str, rounds: int = 3) -> dict[str, int]:
+    """Give the printed contents of ``index`` the page each page title opens in ``pdf`` (read
+    back with poppler) and print again, until the numbers no longer move (at most ``rounds``
+    prints); return the numbers."""
+    titles = pdfcheck.printed_page(index)[0]
+    base = index.read_text(encoding="utf-8")
+    pages: dict[str, int] = {}
+    for _ in range(rounds):
+        starts = pdfcheck.chapter_starts(pdfcheck.page_texts(pdf), titles)
+        found = {" ".join(t.split()): p[0] for t, p in starts.items() if len(p) == 1}
+        if found == pages:
+            break
+        pages = found
+        index.write_text(pdflinks.contents_pages(base, pages), encoding="utf-8")
+        print_pdf(index, pdf, browser)
+    return pages
+
+
 def main(argv: list[str] | None = None) -> int:
     """Print the book; then, when poppler's tools are installed, read the PDF back and fail on
     any of :func:`sss_locus.pipeline.pdfcheck.problems`."""
@@ -133,8 +178,10 @@ def main(argv: list[str] | None = None) -> int:
         with areas.entered(args.name):
             index = build_singlehtml(log=lambda line: print(line, file=sys.stderr))
             pdf = print_pdf(index, paths.build_dir() / "pdf" / PDF_NAME, browser)
-        missing = pdfcheck.missing_tools()
-        found = [] if missing else pdfcheck.problems(pdf, index)
+            missing = pdfcheck.missing_tools()
+            if not missing:
+                numbered_contents(index, pdf, browser)
+            found = [] if missing else pdfcheck.problems(pdf, index) + pdflinks.link_problems(pdf, public_url())
     except (FileNotFoundError, RuntimeError, ValueError, subprocess.TimeoutExpired) as exc:
         print(f"make pdf: {exc}", file=sys.stderr)
         return 1

@@ -221,7 +221,8 @@ def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None 
 
     Fields: ``title`` (label and short caption), ``author`` and ``howpublished`` (from
     ``CITATION.cff``), ``year`` (of the run), ``version`` (of the package), ``note`` (notebook,
-    profile and commit) and ``url`` when ``html.baseurl`` is configured.
+    profile, commit, a named build's area) and ``url`` (``html.baseurl``, the reproduction's only).
+    Key ``sss-locus:<label>``, in a named build area ``sss-locus:<area>:<label>`` (two entries).
     """
     from sss_locus.pipeline.provenance import short_commit
 
@@ -231,7 +232,7 @@ def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None 
         except (OSError, ValueError, ImportError):
             cff = {}
     label = manifest["label"]
-    kind = "Table" if label.startswith("tab-") else "Figure"
+    kind, area = "Table" if label.startswith("tab-") else "Figure", manifest.get("build_area")
     fields = {
         "title": "{" + latex_escape(f"{kind} {label}: ") + latex_escape(short_caption(manifest["caption"]),
                                                                        markdown=True) + "}",
@@ -242,13 +243,14 @@ def figure_bibtex(manifest: Mapping[str, Any], *, cff: Mapping[str, Any] | None 
         "note": (f"Notebook \\texttt{{{latex_escape(str(manifest['notebook']))}}}, "
                  f"profile {latex_escape(str(manifest['profile']))}, "
                  f"commit \\texttt{{{latex_escape(short_commit(str(manifest['git_commit'])))}}}"
+                 + (f", build area \\texttt{{{latex_escape(str(area))}}}" if area else "")
                  + data_note(manifest)),
     }
-    url = figure_url(label, config, "csv" if kind == "Table" else "png")
+    url = None if area else figure_url(label, config, "csv" if kind == "Table" else "png")
     if url:
         fields["url"] = url.replace("%", r"\%").replace("#", r"\#")
     body = ",\n".join(f"  {key} = {{{value}}}" for key, value in fields.items())
-    return f"@misc{{sss-locus:{label},\n{body}\n}}\n"
+    return f"@misc{{{':'.join(['sss-locus', *filter(None, [area]), label])},\n{body}\n}}\n"
 
 
 def project_bibtex(cff: Mapping[str, Any] | None = None, *, config: Path | None = None) -> str:

@@ -110,6 +110,11 @@ def _parser() -> argparse.ArgumentParser:
                      help="platform KEY (required), or a parameter of the planning/pose_space notebooks")
     ans.add_argument("--profile", default="quick", help="parameter profile of those notebooks (default: quick)")
     ans.add_argument("--top", type=int, default=5, help="drivers shown (default: 5)")
+    ans.add_argument("--offsets", choices=("both", "independent", "matched"), default="both",
+                     help="which way you fly the two passes (default: both answers): 'independent' = survey "
+                     "lines flown without steering for the feature (it falls anywhere in each swath); 'matched' = "
+                     "pass 2 steered to see the feature where pass 1 saw it (same side, about the same distance "
+                     "across the swath)")
     _data_arguments(ans)
 
     xtf = sub.add_parser("xtf", help="a one-screen summary of an XTF file (channels, sides, sample order, range, "
@@ -162,6 +167,7 @@ def _book(args: argparse.Namespace) -> int:
 
     start = time.perf_counter()
     entries = load_registry()
+    failure = None
     if not args.no_run:
         from sss_locus.pipeline.runner import declared_overrides, resolve_parameters
 
@@ -185,10 +191,20 @@ def _book(args: argparse.Namespace) -> int:
                       f"data and environment as its executed copy; --force reruns it)")
             else:
                 stale.append(entry)
-        run_many(stale, args.profile, jobs=args.jobs, verbose=args.verbose, overrides=overrides, data=data)
+        try:
+            run_many(stale, args.profile, jobs=args.jobs, verbose=args.verbose, overrides=overrides, data=data)
+        except RuntimeError as exc:  # a named book builds with its failed chapters marked as failed
+            if not paths.build_name():
+                raise
+            failure = exc
+            print(f"sss-locus book: error: {exc}", file=sys.stderr)
     index = bookbuild.build()
     print(f"Built in {time.perf_counter() - start:.0f} s. Open the book:")
     print(index)
+    if failure is not None:
+        print("sss-locus book: the book was built, but the chapter(s) above failed: their pages say so",
+              file=sys.stderr)
+        return 1
     return 0
 
 
@@ -217,7 +233,7 @@ def _answer(args: argparse.Namespace) -> int:
     if len(keys) != 1:
         raise ParameterError("answer needs exactly one -p platform KEY (a key of the shipped data or of --data)")
     _data_inputs(args)
-    answer(keys[0], args.profile, args.parameter, top=args.top)
+    answer(keys[0], args.profile, args.parameter, top=args.top, offsets=args.offsets)
     return 0
 
 

@@ -273,7 +273,7 @@ def export_figure(
         "run_time_utc": provenance.utc_now(),
         "dpi": int(dpi),
         "text": text,  # smallest drawn text and picture width: readability on the page
-        "run_key": os.environ.get(RUN_KEY_ENV),  # ties the figure to its executed copy
+        "run_key": os.environ.get(RUN_KEY_ENV), "build_area": paths.build_name(),  # its executed copy, area
         "data_inputs": with_files(data_inputs(params, platforms), input_files),
     }
     bib_path = out / f"{label}.bib"

@@ -142,7 +142,8 @@ def claims_notice(records: Mapping[str, Mapping[str, Any] | None]) -> tuple[str,
     page's table then cannot show.
     """
     off = {name: r for name, r in records.items() if not is_paper(r)}
-    added = sorted({k for r in records.values() if r for k in r.get("added", [])})
+    paper_keys = {k for r in records.values() if r for k in r.get("paper", [])}  # any chapter's paper platform
+    added = sorted({k for r in records.values() if r for k in r.get("added", []) if k not in paper_keys})
     if not off:
         if not added:
             return "", False

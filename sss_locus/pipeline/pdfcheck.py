@@ -201,13 +201,15 @@ def is_contents_page(text: str, titles: list[str], other_share: float = 0.2) -> 
 
 
 def chapter_starts(texts: list[str], titles: list[str], head_lines: int = 3) -> dict[str, list[int]]:
-    """For each title, the (1-based) pages whose text starts with it (over at most ``head_lines``
-    lines: a long title wraps). Pages of the printed contents (:func:`is_contents_page`) after the
-    first are left out: the first opens the book with its title, the book's first page title."""
+    """For each title, the (1-based) pages whose first lines are that title, alone on them (its
+    first one to ``head_lines`` lines: a long title wraps; a sentence that merely begins with a
+    chapter's name, a link in the text, does not count). Pages of the printed contents
+    (:func:`is_contents_page`) after the first are left out: the first opens the book with its
+    title, the book's first page title."""
     heads = [None if i > 0 and is_contents_page(text, titles)
-             else _norm(" ".join([line for line in text.splitlines() if line.strip()][:head_lines]))
-             for i, text in enumerate(texts)]
-    return {t: [i + 1 for i, head in enumerate(heads) if head is not None and head.startswith(_norm(t))]
+             else {_norm(" ".join(lines[:k])) for k in range(1, head_lines + 1)}
+             for i, text in enumerate(texts) for lines in [[line for line in text.splitlines() if line.strip()]]]
+    return {t: [i + 1 for i, head in enumerate(heads) if head is not None and _norm(t) in head]
             for t in titles}
 
 

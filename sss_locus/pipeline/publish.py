@@ -49,6 +49,7 @@ from typing import Any
 
 import pandas as pd
 
+from sss_locus import paths
 from sss_locus.pipeline import export, provenance
 
 
@@ -61,7 +62,7 @@ def run_parameters() -> dict[str, Any]:
         values = json.loads(text)
     except ValueError:
         return {}
-    return values if isinstance(values, dict) else {}
+    return paths.public_values(values) if isinstance(values, dict) else {}  # a user's file by its name
 
 
 def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame], *,

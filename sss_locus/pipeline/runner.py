@@ -38,7 +38,7 @@ from typing import Any
 
 from sss_locus import paths
 from sss_locus.pipeline import (atomic, budgets, export, faults, kernels, orphans, outputs, paperinputs, paramcell,
-                                preflight, progress, provenance, userfiles)
+                                preflight, progress, provenance, studies, userfiles)
 from sss_locus.pipeline.kernels import KERNEL_NAME, hermetic_env, install_kernelspec
 from sss_locus.pipeline.outputs import run_key
 from sss_locus.experiments.datadoc import READS_ENV
@@ -107,7 +107,8 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
     """Show the run's values in the visible parameters cell (:mod:`.paramcell`) and tag papermill's
     injected-parameters cell, which also names the data files read, so the book shows it collapsed."""
     nb = json.loads(executed.read_text(encoding="utf-8"))
-    paramcell.show_run_values(nb["cells"], parameters, f"# The values this run used (profile '{profile}'); "
+    paramcell.show_run_values(nb["cells"], paths.public_values(parameters),
+                              f"# The values this run used (profile '{profile}'); "
                               "defaults and ranges: `sss-locus params NOTEBOOK`\n")
     for cell in nb["cells"]:
         tags = cell.get("metadata", {}).get("tags", [])
@@ -120,8 +121,10 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
             source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
             header = f"# Parameters of this run (profile '{profile}'), injected by papermill\n"
             if "data" in extra:
-                header += "".join(f"# data file read: {f['path']} ({f['role']}, sha256 {f['sha256']})\n"
-                                  for f in extra["data"]["files"])
+                header += "".join(f"# data file read: {paths.public_path(f['path'])} ({f['role']}, sha256 "
+                                  f"{f['sha256']})\n" for f in extra["data"]["files"])
+                for f in extra["data"]["files"]:  # the page names a user's file, not where it sits
+                    source = source.replace(json.dumps(f["path"])[1:-1], paths.public_path(f["path"]))
                 header += "".join(f"# data override: {o}\n" for o in extra["data"]["overrides"])
             if not source.startswith(header):
                 cell["source"] = header + source
@@ -263,6 +266,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
                     reads.read_text(encoding="utf-8").split() if reads.is_file() else [], inputs)
             record["paper_inputs"] = paperinputs.compare(entry, parameters, list(record.get("data_read", ())))
             _label_injected_cell(staged, profile, parameters, record)
+            studies.drop_skipped(staged)  # a study no platform of the run can fly: a note, not its cells
             paperinputs.adapt_prose(staged, record["paper_inputs"])
             with outputs.build_lock() if not side else _nothing():
                 outputs.commit_run(staged, staging / "figures", executed, figures,

@@ -60,6 +60,7 @@ def export_table(frame: pd.DataFrame, label: str, *, caption: str, parameters: M
         "parameters": params, "seed": params.get("seed"), "git_commit": provenance.git_commit(),
         "lock_sha256": provenance.lock_sha256(), "package_version": provenance.package_version(),
         "run_time_utc": provenance.utc_now(), "run_key": os.environ.get(export.RUN_KEY_ENV),
+        "build_area": paths.build_name(),
         "data_inputs": export.with_files(export.data_inputs(params, platforms), input_files),
     }
     bib = out / f"{label}.bib"

@@ -175,3 +175,14 @@ def pattern_ranking(summary: pd.DataFrame) -> str:
     return ("with the platform's full noise model the median 95 % point error is "
             + ", then ".join(f"{fmt_sig(r.error_full_median_m, 2)} m for {r.pattern}" for r in s.itertuples())
             + f"; the smallest share resolved is {fmt_percent(summary['resolved'].min())}.")
+
+
+def skipped_study_note(study: str, capability: str, limits_deg: Mapping[str, float], need_deg: float) -> str:
+    """Why a chapter's ``study`` is skipped: no platform of the run has ``capability``.
+
+    ``limits_deg`` maps each platform's title to its pitch limit (degrees); ``need_deg`` is the
+    largest magnitude the study asks for. One sentence for the chapter's page (MyST)."""
+    have = "; ".join(f"{name}: ±{lim:g}°" for name, lim in limits_deg.items())
+    return (f"The {study} is skipped in this run: it needs a platform that {capability} (a pitch envelope "
+            f"and a limit of at least ±{need_deg:g}°), and no platform of this run does ({have}). "
+            "Add one that pitches (e.g. `-p platforms '[..., \"auv\"]'`) to see it.")

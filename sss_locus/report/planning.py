@@ -9,6 +9,7 @@ as glue texts (:func:`band_texts`). Platform names come from the data.
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Mapping
 
 import matplotlib.pyplot as plt
@@ -51,6 +52,8 @@ def plot_planning_bands(curves: Mapping[tuple[str, str], CrossingAngleCurve],
     fig, axs = plt.subplots(len(specs), len(keys), figsize=(PAGE_WIDTH_IN, 3.4 * len(specs) + 0.8),
                             sharex=True, constrained_layout=True, squeeze=False)
     lo_p, hi_p = paper_avoid_deg
+    # characters of a 9 pt title per line in one column (~0.55 em a character, 70 % of the column)
+    chars = max(12, int(0.7 * PAGE_WIDTH_IN * 72 / len(keys) / (0.55 * 9)))
     for i, spec in enumerate(specs):
         for j, key in enumerate(keys):
             ax, cur, b = axs[i, j], curves[(key, spec)], bands[(key, spec)]
@@ -67,7 +70,8 @@ def plot_planning_bands(curves: Mapping[tuple[str, str], CrossingAngleCurve],
                             color="0.6", alpha=0.35, lw=0)
             ax.plot(c["crossing_angle_deg"], c["locus_length_m_median"], color="k", lw=1.6,
                     label="median (IQR grey)")
-            ax.set_title(f"{cur.platform.name}\n{cur.offset_model.label}", fontsize=9)
+            ax.set_title(f"{textwrap.fill(cur.platform.name, chars)}\n{textwrap.fill(cur.offset_model.label, chars)}",
+                         fontsize=9)
             ax.set_ylabel("locus length (m)")
             ax.set_ylim(bottom=0)
             ax.set_xlim(0, 180)
@@ -108,3 +112,30 @@ def band_texts(bands: Mapping[tuple[str, str], pd.DataFrame]) -> dict[str, str]:
         out[f"{tag}-avoid"] = fmt_bands(b, "avoid")
         out[f"{tag}-90"] = band_at(b, 90.0)
     return out
+
+
+def bands_markdown(curves: Mapping[tuple[str, str], CrossingAngleCurve],
+                   bands: Mapping[tuple[str, str], pd.DataFrame]) -> str:
+    """The chapter's summary table (MyST): one row per platform of the run under each offset
+    model (models outer), the bands to prefer and avoid and what 90° is, then the paper's advice.
+    Every platform of ``curves`` has its rows, the paper's or not."""
+    specs, keys = _models_and_platforms(curves)
+    rows = ["| | Prefer (computed) | Avoid (computed) | 90° |", "|---|---|---|---|"]
+    for spec in specs:
+        for key in keys:
+            cur, b = curves[(key, spec)], bands[(key, spec)]
+            name = cur.platform.name.replace("|", "/")
+            rows.append(f"| {name}, {offset_model_words(cur.offset_model)} | {fmt_bands(b, 'prefer')} | "
+                        f"{fmt_bands(b, 'avoid')} | {band_at(b, 90.0)} |")
+    rows.append("| Paper (Sec. IV-D) | near-repeat (~0°) or anti-parallel (~180°) | oblique, roughly 10°–40° "
+                "| reasonable fallback |")
+    return "\n".join(rows) + "\n"
+
+
+def offset_model_words(model) -> str:
+    """An offset model in plain words: where the two passes see the feature across their swaths."""
+    if model.kind == "independent":
+        return "passes flown without regard to the feature (independent offsets)"
+    side = {"same": "on the same side", "opposite": "on opposite sides",
+            "random": "on either side"}.get(model.side_rule, model.side_rule)
+    return f"both passes aimed at the feature, ±{model.jitter_m:g} m, {side} (matched offsets)"
