@@ -554,6 +554,21 @@ def pitch_study_platform(platforms: dict[str, Platform], envelopes: dict[str, Su
     range) and its pitch limit covers the largest magnitude asked for. ``None`` (no platform of
     the run pitches, e.g. surface boats only) means the study is skipped, not run on a platform
     that would be driven past its limit.
+
+    Parameters
+    ----------
+    platforms : dict of str to Platform
+        The run's platforms by key, in the run's order.
+    envelopes : dict of str to SurveyEnvelope
+        Each platform's survey envelope, by the same keys.
+    pitch_levels_deg : iterable of float
+        The pitch levels of the study, degrees (positive nose-up).
+
+    Returns
+    -------
+    str or None
+        The first qualifying platform key, or ``None`` when no platform of the run can pitch
+        that far.
     """
     need = max((abs(float(p)) for p in pitch_levels_deg), default=0.0)
     return next((k for k, p in platforms.items()
