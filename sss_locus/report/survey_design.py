@@ -233,3 +233,44 @@ def with_compass(frame: pd.DataFrame) -> pd.DataFrame:
     out = frame.drop(columns="heading_deg")
     out.insert(at, "heading_compass_deg", (90.0 - frame["heading_deg"].to_numpy(float)) % 360.0)
     return out
+
+
+def noise_table_shown(frame: pd.DataFrame) -> pd.DataFrame:
+    """The noise-scored plans as a reader reads them: one row a plan, each error with its interval.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        Indexed by ``(platform, kind, plan_index)``, with ``total_m``, ``covered_twice`` and, for
+        ``two`` (the two-view estimate) and ``all`` (all views), ``error_<e>_m`` with its 95 %
+        interval ``error_<e>_lo_m``/``error_<e>_hi_m`` and ``min_features_<e>`` (the fewest
+        features a median used; NaN error where under 30).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by ``(platform, plan)``: ``plan`` is the kind, searched plans named by their
+        number (``"search, plan 4"``: several searched plans of one platform are told apart);
+        columns ``track_km``, ``covered_twice``, ``two_view_error_m`` and ``all_views_error_m``
+        (text: the mean over the seeds of the median 3-D error and its 95 % interval, or ``"—"``
+        under 30 features) and the fewest features each used.
+
+    >>> f = pd.DataFrame({"total_m": [8000.0, 7000.0], "covered_twice": [1.0, 1.0],
+    ...     "error_two_m": [3.9, float("nan")], "error_two_lo_m": [3.6, float("nan")],
+    ...     "error_two_hi_m": [4.2, float("nan")], "min_features_two": [120, 12],
+    ...     "error_all_m": [2.0, 1.0], "error_all_lo_m": [1.5, 0.5], "error_all_hi_m": [2.5, 1.5],
+    ...     "min_features_all": [40, 31]},
+    ...     index=pd.MultiIndex.from_tuples([("boat", "standard", 0), ("boat", "search", 4)],
+    ...                                     names=["platform", "kind", "plan_index"]))
+    >>> noise_table_shown(f).reset_index()[["plan", "two_view_error_m"]].values.tolist()
+    [['standard', '3.9 (95 % CI 3.6–4.2)'], ['search, plan 4', '—']]
+    """
+    rows = frame.reset_index()
+    plan = rows["kind"].where(rows["kind"] != "search", "search, plan " + rows["plan_index"].astype(str))
+    out = pd.DataFrame({"platform": rows["platform"], "plan": plan, "track_km": rows["total_m"] / 1e3,
+                        "covered_twice": rows["covered_twice"]})
+    for e, name in (("two", "two_view_error_m"), ("all", "all_views_error_m")):
+        v, lo, hi = (rows[f"error_{e}{s}_m"].to_numpy(float) for s in ("", "_lo", "_hi"))
+        out[name] = ["—" if not np.isfinite(a) else fmt_ci(a, b, c) for a, b, c in zip(v, lo, hi)]
+        out[f"fewest_features_{e}"] = rows[f"min_features_{e}"]
+    return out.set_index(["platform", "plan"])
