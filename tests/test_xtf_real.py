@@ -147,6 +147,10 @@ def test_repeated_ping_number_is_refused(tmp_path):
      "ping 3 has NumChansToFollow 3; the file header declares 2"),
     (lambda d, o: d.__setitem__(slice(o[3] + 10, o[3] + 14), (255).to_bytes(4, "little")),
      "byte {o3}: sonar packet of 255 bytes (NumBytesThisRecord), shorter than its 256-byte ping header"),
+    # NumberOfSonarChannels is at byte 166 of XTF.H's file header (1+1+8+8+16+2+64+64+2 bytes before it)
+    (lambda d, o: d.__setitem__(166, 7), "cut.xtf byte 166: the file header declares 7 channels"),
+    (lambda d, o: d.__setitem__(slice(o[3] + 10, o[3] + 14), (10).to_bytes(4, "little")),
+     "cut.xtf byte {o3}: packet of 10 bytes (NumBytesThisRecord), shorter than its 14-byte packet start"),
 ])
 def test_malformed_headers_are_refused_naming_file_and_byte(tmp_path, edit, message):
     path = _real_cut(tmp_path)
@@ -228,6 +232,21 @@ def test_a_towfish_position_that_fits_neither_reading_is_refused(tmp_path):
         ox.read_xtf_sightings(matches)
     t = ox.read_xtf_sightings(matches, towfish="recorded")
     assert t["layback_m"].iloc[0] == 0.0
+
+
+@pytest.mark.parametrize("layback, cable, message", [
+    (-40.0, 0, r"m.csv line 2: Layback of ping 2 of t.xtf \(packet at byte \d+\) is -40; it must be in \[0, 10000\]"),
+    (float("nan"), 0, r"m.csv line 2: Layback of ping 2 of t.xtf \(packet at byte \d+\) is nan"),
+    (0.0, 20000, r"m.csv line 2: the layback of ping 2 of t.xtf \(packet at byte \d+\) from CableOut 20000 m is 20000 m; it must be in \[0, 10000\]"),
+])
+def test_an_unusable_layback_is_refused_naming_the_xtf_field(tmp_path, layback, cable, message):
+    """Not read as "no layback" (the sensor left at the ship), nor blamed on a CSV column."""
+    from sss_locus.experiments.xtf_summary import summary
+
+    matches, _ = _towed_file(tmp_path, layback=layback, cable=cable)
+    with pytest.raises(ob.ObservationError, match=message):
+        ox.read_xtf_sightings(matches)
+    assert summary(tmp_path / "t.xtf")["layback_bad"] == (3 if layback < 0 or layback != layback else 0)
 
 
 def test_a_csv_layback_column_moves_the_sensor(tmp_path):

@@ -68,7 +68,8 @@ def read_header(path: Path, data: bytes):
                                                    "NumberOfSnippetChannels", "NumberOfForwardLookArrays",
                                                    "NumberOfEchoStrengthChannels", "NumberOfInterferometryChannels"))
     if total > _MAX_CHANNELS or n > _MAX_CHANNELS:
-        raise ObservationError(f"{path.name} byte 0: the file header declares {total} channels ({n} sonar); "
+        at = pyxtf.XTFFileHeader.NumberOfSonarChannels.offset  # the channel counts follow it
+        raise ObservationError(f"{path.name} byte {at}: the file header declares {total} channels ({n} sonar); "
                                f"at most {_MAX_CHANNELS} are supported")
     channels = []
     for k in range(n):
@@ -137,7 +138,10 @@ def read_pings(path) -> tuple[object, dict[int, object]]:
         if start.MagicNumber != 0xFACE:
             raise ObservationError(f"{path.name} byte {pos}: not an XTF packet (no 0xFACE)")
         end = pos + start.NumBytesThisRecord
-        if start.NumBytesThisRecord < start_size or end > len(data):
+        if start.NumBytesThisRecord < start_size:
+            raise ObservationError(f"{path.name} byte {pos}: packet of {start.NumBytesThisRecord} bytes "
+                                   f"(NumBytesThisRecord), shorter than its {start_size}-byte packet start")
+        if end > len(data):
             raise ObservationError(f"{path.name}: truncated at byte {len(data)}: the packet at byte {pos} "
                                    f"needs {start.NumBytesThisRecord} bytes")
         if start.HeaderType == _SONAR:
