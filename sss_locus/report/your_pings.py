@@ -58,8 +58,10 @@ def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str =
         bx.barh(y + (j - (len(keys) - 1) / 2) * 0.8 / len(keys), d["distance_h_m"], height=0.8 / len(keys),
                 color=ESTIMATES[key][1])
     if not len(data):
-        bx.text(0.5, 0.5, "no second estimate to compare with:\nevery feature seen once\n(" + ONE_SIGHTING + ")",
-                ha="center", va="center", transform=bx.transAxes, fontsize=8.5)
+        why = ("every feature seen once\n(" + ONE_SIGHTING + ")" if (f["n_sightings"] == 1).all()
+               else "no feature has an N-view position\nor a non-empty two-view locus")
+        bx.text(0.5, 0.5, "no second estimate to compare with:\n" + why, ha="center", va="center",
+                transform=bx.transAxes, fontsize=8.5)
     bx.set_yticks(y, f["feature"])
     bx.invert_yaxis()
     bx.set_xlabel("horizontal error against the truth (m)" if truth is not None
