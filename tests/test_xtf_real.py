@@ -408,3 +408,14 @@ def test_the_real_pass_section_says_what_one_pass_cannot_tell(iver2):
     assert "4 of the 4 picks" in text and f"{fmt_sig(moved)} m longer" in text and "wreck_edge" in text
     np.testing.assert_allclose(table["ground_range_m"] ** 2 + table["transducer_height_m"] ** 2,
                                table["slant_range_m"] ** 2, rtol=1e-9)
+
+
+def test_the_page_summary_says_which_end_of_each_channel_is_near(iver2):
+    """The port channel of the real file is stored far-to-near (transmit pulse at its last
+    samples, test above); the chapter's summary says so, with how it was decided."""
+    from sss_locus.report.your_pings import summary_sentence
+
+    res = yp.run(REAL / "scotsman_matches.csv", iver2)
+    text = summary_sentence(res)
+    assert "scotsman-iver2.xtf channel 0 (port) far-first (detected:" in text
+    assert "scotsman-iver2.xtf channel 1 (starboard) near-first (detected:" in text

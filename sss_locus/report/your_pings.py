@@ -193,7 +193,7 @@ def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
         parts.append(f"the flat-seafloor positions of one feature disagree by up to "
                      f"{fmt_sig(f.loc[multi, 'flat_spread_m'].max())} m (median over the features seen more than once "
                      f"{fmt_sig(f.loc[multi, 'flat_spread_m'].median())} m)")
-    text = "; ".join(parts) + "."
+    text = "; ".join(parts) + "." + order_sentence(res.sightings)
     excluded = getattr(res, "excluded", None)
     if excluded is not None and len(excluded):
         text += " " + excluded_sentence(excluded)
@@ -208,6 +208,17 @@ def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
                  + (" (averaging the mosaic's positions beats the geometry here; the reconstruction chapter measures "
                     "when)" if closest == "flat" else "") + ".")
     return text
+
+
+def order_sentence(sightings: pd.DataFrame) -> str:
+    """For XTF sightings, which end of each matched channel was taken as the near end and how it
+    was decided (" ..." or "" for a sightings CSV)."""
+    if "sample_order" not in sightings.columns:
+        return ""
+    rows = sightings.drop_duplicates(["xtf_file", "channel"]).sort_values(["xtf_file", "channel"])
+    return (" Samples counted from each channel's near end: " + "; ".join(
+        f"{r.xtf_file} channel {r.channel} ({r.side}) {r.sample_order.replace('_', '-')} ({r.sample_order_how})"
+        for r in rows.itertuples()) + ".")
 
 
 def view_3d(res, *, truth: pd.DataFrame | None = None):
