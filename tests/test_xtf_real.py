@@ -163,6 +163,15 @@ def test_malformed_headers_are_refused_naming_file_and_byte(tmp_path, edit, mess
     assert message.format(o3=offs[3]) in str(err.value) and "\n" not in str(err.value)
 
 
+@pytest.mark.parametrize("path, message", [
+    ("", "XTF file: the path is empty"), ("/dev/null", "XTF file /dev/null is a character device, not a file"),
+])
+def test_an_xtf_path_that_is_no_file_says_what_it_is(path, message):
+    """/dev/null exists (it was "does not exist"); an empty path is not the current folder."""
+    with pytest.raises(ob.ObservationError, match=message):
+        ox.read_pings(path)
+
+
 def test_altitude_zero_names_the_xtf_field(tmp_path):
     path = _real_cut(tmp_path)
     (tmp_path / "m.csv").write_text("feature,platform,file,ping,channel,sample\nA,iver2,cut.xtf,0,1,100\n")

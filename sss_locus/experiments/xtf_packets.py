@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .inputs import missing_file
 from .observations import ObservationError
 
 _SONAR = 0  # XTFHeaderType.sonar
@@ -122,10 +123,10 @@ def read_pings(path) -> tuple[object, dict[int, object]]:
     structures; each ping with ``ping_chan_headers``, ``data`` and its byte ``offset``), in file
     order. Anything malformed is refused (:class:`ObservationError`) naming the file and byte."""
     pyxtf, _ = _structures()
+    problem = missing_file(path, "XTF file")  # empty path, directory, device, FIFO, missing
+    if problem:
+        raise ObservationError(problem)
     path = Path(path)
-    if not path.is_file():
-        raise ObservationError(f"XTF file {path} is a directory, not a file" if path.is_dir()
-                               else f"XTF file {path} does not exist")
     data = path.read_bytes()
     header, channels = read_header(path, data)
     pings: dict[int, object] = {}

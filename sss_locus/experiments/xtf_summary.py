@@ -25,8 +25,8 @@ def summary(path, sample_order: str = "detect") -> dict:
     number: the reader refuses them), and ``channels``: per channel ``channel``, ``type``, ``side``,
     ``n_samples`` (min, max), ``range_m`` (min, max), ``order`` and ``order_how`` (or
     ``order_error``, the reason the order cannot be detected)."""
+    header, pings = read_pings(path)  # the path as given: an empty one is not the current folder
     path = Path(path)
-    header, pings = read_pings(path)
     numbers = np.array(sorted(pings), dtype=np.int64)
     out = {"file": path.name, "sonar": header.SonarName.decode("latin-1", "replace").strip("\x00 "),
            "recorder": header.RecordingProgramName.decode("latin-1", "replace").strip("\x00 "),
