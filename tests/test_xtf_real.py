@@ -172,6 +172,13 @@ def test_an_xtf_path_that_is_no_file_says_what_it_is(path, message):
         ox.read_pings(path)
 
 
+def test_an_empty_file_cell_names_its_line(tmp_path):
+    """It was read as the matches file's folder ("XTF file ... is a directory")."""
+    (tmp_path / "m.csv").write_text("feature,platform,file,ping,channel,sample\nA,iver2,,1,0,5\n")
+    with pytest.raises(ob.ObservationError, match=r"^m.csv line 2, column file: empty"):
+        ox.read_xtf_sightings(tmp_path / "m.csv")
+
+
 def test_altitude_zero_names_the_xtf_field(tmp_path):
     path = _real_cut(tmp_path)
     (tmp_path / "m.csv").write_text("feature,platform,file,ping,channel,sample\nA,iver2,cut.xtf,0,1,100\n")

@@ -113,6 +113,8 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse", range_
     for i in range(len(raw)):
         line = line_of(raw, i)
         name = str(raw["file"].iloc[i]).strip()
+        if not name:
+            raise ObservationError(f"{src} line {line}, column file: empty; give the XTF file's name (beside {src})")
         if name not in files:
             files[name] = read_pings(matches_path.parent / name)
             units = files[name][0].NavUnits
