@@ -112,7 +112,10 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
     for k, ax in enumerate(axes.ravel()[:n]):
         if k + cols >= n:  # the lowest panel of its column
             ax.set_xlabel("grid east (m)", fontsize=8.5)
-    fig.supylabel("grid north from the flat mean (m)", fontsize=9)
+    if rows > 1:
+        fig.supylabel("grid north from the flat mean (m)", fontsize=9)
+    else:  # a figure-high label of one row of panels would run into the legend below them
+        axes[0, 0].set_ylabel("grid north from\nthe flat mean (m)", fontsize=8.5)
     handles, labels = axes.ravel()[0].get_legend_handles_labels()
     handles.insert(1, plt.Line2D([], [], color="tab:red", lw=2))
     labels.insert(1, "two-view locus (best pair)")
