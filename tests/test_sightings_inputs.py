@@ -88,6 +88,7 @@ def test_a_10_mb_identifier_is_refused_quickly(tmp_path):
 @pytest.mark.parametrize("origin, fragment", [
     ("[-70, 91]", "lat0_deg"), ("[1, 2, 3]", "two numbers"), ('["a", "b"]', "two numbers"),
     ("[5]", "two numbers"), ("[True, 43]", "two numbers"), ("[-70, 43.0]", None),
+    ("[true, 43]", "two numbers"),  # JSON's spelling: refused for what it is, not as "expected a list"
 ])
 def test_origin_is_checked_before_the_kernel(origin, fragment):
     entry = get_entry("your_pings")

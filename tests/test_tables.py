@@ -113,3 +113,16 @@ def test_a_turned_table_is_headed_by_its_row_labels_as_they_are():
     assert _cells(html, "td")[:2] == ["top raw", "mean range"]
     with pytest.raises(ValueError, match="row_labels must be columns"):
         readable_table(runs, row_labels=["platform"])
+
+
+def test_caption_markdown_is_markup_and_names_are_text():
+    """A caption's **bold** and `code` become HTML (a Styler shows its caption raw), and a user's
+    name holding <, > or & in a caption, a cell or a header stays text."""
+    frame = pd.DataFrame({"feature": ["rock<1m> & co"], "n": [3]})
+    out = readable_table(frame, caption="**Real data**: picks of `a<b>.csv` & more").to_html()
+    caption = out[out.index("<caption"):out.index("</caption>")]
+    assert "<strong>Real data</strong>" in caption and "<code>a&lt;b&gt;.csv</code>" in caption
+    assert "**" not in caption and "`" not in caption and "&amp; more" in caption
+    assert "rock&lt;1m&gt; &amp; co" in out and "rock<1m>" not in out
+    wide = pd.DataFrame({"feature": ["<b>x</b>"], **{f"c{i}": [i] for i in range(12)}})
+    assert "&lt;b&gt;x&lt;/b&gt;" in readable_table(wide).to_html()  # turned: the name is a header

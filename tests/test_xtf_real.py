@@ -147,6 +147,10 @@ def test_repeated_ping_number_is_refused(tmp_path):
      "ping 3 has NumChansToFollow 3; the file header declares 2"),
     (lambda d, o: d.__setitem__(slice(o[3] + 10, o[3] + 14), (255).to_bytes(4, "little")),
      "byte {o3}: sonar packet of 255 bytes (NumBytesThisRecord), shorter than its 256-byte ping header"),
+    # NumberOfSonarChannels is at byte 166 of XTF.H's file header (1+1+8+8+16+2+64+64+2 bytes before it)
+    (lambda d, o: d.__setitem__(166, 7), "cut.xtf byte 166: the file header declares 7 channels"),
+    (lambda d, o: d.__setitem__(slice(o[3] + 10, o[3] + 14), (10).to_bytes(4, "little")),
+     "cut.xtf byte {o3}: packet of 10 bytes (NumBytesThisRecord), shorter than its 14-byte packet start"),
 ])
 def test_malformed_headers_are_refused_naming_file_and_byte(tmp_path, edit, message):
     path = _real_cut(tmp_path)
@@ -157,6 +161,22 @@ def test_malformed_headers_are_refused_naming_file_and_byte(tmp_path, edit, mess
     with pytest.raises(ob.ObservationError) as err:
         ox.read_pings(path)
     assert message.format(o3=offs[3]) in str(err.value) and "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("path, message", [
+    ("", "XTF file: the path is empty"), ("/dev/null", "XTF file /dev/null is a character device, not a file"),
+])
+def test_an_xtf_path_that_is_no_file_says_what_it_is(path, message):
+    """/dev/null exists (it was "does not exist"); an empty path is not the current folder."""
+    with pytest.raises(ob.ObservationError, match=message):
+        ox.read_pings(path)
+
+
+def test_an_empty_file_cell_names_its_line(tmp_path):
+    """It was read as the matches file's folder ("XTF file ... is a directory")."""
+    (tmp_path / "m.csv").write_text("feature,platform,file,ping,channel,sample\nA,iver2,,1,0,5\n")
+    with pytest.raises(ob.ObservationError, match=r"^m.csv line 2, column file: empty"):
+        ox.read_xtf_sightings(tmp_path / "m.csv")
 
 
 def test_altitude_zero_names_the_xtf_field(tmp_path):
@@ -228,6 +248,21 @@ def test_a_towfish_position_that_fits_neither_reading_is_refused(tmp_path):
         ox.read_xtf_sightings(matches)
     t = ox.read_xtf_sightings(matches, towfish="recorded")
     assert t["layback_m"].iloc[0] == 0.0
+
+
+@pytest.mark.parametrize("layback, cable, message", [
+    (-40.0, 0, r"m.csv line 2: Layback of ping 2 of t.xtf \(packet at byte \d+\) is -40; it must be in \[0, 10000\]"),
+    (float("nan"), 0, r"m.csv line 2: Layback of ping 2 of t.xtf \(packet at byte \d+\) is nan"),
+    (0.0, 20000, r"m.csv line 2: the layback of ping 2 of t.xtf \(packet at byte \d+\) from CableOut 20000 m is 20000 m; it must be in \[0, 10000\]"),
+])
+def test_an_unusable_layback_is_refused_naming_the_xtf_field(tmp_path, layback, cable, message):
+    """Not read as "no layback" (the sensor left at the ship), nor blamed on a CSV column."""
+    from sss_locus.experiments.xtf_summary import summary
+
+    matches, _ = _towed_file(tmp_path, layback=layback, cable=cable)
+    with pytest.raises(ob.ObservationError, match=message):
+        ox.read_xtf_sightings(matches)
+    assert summary(tmp_path / "t.xtf")["layback_bad"] == (3 if layback < 0 or layback != layback else 0)
 
 
 def test_a_csv_layback_column_moves_the_sensor(tmp_path):
@@ -389,3 +424,14 @@ def test_the_real_pass_section_says_what_one_pass_cannot_tell(iver2):
     assert "4 of the 4 picks" in text and f"{fmt_sig(moved)} m longer" in text and "wreck_edge" in text
     np.testing.assert_allclose(table["ground_range_m"] ** 2 + table["transducer_height_m"] ** 2,
                                table["slant_range_m"] ** 2, rtol=1e-9)
+
+
+def test_the_page_summary_says_which_end_of_each_channel_is_near(iver2):
+    """The port channel of the real file is stored far-to-near (transmit pulse at its last
+    samples, test above); the chapter's summary says so, with how it was decided."""
+    from sss_locus.report.your_pings import summary_sentence
+
+    res = yp.run(REAL / "scotsman_matches.csv", iver2)
+    text = summary_sentence(res)
+    assert "scotsman-iver2.xtf channel 0 (port) far-first (detected:" in text
+    assert "scotsman-iver2.xtf channel 1 (starboard) near-first (detected:" in text

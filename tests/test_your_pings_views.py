@@ -90,3 +90,39 @@ def test_geojson_does_not_call_a_fallback_a_locus_point(example):
     status = example.features.set_index("feature")["two_view_status"]
     assert kinds and all((k == "two_view") == (status[f] == "locus") for f, k in kinds.items())
     assert "two_view_empty_locus" in kinds.values()
+
+
+def test_the_map_does_not_say_every_feature_was_seen_once_when_one_was_seen_twice(tmp_path):
+    """Two sightings 300 m apart with 40 m ranges: their spheres do not meet (empty locus), and
+    two views give no N-view position, so there is nothing to compare; the map must say why
+    without claiming each feature was seen once."""
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.report.your_pings import plan_view
+
+    (tmp_path / "s.csv").write_text(
+        "feature,platform,side,east_m,north_m,depth_m,altitude_m,heading_deg,pitch_deg,roll_deg,slant_range_m\n"
+        "A,auv,port,0,0,5,15,90,0,0,40\nA,auv,port,300,0,5,15,90,0,0,40\n")
+    res = yp.run(tmp_path / "s.csv")
+    assert res.features["n_sightings"].tolist() == [2] and res.features["two_view_status"].iloc[0] != "locus"
+    fig, data = plan_view(res, load_platform("auv"))
+    assert not len(data)
+    text = " ".join(t.get_text() for t in fig.axes[1].texts)
+    assert "no second estimate" in text and "seen once" not in text
+
+
+def test_one_row_of_feature_panels_keeps_its_axis_label_clear_of_the_legend(tmp_path):
+    """The y label and the legend's text must not overlap (measured on the drawn figure)."""
+    from sss_locus.report.your_pings import feature_panels
+
+    (tmp_path / "s.csv").write_text(
+        "feature,platform,side,east_m,north_m,depth_m,altitude_m,heading_deg,pitch_deg,roll_deg,slant_range_m\n"
+        "A,auv,port,0,0,5,15,90,0,0,40\nB,auv,port,300,0,5,15,90,0,0,40\n")
+    fig, _ = feature_panels(yp.run(tmp_path / "s.csv"))
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    labels = [t for t in fig.texts if "flat mean" in t.get_text()] + [
+        ax.yaxis.label for ax in fig.axes if "flat mean" in ax.get_ylabel()]
+    assert len(labels) == 1
+    box = labels[0].get_window_extent(r)
+    legend = fig.legends[0].get_window_extent(r)
+    assert not box.overlaps(legend)

@@ -42,7 +42,7 @@ _NAV_UNITS = {0: ("east_m", "north_m"), 3: ("lon_deg", "lat_deg")}
 
 _FIELDS = (("SensorXcoordinate", None), ("SensorYcoordinate", None), ("SensorDepth", "depth_m"),
            ("SensorPrimaryAltitude", "altitude_m"), ("SensorHeading", "heading_deg"), ("SensorPitch", "pitch_deg"),
-           ("SensorRoll", "roll_deg"))
+           ("SensorRoll", "roll_deg"), ("Layback", "layback_m"))
 
 
 def _check_fields(ping, nav_units: int, name: str, where: str) -> None:
@@ -113,6 +113,8 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse", range_
     for i in range(len(raw)):
         line = line_of(raw, i)
         name = str(raw["file"].iloc[i]).strip()
+        if not name:
+            raise ObservationError(f"{src} line {line}, column file: empty; give the XTF file's name (beside {src})")
         if name not in files:
             files[name] = read_pings(matches_path.parent / name)
             units = files[name][0].NavUnits
@@ -155,6 +157,10 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse", range_
             orders[name, ch] = channel_order(pings, header, ch, sample_order, name)
         order, how = orders[name, ch]
         layback, lb_source, apart = tf.xtf_layback(ping, header.NavUnits)
+        if layback > NUMBERS["layback_m"][1]:  # a CableOut too long (Layback itself is checked above)
+            raise ObservationError(f"{src} line {line}: the layback of ping {values['ping']} of {name} (packet at byte "
+                                   f"{ping.offset}) from CableOut {ping.CableOut} m is {layback:g} m; it must be in "
+                                   f"[0, {NUMBERS['layback_m'][1]:g}]")
         try:
             shift, read_as = tf.towfish_decision(layback, apart, towfish)
         except ValueError as exc:

@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .inputs import missing_file
 from .observations import ObservationError
 
 _SONAR = 0  # XTFHeaderType.sonar
@@ -68,7 +69,8 @@ def read_header(path: Path, data: bytes):
                                                    "NumberOfSnippetChannels", "NumberOfForwardLookArrays",
                                                    "NumberOfEchoStrengthChannels", "NumberOfInterferometryChannels"))
     if total > _MAX_CHANNELS or n > _MAX_CHANNELS:
-        raise ObservationError(f"{path.name} byte 0: the file header declares {total} channels ({n} sonar); "
+        at = pyxtf.XTFFileHeader.NumberOfSonarChannels.offset  # the channel counts follow it
+        raise ObservationError(f"{path.name} byte {at}: the file header declares {total} channels ({n} sonar); "
                                f"at most {_MAX_CHANNELS} are supported")
     channels = []
     for k in range(n):
@@ -121,10 +123,10 @@ def read_pings(path) -> tuple[object, dict[int, object]]:
     structures; each ping with ``ping_chan_headers``, ``data`` and its byte ``offset``), in file
     order. Anything malformed is refused (:class:`ObservationError`) naming the file and byte."""
     pyxtf, _ = _structures()
+    problem = missing_file(path, "XTF file")  # empty path, directory, device, FIFO, missing
+    if problem:
+        raise ObservationError(problem)
     path = Path(path)
-    if not path.is_file():
-        raise ObservationError(f"XTF file {path} is a directory, not a file" if path.is_dir()
-                               else f"XTF file {path} does not exist")
     data = path.read_bytes()
     header, channels = read_header(path, data)
     pings: dict[int, object] = {}
@@ -137,7 +139,10 @@ def read_pings(path) -> tuple[object, dict[int, object]]:
         if start.MagicNumber != 0xFACE:
             raise ObservationError(f"{path.name} byte {pos}: not an XTF packet (no 0xFACE)")
         end = pos + start.NumBytesThisRecord
-        if start.NumBytesThisRecord < start_size or end > len(data):
+        if start.NumBytesThisRecord < start_size:
+            raise ObservationError(f"{path.name} byte {pos}: packet of {start.NumBytesThisRecord} bytes "
+                                   f"(NumBytesThisRecord), shorter than its {start_size}-byte packet start")
+        if end > len(data):
             raise ObservationError(f"{path.name}: truncated at byte {len(data)}: the packet at byte {pos} "
                                    f"needs {start.NumBytesThisRecord} bytes")
         if start.HeaderType == _SONAR:

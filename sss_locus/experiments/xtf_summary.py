@@ -21,11 +21,12 @@ def summary(path, sample_order: str = "detect") -> dict:
     ``ping_last``, ``ping_gaps`` (numbers missing between them), ``time_first_s``,
     ``time_last_s`` (seconds of the day), ``altitude_zero`` (pings with altitude 0),
     ``n_positions`` (distinct recorded sensor positions), ``layback_m``
-    (min, max), ``layback_from``, and ``channels``: per channel ``channel``, ``type``, ``side``,
+    (min, max), ``layback_from``, ``layback_bad`` (pings whose ``Layback`` is negative or not a
+    number: the reader refuses them), and ``channels``: per channel ``channel``, ``type``, ``side``,
     ``n_samples`` (min, max), ``range_m`` (min, max), ``order`` and ``order_how`` (or
     ``order_error``, the reason the order cannot be detected)."""
+    header, pings = read_pings(path)  # the path as given: an empty one is not the current folder
     path = Path(path)
-    header, pings = read_pings(path)
     numbers = np.array(sorted(pings), dtype=np.int64)
     out = {"file": path.name, "sonar": header.SonarName.decode("latin-1", "replace").strip("\x00 "),
            "recorder": header.RecordingProgramName.decode("latin-1", "replace").strip("\x00 "),
@@ -41,7 +42,8 @@ def summary(path, sample_order: str = "detect") -> dict:
                altitude_zero=int(sum(p.SensorPrimaryAltitude == 0 for p in pings.values())),
                n_positions=len({(p.SensorXcoordinate, p.SensorYcoordinate) for p in pings.values()}),
                layback_m=(min(v for v, _ in lb), max(v for v, _ in lb)),
-               layback_from=sorted({s for _, s in lb if s}))
+               layback_from=sorted({s for _, s in lb if s}),
+               layback_bad=int(sum(not (np.isfinite(p.Layback) and p.Layback >= 0) for p in pings.values())))
     for ch, kind in enumerate(channel_types(header)):
         have = [p for p in pings.values() if len(p.data) > ch]
         n = [len(p.data[ch]) for p in have]

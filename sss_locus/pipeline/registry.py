@@ -196,12 +196,20 @@ def _from_text(param: Parameter, text: str) -> Any:
     except (ValueError, SyntaxError):
         if param.type == "any":
             return text
+        try:  # JSON's spellings (true, false, null) are values too, checked as any other; NaN is not
+            return json.loads(text, parse_constant=_not_finite)
+        except ValueError:
+            pass
         word = re.search(r"(?i)\b(nan|inf|infinity)\b", text)
         if word:
             raise ParameterError(f"parameter {param.name!r} = {text!r}: {word.group(0)!r} is not a number here; "
                                  f"every number must be finite{_allowed(param)}") from None
         raise ParameterError(f"parameter {param.name!r} = {text!r}: expected a value of type "
                              f"{param.type}{_allowed(param)}") from None
+
+
+def _not_finite(word: str):
+    raise ValueError(f"{word} is not finite")
 
 
 def _allowed(param: Parameter) -> str:

@@ -32,6 +32,9 @@ def summary_lines(path, sample_order: str = "detect") -> list[str]:
         lines.append(f"{s['altitude_zero']} ping(s) with altitude 0 (SensorPrimaryAltitude): do not match those")
     lines.append("layback: " + (f"{_span(s['layback_m'], '{:.3g}')} m (from {', '.join(s['layback_from'])})"
                                 if s["layback_from"] else "none recorded (Layback and CableOut 0)"))
+    if s["layback_bad"]:
+        lines[-1] += (f"; {s['layback_bad']} ping(s) with a Layback that is negative or not a number: "
+                      "do not match those")
     lines.append("channel  side        samples    range (m)     sample order (which end is near)")
     for c in s["channels"]:
         order = c.get("order", "")

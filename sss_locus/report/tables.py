@@ -22,7 +22,9 @@ build shows the same table.
 from __future__ import annotations
 
 import hashlib
+import html
 import math
+import re
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -143,7 +145,7 @@ def readable_table(frame: pd.DataFrame, *, caption: str = "", digits: int = 3,
     note = f"{NOT_APPLICABLE}: no value for this row." if missing else ""
     text = " ".join(t for t in (caption.strip(), note) if t)
     uuid = hashlib.sha256("\0".join([*names, text, *body.to_numpy().ravel()]).encode()).hexdigest()[:10]  # stable ids
-    styler = body.style.hide(axis="index")
+    styler = body.style.hide(axis="index").format(escape="html").format_index(escape="html", axis=1)
     styler.set_uuid(uuid)
     styles = [
         {"selector": "", "props": "font-size: 0.8em; border-collapse: collapse; max-width: 100%; margin-bottom: 1em; "
@@ -160,8 +162,20 @@ def readable_table(frame: pd.DataFrame, *, caption: str = "", digits: int = 3,
                for i, is_number in enumerate(numeric) if is_number]
     styler.set_table_styles(styles)
     if text:
-        styler.set_caption(text)
+        styler.set_caption(caption_html(text))
     return styler
+
+
+def caption_html(text: str) -> str:
+    """A caption in the chapters' inline Markdown as HTML: ``**bold**`` and ```code``` marked up,
+    everything else escaped (a user's file or feature name is text, never markup).
+
+    >>> caption_html("**Real data**: `a<b.csv` & more")
+    '<strong>Real data</strong>: <code>a&lt;b.csv</code> &amp; more'
+    """
+    out = html.escape(text, quote=False)
+    out = re.sub(r"`([^`]+)`", r"<code>\1</code>", out)
+    return re.sub(r"\*\*(.+?)\*\*", r"<strong>\1</strong>", out)
 
 
 def key_caption(names: Mapping[str, str]) -> str:

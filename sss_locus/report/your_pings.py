@@ -58,8 +58,10 @@ def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str =
         bx.barh(y + (j - (len(keys) - 1) / 2) * 0.8 / len(keys), d["distance_h_m"], height=0.8 / len(keys),
                 color=ESTIMATES[key][1])
     if not len(data):
-        bx.text(0.5, 0.5, "no second estimate to compare with:\nevery feature seen once\n(" + ONE_SIGHTING + ")",
-                ha="center", va="center", transform=bx.transAxes, fontsize=8.5)
+        why = ("every feature seen once\n(" + ONE_SIGHTING + ")" if (f["n_sightings"] == 1).all()
+               else "no feature has an N-view position\nor a non-empty two-view locus")
+        bx.text(0.5, 0.5, "no second estimate to compare with:\n" + why, ha="center", va="center",
+                transform=bx.transAxes, fontsize=8.5)
     bx.set_yticks(y, f["feature"])
     bx.invert_yaxis()
     bx.set_xlabel("horizontal error against the truth (m)" if truth is not None
@@ -110,7 +112,10 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
     for k, ax in enumerate(axes.ravel()[:n]):
         if k + cols >= n:  # the lowest panel of its column
             ax.set_xlabel("grid east (m)", fontsize=8.5)
-    fig.supylabel("grid north from the flat mean (m)", fontsize=9)
+    if rows > 1:
+        fig.supylabel("grid north from the flat mean (m)", fontsize=9)
+    else:  # a figure-high label of one row of panels would run into the legend below them
+        axes[0, 0].set_ylabel("grid north from\nthe flat mean (m)", fontsize=8.5)
     handles, labels = axes.ravel()[0].get_legend_handles_labels()
     handles.insert(1, plt.Line2D([], [], color="tab:red", lw=2))
     labels.insert(1, "two-view locus (best pair)")
@@ -191,7 +196,7 @@ def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
         parts.append(f"the flat-seafloor positions of one feature disagree by up to "
                      f"{fmt_sig(f.loc[multi, 'flat_spread_m'].max())} m (median over the features seen more than once "
                      f"{fmt_sig(f.loc[multi, 'flat_spread_m'].median())} m)")
-    text = "; ".join(parts) + "."
+    text = "; ".join(parts) + "." + order_sentence(res.sightings)
     excluded = getattr(res, "excluded", None)
     if excluded is not None and len(excluded):
         text += " " + excluded_sentence(excluded)
@@ -206,6 +211,17 @@ def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
                  + (" (averaging the mosaic's positions beats the geometry here; the reconstruction chapter measures "
                     "when)" if closest == "flat" else "") + ".")
     return text
+
+
+def order_sentence(sightings: pd.DataFrame) -> str:
+    """For XTF sightings, which end of each matched channel was taken as the near end and how it
+    was decided (" ..." or "" for a sightings CSV)."""
+    if "sample_order" not in sightings.columns:
+        return ""
+    rows = sightings.drop_duplicates(["xtf_file", "channel"]).sort_values(["xtf_file", "channel"])
+    return (" Samples counted from each channel's near end: " + "; ".join(
+        f"{r.xtf_file} channel {r.channel} ({r.side}) {r.sample_order.replace('_', '-')} ({r.sample_order_how})"
+        for r in rows.itertuples()) + ".")
 
 
 def view_3d(res, *, truth: pd.DataFrame | None = None):
