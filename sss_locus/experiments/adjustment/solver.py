@@ -54,6 +54,9 @@ from .model import NavigationPriors, Sightings
 from .residuals import JointProblem
 
 LOSSES = ("linear", "soft_l1", "huber", "cauchy")
+LSMR_TOL = 1e-10
+"""``atol`` and ``btol`` of the LSMR inner solves (``least_squares``' default 1e-6 stops the
+common-shift direction, held only by the priors, about a millimetre short on a small survey)."""
 DOWNWEIGHT_BELOW = 0.5
 """A sighting whose robust weight ``rho'`` is below this (its residual beyond about 1.7 times
 ``f_scale`` for ``soft_l1``) is reported as down-weighted."""
@@ -217,10 +220,18 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
     t0 = time.perf_counter()
     robust = loss != "linear"
     if feats.size:
-        sol = least_squares(prob.residuals, x0, jac=prob.jacobian, method="trf", tr_solver="lsmr",
-                            x_scale="jac", loss=robust_loss(loss, f_scale, prob.n_meas) if robust else "linear",
-                            ftol=ftol, xtol=xtol, gtol=1e-10, max_nfev=max_nfev)
-        x, fun, status, msg, nfev, cost = sol.x, sol.fun, sol.status, sol.message, sol.nfev, float(sol.cost)
+        # Gauss-Newton from the start first (quadratic loss: a few iterations), then the robust
+        # loss from there (started at metres of navigation error, every residual would look
+        # like an outlier); lsmr solved tightly, or the weak common-shift direction stops early
+        opts = dict(method="trf", tr_solver="lsmr", x_scale="jac", tr_options=dict(atol=LSMR_TOL, btol=LSMR_TOL),
+                    ftol=ftol, xtol=xtol, gtol=1e-10, max_nfev=max_nfev)
+        sol = least_squares(prob.residuals, x0, jac=prob.jacobian, loss="linear", **opts)
+        nfev = sol.nfev
+        if robust:
+            sol = least_squares(prob.residuals, sol.x, jac=prob.jacobian,
+                                loss=robust_loss(loss, f_scale, prob.n_meas), **opts)
+            nfev += sol.nfev
+        x, fun, status, msg, cost = sol.x, sol.fun, sol.status, sol.message, float(sol.cost)
     else:
         x, fun, status, msg, nfev, cost = x0, prob.residuals(x0), 1, "no feature seen on enough passes", 0, 0.0
     seconds = time.perf_counter() - t0
