@@ -81,6 +81,10 @@ class JointAdjustment:
         m/m); 0 where not estimated.
     correction_sigma : ndarray, shape (P, 5)
         Their first-order standard deviations; 0 where not estimated.
+    common_shift_sigma_m : ndarray, shape (2,)
+        First-order standard deviation of the mean of the passes' offsets (east, north), m: the
+        common shift of every pass and feature that the ranges cannot see, held by the priors
+        (NaN without the covariances or without estimated passes).
     range_residual, beam_plane_residual : ndarray, shape (m,)
         Each sighting's residuals at the optimum, in sigmas; NaN where the sighting was not used
         (its feature not adjusted; no beam-plane constraint).
@@ -104,6 +108,7 @@ class JointAdjustment:
     covariance_m2: np.ndarray
     corrections: np.ndarray
     correction_sigma: np.ndarray
+    common_shift_sigma_m: np.ndarray
     range_residual: np.ndarray
     beam_plane_residual: np.ndarray
     weight: np.ndarray
@@ -253,13 +258,20 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
     point[feats] = points
     cov = np.full((N, 3, 3), np.nan)
     csig = np.zeros((P, 5))
+    common = np.full(2, np.nan)
     if covariance and feats.size:
         J = prob.jacobian(x)
         J = sp.diags(np.sqrt(w_rows)) @ J
         fcov, pcov = marginal_covariances(J, feats.size)
         cov[feats] = fcov
         csig[prob.free] = np.sqrt(np.maximum(np.diag(pcov), 0.0))
+        index = np.full((P, 5), -1)
+        index[prob.free] = np.arange(int(prob.free.sum()))
+        for a in range(2):
+            k = index[:, a][index[:, a] >= 0]
+            if k.size:
+                common[a] = np.sqrt(max(pcov[np.ix_(k, k)].sum(), 0.0)) / k.size
     return JointAdjustment(point_m=point, adjusted=adjusted, covariance_m2=cov, corrections=corr,
-                           correction_sigma=csig, range_residual=range_res, beam_plane_residual=beam_res,
+                           correction_sigma=csig, common_shift_sigma_m=common, range_residual=range_res, beam_plane_residual=beam_res,
                            weight=weight, downweighted=weight < DOWNWEIGHT_BELOW, cost=cost,
                            success=bool(status > 0), message=str(msg), n_evaluations=int(nfev), seconds=seconds)
