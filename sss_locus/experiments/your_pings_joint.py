@@ -49,8 +49,9 @@ class JointPings:
     Attributes
     ----------
     features : pandas.DataFrame
-        One row per feature, in the order of ``PingResults.features``: ``feature``, ``n_passes``,
-        ``joint_status`` (``"adjusted"`` or ``"one pass"``), ``joint_east_m``, ``joint_north_m``,
+        One row per feature, in the order of ``PingResults.features``: ``feature``, ``n_passes``
+        (columns named like the other estimators', so the chapter's figures draw it:
+        :func:`with_joint`), ``joint_status`` (``"adjusted"`` or ``"one pass"``), ``joint_east_m``, ``joint_north_m``,
         ``joint_up_m`` (NaN where not adjusted), the 1-sigma ``joint_ellipse_major_m``,
         ``joint_ellipse_minor_m``, ``joint_ellipse_azimuth_deg`` (clockwise from grid north) and
         ``joint_sigma_up_m``, ``joint_rms_misfit_m``, ``mosaic_minus_joint_h_m`` and
@@ -192,3 +193,13 @@ def pass_table(sights: pd.DataFrame, pid, corrections, sigma) -> pd.DataFrame:
     return t.assign(offset_east_m=corrections[:P, 0], offset_east_sigma_m=sigma[:P, 0],
                     offset_north_m=corrections[:P, 1], offset_north_sigma_m=sigma[:P, 1],
                     heading_bias_deg=-np.degrees(corrections[:P, 2]), heading_bias_sigma_deg=np.degrees(sigma[:P, 2]))
+
+
+def with_joint(res: PingResults, joint: JointPings) -> PingResults:
+    """``res`` with the joint estimate's columns added to its features table (``joint_...``,
+    ``n_passes``) and its sightings table (``pass``, residuals, ``downweighted``), so that the
+    chapter's tables, figures and GeoJSON carry it beside the other estimates."""
+    feats = res.features.merge(joint.features, on="feature", how="left", validate="one_to_one")
+    extra = [c for c in joint.sightings.columns if c not in res.sightings.columns]
+    return PingResults(features=feats, sightings=res.sightings.join(joint.sightings[extra]), locus=res.locus,
+                       frame=res.frame)
