@@ -15,7 +15,7 @@ import pytest
 from scipy.optimize import least_squares
 
 from adjustment_sim import flat_mosaic, rotz, simulate
-from sss_locus.experiments.adjustment import NavigationPriors, Sightings, adjust, map_errors
+from sss_locus.experiments.adjustment import NavigationPriors, Sightings, adjust, beam_plane_points, map_errors
 from sss_locus.experiments.adjustment.covariance import marginal_covariances
 from sss_locus.experiments.adjustment.residuals import JointProblem
 from sss_locus.geometry.beam_plane import beam_plane_angle, beam_plane_sigma_rad
@@ -201,3 +201,39 @@ def test_bad_input_is_refused_naming_the_argument():
     # a feature seen on one pass is not adjusted, and says so (no NaN position)
     one = adjust(s, pr, start, min_passes=50)
     assert not one.adjusted.any() and np.all(np.isfinite(one.point_m))
+
+
+def views_layout(sv):
+    """The simulation's sightings in the (n, k) layout of the N-view estimators."""
+    n, L = sv.truth.shape[0], sv.reference.shape[0]
+    mask = np.zeros((n, L), bool)
+    mask[sv.feature, sv.pass_index] = True
+    W = np.broadcast_to(np.eye(3), (n, L, 3, 3)).copy()
+    o, r = np.zeros((n, L, 3)), np.ones((n, L))
+    W[sv.feature, sv.pass_index], o[sv.feature, sv.pass_index], r[sv.feature, sv.pass_index] = sv.W_nav, sv.origin_nav, sv.range_m
+    return W, o, r, mask
+
+
+def test_beam_plane_points_recover_features_seen_twice_exactly_without_noise():
+    # a sparse survey (many features seen twice), no noise, the feature in the plane of its ping
+    sv = simulate(81, spacing=110.0, n_cross=1, offset_sigma=0.0, heading_sigma_deg=0.0, range_sigma=0.0, jitter_m=0.0,
+                  jitter_deg=0.0, beam_deg=1e-7)
+    W, o, r, mask = views_layout(sv)
+    two = mask.sum(axis=1) == 2
+    assert two.sum() >= 20  # features a range-only estimate cannot place (two spheres: a circle)
+    res = beam_plane_points(W, o, r, 0.05, 1e-3, mask, flat_mosaic(sv))
+    assert res.estimated[mask.sum(axis=1) >= 2].all()
+    assert np.max(np.linalg.norm(res.point[two] - sv.truth[two], axis=1)) < 1e-5
+    assert np.max(np.linalg.norm(res.point[mask.sum(axis=1) >= 2] - sv.truth[mask.sum(axis=1) >= 2], axis=1)) < 1e-5
+
+
+def test_beam_plane_points_errors_match_their_covariance():
+    sv = simulate(82, offset_sigma=0.0, heading_sigma_deg=0.0)
+    W, o, r, mask = views_layout(sv)
+    sig_phi = beam_plane_sigma_rad(0.5, 0.05, 0.0, 20.0)
+    res = beam_plane_points(W, o, r, RANGE_SIGMA, sig_phi, mask, flat_mosaic(sv))
+    ok = res.estimated
+    d = res.point[ok] - sv.truth[ok]
+    m2 = np.einsum("ni,nij,nj->n", d, np.linalg.inv(res.covariance[ok]), d)
+    # squared Mahalanobis distances of a calibrated 3-D estimate: chi-square with 3 degrees of freedom
+    assert 0.6 * 2.366 <= np.median(m2) <= 1.6 * 2.366
