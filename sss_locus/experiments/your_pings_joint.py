@@ -36,7 +36,7 @@ import pandas as pd
 
 from ..geometry.beam_plane import beam_plane_sigma_rad
 from .adjustment import NavigationPriors, Sightings, adjust
-from .your_pings import PingResults, sensor_poses
+from .your_pings import PingResults, ellipse_axes, sensor_poses
 
 TURN_DEG = 45.0
 JUMP_ACROSS_M = 15.0
@@ -145,11 +145,7 @@ def joint_estimate(res: PingResults, platform, noise, *, ping_position_sigma_m: 
     out = adjust(s, priors, start, loss=loss)
     ok = out.adjusted
     n_passes = np.bincount(np.unique(fid * max(P, 1) + pid) // max(P, 1), minlength=len(feats))
-    cov = np.where(ok[:, None, None], out.covariance_m2, np.nan)
-    h = np.where(np.all(np.isfinite(cov), axis=(1, 2))[:, None, None], cov[:, :2, :2], np.eye(2))
-    val, vec = np.linalg.eigh(h)
-    good = ok & np.all(np.isfinite(cov), axis=(1, 2))
-    nan = lambda a: np.where(good, a, np.nan)  # noqa: E731
+    major, minor, azimuth, sigma_up = ellipse_axes(np.where(ok[:, None, None], out.covariance_m2, np.nan))
     point = np.where(ok[:, None], out.point_m, np.nan)
     misfit_m = np.hypot(out.range_residual * s.range_sigma_m, np.nan_to_num(out.beam_plane_residual) * sig_phi * s.range_m)
     rms = np.sqrt(np.bincount(fid, np.nan_to_num(misfit_m ** 2), minlength=len(feats))
@@ -161,10 +157,8 @@ def joint_estimate(res: PingResults, platform, noise, *, ping_position_sigma_m: 
     table = pd.DataFrame({"feature": feats["feature"].to_numpy(), "n_passes": n_passes,
                           "joint_status": np.where(ok, "adjusted", "one pass"),
                           "joint_east_m": point[:, 0], "joint_north_m": point[:, 1], "joint_up_m": point[:, 2],
-                          "joint_ellipse_major_m": nan(np.sqrt(np.maximum(val[:, 1], 0))),
-                          "joint_ellipse_minor_m": nan(np.sqrt(np.maximum(val[:, 0], 0))),
-                          "joint_ellipse_azimuth_deg": nan(np.mod(np.degrees(np.arctan2(vec[:, 0, 1], vec[:, 1, 1])), 180.0)),
-                          "joint_sigma_up_m": nan(np.sqrt(np.maximum(np.nan_to_num(cov[:, 2, 2]), 0))),
+                          "joint_ellipse_major_m": major, "joint_ellipse_minor_m": minor,
+                          "joint_ellipse_azimuth_deg": azimuth, "joint_sigma_up_m": sigma_up,
                           "joint_rms_misfit_m": np.where(ok, rms, np.nan),
                           "mosaic_minus_joint_h_m": np.hypot(*(start[:, :2] - point[:, :2]).T),
                           "mosaic_minus_joint_up_m": start[:, 2] - point[:, 2]})
