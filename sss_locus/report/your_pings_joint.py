@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..experiments.your_pings_joint import JUMP_ACROSS_M, TURN_DEG
 from .text import fmt_sig
 
 CLEAR_RATIO = 1.5
@@ -48,7 +49,8 @@ def passes_caption(n_passes: int, names: str, platform_name: str, *, synthetic: 
     """Caption of the pass-correction table."""
     return (("Synthetic example (made by the project's simulator). " if synthetic else "")
             + f"Each of the {n_passes} passes of {names} ({platform_name}), found from the sightings (a new pass where "
-            "the heading turns by more than 45 deg or the track jumps across): its file lines, sightings and grid "
+            f"the heading turns by more than {fmt_sig(TURN_DEG)} deg or the track jumps more than "
+            f"{fmt_sig(JUMP_ACROSS_M)} m across): its file lines, sightings and grid "
             "heading, and the navigation correction the joint adjustment estimated (true minus navigated: east and "
             "north offset, heading bias clockwise) with its 1-sigma. The offsets' common part is held by the priors "
             "only (see the text).")
