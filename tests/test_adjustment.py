@@ -171,16 +171,20 @@ def test_robust_loss_keeps_wrong_matches_from_bending_the_map_and_reports_them()
     wrong = sv.feature != clean.feature
     s, pr = problem(sv)
     mosaic = flat_mosaic(sv)
-    robust = adjust(s, pr, mosaic, loss="soft_l1")
-    plain = adjust(s, pr, mosaic, loss="linear")
-    ok = robust.adjusted & plain.adjusted & seen_twice(clean)
+    full = adjust(s, pr, mosaic)  # the gate, then the robust loss
+    robust = adjust(s, pr, mosaic, loss="soft_l1", gate_m=np.inf)  # the robust loss alone
+    plain = adjust(s, pr, mosaic, loss="linear", gate_m=np.inf)
+    ok = full.adjusted & robust.adjusted & plain.adjusted & seen_twice(clean)
     shape = lambda est: float(np.median(map_errors(est, clean.truth, ok)["shape_m"][ok]))  # noqa: E731
+    assert shape(full.point_m) <= 0.25 * shape(mosaic)
     assert shape(robust.point_m) <= 0.25 * shape(mosaic)
     assert shape(robust.point_m) < 0.5 * shape(plain.point_m)
-    used = np.isfinite(robust.weight)
-    # the wrong sightings of adjusted features are flagged; few right ones are
-    assert robust.downweighted[wrong & used].mean() >= 0.8
-    assert robust.downweighted[~wrong & used].mean() <= 0.03
+    for res in (full, robust):
+        used = np.isfinite(res.weight)
+        # the wrong sightings of adjusted features are flagged (down-weighted or gated); few right ones are
+        assert res.downweighted[wrong & used].mean() >= 0.8
+        assert res.downweighted[~wrong & used].mean() <= 0.03
+    assert full.gated.any() and not full.gated[~wrong].any()
 
 
 def test_bad_input_is_refused_naming_the_argument():

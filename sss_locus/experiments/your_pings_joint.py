@@ -67,7 +67,7 @@ class JointPings:
     summary : dict
         ``n_adjusted``, ``n_passes``, ``mosaic_disagreement_m``, ``joint_misfit_m``,
         ``shape_ratio`` (mosaic over joint), ``common_shift_sigma_m`` (the larger axis),
-        ``n_downweighted``,
+        ``n_downweighted`` (gated sightings included), ``n_gated``,
         ``success``.
     """
 
@@ -107,8 +107,8 @@ def joint_estimate(res: PingResults, platform, noise, *, ping_position_sigma_m: 
     Parameters
     ----------
     res : PingResults
-        :func:`~sss_locus.experiments.your_pings.analyse` of the sightings (its mean
-        flat-seafloor positions are the start).
+        :func:`~sss_locus.experiments.your_pings.analyse` of the sightings (the median of each
+        feature's flat-seafloor positions is the start: robust to a wrong match, where the mean is not).
     platform : Platform
         The platform that took them (mounting, sonar beam width).
     noise : NoiseModel
@@ -142,7 +142,9 @@ def joint_estimate(res: PingResults, platform, noise, *, ping_position_sigma_m: 
                               drift_sigma=0.0, reference_m=ref)
     feats = res.features
     start = feats[["flat_east_m", "flat_north_m", "flat_up_m"]].to_numpy(float)
-    out = adjust(s, priors, start, loss=loss)
+    # the start: the median of each feature's flat-seafloor positions (a wrong match moves a mean)
+    med = sights.groupby(fid)[["flat_east_m", "flat_north_m", "flat_up_m"]].median().reindex(range(len(feats)))
+    out = adjust(s, priors, np.where(np.isfinite(med.to_numpy(float)), med.to_numpy(float), start), loss=loss)
     ok = out.adjusted
     n_passes = np.bincount(np.unique(fid * max(P, 1) + pid) // max(P, 1), minlength=len(feats))
     major, minor, azimuth, sigma_up = ellipse_axes(np.where(ok[:, None, None], out.covariance_m2, np.nan))
@@ -167,13 +169,14 @@ def joint_estimate(res: PingResults, platform, noise, *, ping_position_sigma_m: 
         table["joint_lon_deg"], table["joint_lat_deg"] = np.where(ok, lon, np.nan), np.where(ok, lat, np.nan)
     passes = pass_table(sights, pid, out.corrections, out.correction_sigma)
     sights = sights.assign(**{"pass": pid, "range_residual": out.range_residual,
-                              "beam_plane_residual": out.beam_plane_residual, "downweighted": out.downweighted})
+                              "beam_plane_residual": out.beam_plane_residual, "downweighted": out.downweighted,
+                              "gated": out.gated})
     mosaic_d = float(np.median(scatter[ok])) if ok.any() else np.nan
     joint_d = float(np.median(rms[ok])) if ok.any() else np.nan
     summary = dict(n_adjusted=int(ok.sum()), n_passes=P, mosaic_disagreement_m=mosaic_d, joint_misfit_m=joint_d,
                    shape_ratio=mosaic_d / joint_d if joint_d > 0 else np.nan,
                    common_shift_sigma_m=float(np.nanmax(out.common_shift_sigma_m)) if ok.any() else np.nan,
-                   n_downweighted=int(np.sum(out.downweighted)), success=out.success)
+                   n_downweighted=int(np.sum(out.downweighted)), n_gated=int(np.sum(out.gated)), success=out.success)
     return JointPings(features=table, passes=passes, sightings=sights, summary=summary)
 
 

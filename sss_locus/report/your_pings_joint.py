@@ -39,9 +39,11 @@ def joint_sentence(summary: dict) -> str:
     text += (f" What no range can see stays unobservable: a common shift of every pass and feature together, held "
              f"only by the navigation priors (1-sigma {fmt_sig(summary['common_shift_sigma_m'])} m per axis); the "
              "absolute positions are no better than the navigation, only their shape is.")
-    k = summary["n_downweighted"]
-    text += (f" The robust loss down-weighted {k} sighting{'s' if k != 1 else ''} (listed in the sightings file): "
-             "check their data association." if k else " No sighting was down-weighted by the robust loss.")
+    k, g = summary["n_downweighted"], summary["n_gated"]
+    text += (f" {k} sighting{'s' if k != 1 else ''} {'were' if k != 1 else 'was'} left out or down-weighted as likely "
+             f"wrong matches ({g} missing their feature by more than the gate, the rest by the robust loss; column "
+             "`downweighted` of the sightings file): check their data association." if k
+             else " No sighting was left out or down-weighted as a likely wrong match.")
     return text
 
 

@@ -40,15 +40,17 @@ class JointProblem:
     estimate_passes : bool
         With False the pass corrections are held at zero (a per-feature estimate from the
         navigated poses).
+    use : ndarray of bool, shape (m,), optional
+        The sightings to use (default all of the adjusted features').
     """
 
     def __init__(self, sightings: Sightings, priors: NavigationPriors, features: np.ndarray, *,
-                 height_prior_m=None, height_sigma_m=None, estimate_passes: bool = True) -> None:
+                 height_prior_m=None, height_sigma_m=None, estimate_passes: bool = True, use=None) -> None:
         self.priors = priors
         self.features = np.asarray(features, np.int64)
         slot = np.full(int(max(sightings.feature.max(initial=-1), self.features.max(initial=-1))) + 1, -1, np.int64)
         slot[self.features] = np.arange(self.features.size)
-        keep = np.flatnonzero(slot[sightings.feature] >= 0)
+        keep = np.flatnonzero((slot[sightings.feature] >= 0) & (True if use is None else np.asarray(use, bool)))
         keep = keep[np.argsort(slot[sightings.feature[keep]], kind="stable")]  # rows by feature: local access
         self.rows = keep  # indices of the sightings used
         self.s = sightings

@@ -30,13 +30,20 @@ dependency, vectorises the residuals in numpy, gives the robust losses and their
 directly, and keeps a 34 MB binary package out of the lock (numbers and commands in
 ``benchmarks/README.md``).
 
-Robust loss
------------
+Wrong matches: a gate, then a robust loss
+-----------------------------------------
 Wrong data associations (a sighting attributed to the wrong feature) give residuals of tens or
-hundreds of sigmas. ``loss`` (default ``"soft_l1"``, scale ``f_scale`` in sigmas) applies to the
+hundreds of metres. First a *gate*: a sighting that misses the start by more than ``gate_m``
+(:func:`misses_m`: its range or beam-plane miss in metres; default :func:`default_gate_m`, ten
+metres plus five times the navigation priors) is left out, and taken back if it misses the
+solution by less. Then ``loss`` (default ``"soft_l1"``, scale ``f_scale`` in sigmas) on the
 sightings' rows only; the navigation priors stay quadratic. A sighting whose robust weight
-``rho'`` at the optimum is below :data:`DOWNWEIGHT_BELOW` on its range or beam-plane row is
-reported as *down-weighted* (``JointAdjustment.downweighted``).
+``rho'`` at the optimum is below :data:`DOWNWEIGHT_BELOW` on its range or beam-plane row, or that
+was gated, is reported as *down-weighted* (``JointAdjustment.downweighted``, ``.gated``).
+Measured (``benchmarks/README.md``): without the gate, ``least_squares``' one trust region for
+all unknowns crawls when a few features start tens of metres off, and a start from the mean of a
+feature's flat-seafloor positions is moved by a wrong match; with the gate and a start from their
+median, 10 % of wrong matches are all flagged and the map shape stays close to the clean one.
 
 Covariance
 ----------
@@ -54,12 +61,18 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.optimize import least_squares
 
+from ...geometry.beam_plane import beam_plane_angle
 from ...geometry.validation import as_float_array
 from .covariance import marginal_covariances
-from .model import NavigationPriors, Sightings
+from .model import NavigationPriors, Sightings, corrected_poses
 from .residuals import JointProblem
 
 LOSSES = ("linear", "soft_l1", "huber", "cauchy")
+GATE_FLOOR_M = 10.0
+GATE_SIGMAS = 5.0
+"""The default gate (:func:`default_gate_m`): a start (a mosaic) misses a feature's right
+sightings by the navigation error and the flat-seafloor error, metres; a wrong match by the
+distance between features, tens to hundreds of metres."""
 LSMR_TOL = 1e-10
 """``atol`` and ``btol`` of the LSMR inner solves (``least_squares``' default 1e-6 stops the
 common-shift direction, held only by the priors, about a millimetre short on a small survey)."""
@@ -98,7 +111,10 @@ class JointAdjustment:
         The smaller robust weight ``rho'`` of the sighting's rows (1 with the linear loss); NaN
         where not used.
     downweighted : ndarray of bool, shape (m,)
-        ``weight < DOWNWEIGHT_BELOW``.
+        ``weight < DOWNWEIGHT_BELOW`` (gated sightings included).
+    gated : ndarray of bool, shape (m,)
+        Sightings of adjusted features left out as gross outliers: missing the start, and the
+        solution, by more than the gate (their weight is 0).
     cost : float
         Half the sum of the robust losses of all residuals at the optimum.
     success : bool
@@ -119,6 +135,7 @@ class JointAdjustment:
     beam_plane_residual: np.ndarray
     weight: np.ndarray
     downweighted: np.ndarray
+    gated: np.ndarray
     cost: float
     success: bool
     message: str
@@ -151,8 +168,53 @@ def robust_loss(name: str, f_scale: float, n_robust: int):
     return loss
 
 
+def misses_m(sightings: Sightings, priors: NavigationPriors, points_m, corrections) -> np.ndarray:
+    """How far each sighting misses its feature at ``points_m`` (N, 3) with the pass
+    ``corrections`` (P, 5), metres: the larger of the range miss and the beam-plane miss (the
+    distance times the beam-plane angle), shape (m,)."""
+    o, W = corrected_poses(sightings, priors, corrections)
+    p = np.asarray(points_m, float)[sightings.feature]
+    d = np.linalg.norm(p - o, axis=1)
+    phi, _ = beam_plane_angle(p, o, W)
+    plane = np.where(np.isfinite(sightings.beam_plane_sigma_rad), d * np.abs(phi), 0.0)
+    return np.maximum(np.abs(d - sightings.range_m), plane)
+
+
+def default_gate_m(sightings: Sightings, priors: NavigationPriors) -> float:
+    """The default gate of :func:`adjust`, metres: ``GATE_FLOOR_M`` plus ``GATE_SIGMAS`` times the
+    largest offset prior and the largest heading prior times the median range."""
+    r = float(np.median(sightings.range_m)) if sightings.n else 0.0
+    return float(GATE_FLOOR_M + GATE_SIGMAS * (np.max(priors.offset_sigma_m, initial=0.0)
+                                               + np.radians(np.max(priors.heading_sigma_deg, initial=0.0)) * r))
+
+
+def _solve(sightings, priors, start, use, min_passes, estimate_passes, loss, f_scale, hp, hs, ftol, xtol, max_nfev):
+    """One adjustment with the sightings ``use``: returns the problem, ``x``, the residuals, the
+    status, message, evaluations and cost."""
+    N, P = start.shape[0], priors.n_passes
+    pairs = np.unique(sightings.feature[use] * P + sightings.pass_index[use])
+    feats = np.flatnonzero(np.bincount(pairs // P, minlength=N) >= min_passes)
+    prob = JointProblem(sightings, priors, feats, estimate_passes=estimate_passes, use=use,
+                        height_prior_m=None if hp is None else np.where(np.isfinite(hs), hp, 0.0)[feats],
+                        height_sigma_m=None if hs is None else hs[feats])
+    x0 = prob.pack(start[feats], np.zeros((P, 5)))
+    if not feats.size:
+        return prob, x0, prob.residuals(x0), 1, "no feature seen on enough passes", 0, 0.0
+    # Gauss-Newton from the start first (quadratic loss: a few iterations), then the robust
+    # loss from there (started at metres of navigation error, every residual would look like an
+    # outlier); lsmr solved tightly, or the weak common-shift direction stops early
+    opts = dict(method="trf", tr_solver="lsmr", x_scale="jac", tr_options=dict(atol=LSMR_TOL, btol=LSMR_TOL),
+                ftol=ftol, xtol=xtol, gtol=1e-10, max_nfev=max_nfev)
+    sol = least_squares(prob.residuals, x0, jac=prob.jacobian, loss="linear", **opts)
+    nfev = sol.nfev
+    if loss != "linear":
+        sol = least_squares(prob.residuals, sol.x, jac=prob.jacobian, loss=robust_loss(loss, f_scale, prob.n_meas), **opts)
+        nfev += sol.nfev
+    return prob, sol.x, sol.fun, sol.status, sol.message, nfev, float(sol.cost)
+
+
 def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passes: int = 2,
-           estimate_passes: bool = True, loss: str = "soft_l1", f_scale: float = 3.0,
+           estimate_passes: bool = True, loss: str = "soft_l1", f_scale: float = 3.0, gate_m: float | None = None,
            height_prior_m=None, height_sigma_m=None, covariance: bool = True,
            max_nfev: int | None = None, ftol: float = 1e-10, xtol: float = 1e-10) -> JointAdjustment:
     """Jointly adjust the features seen on ``min_passes`` or more passes and the passes'
@@ -177,6 +239,10 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
         Robust loss on the sightings' residuals.
     f_scale : float, > 0
         Its scale, in sigmas.
+    gate_m : float, optional
+        Sightings that miss the start by more than this (metres; range or beam-plane miss,
+        :func:`misses_m`) are left out as gross outliers (wrong matches), and taken back where
+        they miss the solution by less; default :func:`default_gate_m`; ``inf``: no gate.
     height_prior_m, height_sigma_m : array_like, shape (N,), optional
         A prior on each feature's height ``z`` (e.g. from a depth sounding below it) and its
         sigma (m; ``inf``: none).
@@ -213,6 +279,8 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
         raise ValueError(f"f_scale must be a finite number > 0; got {f_scale!r}")
     if isinstance(min_passes, bool) or int(min_passes) != min_passes or min_passes < 2:
         raise ValueError(f"min_passes must be an integer >= 2; got {min_passes!r}")
+    if gate_m is not None and not (isinstance(gate_m, (int, float)) and gate_m > 0 and not np.isnan(gate_m)):
+        raise ValueError(f"gate_m must be a number > 0 (inf: no gate) or None; got {gate_m!r}")
     hp = hs = None
     if height_sigma_m is not None:
         hs = as_float_array(height_sigma_m, "height_sigma_m", finite=False)
@@ -220,32 +288,26 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
         if hs.shape != (N,) or hp.shape != (N,):
             raise ValueError(f"height_prior_m and height_sigma_m must have shape ({N},); got {hp.shape}, {hs.shape}")
 
-    pairs = np.unique(sightings.feature * P + sightings.pass_index)
-    n_pass = np.bincount(pairs // P, minlength=N)
-    adjusted = n_pass >= min_passes
-    feats = np.flatnonzero(adjusted)
-    prob = JointProblem(sightings, priors, feats, estimate_passes=estimate_passes,
-                        height_prior_m=None if hp is None else np.where(np.isfinite(hs), hp, 0.0)[feats],
-                        height_sigma_m=None if hs is None else hs[feats])
-    x0 = prob.pack(start[feats], np.zeros((P, 5)))
     t0 = time.perf_counter()
-    robust = loss != "linear"
-    if feats.size:
-        # Gauss-Newton from the start first (quadratic loss: a few iterations), then the robust
-        # loss from there (started at metres of navigation error, every residual would look
-        # like an outlier); lsmr solved tightly, or the weak common-shift direction stops early
-        opts = dict(method="trf", tr_solver="lsmr", x_scale="jac", tr_options=dict(atol=LSMR_TOL, btol=LSMR_TOL),
-                    ftol=ftol, xtol=xtol, gtol=1e-10, max_nfev=max_nfev)
-        sol = least_squares(prob.residuals, x0, jac=prob.jacobian, loss="linear", **opts)
-        nfev = sol.nfev
-        if robust:
-            sol = least_squares(prob.residuals, sol.x, jac=prob.jacobian,
-                                loss=robust_loss(loss, f_scale, prob.n_meas), **opts)
-            nfev += sol.nfev
-        x, fun, status, msg, cost = sol.x, sol.fun, sol.status, sol.message, float(sol.cost)
-    else:
-        x, fun, status, msg, nfev, cost = x0, prob.residuals(x0), 1, "no feature seen on enough passes", 0, 0.0
+    gate = gate_m if gate_m is not None else default_gate_m(sightings, priors)
+    use = misses_m(sightings, priors, start, np.zeros((P, 5))) <= gate
+    prob, x, fun, status, msg, nfev, cost = _solve(sightings, priors, start, use, min_passes, estimate_passes, loss,
+                                                   f_scale, hp, hs, ftol, xtol, max_nfev)
+    if gate_m != np.inf:  # a sighting gated out at the start but within the gate at the solution comes back
+        p_now, c_now = prob.split(x)
+        s_now = start.copy()
+        s_now[prob.features] = p_now
+        again = misses_m(sightings, priors, s_now, c_now) <= gate
+        if np.any(again & ~use):
+            use = use | again
+            prob, x, fun, status, msg, n2, cost = _solve(sightings, priors, s_now, use, min_passes, estimate_passes,
+                                                         loss, f_scale, hp, hs, ftol, xtol, max_nfev)
+            nfev += n2
     seconds = time.perf_counter() - t0
+    feats = prob.features
+    adjusted = np.zeros(N, bool)
+    adjusted[feats] = True
+    robust = loss != "linear"
 
     points, corr = prob.split(x)
     m = sightings.n
@@ -259,6 +321,8 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
     beam_rows = prob.rows[prob.beam]
     beam_res[beam_rows] = fun[nr:prob.n_meas]
     weight[beam_rows] = np.minimum(weight[beam_rows], w_rows[nr:prob.n_meas])
+    gated = ~use & adjusted[sightings.feature]
+    weight[gated] = 0.0
 
     point = start.copy()
     point[feats] = points
@@ -279,5 +343,5 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
                 common[a] = np.sqrt(max(pcov[np.ix_(k, k)].sum(), 0.0)) / k.size
     return JointAdjustment(point_m=point, adjusted=adjusted, covariance_m2=cov, corrections=corr,
                            correction_sigma=csig, common_shift_sigma_m=common, range_residual=range_res, beam_plane_residual=beam_res,
-                           weight=weight, downweighted=weight < DOWNWEIGHT_BELOW, cost=cost,
+                           weight=weight, downweighted=weight < DOWNWEIGHT_BELOW, gated=gated, cost=cost,
                            success=bool(status > 0), message=str(msg), n_evaluations=int(nfev), seconds=seconds)
