@@ -200,6 +200,8 @@ def test_bad_input_is_refused_naming_the_argument():
     with pytest.raises(ValueError, match="range_sigma_m"):
         Sightings(feature=sv.feature, pass_index=sv.pass_index, origin_m=sv.origin_nav, W=sv.W_nav,
                   range_m=sv.range_m, range_sigma_m=0.0, beam_plane_sigma_rad=1e-3, along_track_m=sv.along_m)
+    with pytest.raises(ValueError, match="gate_m"):
+        adjust(s, pr, start, gate_m=-1.0)
     with pytest.raises(ValueError, match="offset_sigma_m"):
         NavigationPriors(0.0, 1.0, 0.0, sv.reference)
     # a feature seen on one pass is not adjusted, and says so (no NaN position)

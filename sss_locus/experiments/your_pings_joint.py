@@ -67,7 +67,8 @@ class JointPings:
     summary : dict
         ``n_adjusted``, ``n_passes``, ``mosaic_disagreement_m``, ``joint_misfit_m``,
         ``shape_ratio`` (mosaic over joint), ``common_shift_sigma_m`` (the larger axis),
-        ``n_downweighted`` (gated sightings included), ``n_gated``,
+        ``n_downweighted`` (gated sightings included), ``n_gated``, ``n_used`` (sightings of
+        adjusted features), the ``ping_position_sigma_m`` and ``ping_attitude_sigma_deg`` used,
         ``success``.
     """
 
@@ -176,7 +177,9 @@ def joint_estimate(res: PingResults, platform, noise, *, ping_position_sigma_m: 
     summary = dict(n_adjusted=int(ok.sum()), n_passes=P, mosaic_disagreement_m=mosaic_d, joint_misfit_m=joint_d,
                    shape_ratio=mosaic_d / joint_d if joint_d > 0 else np.nan,
                    common_shift_sigma_m=float(np.nanmax(out.common_shift_sigma_m)) if ok.any() else np.nan,
-                   n_downweighted=int(np.sum(out.downweighted)), n_gated=int(np.sum(out.gated)), success=out.success)
+                   n_downweighted=int(np.sum(out.downweighted)), n_gated=int(np.sum(out.gated)),
+                   n_used=int(np.sum(np.isfinite(out.weight))), ping_position_sigma_m=float(ping_position_sigma_m),
+                   ping_attitude_sigma_deg=float(ping_attitude_sigma_deg), success=out.success)
     return JointPings(features=table, passes=passes, sightings=sights, summary=summary)
 
 

@@ -8,6 +8,8 @@ import numpy as np
 from ..experiments.your_pings_joint import JUMP_ACROSS_M, TURN_DEG
 from .text import fmt_sig
 
+MANY_FLAGGED = 0.1
+"""Above this share of flagged sightings the page questions the noise model, not the matches."""
 CLEAR_RATIO = 1.5
 """The mosaic's disagreement over the joint misfit from which the page calls the shape better."""
 
@@ -44,6 +46,11 @@ def joint_sentence(summary: dict) -> str:
              f"wrong matches ({g} missing their feature by more than the gate, the rest by the robust loss; column "
              "`downweighted` of the sightings file): check their data association." if k
              else " No sighting was left out or down-weighted as a likely wrong match.")
+    if k > MANY_FLAGGED * max(summary["n_used"], 1):
+        text += (f" That is more than {fmt_sig(100 * MANY_FLAGGED)} % of the sightings used: more likely the noise "
+                 "model than the matches is wrong, e.g. a per-ping navigation noise larger than the "
+                 f"{fmt_sig(summary['ping_position_sigma_m'])} m and {fmt_sig(summary['ping_attitude_sigma_deg'])} deg "
+                 "assumed, or navigation errors that are not shared by the pings of a pass.")
     return text
 
 
