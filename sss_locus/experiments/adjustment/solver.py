@@ -1,0 +1,254 @@
+"""The joint adjustment (acoustic bundle adjustment): every feature and every pass's navigation
+correction estimated together from all slant ranges, the beam-plane constraints and the
+navigation priors.
+
+Why a joint adjustment
+----------------------
+Many features seen from the same pair of passes all measure the same navigation error of those
+passes; estimated feature by feature (fixed poses), that error stays in every feature; estimated
+together, it is largely removed. What the sightings cannot see, a common shift (and turn) of
+every pass and every feature together, is held by the navigation priors only: absolute position
+stays as good as the navigation, the *shape* of the map (positions after removing the median
+error vector, :func:`~sss_locus.experiments.adjustment.metrics.map_errors`) gets much better.
+
+Solver: ``scipy.optimize.least_squares``, chosen by measurement
+----------------------------------------------------------------
+Trust-region reflective (``method="trf"``) with the analytic sparse Jacobian of
+:class:`~sss_locus.experiments.adjustment.residuals.JointProblem`, ``tr_solver="lsmr"`` and
+``x_scale="jac"``. The alternative of the field, GTSAM (``gtsam`` 4.3 on PyPI installs for
+Python 3.11 here), was measured on the same problem in ``benchmarks/bench_adjustment.py``: its
+residuals have to be Python ``CustomFactor`` callbacks (one call per sighting per
+linearisation) since no built-in factor has a sidescan range with a beam-plane angle and a
+pass-level heading bias; the numbers are in ``benchmarks/README.md``. ``least_squares`` is
+already a dependency, vectorises the residuals and Jacobian in numpy, gives the robust losses
+and the per-residual weights directly, and keeps the lock free of a 34 MB binary package without
+macOS/ARM wheels for every Python the lock covers.
+
+Robust loss
+-----------
+Wrong data associations (a sighting attributed to the wrong feature) give residuals of tens or
+hundreds of sigmas. ``loss`` (default ``"soft_l1"``, scale ``f_scale`` in sigmas) applies to the
+sightings' rows only; the navigation priors stay quadratic. A sighting whose robust weight
+``rho'`` at the optimum is below :data:`DOWNWEIGHT_BELOW` on its range or beam-plane row is
+reported as *down-weighted* (``JointAdjustment.downweighted``).
+
+Covariance
+----------
+``(J^T J)^-1`` at the optimum with the rows scaled by the square roots of their robust weights
+(:func:`~sss_locus.experiments.adjustment.covariance.marginal_covariances`): first-order, from
+the stated sigmas (not rescaled by the residuals).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.optimize import least_squares
+
+from ...geometry.validation import as_float_array
+from .covariance import marginal_covariances
+from .model import NavigationPriors, Sightings
+from .residuals import JointProblem
+
+LOSSES = ("linear", "soft_l1", "huber", "cauchy")
+DOWNWEIGHT_BELOW = 0.5
+"""A sighting whose robust weight ``rho'`` is below this (its residual beyond about 1.7 times
+``f_scale`` for ``soft_l1``) is reported as down-weighted."""
+
+
+@dataclass(frozen=True)
+class JointAdjustment:
+    """What :func:`adjust` returns (world frame of the sightings, metres).
+
+    Attributes
+    ----------
+    point_m : ndarray, shape (N, 3)
+        Every feature's estimate; the start where not ``adjusted``.
+    adjusted : ndarray of bool, shape (N,)
+        Seen on at least ``min_passes`` distinct passes, so estimated.
+    covariance_m2 : ndarray, shape (N, 3, 3)
+        First-order covariance of ``point_m``, including the pass corrections' uncertainty
+        (m^2); NaN where not adjusted, ``inf`` where undetermined.
+    corrections : ndarray, shape (P, 5)
+        Each pass's estimated correction (true minus navigated), in
+        :data:`~sss_locus.experiments.adjustment.model.CORRECTION_NAMES` order (m, m, rad, m/m,
+        m/m); 0 where not estimated.
+    correction_sigma : ndarray, shape (P, 5)
+        Their first-order standard deviations; 0 where not estimated.
+    range_residual, beam_plane_residual : ndarray, shape (m,)
+        Each sighting's residuals at the optimum, in sigmas; NaN where the sighting was not used
+        (its feature not adjusted; no beam-plane constraint).
+    weight : ndarray, shape (m,)
+        The smaller robust weight ``rho'`` of the sighting's rows (1 with the linear loss); NaN
+        where not used.
+    downweighted : ndarray of bool, shape (m,)
+        ``weight < DOWNWEIGHT_BELOW``.
+    cost : float
+        Half the sum of the robust losses of all residuals at the optimum.
+    success : bool
+        ``least_squares`` stopped on a tolerance (not on the evaluation limit).
+    message : str
+    n_evaluations : int
+    seconds : float
+        Wall time of the solve (without the covariance).
+    """
+
+    point_m: np.ndarray
+    adjusted: np.ndarray
+    covariance_m2: np.ndarray
+    corrections: np.ndarray
+    correction_sigma: np.ndarray
+    range_residual: np.ndarray
+    beam_plane_residual: np.ndarray
+    weight: np.ndarray
+    downweighted: np.ndarray
+    cost: float
+    success: bool
+    message: str
+    n_evaluations: int
+    seconds: float
+
+
+def robust_loss(name: str, f_scale: float, n_robust: int):
+    """``least_squares``' callable loss: ``name`` on the first ``n_robust`` residuals (scale
+    ``f_scale``, in sigmas), linear on the rest. Returns ``loss(z) -> (3, len(z))``."""
+    c2 = float(f_scale) ** 2
+
+    def loss(z):
+        out = np.empty((3, z.size))
+        out[0], out[1], out[2] = z, 1.0, 0.0
+        t = z[:n_robust] / c2
+        if name == "soft_l1":
+            q = np.sqrt(1.0 + t)
+            out[0, :n_robust], out[1, :n_robust], out[2, :n_robust] = 2 * c2 * (q - 1), 1 / q, -0.5 / (c2 * q ** 3)
+        elif name == "huber":
+            big = t > 1
+            s = np.sqrt(np.where(big, t, 1.0))
+            out[0, :n_robust] = np.where(big, c2 * (2 * s - 1), z[:n_robust])
+            out[1, :n_robust] = np.where(big, 1 / s, 1.0)
+            out[2, :n_robust] = np.where(big, -0.5 / (c2 * s ** 3), 0.0)
+        elif name == "cauchy":
+            out[0, :n_robust], out[1, :n_robust], out[2, :n_robust] = c2 * np.log1p(t), 1 / (1 + t), -1 / (c2 * (1 + t) ** 2)
+        return out
+
+    return loss
+
+
+def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passes: int = 2,
+           estimate_passes: bool = True, loss: str = "soft_l1", f_scale: float = 3.0,
+           height_prior_m=None, height_sigma_m=None, covariance: bool = True,
+           max_nfev: int | None = None, ftol: float = 1e-10, xtol: float = 1e-10) -> JointAdjustment:
+    """Jointly adjust the features seen on ``min_passes`` or more passes and the passes'
+    navigation corrections (module docstring).
+
+    Parameters
+    ----------
+    sightings : Sightings
+        ``m`` sightings of ``N`` features (``feature`` in ``[0, N)``) on ``P`` passes.
+    priors : NavigationPriors
+        The ``P`` passes' correction priors (``pass_index`` in ``[0, P)``).
+    start_m : array_like, shape (N, 3)
+        A start for every feature, world frame, metres (e.g. the flat-seafloor mosaic: it puts
+        the feature on the right side of the tracks and below them, where the solution is).
+    min_passes : int, >= 2
+        Features seen on fewer distinct passes are not adjusted (a range and a beam-plane angle
+        from one pass leave a feature on a circle).
+    estimate_passes : bool
+        False holds every correction at zero: the per-feature N-view estimate with the
+        beam-plane constraint, from the navigated poses.
+    loss : {"linear", "soft_l1", "huber", "cauchy"}
+        Robust loss on the sightings' residuals.
+    f_scale : float, > 0
+        Its scale, in sigmas.
+    height_prior_m, height_sigma_m : array_like, shape (N,), optional
+        A prior on each feature's height ``z`` (e.g. from a depth sounding below it) and its
+        sigma (m; ``inf``: none).
+    covariance : bool
+        Compute the covariances (the Schur complement; skip for speed).
+    max_nfev : int, optional
+        Evaluation limit of ``least_squares`` (default: its own, 100 times the unknowns).
+    ftol, xtol : float
+        ``least_squares`` tolerances.
+
+    Returns
+    -------
+    JointAdjustment
+
+    Raises
+    ------
+    ValueError
+        Naming the argument: shapes that do not match, a pass or feature index out of range,
+        an unknown loss, ``f_scale`` <= 0, ``min_passes`` < 2.
+    """
+    N = int(np.asarray(start_m).shape[0]) if np.ndim(start_m) == 2 else -1
+    start = as_float_array(start_m, "start_m", tail=(3,))
+    if start.ndim != 2:
+        raise ValueError(f"start_m must have shape (N, 3); got {start.shape}")
+    if sightings.n and sightings.feature.max() >= N:
+        raise ValueError(f"sightings.feature must be < the number of rows of start_m ({N}); got {sightings.feature.max()}")
+    P = priors.n_passes
+    if sightings.n and sightings.pass_index.max() >= P:
+        raise ValueError(f"sightings.pass_index must be < the number of passes of priors ({P}); "
+                         f"got {sightings.pass_index.max()}")
+    if loss not in LOSSES:
+        raise ValueError(f"loss must be one of {list(LOSSES)}; got {loss!r}")
+    if not (np.isfinite(f_scale) and f_scale > 0):
+        raise ValueError(f"f_scale must be a finite number > 0; got {f_scale!r}")
+    if isinstance(min_passes, bool) or int(min_passes) != min_passes or min_passes < 2:
+        raise ValueError(f"min_passes must be an integer >= 2; got {min_passes!r}")
+    hp = hs = None
+    if height_sigma_m is not None:
+        hs = as_float_array(height_sigma_m, "height_sigma_m", finite=False)
+        hp = as_float_array(height_prior_m if height_prior_m is not None else np.zeros(N), "height_prior_m", finite=False)
+        if hs.shape != (N,) or hp.shape != (N,):
+            raise ValueError(f"height_prior_m and height_sigma_m must have shape ({N},); got {hp.shape}, {hs.shape}")
+
+    pairs = np.unique(sightings.feature * P + sightings.pass_index)
+    n_pass = np.bincount(pairs // P, minlength=N)
+    adjusted = n_pass >= min_passes
+    feats = np.flatnonzero(adjusted)
+    prob = JointProblem(sightings, priors, feats, estimate_passes=estimate_passes,
+                        height_prior_m=None if hp is None else np.where(np.isfinite(hs), hp, 0.0)[feats],
+                        height_sigma_m=None if hs is None else hs[feats])
+    x0 = prob.pack(start[feats], np.zeros((P, 5)))
+    t0 = time.perf_counter()
+    robust = loss != "linear"
+    if feats.size:
+        sol = least_squares(prob.residuals, x0, jac=prob.jacobian, method="trf", tr_solver="lsmr",
+                            x_scale="jac", loss=robust_loss(loss, f_scale, prob.n_meas) if robust else "linear",
+                            ftol=ftol, xtol=xtol, gtol=1e-10, max_nfev=max_nfev)
+        x, fun, status, msg, nfev, cost = sol.x, sol.fun, sol.status, sol.message, sol.nfev, float(sol.cost)
+    else:
+        x, fun, status, msg, nfev, cost = x0, prob.residuals(x0), 1, "no feature seen on enough passes", 0, 0.0
+    seconds = time.perf_counter() - t0
+
+    points, corr = prob.split(x)
+    m = sightings.n
+    nr = prob.rows.size
+    w_rows = robust_loss(loss, f_scale, prob.n_meas)(fun ** 2)[1] if robust else np.ones(fun.size)
+    range_res = np.full(m, np.nan)
+    beam_res = np.full(m, np.nan)
+    weight = np.full(m, np.nan)
+    range_res[prob.rows] = fun[:nr]
+    weight[prob.rows] = w_rows[:nr]
+    beam_rows = prob.rows[prob.beam]
+    beam_res[beam_rows] = fun[nr:prob.n_meas]
+    weight[beam_rows] = np.minimum(weight[beam_rows], w_rows[nr:prob.n_meas])
+
+    point = start.copy()
+    point[feats] = points
+    cov = np.full((N, 3, 3), np.nan)
+    csig = np.zeros((P, 5))
+    if covariance and feats.size:
+        J = prob.jacobian(x)
+        J = sp.diags(np.sqrt(w_rows)) @ J
+        fcov, pcov = marginal_covariances(J, feats.size)
+        cov[feats] = fcov
+        csig[prob.free] = np.sqrt(np.maximum(np.diag(pcov), 0.0))
+    return JointAdjustment(point_m=point, adjusted=adjusted, covariance_m2=cov, corrections=corr,
+                           correction_sigma=csig, range_residual=range_res, beam_plane_residual=beam_res,
+                           weight=weight, downweighted=weight < DOWNWEIGHT_BELOW, cost=cost,
+                           success=bool(status > 0), message=str(msg), n_evaluations=int(nfev), seconds=seconds)
