@@ -16,7 +16,8 @@ estimator estimated (the *common subset*, so the estimators are compared on the 
     the *map-shape* error: the median length of the error vector after removing the survey's
     median error vector (componentwise median over the common subset): what is left when the
     whole map is shifted onto the truth, i.e. the error of the map's shape, which ranges can
-    observe, against its absolute position, which they cannot;
+    observe, against its absolute position, which they cannot
+    (:func:`~sss_locus.experiments.adjustment.map_errors`);
 ``coverage``
     the share of the seen features the estimator estimated (over all its seen features, not
     only the common subset).
@@ -33,6 +34,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
+from .adjustment import map_errors
 from .reconstruction import reconstruct_many
 from .replicates import replicate_interval
 from .terrain import Terrain, place_features, random_terrain, slope_terrain
@@ -126,12 +128,12 @@ def survey_errors(table: pd.DataFrame, estimators: Sequence[str], by=("seed", "s
             seen = e[e.n_seen >= 1]
             c = e[e.feature.isin(common)]
             d = c[["error_x_m", "error_y_m", "error_v_m"]].to_numpy(float)
-            shape = np.linalg.norm(d - np.median(d, axis=0), axis=1) if len(d) else np.array([np.nan])
+            m = map_errors(d, np.zeros_like(d)) if len(d) else None
             rows.append(dict(zip(by, key), estimator=est, n_common=len(c),
                              coverage=float(seen.estimated.mean()) if len(seen) else np.nan,
-                             horizontal_m=float(np.median(np.hypot(d[:, 0], d[:, 1]))) if len(d) else np.nan,
-                             vertical_m=float(np.median(np.abs(d[:, 2]))) if len(d) else np.nan,
-                             shape_m=float(np.median(shape))))
+                             horizontal_m=float(np.median(m["horizontal_m"])) if m else np.nan,
+                             vertical_m=float(np.median(np.abs(m["vertical_m"]))) if m else np.nan,
+                             shape_m=float(np.median(m["shape_m"])) if m else np.nan))
     return pd.DataFrame(rows)
 
 
