@@ -78,7 +78,7 @@ def sensor_poses(table: pd.DataFrame, platform) -> dict:
     return dict(W=W, origin=o, ranges=table["slant_range_m"].to_numpy(float), height=height)
 
 
-def _ellipse(cov):
+def ellipse_axes(cov):
     """1-sigma horizontal ellipse (semi-major, semi-minor, azimuth of the major axis clockwise
     from grid north, deg) and vertical sigma of covariances (n, 3, 3); NaN where not finite."""
     ok = np.all(np.isfinite(cov), axis=(1, 2))
@@ -142,7 +142,7 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
     # N views: every sighting of each feature with three or more
     res = multiview_points(W, o, r, sig, mask, aperture, prior=mean_flat, aperture_margin_deg=aperture_margin_deg,
                            ceiling_m=np.min(np.where(mask, o[..., 2], np.inf), axis=1) if below_sensors else np.inf)
-    major, minor, azimuth, sigma_up = _ellipse(np.where(res.estimated[:, None, None], res.covariance, np.nan))
+    major, minor, azimuth, sigma_up = ellipse_axes(np.where(res.estimated[:, None, None], res.covariance, np.nan))
     nview = np.where(res.estimated[:, None], res.point, np.nan)
 
     feats = pd.DataFrame({"feature": names, "n_sightings": count,

@@ -13,6 +13,10 @@ GeoJSON features (``properties.kind``):
     ``ellipse_azimuth_deg`` (major axis, clockwise from grid north), ``sigma_up_m``;
 ``two_view``
     the point of the locus nearest the mean flat-seafloor position (two or more sightings);
+``joint``
+    the joint adjustment's position (where the chapter computed it and the feature was seen on
+    two or more passes), with ``n_passes`` and its 1-sigma ellipse (``joint_ellipse_major_m``,
+    ``joint_ellipse_minor_m``, ``joint_ellipse_azimuth_deg``, ``joint_sigma_up_m``);
 ``flat_mean`` and ``flat``
     the mean flat-seafloor position with the spread, and each sighting's.
 """
@@ -65,6 +69,11 @@ def geojson(res: PingResults, *, notice: str = "") -> dict:
                 kind="nview", feature=r["feature"], status=r["nview_status"], n_sightings=int(r["n_sightings"]),
                 cost=r["nview_cost"], ellipse_major_m=r["ellipse_major_m"], ellipse_minor_m=r["ellipse_minor_m"],
                 ellipse_azimuth_deg=r["ellipse_azimuth_deg"], sigma_up_m=r["sigma_up_m"])
+        if np.isfinite(r.get("joint_east_m", np.nan)):
+            add({"type": "Point", "coordinates": _point(r["joint_lon_deg"], r["joint_lat_deg"], r["joint_up_m"])},
+                kind="joint", feature=r["feature"], n_passes=int(r["n_passes"]),
+                **{k: r[k] for k in ("joint_ellipse_major_m", "joint_ellipse_minor_m", "joint_ellipse_azimuth_deg",
+                                     "joint_sigma_up_m")})
         if np.isfinite(r["two_view_east_m"]):
             add({"type": "Point", "coordinates": _point(r["two_view_lon_deg"], r["two_view_lat_deg"], r["two_view_up_m"])},
                 kind="two_view", feature=r["feature"], status=r["two_view_status"], locus_length_m=r["locus_length_m"])
@@ -87,11 +96,11 @@ def geojson_text(res: PingResults, *, notice: str = "") -> str:
 def against_truth(res: PingResults, truth: pd.DataFrame) -> pd.DataFrame:
     """Errors of each estimate against known feature positions (``truth``: ``feature``,
     ``east_m``, ``north_m``, ``up_m``): one row per feature and estimator (``flat`` mean,
-    ``two_view``, ``nview``) with ``error_h_m`` and ``error_up_m`` (estimate minus truth); rows
+    ``two_view``, ``nview``, ``joint`` where computed) with ``error_h_m`` and ``error_up_m`` (estimate minus truth); rows
     without an estimate are left out (their status is in the features table)."""
     t = res.features.merge(truth, on="feature", how="inner", suffixes=("", "_true"))
     rows = []
-    for est in ("flat", "two_view", "nview"):
+    for est in [e for e in ("flat", "two_view", "nview", "joint") if f"{e}_east_m" in t]:
         d = t[[f"{est}_east_m", f"{est}_north_m", f"{est}_up_m"]].to_numpy() - t[["east_m", "north_m", "up_m"]].to_numpy()
         ok = np.isfinite(d).all(axis=1)
         rows.append(pd.DataFrame({"feature": t["feature"][ok], "estimator": est, "n_sightings": t["n_sightings"][ok],

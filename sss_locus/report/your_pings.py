@@ -21,7 +21,10 @@ from .text import fmt_sig
 
 ESTIMATES = {"flat": ("flat seafloor, mean of the sightings", "black", "s"),
              "two_view": ("two views: locus point nearest the flat mean", "tab:orange", "^"),
-             "nview": ("N views, least squares (1-sigma ellipse x 3)", "tab:blue", "D")}
+             "nview": ("N views, least squares (1-sigma ellipse x 3)", "tab:blue", "D"),
+             "joint": ("joint adjustment, features and passes together (1-sigma ellipse x 3)", "tab:green", "o")}
+ELLIPSES = {"nview": "ellipse", "joint": "joint_ellipse"}
+"""The estimators drawn with their ellipses: the prefix of their ellipse columns."""
 ELLIPSE_SCALE = 3.0
 """The drawn ellipses are this many standard deviations (1-sigma ones would be invisible)."""
 
@@ -34,8 +37,11 @@ def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str =
     f, s = res.features, res.sightings
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(PAGE_WIDTH_IN, 4.2), width_ratios=(1.2, 1.0), layout="constrained")
     ax.scatter(s["sensor_east_m"], s["sensor_north_m"], s=6, c="0.6", marker=".", label="sensor at each sighting")
-    for key, (name, colour, marker) in ESTIMATES.items():
+    for key, (name, colour, marker) in _drawn(f):
         ax.scatter(f[f"{key}_east_m"], f[f"{key}_north_m"], s=22, c=colour, marker=marker, label=name, zorder=3)
+    if "joint_east_m" in f:
+        for _, r in f.iterrows():
+            _ellipse(ax, r, "joint", 0.0, 0.0)
     if truth is not None:
         ax.scatter(truth["east_m"], truth["north_m"], s=40, c="gold", marker="*", edgecolors="k", linewidths=0.4,
                    label="truth (synthetic example)", zorder=4)
@@ -78,13 +84,11 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
                    linewidths=0.7, label="flat seafloor, each sighting")
         for _, arc in res.locus[res.locus["feature"] == r["feature"]].groupby("arc"):
             ax.plot(arc["east_m"] - e0, arc["north_m"] - n0, color="tab:red", lw=2)
-        for key, (name, colour, marker) in ESTIMATES.items():
+        for key, (name, colour, marker) in _drawn(f):
             ax.scatter([r[f"{key}_east_m"] - e0], [r[f"{key}_north_m"] - n0], s=28, c=colour, marker=marker, label=name,
                        zorder=3)
-        if np.isfinite(r["ellipse_major_m"]):
-            ax.add_patch(Ellipse((r["nview_east_m"] - e0, r["nview_north_m"] - n0), 2 * ELLIPSE_SCALE * r["ellipse_major_m"],
-                                 2 * ELLIPSE_SCALE * r["ellipse_minor_m"], angle=90.0 - r["ellipse_azimuth_deg"],
-                                 fill=False, color="tab:blue", lw=0.8))
+        for key, _ in _drawn(f, ELLIPSES):
+            _ellipse(ax, r, key, e0, n0)
         if truth is not None and r["feature"] in set(truth["feature"]):
             t = truth.set_index("feature").loc[r["feature"]]
             ax.scatter([t["east_m"] - e0], [t["north_m"] - n0], s=60, c="gold", marker="*", edgecolors="k",
@@ -112,7 +116,7 @@ def _distances(res, truth):
     rows = []
     if truth is not None:
         t = f.merge(truth, on="feature", suffixes=("", "_true"))
-        for key in ESTIMATES:
+        for key, _ in _drawn(f):
             d = np.hypot(t[f"{key}_east_m"] - t["east_m"], t[f"{key}_north_m"] - t["north_m"])
             rows.append(pd.DataFrame({"feature": t["feature"], "estimator": key, "distance_h_m": d,
                                       "distance_up_m": t[f"{key}_up_m"] - t["up_m"]}))
@@ -122,6 +126,21 @@ def _distances(res, truth):
                                   "distance_up_m": f["flat_minus_estimate_up_m"]}))
     out = pd.concat(rows, ignore_index=True)
     return out[np.isfinite(out["distance_h_m"])]
+
+
+def _drawn(f: pd.DataFrame, among=ESTIMATES):
+    """The ``(key, value)`` of ``among`` whose estimate is in the features table ``f`` (the joint
+    adjustment's columns are there only when the chapter computed it)."""
+    return [(k, v) for k, v in among.items() if f"{k}_east_m" in f]
+
+
+def _ellipse(ax, r, key, e0, n0):
+    """Draw the 1-sigma ellipse (x ``ELLIPSE_SCALE``) of estimator ``key`` of feature row ``r``."""
+    pre = ELLIPSES[key]
+    if np.isfinite(r[f"{pre}_major_m"]):
+        ax.add_patch(Ellipse((r[f"{key}_east_m"] - e0, r[f"{key}_north_m"] - n0), 2 * ELLIPSE_SCALE * r[f"{pre}_major_m"],
+                             2 * ELLIPSE_SCALE * r[f"{pre}_minor_m"], angle=90.0 - r[f"{pre}_azimuth_deg"], fill=False,
+                             color=ESTIMATES[key][1], lw=0.8))
 
 
 def map_caption(n_sightings: int, *, known: bool, synthetic: bool, geojson: bool) -> str:
@@ -191,7 +210,18 @@ def view_3d(res, *, truth: pd.DataFrame | None = None):
         for v, c in zip((xs, ys, zs), ("east_m", "north_m", "up_m")):
             v.extend([*arc[c].tolist(), None])
     traces.append(go.Scatter3d(x=xs, y=ys, z=zs, mode="lines", line=dict(color="crimson", width=6), name="two-view locus"))
-    for key, (name, colour, _) in ESTIMATES.items():
+    if "joint_east_m" in f:  # the joint estimate's 1-sigma ellipses (x 3), horizontal, at its height
+        a = np.linspace(0.0, 2 * np.pi, 37)
+        xs, ys, zs = [], [], []
+        for _, r in f[np.isfinite(f["joint_ellipse_major_m"])].iterrows():
+            t = np.radians(90.0 - r["joint_ellipse_azimuth_deg"])
+            u, v = ELLIPSE_SCALE * r["joint_ellipse_major_m"] * np.cos(a), ELLIPSE_SCALE * r["joint_ellipse_minor_m"] * np.sin(a)
+            xs += [*(r["joint_east_m"] + u * np.cos(t) - v * np.sin(t)), None]
+            ys += [*(r["joint_north_m"] + u * np.sin(t) + v * np.cos(t)), None]
+            zs += [*np.full(a.size, r["joint_up_m"]), None]
+        traces.append(go.Scatter3d(x=xs, y=ys, z=zs, mode="lines", line=dict(color=to_hex("tab:green"), width=2),
+                                   name="joint adjustment, 1-sigma ellipse x 3", hoverinfo="skip"))
+    for key, (name, colour, _) in _drawn(f):
         traces.append(go.Scatter3d(x=f[f"{key}_east_m"], y=f[f"{key}_north_m"], z=f[f"{key}_up_m"], mode="markers",
                                    marker=dict(size=4, color=to_hex(colour)), name=name.split(" (")[0], text=f["feature"]))
     if truth is not None:

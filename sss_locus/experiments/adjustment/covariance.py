@@ -20,6 +20,15 @@ import scipy.sparse as sp
 CHUNK_FEATURES = 4096
 
 
+def feature_blocks(Jf, n_features: int) -> np.ndarray:
+    """The 3 x 3 diagonal blocks of ``Jf^T Jf``, shape (n, 3, 3), for the feature columns ``Jf``
+    (sparse, ``3 n`` columns, each row touching one feature)."""
+    H = sp.coo_matrix(Jf.T @ Jf)
+    blocks = np.zeros((int(n_features), 3, 3))
+    np.add.at(blocks, (H.row // 3, H.row % 3, H.col % 3), H.data)
+    return blocks
+
+
 def marginal_covariances(J, n_features: int) -> tuple[np.ndarray, np.ndarray]:
     """Per-feature 3 x 3 covariances and the passes' covariance from a weighted Jacobian.
 
@@ -40,9 +49,7 @@ def marginal_covariances(J, n_features: int) -> tuple[np.ndarray, np.ndarray]:
     J = sp.csc_matrix(J)
     n3 = 3 * int(n_features)
     Jf, Jc = J[:, :n3], J[:, n3:]
-    Hff = (Jf.T @ Jf).tocoo()
-    blocks = np.zeros((n_features, 3, 3))
-    np.add.at(blocks, (Hff.row // 3, Hff.row % 3, Hff.col % 3), Hff.data)
+    blocks = feature_blocks(Jf, n_features)
     det = np.linalg.det(blocks)
     scale = np.einsum("nii->n", blocks) ** 3
     singular = ~(np.abs(det) > 1e-12 * np.maximum(scale, 1e-300))

@@ -49,6 +49,7 @@ class JointProblem:
         slot = np.full(int(max(sightings.feature.max(initial=-1), self.features.max(initial=-1))) + 1, -1, np.int64)
         slot[self.features] = np.arange(self.features.size)
         keep = np.flatnonzero(slot[sightings.feature] >= 0)
+        keep = keep[np.argsort(slot[sightings.feature[keep]], kind="stable")]  # rows by feature: local access
         self.rows = keep  # indices of the sightings used
         self.s = sightings
         self.used = Sightings(feature=sightings.feature[keep], pass_index=sightings.pass_index[keep],

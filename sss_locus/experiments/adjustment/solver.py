@@ -54,6 +54,9 @@ from .model import NavigationPriors, Sightings
 from .residuals import JointProblem
 
 LOSSES = ("linear", "soft_l1", "huber", "cauchy")
+LSMR_TOL = 1e-10
+"""``atol`` and ``btol`` of the LSMR inner solves (``least_squares``' default 1e-6 stops the
+common-shift direction, held only by the priors, about a millimetre short on a small survey)."""
 DOWNWEIGHT_BELOW = 0.5
 """A sighting whose robust weight ``rho'`` is below this (its residual beyond about 1.7 times
 ``f_scale`` for ``soft_l1``) is reported as down-weighted."""
@@ -78,6 +81,10 @@ class JointAdjustment:
         m/m); 0 where not estimated.
     correction_sigma : ndarray, shape (P, 5)
         Their first-order standard deviations; 0 where not estimated.
+    common_shift_sigma_m : ndarray, shape (2,)
+        First-order standard deviation of the mean of the passes' offsets (east, north), m: the
+        common shift of every pass and feature that the ranges cannot see, held by the priors
+        (NaN without the covariances or without estimated passes).
     range_residual, beam_plane_residual : ndarray, shape (m,)
         Each sighting's residuals at the optimum, in sigmas; NaN where the sighting was not used
         (its feature not adjusted; no beam-plane constraint).
@@ -101,6 +108,7 @@ class JointAdjustment:
     covariance_m2: np.ndarray
     corrections: np.ndarray
     correction_sigma: np.ndarray
+    common_shift_sigma_m: np.ndarray
     range_residual: np.ndarray
     beam_plane_residual: np.ndarray
     weight: np.ndarray
@@ -217,10 +225,18 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
     t0 = time.perf_counter()
     robust = loss != "linear"
     if feats.size:
-        sol = least_squares(prob.residuals, x0, jac=prob.jacobian, method="trf", tr_solver="lsmr",
-                            x_scale="jac", loss=robust_loss(loss, f_scale, prob.n_meas) if robust else "linear",
-                            ftol=ftol, xtol=xtol, gtol=1e-10, max_nfev=max_nfev)
-        x, fun, status, msg, nfev, cost = sol.x, sol.fun, sol.status, sol.message, sol.nfev, float(sol.cost)
+        # Gauss-Newton from the start first (quadratic loss: a few iterations), then the robust
+        # loss from there (started at metres of navigation error, every residual would look
+        # like an outlier); lsmr solved tightly, or the weak common-shift direction stops early
+        opts = dict(method="trf", tr_solver="lsmr", x_scale="jac", tr_options=dict(atol=LSMR_TOL, btol=LSMR_TOL),
+                    ftol=ftol, xtol=xtol, gtol=1e-10, max_nfev=max_nfev)
+        sol = least_squares(prob.residuals, x0, jac=prob.jacobian, loss="linear", **opts)
+        nfev = sol.nfev
+        if robust:
+            sol = least_squares(prob.residuals, sol.x, jac=prob.jacobian,
+                                loss=robust_loss(loss, f_scale, prob.n_meas), **opts)
+            nfev += sol.nfev
+        x, fun, status, msg, cost = sol.x, sol.fun, sol.status, sol.message, float(sol.cost)
     else:
         x, fun, status, msg, nfev, cost = x0, prob.residuals(x0), 1, "no feature seen on enough passes", 0, 0.0
     seconds = time.perf_counter() - t0
@@ -242,13 +258,20 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
     point[feats] = points
     cov = np.full((N, 3, 3), np.nan)
     csig = np.zeros((P, 5))
+    common = np.full(2, np.nan)
     if covariance and feats.size:
         J = prob.jacobian(x)
         J = sp.diags(np.sqrt(w_rows)) @ J
         fcov, pcov = marginal_covariances(J, feats.size)
         cov[feats] = fcov
         csig[prob.free] = np.sqrt(np.maximum(np.diag(pcov), 0.0))
+        index = np.full((P, 5), -1)
+        index[prob.free] = np.arange(int(prob.free.sum()))
+        for a in range(2):
+            k = index[:, a][index[:, a] >= 0]
+            if k.size:
+                common[a] = np.sqrt(max(pcov[np.ix_(k, k)].sum(), 0.0)) / k.size
     return JointAdjustment(point_m=point, adjusted=adjusted, covariance_m2=cov, corrections=corr,
-                           correction_sigma=csig, range_residual=range_res, beam_plane_residual=beam_res,
+                           correction_sigma=csig, common_shift_sigma_m=common, range_residual=range_res, beam_plane_residual=beam_res,
                            weight=weight, downweighted=weight < DOWNWEIGHT_BELOW, cost=cost,
                            success=bool(status > 0), message=str(msg), n_evaluations=int(nfev), seconds=seconds)
