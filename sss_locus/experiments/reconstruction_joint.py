@@ -4,8 +4,8 @@ reconstruction chapter (the ``extra`` estimators of
 
 ``beam``
     every feature seen on two or more passes, alone, from the navigated poses: its slant ranges
-    and beam-plane angles (:mod:`sss_locus.geometry.beam_plane`), the passes' corrections held
-    at zero (:func:`~sss_locus.experiments.adjustment.adjust` with ``estimate_passes=False``). Its
+    and beam-plane angles (:mod:`sss_locus.geometry.beam_plane`), least squares with the passes'
+    corrections held at zero (:func:`~sss_locus.experiments.adjustment.beam_plane_points`). Its
     range sigmas are the N-view estimator's (range error plus the whole sensor-position error
     along the line of sight) and its beam-plane sigmas carry the whole heading and pitch error;
 ``joint``
@@ -16,8 +16,10 @@ reconstruction chapter (the ``extra`` estimators of
     and pitch). Needs the ``"per_pass"`` model: with per-view errors there is nothing shared
     to estimate.
 
-Both start from the flat-seafloor mosaic and use the soft-L1 robust loss (scale 3 sigmas) of the
-solver; the beam-plane angle's sigma is evaluated at each sighting's depression angle
+Both start from the flat-seafloor mosaic; ``beam`` uses the quadratic loss (data association is
+known), ``joint`` the solver's default soft-L1 robust loss after its quadratic start, and its
+features count as not estimated when the solver stops on its evaluation limit
+(:data:`JOINT_MAX_EVALUATIONS`) instead of a tolerance. The beam-plane angle's sigma is evaluated at each sighting's depression angle
 (``asin`` of the sensor's height above the seafloor below it over the range).
 """
 
@@ -28,9 +30,11 @@ import math
 import numpy as np
 
 from ..geometry.beam_plane import beam_plane_sigma_rad
-from .adjustment import NavigationPriors, Sightings, adjust
+from .adjustment import NavigationPriors, Sightings, adjust, beam_plane_points
 
 JOINT_ESTIMATORS = ("beam", "joint")
+JOINT_MAX_EVALUATIONS = 400
+"""Evaluation limit of each phase of the joint solve (it converges in tens on the chapter's surveys)."""
 
 
 def _sightings(inputs: dict, elevation_deg: float, joint: bool) -> Sightings:
@@ -74,17 +78,22 @@ def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS) -> dict:
         raise ValueError(f"names must be among {list(JOINT_ESTIMATORS)}; got {sorted(unknown)}")
 
     def run(inputs: dict, joint: bool):
-        if joint and inputs["navigation"] != "per_pass":
+        seen = np.asarray(inputs["seen"], bool)
+        s = _sightings(inputs, elevation_deg, joint)
+        if not joint:
+            i, l = s.feature, s.pass_index
+            rs, bs = (np.ones(seen.shape) for _ in range(2))
+            rs[i, l], bs[i, l] = s.range_sigma_m, s.beam_plane_sigma_rad
+            res = beam_plane_points(inputs["W"], inputs["origin"], inputs["ranges"], rs, bs, seen, _start(inputs))
+            return res.point, res.estimated
+        if inputs["navigation"] != "per_pass":
             raise ValueError("the joint estimator needs navigation='per_pass' (per-view errors share nothing)")
-        L = inputs["seen"].shape[1]
         pn = inputs["pass_noise"]
-        priors = NavigationPriors(offset_sigma_m=max(pn.pass_offset_sigma_m, 1e-6) if joint else 1.0,
-                                  heading_sigma_deg=pn.pass_heading_bias_sigma_deg if joint else 0.0,
-                                  drift_sigma=pn.drift_sigma_fraction if joint else 0.0,
-                                  reference_m=np.zeros((L, 2)))
-        res = adjust(_sightings(inputs, elevation_deg, joint), priors, _start(inputs), estimate_passes=joint,
-                     covariance=False)
-        return res.point_m, res.adjusted & np.all(np.isfinite(res.point_m), axis=1)
+        priors = NavigationPriors(offset_sigma_m=max(pn.pass_offset_sigma_m, 1e-6),
+                                  heading_sigma_deg=pn.pass_heading_bias_sigma_deg,
+                                  drift_sigma=pn.drift_sigma_fraction, reference_m=np.zeros((seen.shape[1], 2)))
+        res = adjust(s, priors, _start(inputs), covariance=False, max_nfev=JOINT_MAX_EVALUATIONS)
+        return res.point_m, res.adjusted & res.success & np.all(np.isfinite(res.point_m), axis=1)
 
     table = {"beam": lambda inputs: run(inputs, False), "joint": lambda inputs: run(inputs, True)}
     return {name: table[name] for name in names}
