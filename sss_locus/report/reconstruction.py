@@ -113,6 +113,16 @@ def _errorbars(ax, x, d, col, *, color, marker, ls, label, floor=FLOOR_M):
                 ms=4, lw=1.3, capsize=2, label=label)
 
 
+def _fit_axis(ax, d: pd.DataFrame, col: str) -> None:
+    """A log axis from half the smallest mean of ``d[col]`` to 1.5 times the largest interval end:
+    it spans the means, and an interval reaching toward 0 runs off its bottom (not drawn down to
+    an arbitrary floor)."""
+    y = np.maximum(d[col].to_numpy(float), FLOOR_M)
+    hi = np.maximum(d[f"{col}_high"].to_numpy(float), y)
+    if np.isfinite(y).any():
+        ax.set_ylim(0.5 * np.nanmin(y), 1.5 * np.nanmax(hi))
+
+
 def _log_axis(ax) -> None:
     ax.set_yscale("log")
     ax.yaxis.set_major_formatter(_plain)
@@ -148,6 +158,9 @@ def plot_sweep(platforms: Sequence, summary: pd.DataFrame, *, estimators: Sequen
                 ax.set_ylabel(METRIC_LABELS[metric])
             if i == len(metrics) - 1:
                 ax.set_xlabel(xlabel)
+    shown = summary[summary.estimator.isin(list(estimators))]
+    for i, metric in enumerate(metrics):
+        _fit_axis(axs[i, 0], shown, metric)
     for ax in axs.flat:
         _label_minor(ax)
     handles, labels = axs[0, 0].get_legend_handles_labels()
@@ -183,6 +196,10 @@ def plot_slope(platforms: Sequence, single: pd.DataFrame, summary: pd.DataFrame,
     axs[0, 0].set_ylabel("median 3-D error (m)")
     for ax in axs.flat:
         _log_axis(ax)
+    shown = summary[summary.estimator.isin(list(estimators))]
+    for i, metric in enumerate(metrics, start=1):
+        _fit_axis(axs[i, 0], shown, metric)
+    for ax in axs.flat:
         _label_minor(ax)
     h0, l0 = axs[0, 0].get_legend_handles_labels()
     h1, l1 = axs[1, 0].get_legend_handles_labels()
@@ -205,10 +222,13 @@ def plot_views(platforms: Sequence, summary: pd.DataFrame, metrics: Sequence[str
         for metric in metrics:
             _errorbars(ax, x, s, metric, color=colors[metric], marker="o", ls="-", label=METRIC_LABELS[metric])
         _log_axis(ax)
-        _label_minor(ax)
         ax.set_xticks(x, [lab for _, lab in VIEW_STEPS])
         ax.set_xlabel("estimate")
         ax.set_title(platform_title(pf, 72 // len(platforms)), fontsize=10)
+    stacked = pd.concat([summary[[m, f"{m}_high"]].set_axis(["v", "v_high"], axis=1) for m in metrics])
+    _fit_axis(axs[0, 0], stacked, "v")
+    for ax in axs.flat:
+        _label_minor(ax)
     axs[0, 0].set_ylabel("mean over surveys (m)")
     handles, labels = axs[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=SMALL_FONT_PT, frameon=False)
