@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 
 from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title, themed
-from .text import fmt_ci, fmt_sig
+from .text import fmt_sig
 
 ESTIMATORS = {"flat": ("flat-seafloor mosaic", "black", "s"),
               "two": ("two views + prior", "tab:orange", "^"),
@@ -221,6 +221,9 @@ def plot_views(platforms: Sequence, summary: pd.DataFrame, metrics: Sequence[str
         ax = axs[0, j]
         for metric in metrics:
             _errorbars(ax, x, s, metric, color=colors[metric], marker="o", ls="-", label=METRIC_LABELS[metric])
+        if not np.isfinite(s[list(metrics)].to_numpy(float)).any():  # said, not left blank
+            ax.text(0.5, 0.5, "no feature estimated\nby every step", transform=ax.transAxes, ha="center",
+                    va="center", fontsize=SMALL_FONT_PT, color="0.35")
         _log_axis(ax)
         ax.set_xticks(x, [lab for _, lab in VIEW_STEPS])
         ax.set_xlabel("estimate")
