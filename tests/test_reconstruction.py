@@ -130,109 +130,78 @@ def test_statuses_are_never_silent_nan():
     assert one["flat"] == "unseen" and one["two"] == "too few views" and one["all"] == "too few views"
 
 
-def test_paired_comparison_and_verdict_against_constructed_tables():
+def test_paired_comparison_against_constructed_tables():
+    """The per-feature Wilcoxon comparison of the earlier chapter (kept to reproduce its numbers)."""
     import pandas as pd
 
-    from sss_locus.experiments.platforms import load_platform
     from sss_locus.experiments.reconstruction_study import paired_comparison
-    from sss_locus.report.reconstruction import loss_sentence, verdict_sentence
 
     rng = np.random.default_rng(0)
     rows = []
-    for relief, shift in ((0.0, 0.5), (1.0, -0.01), (2.0, -0.5)):
+    for relief, shift in ((0.0, 0.5), (2.0, -0.5)):
         base = rng.random(200) + 1.0
         for est, err in (("flat", base), ("all", base + shift + 0.05 * rng.normal(size=200))):
             rows.append(pd.DataFrame(dict(feature=np.arange(200), estimator=est, estimated=True, error_3d_m=err,
                                           noise_scale=1.0, rms_relief_m=relief)))
-    t = pd.concat(rows, ignore_index=True)
-    c = paired_comparison(t, "all", "flat", by=("noise_scale", "rms_relief_m"))
-    assert list(c.n_pairs) == [200, 200, 200]
-    assert c.p_value.iloc[0] > 0.5 and c.p_value.iloc[2] < 1e-10
-    assert c.share_closer.iloc[2] == 1.0 and c.median_difference_m.iloc[2] == pytest.approx(-0.5, abs=0.02)
-    text = verdict_sentence(load_platform("auv"), c, alpha=0.01)
-    # relief 1 m: a shift of -1 cm against 5 cm noise over 200 pairs; whichever way the test
-    # goes, the verdict names the smallest relief from which every larger one wins
-    expected = "1.0 m" if c.p_value.iloc[1] < 0.01 else "2.0 m"
-    assert f"from {expected} RMS relief on" in text
-    # the other side: at relief 0 (all views 0.5 m worse) the flat mosaic is significantly closer
-    assert c.p_value_b_closer.iloc[0] < 1e-10 and c.p_value_b_closer.iloc[2] > 0.5
-    loss = loss_sentence(load_platform("auv"), c, alpha=0.01, noise_scale=1.0)
-    assert re.search(r"significantly closer than all views at 0 m RMS relief \(all views farther by a median "
-                     r"0\.(49|50|51) m, closer for only 0\.0 % of the features\)\.$", loss)  # shift 0.5 m
-    assert "2.0 m RMS relief" not in loss
-    c.loc[2, "p_value"] = 0.5
-    assert "at no relief up to 2.0 m" in verdict_sentence(load_platform("auv"), c, alpha=0.01)
-    loss = loss_sentence(load_platform("auv"), c, 0.01, 1.0)  # relief 2.0 m: now neither side
-    assert "neither is significantly closer at" in loss and loss.endswith("2.0 m.")
+    c = paired_comparison(pd.concat(rows, ignore_index=True), "all", "flat", by=("noise_scale", "rms_relief_m"))
+    assert list(c.n_pairs) == [200, 200]
+    assert c.p_value.iloc[0] > 0.5 and c.p_value.iloc[1] < 1e-10 and c.p_value_b_closer.iloc[0] < 1e-10
+    assert c.median_difference_m.iloc[1] == pytest.approx(-0.5, abs=0.02)
 
 
-def _sweep_table(errors: dict, n: int = 5, n_views: int = 3):
-    """A per-feature table in the shape of relief_sweep's: ``errors`` maps (noise scale, relief,
-    estimator) to the error every feature of that case has (NaN: no estimate, status "too few
-    views", as for an estimator of more views than a feature has)."""
+def _summary(values: dict):
+    """A summary in the shape of over_surveys': ``values`` maps (spacing, value, estimator) to
+    (mean, low, high), the same for every metric."""
     import pandas as pd
 
     rows = []
-    for (k, r, est), e in errors.items():
-        ok = not math.isnan(e)
-        rows.append(pd.DataFrame(dict(feature=np.arange(n), estimator=est, noise_scale=k, rms_relief_m=r,
-                                      estimated=ok, status="resolved" if ok else "too few views",
-                                      error_3d_m=e, error_h_m=e, error_v_m=e, locus_length_m=np.nan,
-                                      n_views=n_views, n_seen=n_views)))
-    return pd.concat(rows, ignore_index=True)
+    for (sp, v, est), (m, lo, hi) in values.items():
+        row = dict(platform="auv", spacing_m=sp, value=v, estimator=est, n_surveys=20)
+        for col in ("horizontal_m", "vertical_m", "shape_m", "coverage"):
+            row.update({col: m, f"{col}_low": lo, f"{col}_high": hi})
+        rows.append(row)
+    return pd.DataFrame(rows)
 
 
-def _labels(ax) -> list[str]:
-    """The y tick labels drawn inside the axis' view (major and minor)."""
-    lo, hi = ax.get_ylim()
-    ticks = [t for t in ax.yaxis.get_major_ticks() + ax.yaxis.get_minor_ticks() if lo <= t.get_loc() <= hi]
-    return [t.label1.get_text() for t in ticks if t.label1.get_visible() and t.label1.get_text()]
-
-
-def test_relief_rows_of_less_than_a_decade_have_readable_error_axes():
-    """A row whose errors span 1.9 to 4.5 m (a user platform's full noise model) holds no power of
-    ten and no 5: its axis still shows at least three values."""
+def test_sweep_points_are_the_summary_means_with_their_intervals():
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from sss_locus.report.reconstruction import plot_relief
+    from sss_locus.report.reconstruction import plot_sweep
 
-    errors = {}
-    for k, (lo, hi) in ((0.0, (1e-4, 2.0)), (1.0, (1.9, 4.5))):
-        for i, r in enumerate((0.0, 1.0, 4.0)):
-            for est in ("flat1", "flat", "two", "n3", "all"):
-                errors[(k, r, est)] = lo + (hi - lo) * i / 2
-    summary = summarise(_sweep_table(errors), by=("noise_scale", "rms_relief_m", "estimator")).assign(platform="auv")
-    fig = plot_relief([load_platform("auv")], summary)
-    fig.canvas.draw()
-    narrow = fig.axes[1]
-    assert narrow.get_ylim()[0] > 1 and narrow.get_ylim()[1] < 5  # no major tick, no 5 inside
-    assert len(_labels(narrow)) >= 3, _labels(narrow)
+    values = {(sp, v, est): (m * (1 + v), m * (1 + v) - 0.1, m * (1 + v) + 0.2)
+              for sp in (240.0, 60.0) for v in (0.0, 4.0) for est, m in (("flat", 1.0), ("joint", 0.3))}
+    summary = _summary(values).sample(frac=1.0, random_state=1)  # any row order
+    fig = plot_sweep([load_platform("auv")], summary, estimators=["flat", "joint"], metrics=["shape_m"],
+                     xlabel="relief")
+    ax = fig.axes[0]
+    labels = ax.get_legend_handles_labels()[1]
+    assert len(labels) == 4 and all("m apart" in k and "× range" in k for k in labels)  # spacing in every label
+    solid = [ln for ln in ax.lines if ln.get_linestyle() == "-" and len(ln.get_xdata()) == 2]
+    ys = sorted(tuple(np.round(ln.get_ydata(), 9)) for ln in solid)
+    assert ys == sorted([(1.0, 5.0), (0.3, 1.5)])  # the main spacing (240 m) solid: its means
+    bars = [c for c in ax.collections]
+    segs = np.concatenate([np.asarray(c.get_segments()) for c in bars])
+    assert any(np.allclose(sg[:, 1], [0.9, 1.2]) for sg in segs)  # flat, relief 0: its interval
     plt.close(fig)
 
 
-def test_view_counts_no_feature_reaches_are_said_on_the_figure():
-    """When no feature is seen by 4 or 6 views (a short-range sonar on the chapter's line spacing)
-    the figure says so where those steps would be, instead of leaving them blank."""
-    import matplotlib
+def test_verdict_words_follow_the_interval_of_the_paired_difference():
+    import pandas as pd
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from sss_locus.report.reconstruction import comparison_word, verdict_sentence
 
-    from sss_locus.report.reconstruction import plot_views
-
-    nan = math.nan
-    errors = {(k, 1.0, est): e for k in (0.0, 1.0)
-              for est, e in (("flat1", 1.0), ("flat", 0.8), ("two", 0.5), ("n3", 0.3), ("n4", nan), ("n6", nan),
-                             ("all", 0.3))}
-    fig = plot_views([load_platform("auv")], {"auv": _sweep_table(errors)}, 1.0)
-    fig.canvas.draw()
-    texts = [t.get_text() for ax in fig.axes for t in ax.texts]
-    assert any("no feature" in t and "4" in t for t in texts), texts
-    assert any("no feature" in t and "6" in t for t in texts), texts
-    plt.close(fig)
+    rows = [dict(spacing_m=240.0, value=v, shape_m=m, shape_m_low=lo, shape_m_high=hi)
+            for v, (m, lo, hi) in ((0.0, (-1.0, -1.5, -0.5)), (1.0, (0.1, -0.2, 0.4)), (4.0, (0.6, 0.2, 1.0)))]
+    paired = pd.DataFrame(rows)
+    assert [comparison_word(r, "shape_m") for r in rows] == ["closer", "not distinguishable", "farther"]
+    text = verdict_sentence(load_platform("auv"), paired, "shape_m", a_name="joint", b_name="the mosaic",
+                            range_m=150.0)
+    assert "map-shape error, joint against the mosaic" in text and "lines 240 m apart (1.6 × range)" in text
+    assert "closer at 0 m RMS relief" in text and "farther at 4.0 m RMS relief" in text
+    assert "not distinguishable at 1.0 m RMS relief" in text and "0.60 m (95 % CI 0.20 to 1.0)" in text
 
 
 def test_the_method_says_how_each_platform_of_the_run_flies(tmp_path):

@@ -16,8 +16,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import LogNorm, to_rgba  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
-from sss_locus.experiments.reconstruction import summarise  # noqa: E402
-from sss_locus.report.reconstruction import ESTIMATORS, FLOOR_M, VIEW_STEPS, plot_relief, plot_views  # noqa: E402
+from sss_locus.report.reconstruction import METRIC_LABELS, VIEW_STEPS, plot_views  # noqa: E402
 from sss_locus.report.three_views import OUTCOMES, pattern_label, plot_heading_sweep, plot_patterns  # noqa: E402
 from sss_locus.report.water import PAPER_COLOR, WATER_COLOR, plot_crop_effects  # noqa: E402
 
@@ -148,55 +147,27 @@ def test_crop_effect_bars_and_intervals_follow_the_table():
         plot_crop_effects(effects, crop="seafloor")
 
 
-def _reconstruction_table(seed: int) -> pd.DataFrame:
-    rng = np.random.default_rng(seed)
+def test_views_points_are_the_survey_means_in_step_order():
+    """The views figure: for each platform one line per error, its points the summary's means in the
+    order of VIEW_STEPS (the mosaic first) whatever the row order of the summary."""
+    rng = np.random.default_rng(1)
     rows = []
-    for scale in (0.0, 1.0):
-        for relief in (0.0, 2.0, 4.0):
-            for est in [*ESTIMATORS, "n4", "n6"]:
-                n = 40
-                err = (0.1 + relief) * rng.lognormal(0, 1, n) * (1e-6 if scale == 0 and est in ("n3", "all") else 1)
-                status = rng.choice(["resolved", "ambiguous", "diverged", "too few views"], n, p=[0.6, 0.1, 0.2, 0.1])
-                estimated = np.isin(status, ["resolved", "ambiguous"])
-                rows.append(pd.DataFrame({
-                    "feature": np.arange(n), "estimator": est, "status": status, "estimated": estimated,
-                    "n_views": 4, "error_3d_m": np.where(estimated, err, np.nan), "error_h_m": err, "error_v_m": err,
-                    "locus_length_m": err, "noise_scale": scale, "rms_relief_m": relief}))
-    return pd.concat(rows, ignore_index=True)
-
-
-def test_relief_lines_are_the_summary_medians_floored_at_a_millimetre():
-    tables = {"a": _reconstruction_table(1), "b": _reconstruction_table(2)}
-    summary = pd.concat([summarise(t, by=("noise_scale", "rms_relief_m", "estimator")).assign(platform=k)
-                         for k, t in tables.items()], ignore_index=True)
-    fig = plot_relief(PLATFORMS, summary.sample(frac=1.0, random_state=3))  # any row order
-    axs = np.array(fig.axes).reshape(2, 2)
+    for key in ("a", "b"):
+        for est, _ in VIEW_STEPS:
+            row = dict(platform=key, estimator=est)
+            for col in METRIC_LABELS:
+                m = float(rng.uniform(0.1, 3.0))
+                row.update({col: m, f"{col}_low": 0.8 * m, f"{col}_high": 1.2 * m})
+            rows.append(row)
+    summary = pd.DataFrame(rows)
+    fig = plot_views(PLATFORMS, summary.sample(frac=1.0, random_state=2), list(METRIC_LABELS))
     for j, pf in enumerate(PLATFORMS):
-        t = tables[pf.key]
-        for i, scale in enumerate((0.0, 1.0)):
-            ax = axs[i, j]
-            lines = {ln.get_label(): ln for ln in ax.lines}
-            for est, (label, *_) in ESTIMATORS.items():
-                d = t[(t.noise_scale == scale) & (t.estimator == est)]  # the raw table, not the summary
-                reliefs = np.unique(d.rms_relief_m)
-                medians = [np.nanmedian(d[d.rms_relief_m == r].error_3d_m) for r in reliefs]
-                assert np.allclose(lines[label].get_xdata(), reliefs)
-                assert np.allclose(lines[label].get_ydata(), np.maximum(medians, FLOOR_M))
-            assert ax.get_yscale() == "log"
-    plt.close(fig)
-
-
-def test_views_lines_are_medians_and_shares_of_the_features_seen():
-    tables = {"a": _reconstruction_table(3), "b": _reconstruction_table(4)}
-    fig = plot_views(PLATFORMS, tables, 2.0)
-    axs = np.array(fig.axes).reshape(2, 2)
-    for j, pf in enumerate(PLATFORMS):
-        t = tables[pf.key]
-        t = t[(t.rms_relief_m == 2.0) & (t.status != "too few views")]
-        for scale, err_line, share_line in zip((0.0, 1.0), axs[0, j].lines, axs[1, j].lines[::2]):
-            d = [t[(t.noise_scale == scale) & (t.estimator == est)] for est, _ in VIEW_STEPS]
-            assert np.allclose(err_line.get_xdata(), np.arange(len(VIEW_STEPS)))
-            assert np.allclose(err_line.get_ydata(), [max(np.nanmedian(x.error_3d_m), FLOOR_M) for x in d])
-            assert np.allclose(share_line.get_ydata(), [x.estimated.mean() for x in d])
-        assert [t.get_text() for t in axs[1, j].get_xticklabels()] == [lab for _, lab in VIEW_STEPS]
+        ax = fig.axes[j]
+        s = summary[summary.platform == pf.key].set_index("estimator")
+        data = [ln for ln in ax.lines if ln.get_linestyle() == "-"]  # not the caps of the bars
+        for col, ln in zip(METRIC_LABELS, data):
+            assert np.allclose(ln.get_xdata(), np.arange(len(VIEW_STEPS)))
+            assert np.allclose(ln.get_ydata(), [s.loc[e, col] for e, _ in VIEW_STEPS])
+        assert [t.get_text() for t in ax.get_xticklabels()] == [lab for _, lab in VIEW_STEPS]
+        assert VIEW_STEPS[0][0] == "flat"  # the mosaic is the flat point
     plt.close(fig)

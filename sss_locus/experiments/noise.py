@@ -55,6 +55,7 @@ from ..geometry.validation import check_memory
 from ..paths import DATA_DIR
 from . import datadoc
 from .inputs import platform_table, read_toml, sourced
+from .pass_noise import PASS_FIELDS, PassNoise, parse_pass_noise
 from .gaussian_norm import gaussian_norm_quantile  # noqa: F401 (part of this module's interface)
 from .rowstats import nanquantile_rows
 from .view_sets import Views, views_from_survey
@@ -203,10 +204,20 @@ def parse_noise_model(doc: dict, platform_key: str) -> NoiseModel:
     """
     t, where = platform_table(doc, "noise", platform_key)
     names = [f.name for f in fields(NoiseModel)]
-    unknown = set(t) - set(names)
+    unknown = set(t) - set(names) - set(PASS_FIELDS)  # the per-pass keys: pass_noise.load_pass_noise
     if unknown:
-        raise ValueError(f"{where} has unknown keys {sorted(unknown)}; allowed: {names}")
+        raise ValueError(f"{where} has unknown keys {sorted(unknown)}; allowed: {names + list(PASS_FIELDS)}")
     return NoiseModel(**{n: sourced(t, n, where, {}, lo=0.0) for n in names})
+
+
+def load_pass_noise(platform_key: str, path: str | Path | None = None) -> PassNoise:
+    """The per-pass navigation errors (:mod:`~sss_locus.experiments.pass_noise`) of
+    ``platform_key``, read like :func:`load_noise_model` from the same table."""
+    if path is None:
+        datadoc.note_read(f"noise.{platform_key}")
+    doc = datadoc.document() if path is None else read_toml(path)
+    t, where = platform_table(doc, "noise", platform_key)
+    return parse_pass_noise(t, where, parse_noise_model(doc, platform_key))
 
 
 # --------------------------------------------------------------------------------------------

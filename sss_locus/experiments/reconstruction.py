@@ -46,6 +46,7 @@ from ..geometry import Aperture
 from ..geometry.multiview_points import MultiViewStatus, multiview_points
 from ..geometry.slant_range import flat_seafloor_points, two_view_points
 from .noise import NoiseModel, noise_sigmas, perturb
+from .pass_noise import PassNoise, view_errors
 from .view_sets import Views
 
 CHI2_LEVEL = 0.999
@@ -63,12 +64,31 @@ def _gather(a, order):
 def _errors(est, truth, ok):
     d = np.where(ok[:, None], est - truth, np.nan)
     return dict(error_3d_m=np.linalg.norm(d, axis=1), error_h_m=np.hypot(d[:, 0], d[:, 1]),
-                error_v_m=d[:, 2])
+                error_v_m=d[:, 2], error_x_m=d[:, 0], error_y_m=d[:, 1])
+
+
+def _position_sigmas(sig, navigation, pass_noise, along_m):
+    """Standard deviation of each horizontal coordinate of every view's sensor position (n, L)
+    under the navigation model (per pass: offset, drift to the ping and jitter in quadrature)."""
+    if navigation != "per_pass":
+        return sig[..., 1]
+    p = pass_noise
+    return np.sqrt(p.pass_offset_sigma_m ** 2 + (p.drift_sigma_fraction * np.asarray(along_m, float)) ** 2
+                   + p.ping_horizontal_sigma_m ** 2)
+
+
+def _effective_sigmas(sig, horizontal, los):
+    """Range sigma plus the sensor-position error along the line of sight ``los`` (n, L, 3)."""
+    los = los / np.maximum(np.linalg.norm(los, axis=-1, keepdims=True), 1e-12)
+    eff = np.sqrt(sig[..., 0] ** 2 + (horizontal * los[..., 0]) ** 2 + (horizontal * los[..., 1]) ** 2
+                  + (sig[..., 3] * los[..., 2]) ** 2)
+    return np.where(eff > 0, eff, 1e-6)
 
 
 def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture: Aperture, *,
                 n_views=(3, 4, 6), seed: int = 0, margin_sigmas: float = 5.0,
-                below_sensors: bool = True) -> pd.DataFrame:
+                below_sensors: bool = True, navigation: str = "per_view", pass_noise: PassNoise | None = None,
+                along_m=None, extra: Mapping | None = None) -> pd.DataFrame:
     """Every estimator on every feature (see the module docstring).
 
     Parameters
@@ -91,24 +111,43 @@ def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture
     below_sensors : bool
         Admit only N-view points below the lowest (estimated) sensor of the feature's views
         (features lie on the seafloor under the survey; an open choice).
+    navigation : {"per_view", "per_pass"}
+        The navigation-error model (:mod:`~sss_locus.experiments.pass_noise`): ``"per_view"``
+        (the default, the earlier numbers) draws every view's errors independently;
+        ``"per_pass"`` shares each pass's (column ``l`` of ``seen``) offset, drift and heading
+        bias by every ping of the pass and needs ``pass_noise`` and ``along_m``.
+    pass_noise : PassNoise
+    along_m : array_like, shape (n, L)
+        Distance travelled along each pass to the ping that sees the feature, m.
+    extra : mapping of str to callable
+        Further estimators: ``name -> fn(inputs) -> (point (n, 3), estimated (n,) bool)``, where
+        ``inputs`` (a dict) holds the noisy survey in pass order: ``W`` (n, L, 3, 3),
+        ``origin`` (n, L, 3), ``ranges`` (n, L), ``sigmas`` (n, L, 7) (per-view sigmas of
+        :func:`~sss_locus.experiments.noise.noise_sigmas`), ``range_sigma_m`` (n, L) (effective,
+        as the N-view estimator's), ``seen`` (n, L), ``flat`` (n, L, 3) (each view's
+        flat-seafloor point), ``sensor_height_m``, ``along_m``, ``noise``, ``pass_noise``,
+        ``navigation``, ``aperture``.
 
     Returns
     -------
     pandas.DataFrame
         One row per feature and estimator: ``feature``, ``estimator``, ``n_views`` (views used),
         ``n_seen``, ``status`` (``"estimated"``/``"resolved"``/...), ``estimated`` (bool),
-        ``error_3d_m``, ``error_h_m``, ``error_v_m``, ``locus_length_m`` (``two`` only),
+        ``error_3d_m``, ``error_h_m``, ``error_v_m`` (signed, up), ``error_x_m``, ``error_y_m``,
+        ``locus_length_m`` (``two`` only),
         ``predicted_3d_m`` (``sqrt(trace(covariance))``, N-view only).
     """
     return reconstruct_many([dict(views=views, seen=seen, sensor_height_m=sensor_height_m, noise=noise, seed=seed,
-                                  below_sensors=below_sensors)], aperture, n_views=n_views,
+                                  below_sensors=below_sensors, navigation=navigation, pass_noise=pass_noise,
+                                  along_m=along_m, extra=extra)], aperture, n_views=n_views,
                             margin_sigmas=margin_sigmas)[0]
 
 
 def reconstruct_many(cases: Sequence[Mapping], aperture: Aperture, *, n_views=(3, 4, 6),
                      margin_sigmas: float = 5.0) -> list[pd.DataFrame]:
     """:func:`reconstruct` of each case (a mapping of its ``views``, ``seen``,
-    ``sensor_height_m``, ``noise``, ``seed`` and ``below_sensors``): the same tables, with one
+    ``sensor_height_m``, ``noise``, ``seed`` and ``below_sensors``, optionally ``navigation``,
+    ``pass_noise``, ``along_m`` and ``extra``): the same tables, with one
     N-view solver call for consecutive cases with the same number of views, up to
     :data:`SOLVER_ROWS` rows (only their intermediate arrays are held at once). The solver's
     rows are independent, and its per-iteration overhead (its iterations run until the slowest
@@ -142,7 +181,8 @@ def reconstruct_many(cases: Sequence[Mapping], aperture: Aperture, *, n_views=(3
 
 
 def _estimates(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture: Aperture, *, n_views, seed: int,
-               margin_sigmas: float, below_sensors: bool):
+               margin_sigmas: float, below_sensors: bool, navigation: str = "per_view",
+               pass_noise: PassNoise | None = None, along_m=None, extra: Mapping | None = None):
     """:func:`reconstruct` of one case, in two steps: yields the N-view solver's inputs, is sent
     its result for them, and returns the table."""
     seen = np.asarray(seen, bool)
@@ -153,17 +193,15 @@ def _estimates(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture:
     order = np.argsort(np.where(seen, rng.random((n, L)), 2.0), axis=1, kind="stable")
     n_seen = seen.sum(axis=1)
     sig = noise_sigmas(views, noise)
-    W_hat, o_hat, r_hat = perturb(views, sig, rng.standard_normal((n, L, 7)))
-    W_hat, o_hat, r_hat = (_gather(a, order) for a in (W_hat, o_hat, r_hat))
-    sig, mask = _gather(sig, order), _gather(seen, order)
-    H = _gather(np.asarray(sensor_height_m, float), order)
+    errors = view_errors(sig, rng.standard_normal((n, L, 7)), model=navigation, pass_noise=pass_noise,
+                         along_m=along_m, rng=rng)
+    W_pass, o_pass, r_pass = perturb(views, np.ones_like(sig), errors)
+    H_pass = np.asarray(sensor_height_m, float)
+    flat_pass = flat_seafloor_points(W_pass, o_pass, r_pass, np.maximum(H_pass, 0.0))["point"]
+    sig_pass = _effective_sigmas(sig, _position_sigmas(sig, navigation, pass_noise, along_m), flat_pass - o_pass)
+    W_hat, o_hat, r_hat, flat, sig_eff = (_gather(a, order) for a in (W_pass, o_pass, r_pass, flat_pass, sig_pass))
+    mask = _gather(seen, order)
     f = views.feature
-    flat = flat_seafloor_points(W_hat, o_hat, r_hat, np.maximum(H, 0.0))["point"]
-    los = flat - o_hat
-    los /= np.maximum(np.linalg.norm(los, axis=-1, keepdims=True), 1e-12)
-    sig_eff = np.sqrt(sig[..., 0] ** 2 + (sig[..., 1] * los[..., 0]) ** 2 + (sig[..., 2] * los[..., 1]) ** 2
-                      + (sig[..., 3] * los[..., 2]) ** 2)
-    sig_eff = np.where(sig_eff > 0, sig_eff, 1e-6)
     rows = []  # the columns of each estimator's rows, made into one table at the end
 
     def add(name, est, ok, status, used, **extra):
@@ -186,8 +224,11 @@ def _estimates(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture:
         locus_length_m=np.where(has2, near["length_m"], np.nan))
 
     # angular error of the feature's direction in a view: attitude, and position across the ray
-    att = max(noise.roll_sigma_deg, noise.pitch_sigma_deg, noise.heading_sigma_deg)
-    pos = np.degrees(np.hypot(noise.horizontal_sigma_m, noise.vertical_sigma_m) / np.maximum(r_hat, 1e-9))
+    heading = (np.hypot(pass_noise.pass_heading_bias_sigma_deg, pass_noise.ping_heading_sigma_deg)
+               if navigation == "per_pass" else noise.heading_sigma_deg)
+    att = max(noise.roll_sigma_deg, noise.pitch_sigma_deg, heading)
+    horizontal = _gather(_position_sigmas(sig, navigation, pass_noise, along_m), order)
+    pos = np.degrees(np.hypot(horizontal, noise.vertical_sigma_m) / np.maximum(r_hat, 1e-9))
     margin = margin_sigmas * np.hypot(att, pos)
     # every N-view variant in one batch (one solver call: its per-iteration overhead is shared)
     ks = [*sorted({int(x) for x in n_views}), None]
@@ -204,6 +245,13 @@ def _estimates(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture:
                      mask=use, prior=tile(mean_flat), cost_limit=limit, aperture_margin_deg=tile(margin),
                      ceiling_m=np.min(np.where(use, o_all[..., 2], np.inf), axis=1) if below_sensors
                      else np.full(len(use), np.inf))
+    inputs = dict(W=W_pass, origin=o_pass, ranges=r_pass, sigmas=sig, range_sigma_m=sig_pass, seen=seen,
+                  flat=flat_pass, sensor_height_m=H_pass, along_m=along_m, noise=noise, pass_noise=pass_noise,
+                  navigation=navigation, aperture=aperture)
+    for name, fn in (extra or {}).items():
+        point, ok = fn(inputs)
+        ok = np.asarray(ok, bool) & (n_seen >= 1)
+        add(name, np.asarray(point, float), ok, np.where(ok, "estimated", "not estimated"), n_seen)
     names = np.array([STATUS_NAMES[int(s)] for s in range(len(STATUS_NAMES))])
     tr = np.trace(np.where(res.estimated[:, None, None], res.covariance, 0.0), axis1=1, axis2=2)
     pred = np.sqrt(np.where(res.estimated, tr, np.nan))

@@ -109,7 +109,9 @@ def observe_features(platform, terrain: Terrain, features, layout: SurveyLayout,
         ``reason`` (n, L) int8 (-1 seen, else the straight-pass rejection code, 4 = shadowed),
         ``shadowed`` (n, L) bool (views lost to shadowing only), ``heading_deg`` (L,),
         ``sensor_height_m`` (n, L): the transducer's height above the seafloor below it (the
-        altimeter reading of the flat-seafloor baseline).
+        altimeter reading of the flat-seafloor baseline), ``along_m`` (n, L): the distance
+        travelled along the line from its start (``margin_m`` before the area) to the ping abeam
+        the feature (the dead-reckoning distance of :mod:`~sss_locus.experiments.pass_noise`).
     """
     if shadowing not in SHADOWING:
         raise ValueError(f"shadowing must be one of {list(SHADOWING)}; got {shadowing!r}")
@@ -151,7 +153,9 @@ def observe_features(platform, terrain: Terrain, features, layout: SurveyLayout,
     V = vehicle_attitude(head.ravel(), np.full(n * L, float(pitch_deg)), np.zeros(n * L)).as_matrix().reshape(n, L, 3, 3)
     height = origin[..., 2] - terrain.height_m(origin[..., 0], origin[..., 1])
     views = Views(W=W, origin=origin, vehicle=V, feature=f)
-    return views, seen, dict(reason=reason, shadowed=shadowed, heading_deg=heading, sensor_height_m=height)
+    start = layout.area_m / 2.0 + layout.margin_m
+    return views, seen, dict(reason=reason, shadowed=shadowed, heading_deg=heading, sensor_height_m=height,
+                             along_m=np.maximum(along + start, 0.0))
 
 
 def ray_blocked(terrain: Terrain, origins, targets) -> np.ndarray:

@@ -1,39 +1,48 @@
 """Figures and verdict sentences of the reconstruction chapter (``notebooks/reconstruction.ipynb``).
 
-Tables are the per-feature tables of :func:`sss_locus.experiments.reconstruction_study.relief_sweep`
-(one per platform key), summarised by :func:`sss_locus.experiments.reconstruction.summarise`.
-Platforms are :class:`~sss_locus.experiments.platforms.Platform` objects; their names come from
-the data.
+The data are summaries over independent simulated surveys
+(:func:`~sss_locus.experiments.reconstruction_surveys.over_surveys`: per platform key, line
+spacing, swept value and estimator, the mean over the surveys of each error with its 95 %
+interval) and their paired differences
+(:func:`~sss_locus.experiments.reconstruction_surveys.paired_over_surveys`). Platforms are
+:class:`~sss_locus.experiments.platforms.Platform` objects; their names come from the data.
 
 The figures are drawn in the book's seaborn theme (:func:`~sss_locus.report.style.theme`) with
-matplotlib's ``plot``, not ``seaborn.lineplot``: each point is a median
-:func:`~sss_locus.experiments.reconstruction.summarise` computed (the figures' CSV data, floored at
-:data:`FLOOR_M`), not a statistic for seaborn to estimate, and each estimator keeps its own line
-style, marker and marker fill (:data:`ESTIMATORS`), so lines that coincide stay visible.
+matplotlib's ``errorbar``: each point is a mean the summary computed (the figures' CSV data), its
+bar the interval over surveys, not a statistic for seaborn to estimate; each estimator keeps its
+colour and marker (:data:`ESTIMATORS`), each line spacing its line style.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from ..experiments.reconstruction import summarise
 from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title, themed
-from .text import fmt_percent, fmt_sig
+from .text import fmt_sig
 
-ESTIMATORS = {"flat1": ("flat seafloor, one view", "tab:gray", ":", "o"),
-              "flat": ("flat seafloor, all views averaged", "black", "--", "s"),
-              "two": ("two views + prior", "tab:orange", "-", "^"),
-              "n3": ("3 views", "tab:blue", "-", "D"),
-              "all": ("all views", "tab:green", "-", "o")}
-"""Estimators drawn against relief: display name, colour, line style, marker (distinct, so lines
-that coincide, e.g. 3 and all views at the 1 mm floor without noise, stay visible)."""
+ESTIMATORS = {"flat": ("flat-seafloor mosaic", "black", "s"),
+              "two": ("two views + prior", "tab:orange", "^"),
+              "n3": ("3 views", "tab:cyan", "v"),
+              "n4": ("4 views", "tab:purple", "<"),
+              "n6": ("6 views", "tab:olive", ">"),
+              "all": ("N views (ranges)", "tab:blue", "D"),
+              "beam": ("N views + beam plane", "tab:green", "o"),
+              "joint": ("joint adjustment", "tab:red", "P")}
+"""Estimators: display name, colour, marker."""
 
-VIEW_STEPS = (("flat1", "1\n(flat)"), ("two", "2\n(+prior)"), ("n3", "3"), ("n4", "4"), ("n6", "6"),
+METRIC_LABELS = {"horizontal_m": "horizontal error (m)", "vertical_m": "|vertical error| (m)",
+                 "shape_m": "map-shape error (m)"}
+"""The errors of :data:`~sss_locus.experiments.reconstruction_surveys.METRICS` as axis labels."""
+
+SPACING_STYLES = ("-", "--", ":", "-.")
+"""Line style of the first (main), second ... line spacing."""
+
+VIEW_STEPS = (("flat", "mosaic\n(flat)"), ("two", "2\n(+prior)"), ("n3", "3"), ("n4", "4"), ("n6", "6"),
               ("all", "all"))
 """The x axis of the number-of-views figure: estimator and tick label."""
 
@@ -89,144 +98,175 @@ def height_sentence(platforms: Sequence, envelopes: Sequence) -> str:
         for pf, env in zip(platforms, envelopes, strict=True))
 
 
+
+def spacing_label(spacing_m: float, range_m: float) -> str:
+    """``"lines 240 m apart (1.6 × range)"``."""
+    return f"lines {fmt_sig(spacing_m, 3)} m apart ({fmt_sig(spacing_m / range_m, 2)} × range)"
+
+
+def _errorbars(ax, x, d, col, *, color, marker, ls, label, floor=FLOOR_M):
+    """``d[col]`` against ``x`` with the interval ``d[col_low]``..``d[col_high]``, floored."""
+    y = np.maximum(d[col].to_numpy(float), floor)
+    lo = np.maximum(d[f"{col}_low"].to_numpy(float), floor)
+    hi = np.maximum(d[f"{col}_high"].to_numpy(float), floor)
+    ax.errorbar(x, y, yerr=[np.maximum(y - lo, 0), np.maximum(hi - y, 0)], color=color, marker=marker, ls=ls,
+                ms=4, lw=1.3, capsize=2, label=label)
+
+
+def _fit_axis(ax, d: pd.DataFrame, col: str) -> None:
+    """A log axis from half the smallest mean of ``d[col]`` to 1.5 times the largest interval end:
+    it spans the means, and an interval reaching toward 0 runs off its bottom (not drawn down to
+    an arbitrary floor)."""
+    y = np.maximum(d[col].to_numpy(float), FLOOR_M)
+    hi = np.maximum(d[f"{col}_high"].to_numpy(float), y)
+    if np.isfinite(y).any():
+        ax.set_ylim(0.5 * np.nanmin(y), 1.5 * np.nanmax(hi))
+
+
+def _log_axis(ax) -> None:
+    ax.set_yscale("log")
+    ax.yaxis.set_major_formatter(_plain)
+    ax.grid(which="minor", linewidth=0.4)  # the theme draws the major lines
+
+
 @themed
-def plot_relief(platforms: Sequence, summary: pd.DataFrame):
-    """Median 3-D error (log scale) against RMS relief, one column per platform and one row per
-    noise scale (each row its own error axis, so the noisy rows are not squeezed by the
-    noise-free row's rounding-level errors), one line per estimator of :data:`ESTIMATORS`;
-    returns the figure. ``summary`` is the figure's data: :func:`summarise` of each platform's
-    table by ``("noise_scale", "rms_relief_m", "estimator")`` with a column ``platform`` (its key)."""
-    scales = sorted(summary.noise_scale.unique())
-    fig, axs = plt.subplots(len(scales), len(platforms), figsize=(PAGE_WIDTH_IN, 2.3 * len(scales) + 0.9),
+def plot_sweep(platforms: Sequence, summary: pd.DataFrame, *, estimators: Sequence[str], metrics: Sequence[str],
+               xlabel: str, spacings_m: Sequence[float] | None = None):
+    """Mean error over surveys (log scale, 95 % interval bars) against the swept ``value``: one
+    row per metric (:data:`METRIC_LABELS`), one column per platform, one colour per estimator,
+    one line style per spacing (the first solid). ``summary``: :func:`over_surveys` by
+    ``("platform", "spacing_m", "value", "estimator")``. Returns the figure."""
+    spacings = list(spacings_m) if spacings_m is not None else sorted(summary.spacing_m.unique(), reverse=True)
+    fig, axs = plt.subplots(len(metrics), len(platforms), figsize=(PAGE_WIDTH_IN, 2.2 * len(metrics) + 1.2),
                             constrained_layout=True, squeeze=False, sharex=True, sharey="row")
     for j, pf in enumerate(platforms):
         s = summary[summary.platform == pf.key]
-        for i, k in enumerate(scales):
+        for i, metric in enumerate(metrics):
             ax = axs[i, j]
-            floored = False
-            for est, (label, color, ls, marker) in ESTIMATORS.items():
-                d = s[(s.noise_scale == k) & (s.estimator == est)].sort_values("rms_relief_m")
-                floored |= bool((d.error_3d_median_m < FLOOR_M).any())
-                ax.plot(d.rms_relief_m, np.maximum(d.error_3d_median_m, FLOOR_M), ls, color=color,
-                        marker=marker, ms=6 if est == "n3" else 3.5, mfc="none" if est == "n3" else color,
-                        label=label)
-            if floored:
-                _mark_floor(ax)
-            ax.set_yscale("log")
-            ax.yaxis.set_major_formatter(_plain)
-            ax.grid(which="minor", linewidth=0.4)  # the theme draws the major lines
-            ax.set_title(f"{platform_title(pf, 72 // len(platforms))}\n{noise_label(k)}" if i == 0
-                         else noise_label(k), fontsize=10)
+            for k, spacing in enumerate(spacings):
+                for est in estimators:
+                    name, color, marker = ESTIMATORS[est]
+                    d = s[(s.estimator == est) & np.isclose(s.spacing_m, spacing)].sort_values("value")
+                    if len(d):
+                        _errorbars(ax, d.value, d, metric, color=color, marker=marker,
+                                   ls=SPACING_STYLES[k % len(SPACING_STYLES)],
+                                   label=f"{name}, {spacing_label(spacing, pf.sonar.max_range_m)}")
+            _log_axis(ax)
+            if i == 0:
+                ax.set_title(platform_title(pf, 72 // len(platforms)), fontsize=10)
             if j == 0:
-                ax.set_ylabel("median 3-D error (m)")
-            if i == len(scales) - 1:
-                ax.set_xlabel("RMS seafloor relief (m)")
-    for ax in axs.flat:  # a row spanning less than two decades also labels minor ticks
+                ax.set_ylabel(METRIC_LABELS[metric])
+            if i == len(metrics) - 1:
+                ax.set_xlabel(xlabel)
+    shown = summary[summary.estimator.isin(list(estimators))]
+    for i, metric in enumerate(metrics):
+        _fit_axis(axs[i, 0], shown, metric)
+    for ax in axs.flat:
         _label_minor(ax)
+    handles, labels = axs[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=SMALL_FONT_PT, frameon=False)
+    return fig
+
+
+@themed
+def plot_slope(platforms: Sequence, single: pd.DataFrame, summary: pd.DataFrame, *, estimators: Sequence[str],
+               metrics: Sequence[str]):
+    """Top row: the median single-view flat-seafloor 3-D error on the slope, closed form (line)
+    and simulated (markers), against the slope (``single``: per platform and ``slope_deg``,
+    columns ``closed_3d_m`` and ``simulated_3d_m``). Rows below: :func:`plot_sweep`'s rows for
+    ``metrics`` (``summary`` over one spacing, ``value`` the slope). Returns the figure."""
+    fig, axs = plt.subplots(1 + len(metrics), len(platforms), figsize=(PAGE_WIDTH_IN, 2.1 * (1 + len(metrics)) + 1.0),
+                            constrained_layout=True, squeeze=False, sharex=True, sharey="row")
+    for j, pf in enumerate(platforms):
+        d = single[single.platform == pf.key].sort_values("slope_deg")
+        ax = axs[0, j]
+        ax.plot(d.slope_deg, d.closed_3d_m, "-", color="0.4", lw=2.5, label="closed form (single view)")
+        ax.plot(d.slope_deg, d.simulated_3d_m, "o", color="black", ms=4, label="simulated survey (single view)")
+        ax.set_title(f"{platform_title(pf, 72 // len(platforms))}\n(a) one view, flat seafloor, noise-free",
+                     fontsize=10)
+        s = summary[summary.platform == pf.key]
+        for i, metric in enumerate(metrics, start=1):
+            for est in estimators:
+                name, color, marker = ESTIMATORS[est]
+                e = s[s.estimator == est].sort_values("value")
+                _errorbars(axs[i, j], e.value, e, metric, color=color, marker=marker, ls="-", label=name)
+            if j == 0:
+                axs[i, j].set_ylabel(METRIC_LABELS[metric])
+        axs[-1, j].set_xlabel("seafloor slope (deg)")
+    axs[0, 0].set_ylabel("median 3-D error (m)")
+    for ax in axs.flat:
+        _log_axis(ax)
+    shown = summary[summary.estimator.isin(list(estimators))]
+    for i, metric in enumerate(metrics, start=1):
+        _fit_axis(axs[i, 0], shown, metric)
+    for ax in axs.flat:
+        _label_minor(ax)
+    h0, l0 = axs[0, 0].get_legend_handles_labels()
+    h1, l1 = axs[1, 0].get_legend_handles_labels()
+    fig.legend(h0 + h1, l0 + l1, loc="outside lower center", ncol=3, fontsize=SMALL_FONT_PT, frameon=False)
+    return fig
+
+
+@themed
+def plot_views(platforms: Sequence, summary: pd.DataFrame, metrics: Sequence[str]):
+    """Mean error over surveys (95 % interval bars) of each step of :data:`VIEW_STEPS` (the
+    mosaic first), one line per metric, one column per platform; ``summary``: :func:`over_surveys`
+    by ``("platform", "estimator")`` on one subset of features. Returns the figure."""
+    fig, axs = plt.subplots(1, len(platforms), figsize=(PAGE_WIDTH_IN, 3.6), constrained_layout=True,
+                            squeeze=False, sharey=True)
+    x = np.arange(len(VIEW_STEPS))
+    colors = dict(zip(METRIC_LABELS, ("tab:blue", "tab:green", "tab:red")))
+    for j, pf in enumerate(platforms):
+        s = summary[summary.platform == pf.key].set_index("estimator").reindex([e for e, _ in VIEW_STEPS])
+        ax = axs[0, j]
+        for metric in metrics:
+            _errorbars(ax, x, s, metric, color=colors[metric], marker="o", ls="-", label=METRIC_LABELS[metric])
+        if not np.isfinite(s[list(metrics)].to_numpy(float)).any():  # said, not left blank
+            ax.text(0.5, 0.5, "no feature estimated\nby every step", transform=ax.transAxes, ha="center",
+                    va="center", fontsize=SMALL_FONT_PT, color="0.35")
+        _log_axis(ax)
+        ax.set_xticks(x, [lab for _, lab in VIEW_STEPS])
+        ax.set_xlabel("estimate")
+        ax.set_title(platform_title(pf, 72 // len(platforms)), fontsize=10)
+    stacked = pd.concat([summary[[m, f"{m}_high"]].set_axis(["v", "v_high"], axis=1) for m in metrics])
+    _fit_axis(axs[0, 0], stacked, "v")
+    for ax in axs.flat:
+        _label_minor(ax)
+    axs[0, 0].set_ylabel("mean over surveys (m)")
     handles, labels = axs[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=SMALL_FONT_PT, frameon=False)
     return fig
 
 
-@themed
-def plot_views(platforms: Sequence, tables: Mapping[str, pd.DataFrame], rms_relief_m: float):
-    """At one RMS relief: (a) median 3-D error and (b) share of features with an estimate
-    (resolved or ambiguous) among those seen by at least the views used, against the number of
-    views used, one line per noise scale, one column per platform; returns the figure."""
-    fig, axs = plt.subplots(2, len(platforms), figsize=(PAGE_WIDTH_IN, 5.6), constrained_layout=True,
-                            squeeze=False, sharex=True)
-    x = np.arange(len(VIEW_STEPS))
-    for j, pf in enumerate(platforms):
-        t = tables[pf.key]
-        t = t[np.isclose(t.rms_relief_m, rms_relief_m) & ~t.status.isin(["too few views", "unseen"])]
-        s = summarise(t, by=("noise_scale", "estimator"))
-        for k, color in zip(sorted(s.noise_scale.unique()), ("tab:green", "tab:blue", "tab:red", "tab:purple")):
-            d = s[s.noise_scale == k].set_index("estimator").reindex([e for e, _ in VIEW_STEPS])
-            axs[0, j].plot(x, np.maximum(d.error_3d_median_m, FLOOR_M), "-o", color=color, ms=4,
-                           label=noise_label(k))
-            axs[1, j].plot(x, d.estimated, "-o", color=color, ms=4, label=noise_label(k))
-            axs[1, j].plot(x, d.ambiguous, ":", color=color, lw=1)
-        for i, (est, lab) in enumerate(VIEW_STEPS):  # a step no feature reaches: said, not left blank
-            if est not in set(s.estimator):
-                axs[1, j].text(x[i], 0.5, f"no feature\nseen by {lab}\nviews", ha="center", va="center",
-                               fontsize=SMALL_FONT_PT, color="0.35")
-        axs[0, j].set_yscale("log")
-        axs[0, j].yaxis.set_major_formatter(_plain)
-        _label_minor(axs[0, j])
-        if (s.error_3d_median_m < FLOOR_M).any():
-            _mark_floor(axs[0, j])
-        axs[0, j].set_title(f"{platform_title(pf, 72 // len(platforms))}\n(a) median 3-D error", fontsize=10)
-        axs[1, j].set_title("(b) share estimated (dotted: ambiguous)", fontsize=10)
-        axs[1, j].set_ylim(-0.02, 1.02)
-        axs[1, j].set_xticks(x, [lab for _, lab in VIEW_STEPS])
-        axs[1, j].set_xlabel("views used")
-        for ax in axs[:, j]:
-            ax.grid(which="minor", linewidth=0.4)  # the theme draws the major lines
-    axs[0, 0].set_ylabel("median 3-D error (m)")
-    axs[1, 0].set_ylabel("share of features")
-    handles, labels = axs[0, 0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize=SMALL_FONT_PT,
-               frameon=False)
-    return fig
+def difference_text(row, metric: str) -> str:
+    """``"-1.2 m (95 % CI -1.5 to -0.9)"``: a paired difference of ``metric`` with its interval."""
+    return (f"{fmt_sig(row[metric], 2)} m (95 % CI {fmt_sig(row[f'{metric}_low'], 2)} to "
+            f"{fmt_sig(row[f'{metric}_high'], 2)})")
 
 
-def verdict_relief(comparison: pd.DataFrame, alpha: float):
-    """The smallest RMS relief from which on (at it and at every larger relief of ``comparison``,
-    one noise scale of :func:`~sss_locus.experiments.reconstruction_study.paired_comparison`)
-    the p-value is below ``alpha``; None if the largest relief fails."""
-    c = comparison.sort_values("rms_relief_m")
-    from_ = None
-    for r, p in zip(c.rms_relief_m[::-1], c.p_value[::-1]):
-        if not p < alpha:
-            break
-        from_ = float(r)
-    return from_
+def comparison_word(row, metric: str) -> str:
+    """``"closer"``, ``"farther"`` or ``"not distinguishable"``: the sign of the interval of a
+    paired difference (a minus b) of ``metric``."""
+    if row[f"{metric}_high"] < 0:
+        return "closer"
+    if row[f"{metric}_low"] > 0:
+        return "farther"
+    return "not distinguishable"
 
 
-def verdict_text(comparison: pd.DataFrame, alpha: float) -> str:
-    """``"from 0.50 m RMS relief on"`` or ``"at no relief up to 4.0 m"`` for one noise scale."""
-    r = verdict_relief(comparison, alpha)
-    if r is None:
-        return f"at no relief up to {fmt_sig(comparison.rms_relief_m.max(), 2)} m"
-    return f"from {fmt_sig(r, 2)} m RMS relief on"
-
-
-def verdict_sentence(platform, comparison: pd.DataFrame, alpha: float) -> str:
-    """One Markdown sentence: for each noise scale, the smallest RMS relief from which on all
-    views beat the flat-seafloor mosaic (one-sided paired Wilcoxon p < ``alpha``), or that they
-    never do. ``comparison`` is :func:`~sss_locus.experiments.reconstruction_study.paired_comparison`
-    of ``"all"`` against ``"flat"`` by noise scale and relief."""
+def verdict_sentence(platform, paired: pd.DataFrame, metric: str, *, a_name: str, b_name: str, range_m: float,
+                     value_unit: str = "m RMS relief") -> str:
+    """One Markdown sentence per platform, error and comparison: for each spacing, at which swept
+    values ``a`` is closer / farther than ``b`` in ``metric`` (the interval over surveys of the
+    paired difference below / above 0) and the difference at the largest value."""
     parts = []
-    for k, c in comparison.groupby("noise_scale", sort=True):
-        r = verdict_relief(c, alpha)
-        text = f"{noise_label(k)}: {verdict_text(c, alpha)}"
-        if r is not None:
-            row = c[c.rms_relief_m == r].iloc[0]
-            text += (f" (there, closer for {fmt_percent(row.share_closer)} of the features, median "
-                     f"difference {fmt_sig(row.median_difference_m, 2)} m)")
-        parts.append(text)
-    return f"**{platform.name}**: " + "; ".join(parts) + "."
-
-
-def loss_sentence(platform, comparison: pd.DataFrame, alpha: float, noise_scale: float) -> str:
-    """One Markdown sentence: at which RMS reliefs, at ``noise_scale``, the flat-seafloor mosaic
-    is significantly closer than all views (one-sided paired Wilcoxon ``p_value_b_closer`` <
-    ``alpha`` of :func:`~sss_locus.experiments.reconstruction_study.paired_comparison` of
-    ``"all"`` against ``"flat"``), with the median excess error of all views there, and at which
-    neither estimator is significantly closer."""
-    c = comparison[np.isclose(comparison.noise_scale, noise_scale)].sort_values("rms_relief_m")
-    lost = c[c.p_value_b_closer < alpha]
-    tie = c[~(c.p_value_b_closer < alpha) & ~(c.p_value < alpha)]
-    head = f"**{platform.name}** ({noise_label(noise_scale)}): "
-    if lost.empty:
-        text = (head + "the flat-seafloor mosaic is significantly closer at no RMS relief up to "
-                f"{fmt_sig(c.rms_relief_m.max(), 2)} m")
-    else:
-        text = head + "the flat-seafloor mosaic is significantly closer than all views at " + "; ".join(
-            f"{fmt_sig(r.rms_relief_m, 2)} m RMS relief (all views farther by a median "
-            f"{fmt_sig(r.median_difference_m, 2)} m, closer for only {fmt_percent(r.share_closer)} of "
-            "the features)" for r in lost.itertuples())
-    if not tie.empty:
-        text += "; neither is significantly closer at " + ", ".join(
-            f"{fmt_sig(r, 2)} m" for r in tie.rms_relief_m)
-    return text + "."
+    for spacing, c in paired.groupby("spacing_m", sort=False):
+        c = c.sort_values("value")
+        words = {w: [fmt_sig(v, 2) for v, r in zip(c.value, c.itertuples()) if comparison_word(r._asdict(), metric) == w]
+                 for w in ("closer", "farther", "not distinguishable")}
+        said = "; ".join(f"{w} at {', '.join(v)} {value_unit}" for w, v in words.items() if v)
+        last = c.iloc[-1]
+        parts.append(f"{spacing_label(spacing, range_m)}: {said} (at {fmt_sig(last.value, 2)}, "
+                     f"{difference_text(last, metric)})")
+    return (f"**{platform.name}**, {METRIC_LABELS[metric].replace(' (m)', '')}, {a_name} against {b_name}: "
+            + "; ".join(parts) + ".")
