@@ -212,7 +212,21 @@ def parse_noise_model(doc: dict, platform_key: str) -> NoiseModel:
 
 def load_pass_noise(platform_key: str, path: str | Path | None = None) -> PassNoise:
     """The per-pass navigation errors (:mod:`~sss_locus.experiments.pass_noise`) of
-    ``platform_key``, read like :func:`load_noise_model` from the same table."""
+    ``platform_key``, read like :func:`load_noise_model` from the same table.
+
+    Parameters
+    ----------
+    platform_key : str
+        The platform's key in the noise table (``[noise.<key>]``).
+    path : str or pathlib.Path, optional
+        A noise TOML file of the same schema; default: the run's data set (``data/noise.toml``
+        merged with the user's files).
+
+    Returns
+    -------
+    PassNoise
+        The per-pass offset, heading bias, drift and per-ping jitter standard deviations.
+    """
     if path is None:
         datadoc.note_read(f"noise.{platform_key}")
     doc = datadoc.document() if path is None else read_toml(path)

@@ -42,7 +42,7 @@ class _Segments:
         self.heading = lines["heading_deg"].to_numpy(float)
         self.start = lines[["x0_m", "y0_m"]].to_numpy(float)
         self.length = lines["length_m"].to_numpy(float)
-
+        self.start_offset_m = 0.0  # lines() gives each segment's start itself
     def lines(self):
         return self.heading, self.start
 

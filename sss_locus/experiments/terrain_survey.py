@@ -75,6 +75,12 @@ class SurveyLayout:
     def key(self) -> dict:
         return {k: getattr(self, k) for k in ("area_m", "line_spacing_m", "cross_line_spacing_m", "margin_m")}
 
+    @property
+    def start_offset_m(self) -> float:
+        """How far (m) before the point :meth:`lines` gives each line starts: half the area plus
+        the margin (the line's run-in), the origin of the dead-reckoning distance ``along_m``."""
+        return self.area_m / 2.0 + self.margin_m
+
 
 def observe_features(platform, terrain: Terrain, features, layout: SurveyLayout, altitude_m: float,
                      same_altitude: bool, seed: int, shadowing: str = "off",
@@ -153,7 +159,7 @@ def observe_features(platform, terrain: Terrain, features, layout: SurveyLayout,
     V = vehicle_attitude(head.ravel(), np.full(n * L, float(pitch_deg)), np.zeros(n * L)).as_matrix().reshape(n, L, 3, 3)
     height = origin[..., 2] - terrain.height_m(origin[..., 0], origin[..., 1])
     views = Views(W=W, origin=origin, vehicle=V, feature=f)
-    start = layout.area_m / 2.0 + layout.margin_m
+    start = layout.start_offset_m
     return views, seen, dict(reason=reason, shadowed=shadowed, heading_deg=heading, sensor_height_m=height,
                              along_m=np.maximum(along + start, 0.0))
 
