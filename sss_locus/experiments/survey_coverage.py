@@ -43,6 +43,7 @@ class _Segments:
         self.start = lines[["x0_m", "y0_m"]].to_numpy(float)
         self.length = lines["length_m"].to_numpy(float)
         self.start_offset_m = 0.0  # lines() gives each segment's start itself
+
     def lines(self):
         return self.heading, self.start
 
