@@ -231,7 +231,9 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
         The ``P`` passes' correction priors (``pass_index`` in ``[0, P)``).
     start_m : array_like, shape (N, 3)
         A start for every feature, world frame, metres (e.g. the flat-seafloor mosaic: it puts
-        the feature on the right side of the tracks and below them, where the solution is).
+        the feature on the right side of the tracks and below them, where the solution is; with
+        possible wrong matches the median of each feature's flat-seafloor positions, which a
+        wrong match does not move, rather than their mean).
     min_passes : int, >= 2
         Features seen on fewer distinct passes are not adjusted (a range and a beam-plane angle
         from one pass leave a feature on a circle).
