@@ -11,7 +11,7 @@ import pytest
 
 from adjustment_sim import simulate
 from sss_locus.experiments.adjustment import map_errors
-from sss_locus.experiments.noise import load_noise_model
+from sss_locus.experiments.noise import load_pass_noise
 from sss_locus.experiments.platforms import load_platform
 from sss_locus.experiments.your_pings import run
 from sss_locus.experiments.your_pings_files import against_truth
@@ -48,7 +48,7 @@ def survey(tmp_path_factory):
     path = tmp_path_factory.mktemp("yp") / "my_survey.csv"
     user_csv(sv, platform, path)
     res = run(path, platform)
-    joint = joint_estimate(res, platform, load_noise_model("auv"), ping_position_sigma_m=0.05,
+    joint = joint_estimate(res, platform, load_pass_noise("auv"), ping_position_sigma_m=0.05,
                            ping_attitude_sigma_deg=0.05)
     return sv, res, joint, platform
 

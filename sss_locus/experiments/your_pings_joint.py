@@ -15,9 +15,12 @@ heading, so a user can check it.
 Measurements and priors: each sighting's slant range (its ``range_sigma_m``), its beam-plane
 angle (sigma from the sonar's elevation beam width, ``ping_attitude_sigma_deg`` and
 ``ping_position_sigma_m``: the per-ping noise left after a pass's heading bias and offset are
-estimated); per pass a horizontal offset
-(sigma: the platform's ``horizontal_sigma_m`` of ``data/noise.toml``) and a heading bias (its
-``heading_sigma_deg``) turning the sonar only (positions from the navigation solution).
+estimated; by default the platform's ``ping_horizontal_sigma_m`` and ``ping_heading_sigma_deg``
+of ``data/noise.toml``); per pass a horizontal offset (sigma: the platform's
+``pass_offset_sigma_m``) and a heading bias (its ``pass_heading_bias_sigma_deg``) turning the
+sonar only (positions from the navigation solution), both from the per-pass navigation-error
+model of :mod:`~sss_locus.experiments.pass_noise`. No drift along the pass is estimated here
+(the sightings carry no distance travelled along their line).
 
 What the user's own residuals say (:class:`JointPings` ``.summary``): how far apart a feature's
 sightings are placed by the mosaic (the RMS horizontal distance of its flat-seafloor positions
@@ -36,6 +39,7 @@ import pandas as pd
 
 from ..geometry.beam_plane import beam_plane_sigma_rad
 from .adjustment import NavigationPriors, Sightings, adjust
+from .pass_noise import PassNoise
 from .your_pings import PingResults, ellipse_axes, sensor_poses
 
 TURN_DEG = 45.0
@@ -101,8 +105,8 @@ def infer_passes(sightings: pd.DataFrame) -> np.ndarray:
     return out
 
 
-def joint_estimate(res: PingResults, platform, noise, *, ping_position_sigma_m: float = 0.1,
-                   ping_attitude_sigma_deg: float = 0.1, loss: str = "soft_l1") -> JointPings:
+def joint_estimate(res: PingResults, platform, noise: PassNoise, *, ping_position_sigma_m: float | None = None,
+                   ping_attitude_sigma_deg: float | None = None, loss: str = "soft_l1") -> JointPings:
     """The joint adjustment of a user's sightings (module docstring).
 
     Parameters
@@ -112,17 +116,26 @@ def joint_estimate(res: PingResults, platform, noise, *, ping_position_sigma_m: 
         feature's flat-seafloor positions is the start: robust to a wrong match, where the mean is not).
     platform : Platform
         The platform that took them (mounting, sonar beam width).
-    noise : NoiseModel
-        Its noise model: ``horizontal_sigma_m`` and ``heading_sigma_deg`` are the priors of each
-        pass's offset (per axis) and heading bias.
-    ping_position_sigma_m : float, >= 0
+    noise : PassNoise
+        Its per-pass navigation errors (:func:`~sss_locus.experiments.noise.load_pass_noise`):
+        ``pass_offset_sigma_m`` and ``pass_heading_bias_sigma_deg`` are the priors of each pass's
+        offset (per axis) and heading bias.
+    ping_position_sigma_m : float, >= 0, optional
         Per-ping horizontal position noise left after a pass's offset (m): added along track to
         the beam-plane sigma (over the range); the range's own is the file's ``range_sigma_m``.
-    ping_attitude_sigma_deg : float, >= 0
-        Per-ping heading and pitch noise in the beam-plane sigma, degrees.
+        Default: ``noise.ping_horizontal_sigma_m``.
+    ping_attitude_sigma_deg : float, >= 0, optional
+        Per-ping heading and pitch noise in the beam-plane sigma, degrees. Default:
+        ``noise.ping_heading_sigma_deg``.
     loss : str
         Robust loss (:data:`~sss_locus.experiments.adjustment.LOSSES`).
     """
+    if not isinstance(noise, PassNoise):
+        raise ValueError(f"noise must be a PassNoise (noise.load_pass_noise); got {type(noise).__name__}")
+    if ping_position_sigma_m is None:
+        ping_position_sigma_m = noise.ping_horizontal_sigma_m
+    if ping_attitude_sigma_deg is None:
+        ping_attitude_sigma_deg = noise.ping_heading_sigma_deg
     for name, v in (("ping_position_sigma_m", ping_position_sigma_m), ("ping_attitude_sigma_deg", ping_attitude_sigma_deg)):
         if not (isinstance(v, (int, float)) and np.isfinite(v) and v >= 0):
             raise ValueError(f"{name} must be a finite number >= 0; got {v!r}")
@@ -139,7 +152,8 @@ def joint_estimate(res: PingResults, platform, noise, *, ping_position_sigma_m: 
     s = Sightings(feature=fid, pass_index=pid, origin_m=pose["origin"], W=pose["W"], range_m=pose["ranges"],
                   range_sigma_m=sights["range_sigma_m"].to_numpy(float), beam_plane_sigma_rad=sig_phi,
                   along_track_m=np.zeros(len(sights)))
-    priors = NavigationPriors(offset_sigma_m=max(noise.horizontal_sigma_m, 1e-3), heading_sigma_deg=noise.heading_sigma_deg,
+    priors = NavigationPriors(offset_sigma_m=max(noise.pass_offset_sigma_m, 1e-3),
+                              heading_sigma_deg=noise.pass_heading_bias_sigma_deg,
                               drift_sigma=0.0, reference_m=ref)
     feats = res.features
     start = feats[["flat_east_m", "flat_north_m", "flat_up_m"]].to_numpy(float)
