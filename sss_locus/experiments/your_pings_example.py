@@ -9,7 +9,10 @@ ping. The simulator's frame (``x`` east, ``y`` north, ``z`` up, mean seafloor ``
 taken as the grid of a local transverse-Mercator frame around ``origin`` and shifted down so
 that the sea surface is ``z = 0`` (the water depth is ``surface_m`` above the mean seafloor).
 Navigation is then perturbed with the platform's noise model (``data/noise.toml``; ``noise=False``
-for exact sightings), the range is turned into a sample index of a ping of ``n_samples``
+for exact sightings): the horizontal position and heading by the per-pass model of
+:mod:`~sss_locus.experiments.pass_noise` (an offset, a drift along the line and a heading bias
+shared by every sighting of one line, plus a per-ping jitter), depth, pitch, roll and range per
+sighting, the range is turned into a sample index of a ping of ``n_samples``
 samples over the sonar's maximum range, and angles, depth and altitude are rounded to float32
 as an XTF file stores them, so that the CSV and the XTF file hold the same numbers.
 """
@@ -19,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .noise import load_noise_model
+from .noise import load_noise_model, load_pass_noise
 from .observations import LocalFrame
 from .straight_pass import attitude_angles
 from .terrain import place_features
@@ -64,9 +67,14 @@ def simulate(platform, terrain, layout: SurveyLayout, *, n_features: int, altitu
     r = r_true = np.linalg.norm(views.feature[f] - views.origin[f, line], axis=-1)
     m = f.size
     nm = load_noise_model(platform.key) if noise else None
-    if nm is not None:
-        ref = ref + rng.standard_normal((m, 3)) * [nm.horizontal_sigma_m, nm.horizontal_sigma_m, nm.vertical_sigma_m]
-        yaw = yaw + rng.standard_normal(m) * nm.heading_sigma_deg
+    if nm is not None:  # navigation errors as a survey has them: shared by every ping of a line
+        pn = load_pass_noise(platform.key)
+        g = rng.standard_normal((seen.shape[1], 5))  # per line: offset (2), drift rate (2), heading bias
+        along = info["along_m"][f, line]
+        shared = g[line, 0:2] * pn.pass_offset_sigma_m + along[:, None] * g[line, 2:4] * pn.drift_sigma_fraction
+        ref = ref + np.column_stack([shared + rng.standard_normal((m, 2)) * pn.ping_horizontal_sigma_m,
+                                     rng.standard_normal(m) * nm.vertical_sigma_m])
+        yaw = yaw + g[line, 4] * pn.pass_heading_bias_sigma_deg + rng.standard_normal(m) * pn.ping_heading_sigma_deg
         pitch = pitch + rng.standard_normal(m) * nm.pitch_sigma_deg
         roll = roll + rng.standard_normal(m) * nm.roll_sigma_deg
         r = r + rng.standard_normal(m) * nm.range_sigma_m(r)
