@@ -270,3 +270,38 @@ def verdict_sentence(platform, paired: pd.DataFrame, metric: str, *, a_name: str
                      f"{difference_text(last, metric)})")
     return (f"**{platform.name}**, {METRIC_LABELS[metric].replace(' (m)', '')}, {a_name} against {b_name}: "
             + "; ".join(parts) + ".")
+
+
+def with_intervals(frame: pd.DataFrame, columns: Sequence[str], digits: int = 2) -> pd.DataFrame:
+    """``frame`` with each of ``columns`` and its interval (``<column>_low``, ``<column>_high``)
+    as one text column ``"value (95 % CI low–high)"``, for a table a reader reads.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        Holds each of ``columns`` with ``<column>_low`` and ``<column>_high`` (the rows of
+        :func:`~sss_locus.experiments.reconstruction_surveys.over_surveys` or
+        :func:`~sss_locus.experiments.reconstruction_surveys.paired_over_surveys`).
+    columns : sequence of str
+        The columns to join with their intervals.
+    digits : int
+        Significant figures (more where the interval's ends would print alike).
+
+    Returns
+    -------
+    pandas.DataFrame
+        A copy: each of ``columns`` is text, the ``_low``/``_high`` columns are gone (a missing
+        value reads ``"—"``).
+
+    >>> f = pd.DataFrame({"shape_m": [-0.42], "shape_m_low": [-0.51], "shape_m_high": [-0.33]})
+    >>> with_intervals(f, ["shape_m"])["shape_m"].tolist()
+    ['-0.42 (95 % CI -0.51–-0.33)']
+    """
+    from .text import fmt_ci
+
+    out = frame.copy()
+    for c in columns:
+        v, lo, hi = (out[k].to_numpy(float) for k in (c, f"{c}_low", f"{c}_high"))
+        out[c] = ["—" if not np.all(np.isfinite([a, b, d])) else fmt_ci(a, b, d, digits) for a, b, d in zip(v, lo, hi)]
+        out = out.drop(columns=[f"{c}_low", f"{c}_high"])
+    return out

@@ -21,9 +21,9 @@ from .style import PAGE_WIDTH_IN, platform_title
 from .text import fmt_sig
 
 ESTIMATES = {"flat": ("flat seafloor, mean of the sightings", "black", "s"),
-             "two_view": ("two views (best pair): locus point nearest the flat mean, non-empty loci only", "tab:orange", "^"),
+             "two_view": ("two views, best pair (non-empty locus only)", "tab:orange", "^"),
              "nview": ("N views, least squares (1-sigma ellipse x 3)", "tab:blue", "D"),
-             "joint": ("joint adjustment, features and passes together (1-sigma ellipse x 3)", "tab:green", "o")}
+             "joint": ("joint adjustment (1-sigma ellipse x 3)", "tab:green", "o")}
 ELLIPSES = {"nview": "ellipse", "joint": "joint_ellipse"}
 """The estimators drawn with their ellipses: the prefix of their ellipse columns."""
 MIN_HALF_WIDTH_M = 1.0
@@ -183,7 +183,10 @@ def map_caption(n_sightings: int, *, known: bool, synthetic: bool, geojson: bool
              "points (`--locus.csv`)")
     return (("**Synthetic example** (made by the project's simulator over a known seafloor). " if synthetic else "")
             + f"Left: the sensor at each of the {n_sightings} sightings and each feature's estimates (grid "
-            "east/north of the local frame). Right: the horizontal distance of each estimate from "
+            "east/north of the local frame): the flat-seafloor mean, the two-view point (of the best pair's "
+            "locus, where non-empty, the point nearest the flat mean), the N-view position and, where the "
+            "chapter computed it, the joint adjustment's (features and the passes' navigation estimated "
+            "together). Right: the horizontal distance of each estimate from "
             + ("the true position." if known else "the best estimate (flat-seafloor mean minus the N-view position, "
                "else the two-view point on a non-empty locus).")
             + f" The result files beside the figure: {files}"

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 
 from ..experiments.your_pings_joint import JUMP_ACROSS_M, TURN_DEG
 from .text import fmt_sig
@@ -63,3 +64,39 @@ def passes_caption(n_passes: int, names: str, platform_name: str, *, synthetic: 
             "heading, and the navigation correction the joint adjustment estimated (true minus navigated: east and "
             "north offset, heading bias clockwise) with its 1-sigma. The offsets' common part is held by the priors "
             "only (see the text).")
+
+
+def passes_shown(passes: pd.DataFrame) -> pd.DataFrame:
+    """The pass-correction table as a reader reads it: one row a pass, each correction with its 1-sigma.
+
+    Parameters
+    ----------
+    passes : pandas.DataFrame
+        :attr:`~sss_locus.experiments.your_pings_joint.JointPings.passes`: ``pass``, ``source``,
+        ``first_line``, ``last_line``, ``n_sightings``, ``heading_deg`` and the corrections
+        ``offset_east_m``, ``offset_north_m`` (m), ``heading_bias_deg`` (deg), each with its
+        ``..._sigma_...``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by ``pass``: ``source``, ``lines`` (``"first–last"``), ``n_sightings``,
+        ``heading_deg`` and, as text ``"value ± sigma"``, ``offset_east_m``, ``offset_north_m``
+        and ``heading_bias_deg``.
+
+    >>> p = pd.DataFrame({"pass": [0], "source": ["a.csv"], "first_line": [3], "last_line": [9],
+    ...     "n_sightings": [5], "heading_deg": [90.0], "offset_east_m": [1.234], "offset_east_sigma_m": [0.5],
+    ...     "offset_north_m": [-0.2], "offset_north_sigma_m": [0.51], "heading_bias_deg": [0.8],
+    ...     "heading_bias_sigma_deg": [0.3]})
+    >>> [str(v) for v in passes_shown(p).iloc[0]]
+    ['a.csv', '3–9', '5', '90.0', '1.2 ± 0.50', '-0.20 ± 0.51', '0.80 ± 0.30']
+    """
+    def pm(value, sigma):
+        return [f"{fmt_sig(v, 2)} ± {fmt_sig(s, 2)}" for v, s in zip(passes[value], passes[sigma])]
+
+    return pd.DataFrame({"pass": passes["pass"], "source": passes["source"],
+                         "lines": [f"{a}–{b}" for a, b in zip(passes["first_line"], passes["last_line"])],
+                         "n_sightings": passes["n_sightings"], "heading_deg": passes["heading_deg"],
+                         "offset_east_m": pm("offset_east_m", "offset_east_sigma_m"),
+                         "offset_north_m": pm("offset_north_m", "offset_north_sigma_m"),
+                         "heading_bias_deg": pm("heading_bias_deg", "heading_bias_sigma_deg")}).set_index("pass")
