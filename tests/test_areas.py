@@ -219,7 +219,9 @@ BAD_SIGHTINGS = {  # a change to the worked example's sightings, what the refusa
                                            if not line.startswith("#") else line for line in t.splitlines()),
                        "line 2, column roll_deg: missing"),  # line 1 is a comment
     "wrong unit": (lambda t: t.replace("depth_m,", "depth_ft,"), "column depth_ft: wrong unit"),
-    "NaN": (lambda t: t.replace(",88.59339141845703,", ",NaN,"), "line 3, column heading_deg: must be a finite"),
+    "NaN": (lambda t: "\n".join(",".join("NaN" if (n == 3 and i == 7) else c for i, c in enumerate(line.split(",")))
+                                 for n, line in enumerate(t.splitlines(), 1)),  # line 3's heading_deg
+            "line 3, column heading_deg: must be a finite"),
     "beyond the range": (lambda t: t.replace(",459,150.0,1000,", ",999,150.0,1000,").replace("150.0,", "300.0,"),
                          "beyond the sonar's maximum range"),
 }
