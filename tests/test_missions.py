@@ -286,3 +286,27 @@ def test_a_harbour_with_a_shore_keeps_the_track_in_its_water():
         fence = doc["geoFence"]["polygons"][0]["polygon"]
         fence_xy = shapely.Polygon(local([q[1] for q in fence], [q[0] for q in fence]))
         assert fence_xy.covers(track) and fence_xy.difference(water).area < 0.05 * water.area
+
+
+def test_a_transit_along_a_shore_steps_in_by_the_turn_radius_not_across_the_harbour():
+    """A harbour with a shore all round (water_beyond_m = 0) whose lines end on its walls, 192 m
+    apart: no U-turn fits, so each junction is a transit; the shortest way that keeps the turn
+    radius R off the shore is in by R, along the wall, out by R (192 + 2 R m). Before, the ends
+    could see only far corners of the shrunk water and the boat crossed the harbour (0.7-1 km)."""
+    import dataclasses
+
+    from sss_locus.experiments.surveydesign.route import flight_path
+
+    harbour = [[0, 0], [800, 0], [800, 350], [500, 350], [500, 700], [0, 700]]  # L-shaped, concave
+    area = dataclasses.replace(area_from_vertices(harbour, name="walled"), water_beyond_m=0.0)
+    lines = pd.DataFrame([("main", 0, 0, 90.0, 0, 96, 800, 96), ("main", 1, 0, 270.0, 800, 288, 0, 288),
+                          ("main", 2, 0, 90.0, 0, 480, 500, 480), ("main", 3, 0, 270.0, 500, 672, 0, 672)],
+                         columns=["set", "line", "segment", "heading_deg", "x0_m", "y0_m", "x1_m", "y1_m"])
+    R = 5.0
+    path, _, _ = flight_path(area, lines, R)
+    xy = path[["east_m", "north_m"]].to_numpy()
+    ends, starts = np.flatnonzero(path.kind == "line end")[:-1], np.flatnonzero(path.kind == "line start")[1:]
+    assert len(ends) == len(starts) == 3
+    for e, s in zip(ends, starts):
+        flown = np.linalg.norm(np.diff(xy[e:s + 1], axis=0), axis=1).sum()
+        assert flown == pytest.approx(192.0 + 2 * R, abs=0.5), (e, s, flown)

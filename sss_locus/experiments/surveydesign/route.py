@@ -54,7 +54,9 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
 
 def _transit(a, b, free, nodes, room) -> list:
     """Shortest polyline from ``a`` to ``b`` inside the polygon ``free`` (widened by ``room``
-    about ``a`` and ``b``: the ends may lie near a hole) through ``nodes``."""
+    about ``a`` and ``b``: the ends may lie near a hole or on a shore) through ``nodes`` and the
+    points of ``free`` nearest ``a`` and ``b`` (an end on the shore first steps into ``free``,
+    rather than reaching only the far corners a straight leg along the shore can see)."""
     import shapely
     from scipy.sparse import csr_matrix
     from scipy.sparse.csgraph import dijkstra
@@ -63,7 +65,8 @@ def _transit(a, b, free, nodes, room) -> list:
     ok = ok.buffer(1e-6)
     if ok.covers(shapely.LineString([a, b])):
         return [b]
-    pts = np.vstack([a, b, nodes])
+    entries = [] if free.is_empty else [shapely.get_coordinates(shapely.shortest_line(free, shapely.points([a, b])))[::2]]
+    pts = np.vstack([a, b, *entries, nodes])
     k = len(pts)
     i, j = np.triu_indices(k, 1)
     segs = shapely.linestrings(np.stack([pts[i], pts[j]], 1))
