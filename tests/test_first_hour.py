@@ -180,3 +180,30 @@ def test_the_downloadable_notebooks_carry_no_local_path(build_area, tmp_path):
     published = (paths.extra_dir() / "notebooks" / "rigs.ipynb").read_text()
     assert str(tmp_path) not in published and "myboat.toml" in published
     assert str(tmp_path) in executed.read_text()  # the build area's own copy keeps them (staleness checks)
+
+
+def test_a_users_area_file_is_named_by_its_name_in_captions_and_the_injected_cell(tmp_path):
+    """A user's area outside the repository: the plan's caption ("water depth 8.5 m
+    (/home/me/harbour.toml: water_depth_m)", "Area file `/home/me/...`"), the tables' notes and
+    the page's injected-parameters cell carried its local absolute path."""
+    import json
+
+    from sss_locus.experiments.survey_area import load_area
+    from sss_locus.pipeline import runner
+
+    mine = tmp_path / "home" / "me" / "harbour.toml"
+    mine.parent.mkdir(parents=True)
+    mine.write_text('[area]\nname = "Cove"\nvertices_m = [[0, 0], [400, 0], [400, 300], [0, 300]]\n'
+                    'water_depth_m = 8.5\n')
+    area = load_area(mine)
+    assert (area.source, area.water_depth_source) == ("harbour.toml", "harbour.toml: water_depth_m")
+    assert str(tmp_path) not in json.dumps(area.key()) and area.path == str(mine.resolve())
+    shipped = load_area(REPO_ROOT / "data" / "examples" / "survey_area.toml")
+    assert shipped.source == "data/examples/survey_area.toml"  # as the reproduction's runs give it
+    executed = tmp_path / "run.ipynb"
+    executed.write_text(json.dumps({"cells": [{"cell_type": "code", "metadata": {"tags": ["injected-parameters"]},
+                                               "source": f'# Parameters\narea = "{mine}"\n', "outputs": []}],
+                                    "metadata": {}}))
+    runner._label_injected_cell(executed, "quick", {"area": str(mine), "seed": 1}, {})
+    cell = json.loads(executed.read_text())["cells"][0]
+    assert str(tmp_path) not in "".join(cell["source"]) and 'area = "harbour.toml"' in "".join(cell["source"])
