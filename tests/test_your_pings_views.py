@@ -126,3 +126,24 @@ def test_one_row_of_feature_panels_keeps_its_axis_label_clear_of_the_legend(tmp_
     box = labels[0].get_window_extent(r)
     legend = fig.legends[0].get_window_extent(r)
     assert not box.overlaps(legend)
+
+
+def test_a_users_own_truth_is_not_called_the_synthetic_example(example):
+    """A user's sightings with a truth file of their own (no SYNTHETIC marker, so no notice): the
+    map, the feature panels and the 3-D view labelled its stars "truth (synthetic example)"."""
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.your_pings_files import read_truth
+    from sss_locus.report.your_pings import feature_panels, plan_view, view_3d
+
+    truth = read_truth(DATA_DIR / "examples" / "your_pings" / "example_truth.csv", EXAMPLE)
+
+    def labels(fig):
+        return {c.get_label() for ax in fig.axes for c in ax.collections}
+
+    for notice in ("", "synthetic example"):
+        drawn = [labels(plan_view(example, load_platform("auv"), truth=truth, notice=notice)[0]),
+                 labels(feature_panels(example, truth=truth, notice=notice)[0]),
+                 {t.name for t in view_3d(example, truth=truth, notice=notice).data}]
+        for names in drawn:
+            stars = {n for n in names if n and n.startswith("truth")}
+            assert stars == {"truth (synthetic example)" if notice else "truth (known positions)"}, stars
