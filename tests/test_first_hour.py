@@ -207,3 +207,32 @@ def test_a_users_area_file_is_named_by_its_name_in_captions_and_the_injected_cel
     runner._label_injected_cell(executed, "quick", {"area": str(mine), "seed": 1}, {})
     cell = json.loads(executed.read_text())["cells"][0]
     assert str(tmp_path) not in "".join(cell["source"]) and 'area = "harbour.toml"' in "".join(cell["source"])
+
+
+def test_a_named_books_notice_names_the_users_truth_file(build_area, monkeypatch, tmp_path):
+    """The your-pings chapter run on a user's sightings with a truth file of their own (its map
+    draws each estimate's distance from it): the front page and the line atop every page named
+    the sightings but not the truth file; the shipped example's truth stays unnamed."""
+    import hashlib
+    import json
+
+    from sss_locus import paths
+    from sss_locus.pipeline import areanotice
+    from sss_locus.pipeline.registry import load_registry
+
+    monkeypatch.setenv(paths.BUILD_NAME_ENV, "harbour")
+    sightings, truth = tmp_path / "home" / "my_sightings.csv", tmp_path / "home" / "my_truth.csv"
+    sightings.parent.mkdir()
+    sightings.write_text("feature\n")
+    truth.write_text("feature,east_m,north_m,up_m\n")
+    entries = load_registry()
+    path = entries["your_pings"].executed_path()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    meta = {"profile": "quick", "parameters": {"observations": str(sightings), "truth": str(truth)}}
+    path.write_text(json.dumps({"cells": [], "metadata": {"sss_locus": meta}}))
+    files = areanotice.area_summary(list(entries.values()))["files"]
+    assert files == {"my_sightings.csv": hashlib.sha256(sightings.read_bytes()).hexdigest(),
+                     "my_truth.csv": hashlib.sha256(truth.read_bytes()).hexdigest()}
+    meta["parameters"]["truth"] = "data/examples/your_pings/example_truth.csv"  # the shipped example's
+    path.write_text(json.dumps({"cells": [], "metadata": {"sss_locus": meta}}))
+    assert list(areanotice.area_summary(list(entries.values()))["files"]) == ["my_sightings.csv"]
