@@ -10,6 +10,8 @@ the plan view's right panel share its legend and belong with the map."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
@@ -197,6 +199,19 @@ def map_caption(n_sightings: int, *, known: bool, synthetic: bool, geojson: bool
             + (" and all of it as GeoJSON (`--results.geojson`)." if geojson else
                "; no GeoJSON, which needs longitude/latitude: the sightings are in local metres and the run "
                "gave no origin (`-p origin '[lon, lat]'`)."))
+
+
+def page_data_words(synthetic: bool, inputs) -> tuple[str, str]:
+    """What the page's results are computed from, for its introduction and for the sentence
+    before the real pass: the shipped worked example (``synthetic``: made by the project's
+    simulator over a known seafloor) or the run's own sightings (``inputs``, their files, named)."""
+    if synthetic:
+        return ("The page below shows a worked example, **synthetic**: a small survey made by the project's own "
+                "simulator over a known random seafloor (`tools/make_your_pings_example.py`), so the estimates can "
+                "be compared with the truth.", "Everything above is synthetic.")
+    names = ", ".join(f"`{Path(p).name}`" for p in inputs)
+    return (f"The page below shows this run's own sightings, {names}.",
+            f"Everything above is computed from this run's own sightings ({names}).")
 
 
 def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
