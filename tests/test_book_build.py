@@ -562,3 +562,12 @@ def test_the_your_pings_figures_that_draw_the_truth_cite_its_file(quick_book):
     """The map's right panel (each estimate's distance from the true position) and the features'
     panels draw the truth file, but their manifest and BibTeX entry named only the sightings."""
     assert truth_cited(quick_book["area"] / "source" / "_extra" / "figures") == []
+
+
+def test_the_sites_notebook_downloads_carry_no_path_of_the_build_machine(quick_book):
+    """The pages' download button links ``_sources/executed/<name>.ipynb``: its metadata held
+    papermill's and the run's absolute paths (the build area's, a user's files)."""
+    sources = sorted((quick_book["html"] / "_sources").rglob("*.ipynb"))
+    assert sources
+    for notebook in sources:
+        assert str(quick_book["area"]) not in notebook.read_text(encoding="utf-8"), notebook.name

@@ -236,3 +236,24 @@ def test_a_named_books_notice_names_the_users_truth_file(build_area, monkeypatch
     meta["parameters"]["truth"] = "data/examples/your_pings/example_truth.csv"  # the shipped example's
     path.write_text(json.dumps({"cells": [], "metadata": {"sss_locus": meta}}))
     assert list(areanotice.area_summary(list(entries.values()))["files"]) == ["my_sightings.csv"]
+
+
+def test_the_sites_source_copies_of_the_notebooks_carry_no_local_path(tmp_path):
+    """Each page's download button links ``_sources/executed/<name>.ipynb``, Sphinx's copy of the
+    staged executed notebook, whose metadata kept the user's files and the build area's absolute
+    paths (only the ``notebooks/`` copies were made public)."""
+    import json
+
+    from sss_locus.pipeline import bookbuild
+
+    mine = tmp_path / "home" / "me" / "harbour.toml"
+    source = tmp_path / "html" / "_sources" / "executed" / "survey_design.ipynb"
+    source.parent.mkdir(parents=True)
+    cells = [{"cell_type": "markdown", "metadata": {}, "source": "# Survey design\n"}]
+    source.write_text(json.dumps({"cells": cells, "metadata": {
+        "papermill": {"input_path": str(tmp_path / "stage" / "survey_design.ipynb"), "parameters": {"area": str(mine)}},
+        "sss_locus": {"parameters": {"area": str(mine), "data_files": [str(tmp_path / "ranger.toml")]}}}}))
+    bookbuild.public_sources(tmp_path / "html")
+    published = json.loads(source.read_text())
+    assert str(tmp_path) not in json.dumps(published) and published["cells"] == cells
+    assert published["metadata"]["sss_locus"]["parameters"] == {"area": "harbour.toml", "data_files": ["ranger.toml"]}
