@@ -310,3 +310,28 @@ def test_a_transit_along_a_shore_steps_in_by_the_turn_radius_not_across_the_harb
     for e, s in zip(ends, starts):
         flown = np.linalg.norm(np.diff(xy[e:s + 1], axis=0), axis=1).sum()
         assert flown == pytest.approx(192.0 + 2 * R, abs=0.5), (e, s, flown)
+
+
+@pytest.mark.parametrize("name", ["concave", "holed"])
+def test_a_line_segment_beyond_the_notch_is_inside_the_fence_and_the_mission_is_written(name):
+    """Lines heading east over the notched harbour: the top line's second segment lies beyond
+    the notch, more than twice the fence's margin from the rest; the fence kept only its largest
+    part, so that segment was outside it and writing the mission failed ("592.4 m of the track
+    leave the inclusion fence"): the chapter crashed on such a plan. Read back from the .plan:
+    every leg inside the inclusion fence, none across the island."""
+    import shapely
+
+    verts, holes, origin = AREAS[name]
+    area = area_from_vertices(verts, holes_m=holes, origin_lonlat=origin, name=name)
+    lines = _plan(area, heading=0.0)
+    outer = shapely.Polygon(verts).buffer(2 * (BOAT["turn_radius_m"] + 5.0))
+    apart = [r for r in lines.itertuples() if not outer.intersects(shapely.LineString([(r.x0_m, r.y0_m), (r.x1_m, r.y1_m)]))]
+    assert apart  # the case this test is about: a segment away from the area
+    doc = json.loads(mission_files(area, lines, ardupilot=True, **BOAT)["mission.plan"])
+    local = _local(origin)
+    items = [i for i in doc["mission"]["items"] if i["command"] == 16]
+    track = shapely.LineString(local([i["params"][5] for i in items], [i["params"][4] for i in items]))
+    f = doc["geoFence"]["polygons"][0]["polygon"]
+    fence = shapely.Polygon(local([q[1] for q in f], [q[0] for q in f]))
+    assert fence.buffer(0.01).covers(track), track.difference(fence).length
+    assert not any(track.intersects(shapely.Polygon(h).buffer(-0.01)) for h in holes)

@@ -10,7 +10,8 @@ inclusion fence shrunk by the turn radius and outside every hole grown by the tu
 
 Fences (:func:`fences`): the **inclusion fence** is the area's outer ring joined with every line
 and U-turn of the track, grown by ``R + margin_m`` (room for the vehicle's own turns and for the
-transits), or, when the area gives ``water_beyond_m`` (a shore that far past its edge), the area
+transits; a line segment that lies apart, beyond a notch, joined to the rest by a corridor as
+wide along the shortest way), or, when the area gives ``water_beyond_m`` (a shore that far past its edge), the area
 grown by that much, a U-turn that would leave it replaced by a transit inside it; its outer ring
 simplified to at most ``max_vertices`` vertices while still containing it; the **exclusion
 fences** are the area's holes. :func:`check_inside` is the check every mission writer runs: every point of
@@ -40,6 +41,12 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
         grown = outer.buffer(area.water_beyond_m, quad_segs=4)
     else:
         grown = shapely.union_all([outer, legs]).buffer(turn_radius_m + margin_m, quad_segs=4)
+        parts = sorted(getattr(grown, "geoms", [grown]), key=lambda g: g.area, reverse=True)
+        main = parts[0]
+        for part in parts[1:]:  # a line's segment beyond a notch, apart from the rest: bridged, never dropped
+            bridge = shapely.shortest_line(main, part).buffer(turn_radius_m + margin_m, quad_segs=4)
+            main = shapely.union_all([main, part, bridge])
+        grown = main
     grown = shapely.Polygon(grown.exterior) if grown.geom_type == "Polygon" else shapely.Polygon(
         max(grown.geoms, key=lambda g: g.area).exterior)
     tol, fence = margin_m, grown
