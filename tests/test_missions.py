@@ -335,3 +335,30 @@ def test_a_line_segment_beyond_the_notch_is_inside_the_fence_and_the_mission_is_
     fence = shapely.Polygon(local([q[1] for q in f], [q[0] for q in f]))
     assert fence.buffer(0.01).covers(track), track.difference(fence).length
     assert not any(track.intersects(shapely.Polygon(h).buffer(-0.01)) for h in holes)
+
+
+@pytest.mark.parametrize("name", AREAS)
+def test_return_to_launch_flies_no_leg_outside_the_fence(name, tmp_path):
+    """ArduPilot's return to launch (the last item) flies straight from the last waypoint to home
+    (item 0): read back with pymavlink, that leg stays inside the .plan's inclusion fence and off
+    the island for every heading. Before, it ran from the last line's end across the area and out
+    of the fence (32.5 m outside on the convex area at 30 deg)."""
+    import shapely
+    from pymavlink import mavwp
+
+    verts, holes, origin = AREAS[name]
+    area = area_from_vertices(verts, holes_m=holes, origin_lonlat=origin, name=name)
+    local = _local(origin)
+    for heading in (0.0, 30.0, 90.0):
+        files = mission_files(area, _plan(area, heading), ardupilot=True, **BOAT)
+        (tmp_path / "m.waypoints").write_text(files["mission.waypoints"])
+        loader = mavwp.MAVWPLoader()
+        loader.load(str(tmp_path / "m.waypoints"))
+        items = [loader.wp(i) for i in range(loader.count())]
+        assert items[-1].command == 20  # MAV_CMD_NAV_RETURN_TO_LAUNCH
+        last = [it for it in items if it.command == 16][-1]
+        leg = shapely.LineString(local([last.y, items[0].y], [last.x, items[0].x]))
+        f = json.loads(files["mission.plan"])["geoFence"]["polygons"][0]["polygon"]
+        fence = shapely.Polygon(local([q[1] for q in f], [q[0] for q in f]))
+        assert fence.buffer(0.01).covers(leg), (heading, leg.difference(fence).length)
+        assert not any(leg.intersects(shapely.Polygon(h).buffer(-0.01)) for h in holes), heading

@@ -1,6 +1,8 @@
 """The whole track of a plan, with its fences: what a mission file tells the vehicle to fly.
 
-Track (:func:`flight_path`): the segments of a line table in run order; between two
+Track (:func:`flight_path`): the segments of a line table in run order, then a transit back to
+the first line's start (the mission's home: ArduPilot's return to launch flies straight, which
+could leave the fence or cross a hole); between two
 anti-parallel lines the U-turn of :func:`~.turns.uturn_points`; any other junction (segments of
 one line on either side of a hole or a notch, the transit from the main to the cross lines) is
 a transit: the shortest polyline from one end to the next start that stays inside the
@@ -28,7 +30,8 @@ import pandas as pd
 from .turns import uturn_points
 
 PATH_COLUMNS = ("kind", "set", "line", "segment", "east_m", "north_m")
-"""``kind``: ``line start``, ``line end``, ``turn`` or ``transit``."""
+"""``kind``: ``line start``, ``line end``, ``turn``, ``transit`` or ``return`` (after the last
+line, back to the first line's start, the mission's home, inside the fence)."""
 
 
 def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_vertices: int = 60):
@@ -131,6 +134,10 @@ def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: fl
                 pts = np.asarray(_transit(end, p0, free, nodes, (R + margin_m + 1.0, room)))
             rows += [(kind, *tag, float(x), float(y)) for x, y in pts[:-1] if np.hypot(x - end[0], y - end[1]) > 1e-6]
         rows += [("line start", *tag, *map(float, p0)), ("line end", *tag, *map(float, p1))]
+    if len(L) > 1:  # back to the first point (home) inside the fence: the mission's RTL then has no leg to fly
+        end, home = np.array([L.x1_m.iloc[-1], L.y1_m.iloc[-1]]), np.array([L.x0_m.iloc[0], L.y0_m.iloc[0]])
+        back = np.asarray(_transit(end, home, free, nodes, (R + margin_m + 1.0, room)))
+        rows += [("return", *rows[-1][1:4], float(x), float(y)) for x, y in back]
     return pd.DataFrame(rows, columns=list(PATH_COLUMNS)), fence, holes
 
 
