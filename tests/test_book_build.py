@@ -538,3 +538,36 @@ def test_every_published_table_is_shown_served_and_names_its_platforms(quick_boo
         captions = [" ".join(unescape(re.sub(r"<[^>]+>", "", c)).split())  # its **bold** and `code` as HTML
                     for c in re.findall(r"<caption>(.*?)</caption>", page.read_text(), re.S)]
         assert " ".join(re.sub(r"\*\*|`", "", m["caption"]).split()) in " ".join(captions), (label, page.name)
+
+
+def truth_cited(figures: Path) -> list[str]:
+    """The your-pings figures of the reproduction that draw the truth (the map's distances, the
+    features' panels) but whose manifest or BibTeX entry does not name the truth file (the shipped
+    example's, by its repository path) with its SHA-256."""
+    import hashlib
+
+    missing = []
+    for label in ("fig-your-pings-map", "fig-your-pings-features"):
+        m = json.loads((figures / f"{label}.json").read_text())
+        truth = m["parameters"]["truth"]
+        digest = hashlib.sha256((paths.REPO_ROOT / truth).read_bytes()).hexdigest()
+        bib = (figures / f"{label}.bib").read_text()
+        if ({"path": truth, "sha256": digest, "role": "truth"} not in m["data_inputs"]["files"]
+                or f"{Path(truth).name.replace('_', chr(92) + '_')} (sha256 {digest[:12]})" not in bib):
+            missing.append(label)
+    return missing
+
+
+def test_the_your_pings_figures_that_draw_the_truth_cite_its_file(quick_book):
+    """The map's right panel (each estimate's distance from the true position) and the features'
+    panels draw the truth file, but their manifest and BibTeX entry named only the sightings."""
+    assert truth_cited(quick_book["area"] / "source" / "_extra" / "figures") == []
+
+
+def test_the_sites_notebook_downloads_carry_no_path_of_the_build_machine(quick_book):
+    """The pages' download button links ``_sources/executed/<name>.ipynb``: its metadata held
+    papermill's and the run's absolute paths (the build area's, a user's files)."""
+    sources = sorted((quick_book["html"] / "_sources").rglob("*.ipynb"))
+    assert sources
+    for notebook in sources:
+        assert str(quick_book["area"]) not in notebook.read_text(encoding="utf-8"), notebook.name

@@ -180,3 +180,80 @@ def test_the_downloadable_notebooks_carry_no_local_path(build_area, tmp_path):
     published = (paths.extra_dir() / "notebooks" / "rigs.ipynb").read_text()
     assert str(tmp_path) not in published and "myboat.toml" in published
     assert str(tmp_path) in executed.read_text()  # the build area's own copy keeps them (staleness checks)
+
+
+def test_a_users_area_file_is_named_by_its_name_in_captions_and_the_injected_cell(tmp_path):
+    """A user's area outside the repository: the plan's caption ("water depth 8.5 m
+    (/home/me/harbour.toml: water_depth_m)", "Area file `/home/me/...`"), the tables' notes and
+    the page's injected-parameters cell carried its local absolute path."""
+    import json
+
+    from sss_locus.experiments.survey_area import load_area
+    from sss_locus.pipeline import runner
+
+    mine = tmp_path / "home" / "me" / "harbour.toml"
+    mine.parent.mkdir(parents=True)
+    mine.write_text('[area]\nname = "Cove"\nvertices_m = [[0, 0], [400, 0], [400, 300], [0, 300]]\n'
+                    'water_depth_m = 8.5\n')
+    area = load_area(mine)
+    assert (area.source, area.water_depth_source) == ("harbour.toml", "harbour.toml: water_depth_m")
+    assert str(tmp_path) not in json.dumps(area.key()) and area.path == str(mine.resolve())
+    shipped = load_area(REPO_ROOT / "data" / "examples" / "survey_area.toml")
+    assert shipped.source == "data/examples/survey_area.toml"  # as the reproduction's runs give it
+    executed = tmp_path / "run.ipynb"
+    executed.write_text(json.dumps({"cells": [{"cell_type": "code", "metadata": {"tags": ["injected-parameters"]},
+                                               "source": f'# Parameters\narea = "{mine}"\n', "outputs": []}],
+                                    "metadata": {}}))
+    runner._label_injected_cell(executed, "quick", {"area": str(mine), "seed": 1}, {})
+    cell = json.loads(executed.read_text())["cells"][0]
+    assert str(tmp_path) not in "".join(cell["source"]) and 'area = "harbour.toml"' in "".join(cell["source"])
+
+
+def test_a_named_books_notice_names_the_users_truth_file(build_area, monkeypatch, tmp_path):
+    """The your-pings chapter run on a user's sightings with a truth file of their own (its map
+    draws each estimate's distance from it): the front page and the line atop every page named
+    the sightings but not the truth file; the shipped example's truth stays unnamed."""
+    import hashlib
+    import json
+
+    from sss_locus import paths
+    from sss_locus.pipeline import areanotice
+    from sss_locus.pipeline.registry import load_registry
+
+    monkeypatch.setenv(paths.BUILD_NAME_ENV, "harbour")
+    sightings, truth = tmp_path / "home" / "my_sightings.csv", tmp_path / "home" / "my_truth.csv"
+    sightings.parent.mkdir()
+    sightings.write_text("feature\n")
+    truth.write_text("feature,east_m,north_m,up_m\n")
+    entries = load_registry()
+    path = entries["your_pings"].executed_path()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    meta = {"profile": "quick", "parameters": {"observations": str(sightings), "truth": str(truth)}}
+    path.write_text(json.dumps({"cells": [], "metadata": {"sss_locus": meta}}))
+    files = areanotice.area_summary(list(entries.values()))["files"]
+    assert files == {"my_sightings.csv": hashlib.sha256(sightings.read_bytes()).hexdigest(),
+                     "my_truth.csv": hashlib.sha256(truth.read_bytes()).hexdigest()}
+    meta["parameters"]["truth"] = "data/examples/your_pings/example_truth.csv"  # the shipped example's
+    path.write_text(json.dumps({"cells": [], "metadata": {"sss_locus": meta}}))
+    assert list(areanotice.area_summary(list(entries.values()))["files"]) == ["my_sightings.csv"]
+
+
+def test_the_sites_source_copies_of_the_notebooks_carry_no_local_path(tmp_path):
+    """Each page's download button links ``_sources/executed/<name>.ipynb``, Sphinx's copy of the
+    staged executed notebook, whose metadata kept the user's files and the build area's absolute
+    paths (only the ``notebooks/`` copies were made public)."""
+    import json
+
+    from sss_locus.pipeline import bookbuild
+
+    mine = tmp_path / "home" / "me" / "harbour.toml"
+    source = tmp_path / "html" / "_sources" / "executed" / "survey_design.ipynb"
+    source.parent.mkdir(parents=True)
+    cells = [{"cell_type": "markdown", "metadata": {}, "source": "# Survey design\n"}]
+    source.write_text(json.dumps({"cells": cells, "metadata": {
+        "papermill": {"input_path": str(tmp_path / "stage" / "survey_design.ipynb"), "parameters": {"area": str(mine)}},
+        "sss_locus": {"parameters": {"area": str(mine), "data_files": [str(tmp_path / "ranger.toml")]}}}}))
+    bookbuild.public_sources(tmp_path / "html")
+    published = json.loads(source.read_text())
+    assert str(tmp_path) not in json.dumps(published) and published["cells"] == cells
+    assert published["metadata"]["sss_locus"]["parameters"] == {"area": "harbour.toml", "data_files": ["ranger.toml"]}

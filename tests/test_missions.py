@@ -286,3 +286,79 @@ def test_a_harbour_with_a_shore_keeps_the_track_in_its_water():
         fence = doc["geoFence"]["polygons"][0]["polygon"]
         fence_xy = shapely.Polygon(local([q[1] for q in fence], [q[0] for q in fence]))
         assert fence_xy.covers(track) and fence_xy.difference(water).area < 0.05 * water.area
+
+
+def test_a_transit_along_a_shore_steps_in_by_the_turn_radius_not_across_the_harbour():
+    """A harbour with a shore all round (water_beyond_m = 0) whose lines end on its walls, 192 m
+    apart: no U-turn fits, so each junction is a transit; the shortest way that keeps the turn
+    radius R off the shore is in by R, along the wall, out by R (192 + 2 R m). Before, the ends
+    could see only far corners of the shrunk water and the boat crossed the harbour (0.7-1 km)."""
+    import dataclasses
+
+    from sss_locus.experiments.surveydesign.route import flight_path
+
+    harbour = [[0, 0], [800, 0], [800, 350], [500, 350], [500, 700], [0, 700]]  # L-shaped, concave
+    area = dataclasses.replace(area_from_vertices(harbour, name="walled"), water_beyond_m=0.0)
+    lines = pd.DataFrame([("main", 0, 0, 90.0, 0, 96, 800, 96), ("main", 1, 0, 270.0, 800, 288, 0, 288),
+                          ("main", 2, 0, 90.0, 0, 480, 500, 480), ("main", 3, 0, 270.0, 500, 672, 0, 672)],
+                         columns=["set", "line", "segment", "heading_deg", "x0_m", "y0_m", "x1_m", "y1_m"])
+    R = 5.0
+    path, _, _ = flight_path(area, lines, R)
+    xy = path[["east_m", "north_m"]].to_numpy()
+    ends, starts = np.flatnonzero(path.kind == "line end")[:-1], np.flatnonzero(path.kind == "line start")[1:]
+    assert len(ends) == len(starts) == 3
+    for e, s in zip(ends, starts):
+        flown = np.linalg.norm(np.diff(xy[e:s + 1], axis=0), axis=1).sum()
+        assert flown == pytest.approx(192.0 + 2 * R, abs=0.5), (e, s, flown)
+
+
+@pytest.mark.parametrize("name", ["concave", "holed"])
+def test_a_line_segment_beyond_the_notch_is_inside_the_fence_and_the_mission_is_written(name):
+    """Lines heading east over the notched harbour: the top line's second segment lies beyond
+    the notch, more than twice the fence's margin from the rest; the fence kept only its largest
+    part, so that segment was outside it and writing the mission failed ("592.4 m of the track
+    leave the inclusion fence"): the chapter crashed on such a plan. Read back from the .plan:
+    every leg inside the inclusion fence, none across the island."""
+    import shapely
+
+    verts, holes, origin = AREAS[name]
+    area = area_from_vertices(verts, holes_m=holes, origin_lonlat=origin, name=name)
+    lines = _plan(area, heading=0.0)
+    outer = shapely.Polygon(verts).buffer(2 * (BOAT["turn_radius_m"] + 5.0))
+    apart = [r for r in lines.itertuples() if not outer.intersects(shapely.LineString([(r.x0_m, r.y0_m), (r.x1_m, r.y1_m)]))]
+    assert apart  # the case this test is about: a segment away from the area
+    doc = json.loads(mission_files(area, lines, ardupilot=True, **BOAT)["mission.plan"])
+    local = _local(origin)
+    items = [i for i in doc["mission"]["items"] if i["command"] == 16]
+    track = shapely.LineString(local([i["params"][5] for i in items], [i["params"][4] for i in items]))
+    f = doc["geoFence"]["polygons"][0]["polygon"]
+    fence = shapely.Polygon(local([q[1] for q in f], [q[0] for q in f]))
+    assert fence.buffer(0.01).covers(track), track.difference(fence).length
+    assert not any(track.intersects(shapely.Polygon(h).buffer(-0.01)) for h in holes)
+
+
+@pytest.mark.parametrize("name", AREAS)
+def test_return_to_launch_flies_no_leg_outside_the_fence(name, tmp_path):
+    """ArduPilot's return to launch (the last item) flies straight from the last waypoint to home
+    (item 0): read back with pymavlink, that leg stays inside the .plan's inclusion fence and off
+    the island for every heading. Before, it ran from the last line's end across the area and out
+    of the fence (32.5 m outside on the convex area at 30 deg)."""
+    import shapely
+    from pymavlink import mavwp
+
+    verts, holes, origin = AREAS[name]
+    area = area_from_vertices(verts, holes_m=holes, origin_lonlat=origin, name=name)
+    local = _local(origin)
+    for heading in (0.0, 30.0, 90.0):
+        files = mission_files(area, _plan(area, heading), ardupilot=True, **BOAT)
+        (tmp_path / "m.waypoints").write_text(files["mission.waypoints"])
+        loader = mavwp.MAVWPLoader()
+        loader.load(str(tmp_path / "m.waypoints"))
+        items = [loader.wp(i) for i in range(loader.count())]
+        assert items[-1].command == 20  # MAV_CMD_NAV_RETURN_TO_LAUNCH
+        last = [it for it in items if it.command == 16][-1]
+        leg = shapely.LineString(local([last.y, items[0].y], [last.x, items[0].x]))
+        f = json.loads(files["mission.plan"])["geoFence"]["polygons"][0]["polygon"]
+        fence = shapely.Polygon(local([q[1] for q in f], [q[0] for q in f]))
+        assert fence.buffer(0.01).covers(leg), (heading, leg.difference(fence).length)
+        assert not any(leg.intersects(shapely.Polygon(h).buffer(-0.01)) for h in holes), heading

@@ -481,3 +481,14 @@ def test_the_water_depth_comes_from_the_area_file_the_run_or_the_users_data(tmp_
     bare = area_from_vertices(RECT)
     users = sd.depth_settings(bare, {**settings, "water_depth_m": 40.0})
     assert users["water_depth_m"] == 40.0 and "survey_design.water_depth_m" in users["water_depth_source"]
+
+
+def test_a_boats_altitude_is_printed_as_the_water_depth_it_is():
+    """A boat over 8.5 m of water flies at altitude 8.5 m (altitude = water depth): the plan's
+    label read "altitude 8 m" (rounded half to even) beside "water depth 8.5 m", as if the boat
+    sat half a metre deep; whole metres stay whole."""
+    from sss_locus.report.survey_design import plan_label
+
+    row = dict(heading_deg=0.0, spacing_m=192.0, crossing_deg=0.0, cross_spacing_m=192.0, altitude_m=8.5, pitch_deg=0.0)
+    assert plan_label(row).endswith("; altitude 8.5 m")
+    assert plan_label({**row, "altitude_m": 21.0}).endswith("; altitude 21 m")

@@ -126,3 +126,45 @@ def test_one_row_of_feature_panels_keeps_its_axis_label_clear_of_the_legend(tmp_
     box = labels[0].get_window_extent(r)
     legend = fig.legends[0].get_window_extent(r)
     assert not box.overlaps(legend)
+
+
+def test_a_users_own_truth_is_not_called_the_synthetic_example(example):
+    """A user's sightings with a truth file of their own (no SYNTHETIC marker, so no notice): the
+    map, the feature panels and the 3-D view labelled its stars "truth (synthetic example)"."""
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.your_pings_files import read_truth
+    from sss_locus.report.your_pings import feature_panels, plan_view, view_3d
+
+    truth = read_truth(DATA_DIR / "examples" / "your_pings" / "example_truth.csv", EXAMPLE)
+
+    def labels(fig):
+        return {c.get_label() for ax in fig.axes for c in ax.collections}
+
+    for notice in ("", "synthetic example"):
+        drawn = [labels(plan_view(example, load_platform("auv"), truth=truth, notice=notice)[0]),
+                 labels(feature_panels(example, truth=truth, notice=notice)[0]),
+                 {t.name for t in view_3d(example, truth=truth, notice=notice).data}]
+        for names in drawn:
+            stars = {n for n in names if n and n.startswith("truth")}
+            assert stars == {"truth (synthetic example)" if notice else "truth (known positions)"}, stars
+
+
+def test_a_users_own_sightings_are_not_called_the_synthetic_example_in_the_pages_prose():
+    """The page's introduction said "The page below shows a worked example, synthetic: ... the
+    project's own simulator" and the real pass's section "Everything above is synthetic" above a
+    user's own sightings: both sentences now follow the run's data."""
+    import json
+    from pathlib import Path
+
+    from sss_locus.paths import REPO_ROOT
+    from sss_locus.report.your_pings import page_data_words
+
+    shown, above = page_data_words(False, [Path("/home/me/survey/my_sightings.csv")])
+    assert "`my_sightings.csv`" in shown and "`my_sightings.csv`" in above
+    assert not any(w in (shown + above).lower() for w in ("synthetic", "simulator", "/home"))
+    shown, above = page_data_words(True, [EXAMPLE])
+    assert "**synthetic**" in shown and above == "Everything above is synthetic."
+    nb = json.loads((REPO_ROOT / "notebooks" / "your_pings.ipynb").read_text())
+    prose = " ".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "markdown")
+    assert "{glue:md}`yp-shown`" in prose and "{glue:md}`yp-above`" in prose
+    assert "Everything above is synthetic" not in prose and "shows a worked example" not in prose

@@ -307,11 +307,13 @@ def load_area(path: str | Path) -> SurveyArea:
     is looked up from the working directory, then from the folder the ``sss-locus`` command was
     started in (:data:`sss_locus.paths.CALLER_DIR_ENV`), then from the repository's root (so the
     shipped ``data/examples/survey_area.toml`` is found from any run). The area records the
-    file's SHA-256 (``sha256``) and where it was found (``path``)."""
+    file's SHA-256 (``sha256``), where it was found (``path``) and, in ``source`` and
+    ``water_depth_source``, the file as published (:func:`sss_locus.paths.public_path`: its
+    repository path, else its name only)."""
     import hashlib
     import os
 
-    from ..paths import CALLER_DIR_ENV, REPO_ROOT
+    from ..paths import CALLER_DIR_ENV, REPO_ROOT, public_path
 
     p = Path(path).expanduser()
     if not p.is_absolute():
@@ -322,8 +324,11 @@ def load_area(path: str | Path) -> SurveyArea:
     if p.stat().st_size > MAX_FILE_BYTES:
         raise ValueError(f"area file {path} has {p.stat().st_size:,} bytes, more than {MAX_FILE_BYTES:,}; "
                          f"an area needs at most {MAX_VERTICES:,} vertices: simplify its boundary")
-    area = _load_area(p, str(path))
-    return replace(area, sha256=hashlib.sha256(p.read_bytes()).hexdigest(), path=str(p.resolve()))
+    area = _load_area(p, str(path))  # its errors name the file as given
+    shown = public_path(p.resolve())  # what captions, pages and manifests name: never a local absolute path
+    depth_source = f"{shown}: water_depth_m" if area.water_depth_source else ""
+    return replace(area, source=shown, water_depth_source=depth_source,
+                   sha256=hashlib.sha256(p.read_bytes()).hexdigest(), path=str(p.resolve()))
 
 
 def _load_area(p: Path, source: str) -> SurveyArea:

@@ -23,7 +23,7 @@ from sss_locus.pipeline import outputs
 def area_summary(entries: Sequence[Any]) -> dict[str, Any]:
     """What the executed copies of ``entries`` (registry entries) of the current build area were
     computed from: ``name``, ``profiles``, ``platforms``, ``files`` (``{public name: sha256}`` of
-    the user's data files and of observations and area files other than the shipped worked
+    the user's data files and of observations, truth and area files other than the shipped worked
     examples), ``overrides`` (``--set``) and ``chapters``
     (the number with an executed copy)."""
     profiles, platforms, files, overrides, chapters = [], [], {}, [], 0
@@ -41,7 +41,7 @@ def area_summary(entries: Sequence[Any]) -> dict[str, Any]:
                 files[paths.public_path(f["path"])] = f["sha256"]
         overrides += list((ours.get("data") or {}).get("overrides", []))
         declared = entry.parameters()
-        for name in ("observations", "area"):  # a user's own file, not the shipped worked example
+        for name in ("observations", "truth", "area"):  # a user's own file, not the shipped worked example
             value, default = params.get(name), getattr(declared.get(name), "default", None)
             full = paths.REPO_ROOT / str(value)
             if isinstance(value, str) and value and full.is_file() and (

@@ -87,9 +87,24 @@ def stage_figure_pages(root: Path, manifests: list[dict[str, Any]]) -> None:
     shutil.rmtree(target, ignore_errors=True)
     target.mkdir(parents=True)
     for notebook in sorted(paths.executed_dir().glob("*.ipynb")):  # for download: no local paths
-        nb = json.loads(notebook.read_text(encoding="utf-8"))
-        nb["metadata"] = paths.public_values(nb.get("metadata") or {})
-        (target / notebook.name).write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+        public_notebook(notebook, target / notebook.name)
+
+
+def public_notebook(source: Path, target: Path) -> None:
+    """Write the notebook ``source`` to ``target`` with each local absolute path of its metadata
+    (the user's files, papermill's paths, the build area) replaced by the file's name or its
+    repository path (:func:`sss_locus.paths.public_values`)."""
+    nb = json.loads(source.read_text(encoding="utf-8"))
+    nb["metadata"] = paths.public_values(nb.get("metadata") or {})
+    target.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+
+
+def public_sources(html_dir: Path) -> None:
+    """The built site's copies of its source notebooks (``_sources/**/*.ipynb``, which each page's
+    download button links) made public in place, as the ``notebooks/`` copies are
+    (:func:`public_notebook`): Sphinx copies the staged executed notebooks with their metadata."""
+    for notebook in sorted((html_dir / "_sources").rglob("*.ipynb")):
+        public_notebook(notebook, notebook)
 
 
 def stage_config(root: Path, exclude: list[str] | None = None, front_page: Path | None = None) -> None:
@@ -323,6 +338,7 @@ def _build(log, failed: dict[str, str] | None = None) -> Path:
     built = output / "_build" / "html"
     if not (built / "index.html").is_file():
         raise RuntimeError(f"jupyter-book build finished but {built / 'index.html'} is missing")
+    public_sources(built)
     problems = site_problems(built)
     if problems and failed:
         log("warning: pages that quote the failed chapter(s):\n  " + "\n  ".join(problems))

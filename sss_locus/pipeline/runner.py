@@ -126,6 +126,9 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
                 for f in extra["data"]["files"]:  # the page names a user's file, not where it sits
                     source = source.replace(json.dumps(f["path"])[1:-1], paths.public_path(f["path"]))
                 header += "".join(f"# data override: {o}\n" for o in extra["data"]["overrides"])
+            for value in parameters.values():  # a user's area, sightings or truth file, by its name
+                if isinstance(value, str) and os.path.isabs(value):
+                    source = source.replace(json.dumps(value)[1:-1], paths.public_path(value))
             if not source.startswith(header):
                 cell["source"] = header + source
     nb.setdefault("metadata", {})["sss_locus"] = {

@@ -43,7 +43,7 @@ def plan_label(row) -> str:
     if not math.isnan(row["crossing_deg"]):
         what = "offset repeat" if row["crossing_deg"] % 180 == 0 else f"cross lines at {row['crossing_deg']:g}°"
         text += f" + {what}, {row['cross_spacing_m']:.0f} m"
-    text += f"; altitude {row['altitude_m']:.0f} m"
+    text += f"; altitude {row['altitude_m']:.3g} m"  # a boat's altitude is the water depth: 8.5 m, not "8 m"
     return text + (f", pitch {row['pitch_deg']:g}°" if row["pitch_deg"] else "")
 
 

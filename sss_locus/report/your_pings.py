@@ -10,6 +10,8 @@ the plan view's right panel share its legend and belong with the map."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
@@ -32,6 +34,12 @@ ELLIPSE_SCALE = 3.0
 """The drawn ellipses are this many standard deviations (1-sigma ones would be invisible)."""
 
 
+def truth_label(notice: str = "") -> str:
+    """The legend's name of the truth: ``"truth (synthetic example)"`` for the chapter's worked
+    example (``notice``), plain ``"truth (known positions)"`` for a user's own truth file."""
+    return f"truth ({notice})" if notice else "truth (known positions)"
+
+
 def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str = ""):
     """Left: the survey in plan (grid east/north): the sensors at each sighting and every
     feature's estimates; right, per feature: the horizontal distance of each estimate from the
@@ -48,7 +56,7 @@ def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str =
             _ellipse(ax, r, "joint", 0.0, 0.0)
     if truth is not None:
         ax.scatter(truth["east_m"], truth["north_m"], s=40, c="gold", marker="*", edgecolors="k", linewidths=0.4,
-                   label="truth (synthetic example)", zorder=4)
+                   label=truth_label(notice), zorder=4)
     for _, r in f.iterrows():
         ax.annotate(r["feature"] + ("\n(" + ONE_SIGHTING + ")" if r["n_sightings"] == 1 else ""),
                     (r["flat_east_m"], r["flat_north_m"]), xytext=(4, 4), textcoords="offset points",
@@ -77,10 +85,11 @@ def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str =
     return fig, data
 
 
-def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int = 12):
+def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int = 12, notice: str = ""):
     """One small plan view per feature (up to ``max_features``), centred on its flat-seafloor
     mean: each sighting's flat-seafloor position, the two-view locus, the estimates, the N-view
-    ellipse (x3) and the truth. Returns ``(fig, data)`` (the positions drawn, relative)."""
+    ellipse (x3) and the truth (named by :func:`truth_label` of ``notice``). Returns ``(fig, data)``
+    (the positions drawn, relative)."""
     f = res.features.head(max_features)
     n = len(f)
     cols = min(4, n)
@@ -103,7 +112,7 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
         if truth is not None and r["feature"] in set(truth["feature"]):
             t = truth.set_index("feature").loc[r["feature"]]
             ax.scatter([t["east_m"] - e0], [t["north_m"] - n0], s=60, c="gold", marker="*", edgecolors="k",
-                       linewidths=0.4, label="truth (synthetic example)", zorder=4)
+                       linewidths=0.4, label=truth_label(notice), zorder=4)
         ax.set_title(f"{r['feature']}: {panel_status(r)}", fontsize=8.5)
         ax.update_datalim([[-MIN_HALF_WIDTH_M, -MIN_HALF_WIDTH_M], [MIN_HALF_WIDTH_M, MIN_HALF_WIDTH_M]])
         ax.autoscale_view()
@@ -195,6 +204,19 @@ def map_caption(n_sightings: int, *, known: bool, synthetic: bool, geojson: bool
                "gave no origin (`-p origin '[lon, lat]'`)."))
 
 
+def page_data_words(synthetic: bool, inputs) -> tuple[str, str]:
+    """What the page's results are computed from, for its introduction and for the sentence
+    before the real pass: the shipped worked example (``synthetic``: made by the project's
+    simulator over a known seafloor) or the run's own sightings (``inputs``, their files, named)."""
+    if synthetic:
+        return ("The page below shows a worked example, **synthetic**: a small survey made by the project's own "
+                "simulator over a known random seafloor (`tools/make_your_pings_example.py`), so the estimates can "
+                "be compared with the truth.", "Everything above is synthetic.")
+    names = ", ".join(f"`{Path(p).name}`" for p in inputs)
+    return (f"The page below shows this run's own sightings, {names}.",
+            f"Everything above is computed from this run's own sightings ({names}).")
+
+
 def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
     """What the run found, in numbers: features, sightings, statuses, the flat-seafloor spread and,
     with ``errors`` (:func:`~sss_locus.experiments.your_pings_files.against_truth`), the median
@@ -246,9 +268,10 @@ def order_sentence(sightings: pd.DataFrame) -> str:
         for r in rows.itertuples()) + ".")
 
 
-def view_3d(res, *, truth: pd.DataFrame | None = None):
+def view_3d(res, *, truth: pd.DataFrame | None = None, notice: str = ""):
     """The sensors, each sighting's line of sight to its flat-seafloor position, the loci and
-    the estimates in 3-D (grid east, north, up; plotly figure, drag to rotate)."""
+    the estimates in 3-D (grid east, north, up; plotly figure, drag to rotate); the truth named
+    by :func:`truth_label` of ``notice``."""
     import plotly.graph_objects as go
 
     s, f, loc = res.sightings, res.features, res.locus
@@ -287,7 +310,7 @@ def view_3d(res, *, truth: pd.DataFrame | None = None):
     if truth is not None:
         traces.append(go.Scatter3d(x=truth["east_m"], y=truth["north_m"], z=truth["up_m"], mode="markers",
                                    marker=dict(size=5, color="gold", symbol="diamond", line=dict(color="black", width=1)),
-                                   name="truth (synthetic example)", text=truth["feature"]))
+                                   name=truth_label(notice), text=truth["feature"]))
     fig = go.Figure(traces)
     fig.update_layout(scene=dict(xaxis_title="grid east (m)", yaxis_title="grid north (m)", zaxis_title="up (m)",
                                  aspectmode="manual", aspectratio=dict(x=1, y=1, z=0.35)),

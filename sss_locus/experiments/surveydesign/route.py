@@ -1,6 +1,8 @@
 """The whole track of a plan, with its fences: what a mission file tells the vehicle to fly.
 
-Track (:func:`flight_path`): the segments of a line table in run order; between two
+Track (:func:`flight_path`): the segments of a line table in run order, then a transit back to
+the first line's start (the mission's home: ArduPilot's return to launch flies straight, which
+could leave the fence or cross a hole); between two
 anti-parallel lines the U-turn of :func:`~.turns.uturn_points`; any other junction (segments of
 one line on either side of a hole or a notch, the transit from the main to the cross lines) is
 a transit: the shortest polyline from one end to the next start that stays inside the
@@ -10,7 +12,8 @@ inclusion fence shrunk by the turn radius and outside every hole grown by the tu
 
 Fences (:func:`fences`): the **inclusion fence** is the area's outer ring joined with every line
 and U-turn of the track, grown by ``R + margin_m`` (room for the vehicle's own turns and for the
-transits), or, when the area gives ``water_beyond_m`` (a shore that far past its edge), the area
+transits; a line segment that lies apart, beyond a notch, joined to the rest by a corridor as
+wide along the shortest way), or, when the area gives ``water_beyond_m`` (a shore that far past its edge), the area
 grown by that much, a U-turn that would leave it replaced by a transit inside it; its outer ring
 simplified to at most ``max_vertices`` vertices while still containing it; the **exclusion
 fences** are the area's holes. :func:`check_inside` is the check every mission writer runs: every point of
@@ -27,7 +30,8 @@ import pandas as pd
 from .turns import uturn_points
 
 PATH_COLUMNS = ("kind", "set", "line", "segment", "east_m", "north_m")
-"""``kind``: ``line start``, ``line end``, ``turn`` or ``transit``."""
+"""``kind``: ``line start``, ``line end``, ``turn``, ``transit`` or ``return`` (after the last
+line, back to the first line's start, the mission's home, inside the fence)."""
 
 
 def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_vertices: int = 60):
@@ -40,6 +44,12 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
         grown = outer.buffer(area.water_beyond_m, quad_segs=4)
     else:
         grown = shapely.union_all([outer, legs]).buffer(turn_radius_m + margin_m, quad_segs=4)
+        parts = sorted(getattr(grown, "geoms", [grown]), key=lambda g: g.area, reverse=True)
+        main = parts[0]
+        for part in parts[1:]:  # a line's segment beyond a notch, apart from the rest: bridged, never dropped
+            bridge = shapely.shortest_line(main, part).buffer(turn_radius_m + margin_m, quad_segs=4)
+            main = shapely.union_all([main, part, bridge])
+        grown = main
     grown = shapely.Polygon(grown.exterior) if grown.geom_type == "Polygon" else shapely.Polygon(
         max(grown.geoms, key=lambda g: g.area).exterior)
     tol, fence = margin_m, grown
@@ -54,7 +64,9 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
 
 def _transit(a, b, free, nodes, room) -> list:
     """Shortest polyline from ``a`` to ``b`` inside the polygon ``free`` (widened by ``room``
-    about ``a`` and ``b``: the ends may lie near a hole) through ``nodes``."""
+    about ``a`` and ``b``: the ends may lie near a hole or on a shore) through ``nodes`` and the
+    points of ``free`` nearest ``a`` and ``b`` (an end on the shore first steps into ``free``,
+    rather than reaching only the far corners a straight leg along the shore can see)."""
     import shapely
     from scipy.sparse import csr_matrix
     from scipy.sparse.csgraph import dijkstra
@@ -63,7 +75,8 @@ def _transit(a, b, free, nodes, room) -> list:
     ok = ok.buffer(1e-6)
     if ok.covers(shapely.LineString([a, b])):
         return [b]
-    pts = np.vstack([a, b, nodes])
+    entries = [] if free.is_empty else [shapely.get_coordinates(shapely.shortest_line(free, shapely.points([a, b])))[::2]]
+    pts = np.vstack([a, b, *entries, nodes])
     k = len(pts)
     i, j = np.triu_indices(k, 1)
     segs = shapely.linestrings(np.stack([pts[i], pts[j]], 1))
@@ -121,6 +134,10 @@ def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: fl
                 pts = np.asarray(_transit(end, p0, free, nodes, (R + margin_m + 1.0, room)))
             rows += [(kind, *tag, float(x), float(y)) for x, y in pts[:-1] if np.hypot(x - end[0], y - end[1]) > 1e-6]
         rows += [("line start", *tag, *map(float, p0)), ("line end", *tag, *map(float, p1))]
+    if len(L) > 1:  # back to the first point (home) inside the fence: the mission's RTL then has no leg to fly
+        end, home = np.array([L.x1_m.iloc[-1], L.y1_m.iloc[-1]]), np.array([L.x0_m.iloc[0], L.y0_m.iloc[0]])
+        back = np.asarray(_transit(end, home, free, nodes, (R + margin_m + 1.0, room)))
+        rows += [("return", *rows[-1][1:4], float(x), float(y)) for x, y in back]
     return pd.DataFrame(rows, columns=list(PATH_COLUMNS)), fence, holes
 
 
