@@ -492,3 +492,14 @@ def test_a_boats_altitude_is_printed_as_the_water_depth_it_is():
     row = dict(heading_deg=0.0, spacing_m=192.0, crossing_deg=0.0, cross_spacing_m=192.0, altitude_m=8.5, pitch_deg=0.0)
     assert plan_label(row).endswith("; altitude 8.5 m")
     assert plan_label({**row, "altitude_m": 21.0}).endswith("; altitude 21 m")
+
+
+def test_a_plans_second_set_is_named_for_what_it_is():
+    """The mission files' ``set`` said ``cross`` for an offset repeat at the main lines' heading
+    (a new user's trial): a repeat is ``repeat``, lines at another heading ``cross``."""
+    area = area_from_vertices([(0.0, 0.0), (600.0, 0.0), (600.0, 400.0), (0.0, 400.0)])
+    for crossing, name in ((0.0, "repeat"), (180.0, "repeat"), (90.0, "cross"), (60.0, "cross")):
+        lines = Plan(90.0, 100.0, crossing, 100.0, 10.0).lines(area)
+        assert set(lines["set"]) == {"main", name}, (crossing, set(lines["set"]))
+        second = lines[lines["set"] == name]
+        assert np.allclose(second.heading_deg % 180.0, (90.0 + crossing) % 180.0)

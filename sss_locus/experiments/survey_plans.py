@@ -92,8 +92,9 @@ class Plan:
     near_m: float = 0.0
 
     def lines(self, area: SurveyArea) -> pd.DataFrame:
-        """The plan's segments in run order: main lines, then cross lines (as flown when
-        ``reach_m`` > 0: :func:`~sss_locus.experiments.survey_lines.line_set`)."""
+        """The plan's segments in run order: main lines, then the second set (``set`` ``"cross"``
+        for cross lines, ``"repeat"`` for an offset repeat at the main lines' heading; as flown
+        when ``reach_m`` > 0: :func:`~sss_locus.experiments.survey_lines.line_set`)."""
         fly = dict(reach_m=self.reach_m, run_m=self.run_m, near_m=self.near_m)
         repeat = not math.isnan(self.crossing_deg) and self.crossing_deg % 180.0 == 0.0
         at = [None, None]
@@ -106,7 +107,7 @@ class Plan:
             return main
         offset = 0.5 if repeat else 0.0
         cross = line_set(area, (self.heading_deg + self.crossing_deg) % 360.0, self.cross_spacing_m,
-                         offset=offset, name="cross", across_m=at[1], **fly)
+                         offset=offset, name="repeat" if repeat else "cross", across_m=at[1], **fly)
         return pd.concat([main, cross], ignore_index=True)
 
     def row(self) -> dict:
