@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 
 from .style import PAGE_WIDTH_IN, SMALL_FONT_PT, platform_title, themed
-from .text import fmt_sig
+from .text import fmt_ci_cells, fmt_sig
 
 ESTIMATORS = {"flat": ("flat-seafloor mosaic", "black", "s"),
               "two": ("two views + prior", "tab:orange", "^"),
@@ -297,11 +297,8 @@ def with_intervals(frame: pd.DataFrame, columns: Sequence[str], digits: int = 2)
     >>> with_intervals(f, ["shape_m"])["shape_m"].tolist()
     ['-0.42 (95 % CI -0.51–-0.33)']
     """
-    from .text import fmt_ci
-
     out = frame.copy()
     for c in columns:
-        v, lo, hi = (out[k].to_numpy(float) for k in (c, f"{c}_low", f"{c}_high"))
-        out[c] = ["—" if not np.all(np.isfinite([a, b, d])) else fmt_ci(a, b, d, digits) for a, b, d in zip(v, lo, hi)]
+        out[c] = fmt_ci_cells(out[c], out[f"{c}_low"], out[f"{c}_high"], digits)
         out = out.drop(columns=[f"{c}_low", f"{c}_high"])
     return out

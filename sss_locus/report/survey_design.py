@@ -25,7 +25,7 @@ from matplotlib.patches import Polygon as PolygonPatch
 from ..experiments.survey_design import OBJECTIVES
 from .style import PAGE_WIDTH_IN, platform_title, themed
 from .survey_map import add_graticule, add_scale_bar
-from .text import fmt_ci, fmt_percent, fmt_sig
+from .text import fmt_ci, fmt_ci_cells, fmt_percent, fmt_sig
 
 OBJECTIVE_LABELS = {"locus": "median best-pair locus length (m)",
                     "three_view": "share of features not resolved by three views",
@@ -271,6 +271,6 @@ def noise_table_shown(frame: pd.DataFrame) -> pd.DataFrame:
                         "covered_twice": rows["covered_twice"]})
     for e, name in (("two", "two_view_error_m"), ("all", "all_views_error_m")):
         v, lo, hi = (rows[f"error_{e}{s}_m"].to_numpy(float) for s in ("", "_lo", "_hi"))
-        out[name] = ["—" if not np.isfinite(a) else fmt_ci(a, b, c) for a, b, c in zip(v, lo, hi)]
+        out[name] = fmt_ci_cells(v, lo, hi)
         out[f"fewest_features_{e}"] = rows[f"min_features_{e}"]
     return out.set_index(["platform", "plan"])

@@ -81,6 +81,30 @@ def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool
     return f"{v}{unit} (95 % CI {lo}–{hi}{unit})"
 
 
+def fmt_ci_cells(values, lows, highs, digits: int = 2, missing: str = "—") -> list[str]:
+    """:func:`fmt_ci` of each value with its interval, for a table column; ``missing`` where any
+    of the three is not finite.
+
+    Parameters
+    ----------
+    values, lows, highs : array_like of float, shape (n,)
+        The estimates and the ends of their 95 % intervals.
+    digits : int
+        Significant figures (:func:`fmt_ci`).
+    missing : str
+        The cell of a row without a finite estimate or interval.
+
+    Returns
+    -------
+    list of str, length n
+
+    >>> fmt_ci_cells([3.9, float("nan")], [3.6, 1.0], [4.2, 2.0])
+    ['3.9 (95 % CI 3.6–4.2)', '—']
+    """
+    return [fmt_ci(v, lo, hi, digits) if all(map(math.isfinite, (v, lo, hi))) else missing
+            for v, lo, hi in zip(*(map(float, a) for a in (values, lows, highs)))]
+
+
 def fmt_span(low: float, high: float) -> str:
     """A span of bin centres in whole degrees, one angle if it is one bin.
 
