@@ -1,0 +1,29 @@
+"""Facade of the chapter ``notebooks/planning.ipynb`` (Planning: crossing-angle bands).
+
+Everything the notebook calls, in one import: ``from sss_locus.pipeline.chapters import planning as ch``.
+No logic of its own (:mod:`sss_locus.pipeline.chapters`).
+"""
+
+from IPython.display import Markdown
+from myst_nb import glue
+import pandas as pd
+
+from sss_locus.experiments.envelopes import load_envelope, OffsetModel
+from sss_locus.experiments.planning import crossing_angle_grid, crossing_angle_curve, planning_bands
+from sss_locus.experiments.platforms import load_platform
+from sss_locus.experiments.survey_passes import simulate_passes
+from sss_locus.experiments.verdicts import near_end_check
+from sss_locus.pipeline.cache import cached
+from sss_locus.pipeline.chapters.common import key, show_table, use_data
+from sss_locus.pipeline.publish import publish, publish_table
+from sss_locus.report.findings import near_end_findings
+from sss_locus.report.planning import (band_texts, plot_planning_bands, PAPER_AVOID_DEG, bands_table,
+                                       bands_markdown)
+from sss_locus.report.survey_passes import near_end_caption
+from sss_locus.report.tables import readable_table, files_note, key_caption
+
+__all__ = ["band_texts", "bands_markdown", "bands_table", "cached", "crossing_angle_curve",
+           "crossing_angle_grid", "files_note", "glue", "key", "key_caption", "load_envelope",
+           "load_platform", "Markdown", "near_end_caption", "near_end_check", "near_end_findings",
+           "OffsetModel", "PAPER_AVOID_DEG", "pd", "planning_bands", "plot_planning_bands", "publish",
+           "publish_table", "readable_table", "show_table", "simulate_passes", "use_data"]

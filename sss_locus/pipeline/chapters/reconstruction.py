@@ -1,0 +1,38 @@
+"""Facade of the chapter ``notebooks/reconstruction.ipynb`` (Reconstruction: a terrain from survey passes).
+
+Everything the notebook calls, in one import: ``from sss_locus.pipeline.chapters import reconstruction as ch``.
+No logic of its own (:mod:`sss_locus.pipeline.chapters`).
+"""
+
+import time
+
+from IPython.display import Markdown
+from myst_nb import glue
+import numpy as np
+import pandas as pd
+
+from sss_locus.experiments.envelopes import load_envelope
+from sss_locus.experiments.noise import load_noise_model, load_pass_noise
+from sss_locus.experiments.platforms import load_platform
+from sss_locus.experiments.reconstruction_joint import adjustment_estimators
+from sss_locus.experiments.reconstruction_surveys import (survey_cases, layout_with_spacing, survey_errors,
+                                                          over_surveys, paired_over_surveys)
+from sss_locus.experiments.slope_error import slope_views
+from sss_locus.experiments.survey_plans import load_settings
+from sss_locus.experiments.terrain import load_terrain_config
+from sss_locus.experiments.userdata import label_key
+from sss_locus.pipeline.chapters.common import key, show_table, use_data
+from sss_locus.pipeline.publish import publish, publish_table
+from sss_locus.report.reconstruction import (spacing_label, plot_sweep, METRIC_LABELS, plot_slope,
+                                             plot_views, verdict_sentence, ESTIMATORS, comparison_word,
+                                             with_intervals, height_sentence)
+from sss_locus.report.tables import files_note, readable_table
+from sss_locus.report.text import fmt_ci, fmt_percent, fmt_sig
+
+__all__ = ["adjustment_estimators", "comparison_word", "ESTIMATORS", "files_note", "fmt_ci", "fmt_percent",
+           "fmt_sig", "glue", "height_sentence", "key", "label_key", "layout_with_spacing",
+           "load_envelope", "load_noise_model", "load_pass_noise", "load_platform", "load_settings",
+           "load_terrain_config", "Markdown", "METRIC_LABELS", "np", "over_surveys", "paired_over_surveys",
+           "pd", "plot_slope", "plot_sweep", "plot_views", "publish", "publish_table", "readable_table",
+           "show_table", "slope_views", "spacing_label", "survey_cases", "survey_errors", "time",
+           "use_data", "verdict_sentence", "with_intervals"]

@@ -1,0 +1,38 @@
+"""Facade of the chapter ``notebooks/your_pings.ipynb`` (Your pings: a user's recorded pings).
+
+Everything the notebook calls, in one import: ``from sss_locus.pipeline.chapters import your_pings as ch``.
+No logic of its own (:mod:`sss_locus.pipeline.chapters`).
+"""
+
+from IPython.display import Markdown, HTML
+from myst_nb import glue
+from pathlib import Path
+import pandas as pd
+
+from sss_locus.experiments.noise import load_pass_noise
+from sss_locus.experiments.observations import LocalFrame
+from sss_locus.experiments.observations_xtf import observation_files
+from sss_locus.experiments.platforms import load_platform
+from sss_locus.experiments.xtf_summary import summary as xtf_summary, waterfall_data
+from sss_locus.experiments.your_pings import run
+from sss_locus.experiments.your_pings_files import read_truth, against_truth, geojson_text
+from sss_locus.experiments.your_pings_joint import joint_estimate, with_joint
+from sss_locus.paths import REPO_ROOT
+from sss_locus.pipeline.chapters.common import key, show_table, use_data
+from sss_locus.pipeline.publish import publish_table, publish
+from sss_locus.report.concept import offline_html
+from sss_locus.report.tables import files_note, readable_table
+from sss_locus.report.waterfall import waterfall
+from sss_locus.report.your_pings import (summary_sentence, page_data_words, plan_view, map_caption,
+                                         feature_panels, view_3d)
+from sss_locus.report.your_pings_joint import passes_caption, joint_sentence, passes_shown
+from sss_locus.report.your_pings_real import (marks, read_hits, waterfall_caption, positions_table,
+                                              one_pass_text)
+
+__all__ = ["against_truth", "feature_panels", "files_note", "geojson_text", "glue", "HTML",
+           "joint_estimate", "joint_sentence", "key", "load_pass_noise", "load_platform", "LocalFrame",
+           "map_caption", "Markdown", "marks", "observation_files", "offline_html", "one_pass_text",
+           "page_data_words", "passes_caption", "passes_shown", "Path", "pd", "plan_view",
+           "positions_table", "publish", "publish_table", "read_hits", "read_truth", "readable_table",
+           "REPO_ROOT", "run", "show_table", "summary_sentence", "use_data", "view_3d", "waterfall",
+           "waterfall_caption", "waterfall_data", "with_joint", "xtf_summary"]
