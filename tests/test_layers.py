@@ -1,4 +1,4 @@
-"""The four layers: geometry <- experiments <- report / pipeline, enforced on the source.
+"""The four layers: geometry <- experiments <- report <- pipeline, enforced on the source.
 
 Reads every module of ``sss_locus`` with :mod:`ast` (no import side effects) and checks
 - the import direction between layers (``paths`` is a leaf every layer may use),
@@ -29,7 +29,7 @@ ALLOWED = {
     "geometry": set(),
     "experiments": {"geometry"},
     "report": {"geometry", "experiments"},
-    "pipeline": {"geometry", "experiments"},
+    "pipeline": {"geometry", "experiments", "report"},
     "top": {"geometry"},  # sss_locus/__init__.py re-exports the geometry API
     "paths": set(),
 }
@@ -93,6 +93,17 @@ def _internal(target: str) -> str | None:
 def test_every_module_is_in_a_layer():
     strays = [m for m in MODULES if _layer(m) not in ALLOWED]
     assert strays == [], f"modules outside the four layers and paths.py: {strays}"
+
+
+@pytest.mark.parametrize("module", sorted(MODULES))
+def test_pipeline_imports_report_only_in_chapter_facades(module):
+    """The chapter facades combine numbers, figures and publishing; the rest of the pipeline
+    (running, caching, exporting, the book) never needs the report layer's plots or prose."""
+    if _layer(module) != "pipeline" or module.startswith("sss_locus.pipeline.chapters"):
+        return
+    reports = sorted({i for t, _ in _imports(module, MODULES[module])
+                      if (i := _internal(t)) and _layer(i) == "report"})
+    assert reports == [], f"{module} imports the report layer ({reports}); only pipeline.chapters may"
 
 
 @pytest.mark.parametrize("module", sorted(MODULES))

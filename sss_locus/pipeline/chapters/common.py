@@ -36,7 +36,7 @@ def use_data(data_files: Sequence[str] = (), data_set: Sequence[str] = ()) -> us
 
 
 def show_table(frame: pd.DataFrame, label: str, *, caption: str, shown: pd.DataFrame | None = None,
-               platforms: Sequence[str] | None = None, input_files: Sequence[Any] = (),
+               platforms: Sequence[str] | None = None, input_files: Sequence[Any] = (), publish: bool = True,
                **readable: Any) -> None:
     """Publish ``frame`` as the citable table ``label`` and display it, with one caption.
 
@@ -48,18 +48,24 @@ def show_table(frame: pd.DataFrame, label: str, *, caption: str, shown: pd.DataF
         ``tab-`` plus lower-case words joined by hyphens.
     caption : str
         The caption without its files sentence: :func:`sss_locus.report.tables.files_note` of
-        ``label`` is appended, in the published and in the shown caption alike.
+        ``label`` is appended, in the published and in the shown caption alike (when published).
     shown : pandas.DataFrame, optional
         The part of ``frame`` shown in the chapter (e.g. only the rows that changed), when not
         all of it; it is still ``frame`` that is published.
     platforms, input_files
         As for :func:`sss_locus.pipeline.publish.publish_table`.
+    publish : bool
+        False: only show ``frame`` (a table with no rows in this run is not published, and its
+        caption then names no files).
     **readable
         Passed to :func:`sss_locus.report.tables.readable_table` (``digits``, ``headers``,
         ``row_labels``).
     """
     from IPython.display import display
 
+    if not publish:
+        display(readable_table(frame if shown is None else shown, caption=caption, **readable))
+        return
     full = f"{caption} {files_note(label)}" if caption else files_note(label)
     publish_table(frame, label, caption=full, platforms=platforms, input_files=input_files)
     display(readable_table(frame if shown is None else shown, caption=full, **readable))

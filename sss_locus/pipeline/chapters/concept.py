@@ -12,12 +12,10 @@ import pandas as pd
 
 from sss_locus import Aperture, two_view_locus, elevation_misalignment
 from sss_locus.experiments.platforms import load_platforms
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish_table, publish
+from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.publish import publish
 from sss_locus.report.concept import concept_data, plot_locus_concept, interactive_locus_concept, offline_html
-from sss_locus.report.tables import files_note, readable_table
 
-__all__ = ["Aperture", "concept_data", "elevation_misalignment", "files_note", "glue", "HTML",
-           "interactive_locus_concept", "key", "load_platforms", "np", "offline_html", "pd",
-           "plot_locus_concept", "publish", "publish_table", "readable_table", "Rotation", "show_table",
-           "two_view_locus", "use_data"]
+__all__ = ["Aperture", "concept_data", "elevation_misalignment", "glue", "HTML",
+           "interactive_locus_concept", "load_platforms", "np", "offline_html", "pd", "plot_locus_concept",
+           "publish", "Rotation", "show_table", "two_view_locus", "use_data"]

@@ -14,16 +14,16 @@ from sss_locus.experiments.platforms import load_platform
 from sss_locus.experiments.survey_passes import simulate_passes
 from sss_locus.experiments.verdicts import near_end_check
 from sss_locus.pipeline.cache import cached
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish, publish_table
+from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.publish import publish
 from sss_locus.report.findings import near_end_findings
 from sss_locus.report.planning import (band_texts, plot_planning_bands, PAPER_AVOID_DEG, bands_table,
                                        bands_markdown)
 from sss_locus.report.survey_passes import near_end_caption
-from sss_locus.report.tables import readable_table, files_note, key_caption
+from sss_locus.report.tables import readable_table, key_caption
 
 __all__ = ["band_texts", "bands_markdown", "bands_table", "cached", "crossing_angle_curve",
-           "crossing_angle_grid", "files_note", "glue", "key", "key_caption", "load_envelope",
-           "load_platform", "Markdown", "near_end_caption", "near_end_check", "near_end_findings",
-           "OffsetModel", "PAPER_AVOID_DEG", "pd", "planning_bands", "plot_planning_bands", "publish",
-           "publish_table", "readable_table", "show_table", "simulate_passes", "use_data"]
+           "crossing_angle_grid", "glue", "key_caption", "load_envelope", "load_platform", "Markdown",
+           "near_end_caption", "near_end_check", "near_end_findings", "OffsetModel", "PAPER_AVOID_DEG",
+           "pd", "planning_bands", "plot_planning_bands", "publish", "readable_table", "show_table",
+           "simulate_passes", "use_data"]

@@ -19,24 +19,22 @@ from sss_locus.experiments.pose_space import PoseSpaceSpec, sample_pose_space, s
 from sss_locus.experiments.pose_stats import with_derived, spearman_table, heatmaps
 from sss_locus.experiments.userdata import label_key
 from sss_locus.pipeline.cache import cached
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish, place, publish_table
+from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.publish import publish, place
 from sss_locus.report.pose_findings import (findings_markdown, platform_title, drivers_finding,
                                             panels_finding, choices_finding, reading_finding, fan_finding,
                                             hotspot_finding, pose_summary)
 from sss_locus.report.pose_space import (scatter_subset, plot_sensitivity, plot_heatmaps,
                                          seed_stability_table, check_row, reading_texts, fan_texts,
                                          hotspot_texts, metric_texts)
-from sss_locus.report.tables import files_note, readable_table
 from sss_locus.report.text import plain_label, fmt_ci, fmt_span
 
 __all__ = ["batch_medians", "batches", "bin_window", "cached", "check_row", "choices_finding",
            "claim_metrics", "drivers_finding", "fan_finding", "fan_share_removed", "fan_texts",
-           "files_note", "findings_markdown", "fmt_ci", "fmt_span", "glue", "heatmaps", "hotspot_check",
-           "hotspot_finding", "hotspot_texts", "key", "label_key", "load_platform", "map_intervals",
-           "Markdown", "metric_texts", "np", "panels_finding", "pd", "place", "plain_label",
-           "platform_title", "plot_heatmaps", "plot_sensitivity", "pose_summary", "PoseSpaceSpec",
-           "publish", "publish_table", "readable_table", "reading_effect", "reading_finding",
-           "reading_texts", "sample_geometry", "sample_pose_space", "scatter_subset",
-           "seed_stability_table", "show_table", "spearman_table", "time", "two_view_locus", "use_data",
-           "with_derived"]
+           "findings_markdown", "fmt_ci", "fmt_span", "glue", "heatmaps", "hotspot_check",
+           "hotspot_finding", "hotspot_texts", "label_key", "load_platform", "map_intervals", "Markdown",
+           "metric_texts", "np", "panels_finding", "pd", "place", "plain_label", "platform_title",
+           "plot_heatmaps", "plot_sensitivity", "pose_summary", "PoseSpaceSpec", "publish",
+           "reading_effect", "reading_finding", "reading_texts", "sample_geometry", "sample_pose_space",
+           "scatter_subset", "seed_stability_table", "show_table", "spearman_table", "time",
+           "two_view_locus", "use_data", "with_derived"]

@@ -21,18 +21,16 @@ from sss_locus.experiments.slope_error import slope_views
 from sss_locus.experiments.survey_plans import load_settings
 from sss_locus.experiments.terrain import load_terrain_config
 from sss_locus.experiments.userdata import label_key
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish, publish_table
+from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.publish import publish
 from sss_locus.report.reconstruction import (spacing_label, plot_sweep, METRIC_LABELS, plot_slope,
                                              plot_views, verdict_sentence, ESTIMATORS, comparison_word,
                                              with_intervals, height_sentence)
-from sss_locus.report.tables import files_note, readable_table
 from sss_locus.report.text import fmt_ci, fmt_percent, fmt_sig
 
-__all__ = ["adjustment_estimators", "comparison_word", "ESTIMATORS", "files_note", "fmt_ci", "fmt_percent",
-           "fmt_sig", "glue", "height_sentence", "key", "label_key", "layout_with_spacing",
-           "load_envelope", "load_noise_model", "load_pass_noise", "load_platform", "load_settings",
-           "load_terrain_config", "Markdown", "METRIC_LABELS", "np", "over_surveys", "paired_over_surveys",
-           "pd", "plot_slope", "plot_sweep", "plot_views", "publish", "publish_table", "readable_table",
-           "show_table", "slope_views", "spacing_label", "survey_cases", "survey_errors", "time",
-           "use_data", "verdict_sentence", "with_intervals"]
+__all__ = ["adjustment_estimators", "comparison_word", "ESTIMATORS", "fmt_ci", "fmt_percent", "fmt_sig",
+           "glue", "height_sentence", "label_key", "layout_with_spacing", "load_envelope",
+           "load_noise_model", "load_pass_noise", "load_platform", "load_settings", "load_terrain_config",
+           "Markdown", "METRIC_LABELS", "np", "over_surveys", "paired_over_surveys", "pd", "plot_slope",
+           "plot_sweep", "plot_views", "publish", "show_table", "slope_views", "spacing_label",
+           "survey_cases", "survey_errors", "time", "use_data", "verdict_sentence", "with_intervals"]

@@ -10,12 +10,12 @@ import pandas as pd
 
 from sss_locus.experiments.platforms import load_platforms, provenance_table
 from sss_locus.experiments.userdata import label_key
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
+from sss_locus.pipeline.chapters.common import use_data
 from sss_locus.pipeline.publish import publish
 from sss_locus.report import rigs
 from sss_locus.report.rigs import coverage_text, plot_rigs, rig_outlines, data_sources
 from sss_locus.report.tables import readable_table
 
-__all__ = ["coverage_text", "data_sources", "glue", "key", "label_key", "load_platforms", "Markdown", "pd",
+__all__ = ["coverage_text", "data_sources", "glue", "label_key", "load_platforms", "Markdown", "pd",
            "plot_rigs", "provenance_table", "publish", "readable_table", "rig_outlines", "rigs",
-           "show_table", "use_data"]
+           "use_data"]

@@ -19,8 +19,8 @@ from sss_locus.experiments.survey_passes import simulate_passes
 from sss_locus.experiments.userdata import label_key
 from sss_locus.experiments.verdicts import near_end_check, peak_agreement
 from sss_locus.pipeline.cache import cached
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish, publish_table
+from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.publish import publish
 from sss_locus.report.pass_findings import (curve_finding, offset_models_finding, skipped_study_note,
                                             pitch_depth_finding, survey_summary)
 from sss_locus.report.pose_findings import findings_markdown, platform_title
@@ -29,15 +29,14 @@ from sss_locus.report.survey_passes import (plot_fig5, describe_setup, describe_
                                             model_tag, offset_model_texts, offset_model_table,
                                             near_end_texts, peak_agreement_texts, near_end_caption,
                                             pitch_depth_texts, plot_pitch_depth)
-from sss_locus.report.tables import files_note, readable_table, key_caption
+from sss_locus.report.tables import key_caption
 
 __all__ = ["band_samples", "cached", "crossing_angle_curve", "crossing_angle_grid", "curve_finding",
-           "curve_texts", "describe_offset_model", "describe_setup", "files_note", "findings_markdown",
-           "glue", "key", "key_caption", "label_key", "load_envelope", "load_platform", "Markdown",
-           "median_ratio", "model_tag", "near_end_caption", "near_end_check", "near_end_texts",
-           "offset_model_table", "offset_model_texts", "offset_models_bimodal_note",
-           "offset_models_finding", "OffsetModel", "pd", "peak_agreement", "peak_agreement_texts",
-           "peak_table", "pitch_depth_finding", "pitch_depth_texts", "pitch_study_platform",
-           "platform_title", "plot_fig5", "plot_offset_models", "plot_pitch_depth", "publish",
-           "publish_table", "readable_table", "replace", "show_table", "simulate_passes",
+           "curve_texts", "describe_offset_model", "describe_setup", "findings_markdown", "glue",
+           "key_caption", "label_key", "load_envelope", "load_platform", "Markdown", "median_ratio",
+           "model_tag", "near_end_caption", "near_end_check", "near_end_texts", "offset_model_table",
+           "offset_model_texts", "offset_models_bimodal_note", "offset_models_finding", "OffsetModel",
+           "pd", "peak_agreement", "peak_agreement_texts", "peak_table", "pitch_depth_finding",
+           "pitch_depth_texts", "pitch_study_platform", "platform_title", "plot_fig5",
+           "plot_offset_models", "plot_pitch_depth", "publish", "replace", "show_table", "simulate_passes",
            "skipped_study_note", "survey_summary", "time", "use_data", "worst_band"]

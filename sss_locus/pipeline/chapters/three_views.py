@@ -18,18 +18,16 @@ from sss_locus.experiments.three_view_patterns import (PATTERNS, three_view_tabl
                                                        median_intervals)
 from sss_locus.experiments.userdata import label_key
 from sss_locus.experiments.view_sets import draw_pattern
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish_table, publish
+from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.publish import publish
 from sss_locus.report.pass_findings import closure_finding, pattern_ranking, tilt_markdown, sweep_finding
 from sss_locus.report.pose_findings import findings_markdown, platform_title
-from sss_locus.report.tables import files_note, readable_table
 from sss_locus.report.text import fmt_interval
 from sss_locus.report.three_views import (plot_patterns, PATTERN_TAGS, share_text, plot_heading_sweep,
                                           sweep_texts)
 
-__all__ = ["closure_finding", "draw_pattern", "files_note", "findings_markdown", "fmt_interval", "glue",
-           "heading_sweep", "key", "label_key", "load_envelope", "load_noise_model", "load_platform",
-           "Markdown", "median_intervals", "NoiseModel", "np", "pattern_ranking", "PATTERN_TAGS",
-           "PATTERNS", "pd", "platform_title", "plot_heading_sweep", "plot_patterns", "publish",
-           "publish_table", "readable_table", "share_text", "show_table", "sweep_finding", "sweep_texts",
-           "three_view_table", "tilt_markdown", "time", "use_data"]
+__all__ = ["closure_finding", "draw_pattern", "findings_markdown", "fmt_interval", "glue", "heading_sweep",
+           "label_key", "load_envelope", "load_noise_model", "load_platform", "Markdown",
+           "median_intervals", "NoiseModel", "np", "pattern_ranking", "PATTERN_TAGS", "PATTERNS", "pd",
+           "platform_title", "plot_heading_sweep", "plot_patterns", "publish", "share_text", "show_table",
+           "sweep_finding", "sweep_texts", "three_view_table", "tilt_markdown", "time", "use_data"]

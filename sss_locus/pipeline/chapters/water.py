@@ -17,13 +17,11 @@ from sss_locus.experiments.userdata import label_key
 from sss_locus.experiments.water import deepest_feature_m
 from sss_locus.experiments.water_study import default_conditions, crop_effects, pass2_above_surface_share
 from sss_locus.pipeline.cache import cached
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish, publish_table
-from sss_locus.report.tables import files_note, readable_table
+from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.publish import publish
 from sss_locus.report.water import plot_crop_effects, effect_texts, effect_table
 
 __all__ = ["cached", "crop_effects", "deepest_feature_m", "default_conditions", "effect_table",
-           "effect_texts", "files_note", "glue", "key", "label_key", "load_envelope", "load_platform",
-           "np", "OffsetModel", "pass2_above_surface_share", "plot_crop_effects", "publish",
-           "publish_table", "readable_table", "sample_pose_space", "show_table", "simulate_passes", "time",
-           "use_data"]
+           "effect_texts", "glue", "label_key", "load_envelope", "load_platform", "np", "OffsetModel",
+           "pass2_above_surface_share", "plot_crop_effects", "publish", "sample_pose_space", "show_table",
+           "simulate_passes", "time", "use_data"]

@@ -18,10 +18,9 @@ from sss_locus.experiments.your_pings import run
 from sss_locus.experiments.your_pings_files import read_truth, against_truth, geojson_text
 from sss_locus.experiments.your_pings_joint import joint_estimate, with_joint
 from sss_locus.paths import REPO_ROOT
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish_table, publish
+from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.publish import publish
 from sss_locus.report.concept import offline_html
-from sss_locus.report.tables import files_note, readable_table
 from sss_locus.report.waterfall import waterfall
 from sss_locus.report.your_pings import (summary_sentence, page_data_words, plan_view, map_caption,
                                          feature_panels, view_3d)
@@ -29,10 +28,9 @@ from sss_locus.report.your_pings_joint import passes_caption, joint_sentence, pa
 from sss_locus.report.your_pings_real import (marks, read_hits, waterfall_caption, positions_table,
                                               one_pass_text)
 
-__all__ = ["against_truth", "feature_panels", "files_note", "geojson_text", "glue", "HTML",
-           "joint_estimate", "joint_sentence", "key", "load_pass_noise", "load_platform", "LocalFrame",
-           "map_caption", "Markdown", "marks", "observation_files", "offline_html", "one_pass_text",
-           "page_data_words", "passes_caption", "passes_shown", "Path", "pd", "plan_view",
-           "positions_table", "publish", "publish_table", "read_hits", "read_truth", "readable_table",
-           "REPO_ROOT", "run", "show_table", "summary_sentence", "use_data", "view_3d", "waterfall",
-           "waterfall_caption", "waterfall_data", "with_joint", "xtf_summary"]
+__all__ = ["against_truth", "feature_panels", "geojson_text", "glue", "HTML", "joint_estimate",
+           "joint_sentence", "load_pass_noise", "load_platform", "LocalFrame", "map_caption", "Markdown",
+           "marks", "observation_files", "offline_html", "one_pass_text", "page_data_words",
+           "passes_caption", "passes_shown", "Path", "pd", "plan_view", "positions_table", "publish",
+           "read_hits", "read_truth", "REPO_ROOT", "run", "show_table", "summary_sentence", "use_data",
+           "view_3d", "waterfall", "waterfall_caption", "waterfall_data", "with_joint", "xtf_summary"]
