@@ -112,7 +112,7 @@ def test_key_fills_a_template_and_refuses_a_wrong_field():
     assert key("nz-check-{kind}-small", kind="range") == "nz-check-range-small"
     with pytest.raises(ValueError, match=r"needs the fields \['platform'\]"):
         key("wa-{platform}-deepest-m", plaform="auv")
-    with pytest.raises(ValueError, match="holds characters"):
+    with pytest.raises(ValueError, match="is empty or holds characters"):
         key("wa-{kind}", kind="Two Words")
     with pytest.raises(ValueError, match="key must match"):
         key("wa-{platform}", platform="My-AUV")

@@ -20,8 +20,7 @@ from sss_locus.experiments.datadoc import label_key
 from sss_locus.pipeline.publish import publish_table
 from sss_locus.report.tables import files_note, readable_table
 
-#: Characters a glue key may hold once filled (MyST's glue keys must be plain words).
-_KEY_CHARS = set(string.ascii_lowercase + string.digits + "-.:")
+_KEY_SEPARATORS = set(" \t\n`")  # a filled key holds no whitespace and no backtick (MyST roles)
 
 
 def use_data(data_files: Sequence[str] = (), data_set: Sequence[str] = ()) -> userdata.DataInputs:
@@ -98,10 +97,10 @@ def key(template: str, **fields: Any) -> str:
                          f"got {sorted(fields)}")
     values = {k: label_key(v) if k == "platform" else str(v) for k, v in fields.items()}
     out = template.format(**values)
-    bad = sorted(set(out) - _KEY_CHARS)
+    bad = sorted(set(out) & _KEY_SEPARATORS)
     if bad or not out:
-        raise ValueError(f"glue key {out!r} (template {template!r}) holds characters {bad}; "
-                         "keys are lower-case letters, digits, '-', '.' and ':'")
+        raise ValueError(f"glue key {out!r} (template {template!r}) is empty or holds characters {bad} "
+                         "(whitespace or a backtick end a MyST role)")
     return out
 
 

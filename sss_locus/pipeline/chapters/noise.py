@@ -19,11 +19,10 @@ from sss_locus.experiments.platforms import load_platform
 from sss_locus.experiments.replicates import median_with_interval
 from sss_locus.experiments.survey_passes import simulate_passes
 from sss_locus.experiments.three_view_patterns import PATTERNS
-from sss_locus.experiments.userdata import label_key
 from sss_locus.experiments.verdicts import advice_verdict
 from sss_locus.experiments.view_sets import views_from_survey, draw_pattern
 from sss_locus.pipeline.cache import cached
-from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish import publish
 from sss_locus.report.findings import noise_advice_findings
 from sss_locus.report.noise import (level_label, plot_noise_curves, curve_frames, advice_texts, scale_text,
@@ -31,9 +30,36 @@ from sss_locus.report.noise import (level_label, plot_noise_curves, curve_frames
 from sss_locus.report.tables import readable_table
 from sss_locus.report.text import fmt_interval, fmt_bands, fmt_sig
 
-__all__ = ["advice_texts", "advice_verdict", "Aperture", "cached", "crossing_angle_grid", "curve_frames",
+
+class KEYS:
+    """The glue keys (and figure labels) this chapter fills by :func:`~sss_locus.pipeline.chapters.common.key`;
+    ``{platform}`` takes a data key."""
+
+    at_angle = "nz-{platform}-{quantity}-{angle}"  # median with interval at 0, 90 or 180 deg; quantity: length, extent, band or range-extent
+    scaled_extent = "nz-{platform}-x{scale}-extent-{angle}"  # extent at a scaled noise level (scale: the factor, '.' written 'p')
+    length_peak = "nz-{platform}-length-peak"  # crossing angle of the locus length's peak (deg)
+    extent_peak = "nz-{platform}-extent-peak"  # crossing angle of the extent's peak (deg)
+    extent_peak_ci = "nz-{platform}-extent-peak-ci"  # its bootstrap interval
+    extent_min_angle = "nz-{platform}-extent-min-angle"  # crossing angle of the smallest extent (deg)
+    extent_min = "nz-{platform}-extent-min"  # the smallest extent with its interval
+    scaled_empty = "nz-{platform}-x{scale}-empty"  # share of empty loci at a scaled noise level
+    attitude_empty = "nz-{platform}-attitude-empty"  # share of empty loci with attitude noise only
+    band_length = "nz-{platform}-{band}-length"  # prefer/avoid bands of the locus length
+    band_extent = "nz-{platform}-{band}-extent"  # prefer/avoid bands of the extent
+    band_over_length = "nz-{platform}-band-over-length"  # median band width over locus length
+    empty = "nz-{platform}-empty"  # share of empty loci at the headline noise
+    verdict = "nz-{platform}-verdict"  # whether the paper's advice survives noise
+    oblique_extent = "nz-{platform}-oblique-extent"  # median extent over 10-40 deg (m)
+    check_small = "nz-check-{views}-small"  # first order against Monte Carlo at small noise (views: two or three)
+    check_head_median = "nz-check-{views}-head-median"  # the same at the headline noise, median
+    check_head_max = "nz-check-{views}-head-max"  # the same at the headline noise, largest
+    check_mc_median = "nz-check-{views}-{platform}-mc-median"  # Monte Carlo median with its interval
+    three_lost = "nz-{platform}-three-lost"  # share of three-view draws lost
+
+
+__all__ = ["key", "KEYS", "advice_texts", "advice_verdict", "Aperture", "cached", "crossing_angle_grid", "curve_frames",
            "curve_summary", "draw_pattern", "first_order", "fmt_bands", "fmt_interval", "fmt_sig",
-           "gaussian_norm_quantile", "glue", "label_key", "level_label", "load_envelope",
+           "gaussian_norm_quantile", "glue", "level_label", "load_envelope",
            "load_noise_model", "load_platform", "median_with_interval", "monte_carlo",
            "noise_advice_findings", "np", "OffsetModel", "PATTERNS", "pd", "peak_angle", "planning_bands",
            "plot_breakdown", "plot_check", "plot_noise_curves", "publish", "readable_table", "scale_text",

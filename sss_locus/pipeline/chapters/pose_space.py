@@ -17,9 +17,8 @@ from sss_locus.experiments.platforms import load_platform
 from sss_locus.experiments.pose_claims import map_intervals, claim_metrics, batch_medians, batches
 from sss_locus.experiments.pose_space import PoseSpaceSpec, sample_pose_space, sample_geometry
 from sss_locus.experiments.pose_stats import with_derived, spearman_table, heatmaps
-from sss_locus.experiments.userdata import label_key
 from sss_locus.pipeline.cache import cached
-from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish import publish, place
 from sss_locus.report.pose_findings import (findings_markdown, platform_title, drivers_finding,
                                             panels_finding, choices_finding, reading_finding, fan_finding,
@@ -29,10 +28,34 @@ from sss_locus.report.pose_space import (scatter_subset, plot_sensitivity, plot_
                                          hotspot_texts, metric_texts)
 from sss_locus.report.text import plain_label, fmt_ci, fmt_span
 
-__all__ = ["batch_medians", "batches", "bin_window", "cached", "check_row", "choices_finding",
+
+class KEYS:
+    """The glue keys (and figure labels) this chapter fills by :func:`~sss_locus.pipeline.chapters.common.key`;
+    ``{platform}`` takes a data key."""
+
+    fig_sensitivity = "fig-sensitivity-{platform}"  # figure label
+    fig_heatmaps = "fig-heatmaps-{platform}"  # figure label
+    prefix = "ps-{platform}"  # prefix of the keys report.pose_space's *_texts functions return
+    text = "ps-{platform}-{text}"  # a text of report.pose_space.metric_texts (its name)
+    unc_top_norm = "ps-unc-{platform}-top-norm"  # unconstrained sweep: top quantity for the normalised length
+    unc_rho_mis = "ps-unc-{platform}-rho-mis"  # unconstrained sweep: rho of misalignment (norm.)
+    unc_yaw0 = "ps-unc-{platform}-yaw0"  # unconstrained sweep: yaw 0 / peak with its interval
+    below_top_norm = "ps-below-{platform}-top-norm"  # feature-below rule lifted: top quantity (norm.)
+    below_rho_mis = "ps-below-{platform}-rho-mis"  # feature-below rule lifted: rho of misalignment (norm.)
+    below_hotspot = "ps-below-{platform}-hotspot"  # feature-below rule lifted: hotspot region
+    below_hotspot_equal = "ps-below-{platform}-hotspot-equal"  # feature-below rule lifted: whether the hotspot includes equal azimuths
+    depth_top_norm = "ps-depth-{platform}-top-norm"  # vehicle 2 above the surface allowed: top quantity (norm.)
+    depth_rho_mis = "ps-depth-{platform}-rho-mis"  # vehicle 2 above the surface allowed: rho of misalignment (norm.)
+    depth_hotspot = "ps-depth-{platform}-hotspot"  # vehicle 2 above the surface allowed: hotspot bin
+    depth_above = "ps-depth-{platform}-above"  # share of draws with vehicle 2 above the surface
+    depth_min = "ps-depth-{platform}-min"  # the platform's shallowest depth (m)
+    depth_same_top = "ps-depth-{platform}-same-top"  # whether the top quantity is the main run's
+
+
+__all__ = ["key", "KEYS", "batch_medians", "batches", "bin_window", "cached", "check_row", "choices_finding",
            "claim_metrics", "drivers_finding", "fan_finding", "fan_share_removed", "fan_texts",
            "findings_markdown", "fmt_ci", "fmt_span", "glue", "heatmaps", "hotspot_check",
-           "hotspot_finding", "hotspot_texts", "label_key", "load_platform", "map_intervals", "Markdown",
+           "hotspot_finding", "hotspot_texts", "load_platform", "map_intervals", "Markdown",
            "metric_texts", "np", "panels_finding", "pd", "place", "plain_label", "platform_title",
            "plot_heatmaps", "plot_sensitivity", "pose_summary", "PoseSpaceSpec", "publish",
            "reading_effect", "reading_finding", "reading_texts", "sample_geometry", "sample_pose_space",

@@ -20,16 +20,28 @@ from sss_locus.experiments.reconstruction_surveys import (survey_cases, layout_w
 from sss_locus.experiments.slope_error import slope_views
 from sss_locus.experiments.survey_plans import load_settings
 from sss_locus.experiments.terrain import load_terrain_config
-from sss_locus.experiments.userdata import label_key
-from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish import publish
 from sss_locus.report.reconstruction import (spacing_label, plot_sweep, METRIC_LABELS, plot_slope,
                                              plot_views, verdict_sentence, ESTIMATORS, comparison_word,
                                              with_intervals, height_sentence)
 from sss_locus.report.text import fmt_ci, fmt_percent, fmt_sig
 
-__all__ = ["adjustment_estimators", "comparison_word", "ESTIMATORS", "fmt_ci", "fmt_percent", "fmt_sig",
-           "glue", "height_sentence", "label_key", "layout_with_spacing", "load_envelope",
+
+class KEYS:
+    """The glue keys (and figure labels) this chapter fills by :func:`~sss_locus.pipeline.chapters.common.key`;
+    ``{platform}`` takes a data key."""
+
+    error = "rc-{platform}-{estimator}-{metric}{relief}"  # median error with its interval; metric: horizontal, vertical or shape; relief: '' (default RMS relief), '-rmax' or '-r0'
+    coverage = "rc-{platform}-{estimator}-coverage{relief}"  # share of features estimated; relief as for error
+    spacing = "rc-{platform}-spacing"  # the routine line spacing (m)
+    slope = "rc-{platform}-slope-{method}-{error}"  # one view on the steepest slope: method closed or simulated, error 3d, across or vertical
+    comparison_word = "rc-{platform}-{estimator}-{metric}-word"  # estimator against the mosaic at the routine spacing (report.reconstruction.comparison_word)
+    terrain = "rc-{setting}"  # a terrain or survey setting: corr-len, area, cross-spacing
+
+
+__all__ = ["key", "KEYS", "adjustment_estimators", "comparison_word", "ESTIMATORS", "fmt_ci", "fmt_percent", "fmt_sig",
+           "glue", "height_sentence", "layout_with_spacing", "load_envelope",
            "load_noise_model", "load_pass_noise", "load_platform", "load_settings", "load_terrain_config",
            "Markdown", "METRIC_LABELS", "np", "over_surveys", "paired_over_surveys", "pd", "plot_slope",
            "plot_sweep", "plot_views", "publish", "show_table", "slope_views", "spacing_label",

@@ -16,10 +16,9 @@ from sss_locus.experiments.planning import (crossing_angle_grid, crossing_angle_
                                             pitch_study_platform, worst_band, band_samples, median_ratio)
 from sss_locus.experiments.platforms import load_platform
 from sss_locus.experiments.survey_passes import simulate_passes
-from sss_locus.experiments.userdata import label_key
 from sss_locus.experiments.verdicts import near_end_check, peak_agreement
 from sss_locus.pipeline.cache import cached
-from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish import publish
 from sss_locus.report.pass_findings import (curve_finding, offset_models_finding, skipped_study_note,
                                             pitch_depth_finding, survey_summary)
@@ -31,9 +30,21 @@ from sss_locus.report.survey_passes import (plot_fig5, describe_setup, describe_
                                             pitch_depth_texts, plot_pitch_depth)
 from sss_locus.report.tables import key_caption
 
-__all__ = ["band_samples", "cached", "crossing_angle_curve", "crossing_angle_grid", "curve_finding",
+
+class KEYS:
+    """The glue keys (and figure labels) this chapter fills by :func:`~sss_locus.pipeline.chapters.common.key`;
+    ``{platform}`` takes a data key."""
+
+    prefix = "sp-{platform}"  # prefix of the keys report.survey_passes' *_texts functions return
+    model_prefix = "sp-{platform}-{model}"  # prefix of peak_agreement_texts' keys (model: report.survey_passes.model_tag)
+    paperband_prefix = "sp-{platform}-paperband"  # prefix of pitch_depth_texts' keys in the paper's band
+    worst_band = "sp-{platform}-worst-band"  # the avoid band holding the peak (deg)
+    paper_band = "sp-{platform}-paper-band"  # the paper's avoid band (deg)
+
+
+__all__ = ["key", "KEYS", "band_samples", "cached", "crossing_angle_curve", "crossing_angle_grid", "curve_finding",
            "curve_texts", "describe_offset_model", "describe_setup", "findings_markdown", "glue",
-           "key_caption", "label_key", "load_envelope", "load_platform", "Markdown", "median_ratio",
+           "key_caption", "load_envelope", "load_platform", "Markdown", "median_ratio",
            "model_tag", "near_end_caption", "near_end_check", "near_end_texts", "offset_model_table",
            "offset_model_texts", "offset_models_bimodal_note", "offset_models_finding", "OffsetModel",
            "pd", "peak_agreement", "peak_agreement_texts", "peak_table", "pitch_depth_finding",

@@ -13,15 +13,24 @@ from sss_locus.experiments.envelopes import load_envelope, OffsetModel
 from sss_locus.experiments.platforms import load_platform
 from sss_locus.experiments.pose_space import sample_pose_space
 from sss_locus.experiments.survey_passes import simulate_passes
-from sss_locus.experiments.userdata import label_key
 from sss_locus.experiments.water import deepest_feature_m
 from sss_locus.experiments.water_study import default_conditions, crop_effects, pass2_above_surface_share
 from sss_locus.pipeline.cache import cached
-from sss_locus.pipeline.chapters.common import show_table, use_data
+from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish import publish
 from sss_locus.report.water import plot_crop_effects, effect_texts, effect_table
 
-__all__ = ["cached", "crop_effects", "deepest_feature_m", "default_conditions", "effect_table",
-           "effect_texts", "glue", "label_key", "load_envelope", "load_platform", "np", "OffsetModel",
+
+class KEYS:
+    """The glue keys (and figure labels) this chapter fills by :func:`~sss_locus.pipeline.chapters.common.key`;
+    ``{platform}`` takes a data key."""
+
+    effect = "wa-{effect}"  # a sentence of report.water.effect_texts (its name)
+    pass2_above = "wa-{condition}-pass2-above"  # share of survey pass pairs whose pass 2 flies above the surface (condition: WaterCondition.slug)
+    deepest = "wa-{platform}-deepest-m"  # deepest feature the platform's geometry reaches (m)
+
+
+__all__ = ["key", "KEYS", "cached", "crop_effects", "deepest_feature_m", "default_conditions", "effect_table",
+           "effect_texts", "glue", "load_envelope", "load_platform", "np", "OffsetModel",
            "pass2_above_surface_share", "plot_crop_effects", "publish", "sample_pose_space", "show_table",
            "simulate_passes", "time", "use_data"]
