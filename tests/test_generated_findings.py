@@ -159,12 +159,36 @@ def test_sweep_finding_finds_the_extreme_cells():
 
 
 def test_tilt_markdown_is_explicit_when_no_platform_is_a_surface_vessel():
-    empty = pd.DataFrame(columns=["platform", "tilt_deg", "pattern", "resolved", "ambiguous"])
-    assert "No platform of this run is a surface vessel" in pf.tilt_markdown(empty, {})
-    rows = pd.DataFrame({"platform": ["b", "b"], "tilt_deg": [15.0, 35.0], "pattern": ["x", "x"],
-                         "resolved": [0.5, 1.0], "ambiguous": [0.5, 0.0]})
-    text = pf.tilt_markdown(rows, {"b": "Boat (`b`)"})
-    assert text.startswith("- **Boat (`b`)**") and text.index("15° tilt 50") < text.index("35° tilt 100")
+    empty = pd.DataFrame(columns=["platform", "tilt_deg", "pattern", "n", "resolved", "ambiguous"])
+    assert "No platform of this run is a surface vessel" in pf.tilt_markdown(empty, {}, {})
+
+
+def _tilt_rows(resolved_15, resolved_35, n=1000):
+    return pd.DataFrame({"platform": "boat", "tilt_deg": [15.0, 15.0, 35.0, 35.0], "pattern": ["x", "y", "x", "y"],
+                         "n": n, "resolved": [resolved_15, 0.9, resolved_35, 0.9],
+                         "ambiguous": [1 - resolved_15, 0.1, 1 - resolved_35, 0.1]})
+
+
+def test_tilt_finding_is_the_papers_paragraph_for_the_shipped_boat():
+    """One source for the paper's boat and a user's vessel: the fan's top edge from the fan and
+    the tilt (50° fan: 25° - 15° = 10° above the horizontal), the shares as the chapter glues them
+    (share_text), and the conclusion only where a resolved share changes beyond both intervals;
+    "an assumed value" because data/platforms.toml marks the boat's tilt as an assumption."""
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.report.three_views import share_text
+
+    boat = load_platform("boat")
+    text = pf.tilt_markdown(_tilt_rows(0.5, 1.0), {"boat": boat}, {"boat": "Boat (`boat`)"})
+    assert text.startswith("- **Boat (`boat`)**: With its transducers tilted 15° the fan reaches 10° above "
+                           "the horizontal: the feature is resolved in ")
+    assert f"{share_text(0.5, 1000)} (x) and {share_text(0.9, 1000)} (y) of the configurations" in text
+    assert f"a two-fold ambiguity remaining in {share_text(0.5, 1000)} and {share_text(0.1, 1000)}" in text
+    assert f"; at 35° the shares resolved are {share_text(1.0, 1000)} and {share_text(0.9, 1000)}." in text
+    assert text.rstrip().endswith("Its resolution at 25° therefore rests on where the top of its fan lies, "
+                                  "an assumed value.")
+    # 50.0 % vs 50.5 % of 1000: the exact intervals overlap, so no dependence on the tilt is claimed
+    same = pf.tilt_markdown(_tilt_rows(0.5, 0.505), {"boat": boat}, {"boat": "Boat (`boat`)"})
+    assert "rests on" not in same and same.rstrip().endswith(".")
 
 
 def test_panels_hotspot_and_choices_follow_their_numbers():

@@ -12,8 +12,10 @@ from collections.abc import Mapping
 import pandas as pd
 
 from ..experiments.planning import planning_bands
+from ..experiments.platforms import provenance_table
+from ..experiments.three_view_patterns import share_interval
 from .text import fmt_bands, fmt_change, fmt_percent, fmt_sig
-from .three_views import sweep_texts
+from .three_views import share_text, sweep_texts
 
 OBLIQUE_MAX_DEG = 45.0
 """A peak below this crossing angle counts as "at a moderate oblique angle" (the paper's shape)."""
@@ -140,13 +142,70 @@ def closure_finding(summary: pd.DataFrame) -> str:
             f"{fmt_sig(best.error_full_median_m, 2)} m and {fmt_sig(worst.error_full_median_m, 2)} m.")
 
 
-def tilt_finding(rows: pd.DataFrame) -> str:
-    """Shares resolved per transducer tilt and pattern of one surface platform (the chapter's
-    tilt table restricted to it: ``tilt_deg``, ``pattern``, ``resolved``, ``ambiguous``)."""
-    parts = []
-    for tilt, g in rows.groupby("tilt_deg", sort=True):
-        parts.append(f"at {tilt:g}° tilt " + ", ".join(f"{fmt_percent(r.resolved)} ({r.pattern})" for r in g.itertuples()))
-    return "resolved " + "; ".join(parts) + "."
+def fan_top_clause(fan_deg: float, tilt_deg: float) -> str:
+    """Where the top edge of a fan of full width ``fan_deg`` lies when its axis is tilted
+    ``tilt_deg`` below the horizontal (a level platform).
+
+    >>> fan_top_clause(50.0, 15.0), fan_top_clause(50.0, 25.0), fan_top_clause(50.0, 35.0)
+    ('the fan reaches 10° above the horizontal', 'the top of the fan is horizontal', \
+'the top of the fan is 10° below the horizontal')
+    """
+    top = fan_deg / 2 - tilt_deg
+    if abs(top) < 1e-9:
+        return "the top of the fan is horizontal"
+    return f"the fan reaches {top:g}° above the horizontal" if top > 0 else \
+        f"the top of the fan is {-top:g}° below the horizontal"
+
+
+def _and(items: list[str]) -> str:
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def tilt_finding(rows: pd.DataFrame, platform) -> str:
+    """The three-view tilt check of one surface platform in words, for any platform (the paper's
+    boat included): the one source of this paragraph (CONTRIBUTING.md, "One source per sentence").
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        The chapter's tilt table restricted to the platform: ``tilt_deg``, ``pattern``, ``n``,
+        ``resolved`` and ``ambiguous`` (shares of ``n`` configurations).
+    platform : sss_locus.experiments.platforms.Platform
+        The platform: its fan (``sonar.azimuth_deg``), its port transducer's tilt in the data,
+        and whether that tilt is an assumption (its data note).
+
+    Returns
+    -------
+    str
+        The first tilt with the fan's top edge, the shares resolved and left two-fold ambiguous
+        per pattern; the shares resolved at every further tilt; and, when a pattern's resolved
+        share changes between two tilts beyond both exact 95 % intervals, that the resolution at
+        the data's tilt rests on where the top of the fan lies (", an assumed value" when the
+        data mark the tilt as an assumption). Shares as
+        :func:`~sss_locus.report.three_views.share_text` (the chapter's glued values).
+    """
+    tilts = sorted(rows["tilt_deg"].unique())
+    first = rows[rows["tilt_deg"] == tilts[0]]
+    text = (f"With its transducers tilted {tilts[0]:g}° {fan_top_clause(platform.sonar.azimuth_deg, tilts[0])}: "
+            "the feature is resolved in "
+            + _and([f"{share_text(r.resolved, r.n)} ({r.pattern})" for r in first.itertuples()])
+            + " of the configurations, a two-fold ambiguity remaining in "
+            + _and([share_text(r.ambiguous, r.n) for r in first.itertuples()]))
+    for tilt in tilts[1:]:
+        g = rows[rows["tilt_deg"] == tilt]
+        text += f"; at {tilt:g}° the shares resolved are " + _and([share_text(r.resolved, r.n) for r in g.itertuples()])
+    text += "."
+    intervals = {(r.pattern, r.tilt_deg): share_interval(int(round(r.resolved * r.n)), int(r.n))
+                 for r in rows.itertuples()}
+    changes = any(intervals[(p, a)][1] < intervals[(p, b)][0] or intervals[(p, b)][1] < intervals[(p, a)][0]
+                  for p in rows["pattern"].unique() for a in tilts for b in tilts if a < b)
+    if changes:
+        data_tilt = platform.transducers["port"].tilt_deg
+        notes = provenance_table(platform).set_index("key")["kind"]
+        assumed = notes.get(f"platforms.{platform.key}.transducers.port.tilt_deg") == "assumption"
+        text += (f" Its resolution at {data_tilt:g}° therefore rests on where the top of its fan lies"
+                 + (", an assumed value." if assumed else "."))
+    return text
 
 
 def sweep_finding(sweep: pd.DataFrame) -> str:
@@ -160,12 +219,14 @@ def sweep_finding(sweep: pd.DataFrame) -> str:
             f"(unresolved: at most {t['unresolved-upper']} at 95 % confidence).")
 
 
-def tilt_markdown(rows: pd.DataFrame, titles: Mapping[str, str]) -> str:
-    """:func:`tilt_finding` of every platform in the tilt table ``rows`` (column ``platform``),
-    titled by ``titles`` (platform key -> title), or a sentence saying the table is empty."""
+def tilt_markdown(rows: pd.DataFrame, platforms: Mapping[str, object], titles: Mapping[str, str]) -> str:
+    """:func:`tilt_finding` of every platform in the tilt table ``rows`` (column ``platform``;
+    ``platforms`` maps its keys to the platforms), titled by ``titles`` (platform key -> title),
+    or a sentence saying the table is empty."""
     if rows.empty:
         return "No platform of this run is a surface vessel: the tilt comparison is empty.\n"
-    return "".join(f"- **{titles[k]}**: {tilt_finding(g)}\n" for k, g in rows.groupby("platform", sort=False))
+    return "".join(f"- **{titles[k]}**: {tilt_finding(g, platforms[k])}\n"
+                   for k, g in rows.groupby("platform", sort=False))
 
 
 def pattern_ranking(summary: pd.DataFrame) -> str:
