@@ -19,9 +19,8 @@ from sss_locus import paths
 from sss_locus.pipeline.chapters.common import key, templates
 
 FACADE_IMPORT = re.compile(r"^from sss_locus\.pipeline\.chapters import (\w+) as ch$", re.M)
-#: Chapters without a facade yet: survey_design (being rewritten in parallel, issue 40) and the
-#: symbolic derivation (SymPy may only be imported by geometry.symbolic and report).
-NOT_YET = {"derivation", "survey_design"}
+#: Chapters without a facade yet: survey_design (being rewritten in parallel, issue 40).
+NOT_YET = {"survey_design"}
 NOTEBOOKS = sorted(p for p in paths.NOTEBOOKS_DIR.glob("*.ipynb") if p.stem not in NOT_YET)
 
 
