@@ -146,3 +146,79 @@ def plot_crop_effects(effects: pd.DataFrame, crop: str = "surface"):
     handles, names = axs[0].get_legend_handles_labels()  # below the panels: never over a bar
     fig.legend(handles, names, loc="outside lower center", ncol=2, fontsize=9, frameon=False)
     return fig
+
+
+def crop_caption(*, n_samples: int, n_per_angle: int, crossing_step_deg: float, seed: int, n_batches: int) -> str:
+    """Caption of the figure of the crop to the water (``fig-water-crop``).
+
+    Parameters
+    ----------
+    n_samples : int
+        Pose-space samples per run.
+    n_per_angle : int
+        Survey pass pairs per crossing angle.
+    crossing_step_deg : float
+        Crossing-angle step of the survey passes (deg).
+    seed : int
+        The samplers' seed.
+    n_batches : int
+        Replicate batches of the intervals.
+
+    Returns
+    -------
+    str
+        The caption (MyST).
+    """
+    return (f"Cropping the locus to the water, per platform and study (pose space: {n_samples:,} samples per "
+            f"run; survey passes: {n_per_angle:,} pass pairs per crossing angle, every {crossing_step_deg:g}°; "
+            f"seed {seed}); every row counts all samples or pass pairs of its run "
+            "(pose space: sensor 2 on either side, not the heatmaps' port–port subset): (a) share of loci with "
+            "more than one arc, for the paper's locus (apertures only, "
+            "grey) and cropped to the water (blue); (b) share of the total locus length that lies below "
+            f"the sea surface. Bars: 95 % intervals from {n_batches} replicate batches of the pairs.")
+
+
+def effects_caption(*, seed: int, n_batches: int) -> str:
+    """Caption of the table of crop effects (``tab-water-effects``), without its files sentence.
+
+    Parameters
+    ----------
+    seed : int
+        The samplers' seed.
+    n_batches : int
+        Replicate batches of the intervals.
+
+    Returns
+    -------
+    str
+        The caption.
+    """
+    return (f"Each condition (platform, its depth or tilt, study; a seafloor margin where the crop also bounds the "
+            f"water column) and subset of its samples: the count, and in percent with a 95 % interval over "
+            f"{n_batches} replicate batches the share of locus length the crop keeps, the share of loci it "
+            f"shortens, and the shares fragmented without and with it (seed {seed}).")
+
+
+def seafloor_caption(*, seafloor_margins_m: list[float], seed: int, n_batches: int) -> str:
+    """Caption of the figure of the crop to the water column (``fig-water-seafloor``).
+
+    Parameters
+    ----------
+    seafloor_margins_m : list of float
+        Depths of the seafloor below each feature (m).
+    seed : int
+        The samplers' seed.
+    n_batches : int
+        Replicate batches of the intervals.
+
+    Returns
+    -------
+    str
+        The caption (MyST).
+    """
+    return (f"Cropping the locus to the water column between the sea surface and a seafloor "
+            f"{' or '.join(f'{m:g} m' for m in seafloor_margins_m)} below each feature (`seafloor_margins_m`), per "
+            f"platform and study (samples as in the figure above, all of them, seed {seed}): (a) share of loci "
+            "with more than "
+            "one arc, for the paper's locus (grey) and cropped (blue); (b) share of the total locus length that "
+            f"lies in the water column. Bars: 95 % intervals from {n_batches} replicate batches of the pairs.")

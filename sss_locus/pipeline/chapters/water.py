@@ -18,7 +18,7 @@ from sss_locus.experiments.water_study import default_conditions, crop_effects, 
 from sss_locus.pipeline.cache import cached
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish import publish
-from sss_locus.report.water import plot_crop_effects, effect_texts, effect_table
+from sss_locus.report.water import crop_caption, effect_table, effect_texts, effects_caption, plot_crop_effects, seafloor_caption
 
 
 class KEYS:
@@ -30,7 +30,7 @@ class KEYS:
     deepest = "wa-{platform}-deepest-m"  # deepest feature the platform's geometry reaches (m)
 
 
-__all__ = ["key", "KEYS", "cached", "crop_effects", "deepest_feature_m", "default_conditions", "effect_table",
+__all__ = ["key", "KEYS", "cached", "crop_caption", "effects_caption", "seafloor_caption", "crop_effects", "deepest_feature_m", "default_conditions", "effect_table",
            "effect_texts", "glue", "load_envelope", "load_platform", "np", "OffsetModel",
            "pass2_above_surface_share", "plot_crop_effects", "publish", "sample_pose_space", "show_table",
            "simulate_passes", "time", "use_data"]
