@@ -152,10 +152,30 @@ def test_sweep_finding_finds_the_extreme_cells():
     text = pf.sweep_finding(sweep)
     # the worst cells: the four corners, all at 1.1 (equal or reciprocal headings); the best: every
     # cell with a heading of 90° (0.1), within 0.01 of each other
-    assert "the worst cells are 4 cells with h₂ 0° to 180° and h₃ 0° to 180°, with a median up to 1.10 m (95 % CI 1.09–1.11 m)" in text
-    assert "the best are 13 cells" in text and "down to 0.10 m (95 % CI 0.090–0.11 m)" in text
+    assert text.startswith("The worst cells are the corners, where all three headings are equal or reciprocal: "
+                           "4 cells with h₂ 0° to 180° and h₃ 0° to 180° (median up to 1.10 m (95 % CI 1.09–1.11 m))")
+    assert "The best cells, read the same way, are 13 cells" in text and "down to 0.10 m (95 % CI 0.090–0.11 m)" in text
+    assert "a flat optimum, not one best pair of headings" in text
+    # the diagonal away from the corners: (30°, 30°) and (150°, 150°) at 0.1 + 0.75² = 0.6625, the
+    # largest, far below the corners' interval (1.09): not degenerate
+    assert "is not degenerate: its largest median error is 0.66 m" in text
+    # spread out (h2 >= 45, h3 <= 135, h3 - h2 >= 45): (60°, 120°) at 0.1 + 0.25 * 0.25 = 0.1625
+    assert "the largest median error is 0.16 m" in text
     n_all, unresolved = 100 * len(h2), 10  # one cell at 90 %
-    assert f"{fmt_percent(1 - unresolved / n_all)} of the configurations over all cells are resolved" in text
+    assert f"Over all cells {fmt_percent(1 - unresolved / n_all)} of the configurations are resolved" in text
+
+
+def test_sweep_finding_says_when_the_worst_cells_are_not_the_corners_and_the_diagonal_is_degenerate():
+    h = np.arange(0.0, 181.0, 30.0)
+    h2, h3 = (a.ravel() for a in np.meshgrid(h, h))
+    err = np.where(np.isclose(h2, h3), 1.0, 0.2) + np.where((h2 == 60) & (h3 == 90), -0.1, 0.0)  # the whole diagonal worst
+    sweep = pd.DataFrame({"heading2_deg": h2, "heading3_deg": h3, "point_error_q95_median_m": err,
+                          "point_error_q95_median_ci_low_m": err - 0.01, "point_error_q95_median_ci_high_m": err + 0.01,
+                          "resolved_fraction": 1.0, "n": 100})
+    text = pf.sweep_finding(sweep)
+    assert "equal or reciprocal" not in text and text.startswith("The worst cells are 7 cells")
+    assert "is as degenerate as the worst cells" in text
+    assert ": one best pair of headings." in text  # (60°, 90°) alone at 0.1, the others at 0.2
 
 
 def test_tilt_markdown_is_explicit_when_no_platform_is_a_surface_vessel():

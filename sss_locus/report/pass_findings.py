@@ -9,11 +9,12 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
+import numpy as np
 import pandas as pd
 
 from ..experiments.planning import planning_bands
 from ..experiments.platforms import provenance_table
-from ..experiments.three_view_patterns import share_interval
+from ..experiments.three_view_patterns import cells_within, share_interval
 from .text import fmt_bands, fmt_change, fmt_percent, fmt_sig
 from .three_views import share_text, sweep_texts
 
@@ -209,14 +210,50 @@ def tilt_finding(rows: pd.DataFrame, platform) -> str:
 
 
 def sweep_finding(sweep: pd.DataFrame) -> str:
-    """The heading sweep of one platform: its worst and best cells by median 95 % point error
-    (the cells within the interval of the largest and smallest median, with that median and its
-    interval) and the share resolved over all cells
-    (:func:`~sss_locus.report.three_views.sweep_texts`)."""
+    """The heading sweep of one platform in words, for any platform (the paper's included): the
+    one source of this paragraph (CONTRIBUTING.md, "One source per sentence").
+
+    Parameters
+    ----------
+    sweep : pandas.DataFrame
+        A heading sweep with noise (:func:`~sss_locus.experiments.three_view_patterns.heading_sweep`):
+        ``heading2_deg``, ``heading3_deg``, ``point_error_q95_median_m`` with its interval columns,
+        ``resolved_fraction`` and ``n``.
+
+    Returns
+    -------
+    str
+        The worst and best cells (those the sampling cannot tell from the largest and smallest
+        median 95 % point error, :func:`~sss_locus.report.three_views.sweep_texts`) with their
+        medians; "the corners, where all three headings are equal or reciprocal" only when every
+        worst cell is one; "a flat optimum" when several cells share the best; whether the rest
+        of the diagonal (passes 2 and 3 parallel) is degenerate, by its largest median against
+        the worst cell's interval; the largest median with the headings spread out; and the
+        share resolved with the one-sided bound of the share unresolved.
+    """
     t = sweep_texts(sweep)
-    return (f"the worst cells are {t['worst']}, with a median up to {t['worst-err']}; the best are {t['best']}, "
-            f"down to {t['best-err']}; {t['resolved']} of the configurations over all cells are resolved "
-            f"(unresolved: at most {t['unresolved-upper']} at 95 % confidence).")
+    v = "point_error_q95_median_m"
+    worst, best = cells_within(sweep, "max"), cells_within(sweep, "min")
+    corners = bool(np.all(np.isclose(np.mod(worst.heading2_deg, 180.0), 0.0)
+                          & np.isclose(np.mod(worst.heading3_deg, 180.0), 0.0)))
+    h2, h3 = sweep.heading2_deg, sweep.heading3_deg
+    diagonal = sweep[np.isclose(h2, h3) & ~np.isclose(np.mod(h2, 180.0), 0.0)]
+    top = sweep.loc[sweep[v].idxmax()]
+    text = ("The worst cells are " + ("the corners, where all three headings are equal or reciprocal: " if corners
+                                       else "")
+            + f"{t['worst']} (median up to {t['worst-err']}). The best cells, read the same way, are {t['best']} "
+            f"(down to {t['best-err']})"
+            + (": a flat optimum, not one best pair of headings." if len(best) > 1 else ": one best pair of headings."))
+    if len(diagonal):
+        degenerate = diagonal[v].max() >= top[v[:-2] + "_ci_low_m"]
+        text += (" The rest of the diagonal ($h_2 = h_3$: passes 2 and 3 parallel, both crossing pass 1) is "
+                 + ("as degenerate as the worst cells" if degenerate else "not degenerate")
+                 + f": its largest median error is {t['parallel-err']}.")
+    if t["spread-err"] != "n/a":
+        text += (" With the three headings spread out (pass 2 and pass 3 each at least 45° from pass 1 and from "
+                 f"each other, within 45–135°) the largest median error is {t['spread-err']}.")
+    return (text + f" Over all cells {t['resolved']} of the configurations are resolved; the share left "
+            f"unresolved is at most {t['unresolved-upper']} (one-sided exact 95 % bound).")
 
 
 def tilt_markdown(rows: pd.DataFrame, platforms: Mapping[str, object], titles: Mapping[str, str]) -> str:
