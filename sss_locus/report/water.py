@@ -183,10 +183,8 @@ def effects_caption(*, seed: int, n_batches: int) -> str:
 
     Parameters
     ----------
-    seed : int
-        The samplers' seed.
-    n_batches : int
-        Replicate batches of the intervals.
+    seed, n_batches : int
+        As for :func:`crop_caption`.
 
     Returns
     -------
@@ -206,10 +204,8 @@ def seafloor_caption(*, seafloor_margins_m: list[float], seed: int, n_batches: i
     ----------
     seafloor_margins_m : list of float
         Depths of the seafloor below each feature (m).
-    seed : int
-        The samplers' seed.
-    n_batches : int
-        Replicate batches of the intervals.
+    seed, n_batches : int
+        As for :func:`crop_caption`.
 
     Returns
     -------
