@@ -1,0 +1,421 @@
+"""The schema of the data files (``data/*.toml`` and users' ``--data`` files) as pydantic v2 models.
+
+One model per table: :class:`Sonar`, :class:`Platform` (with :class:`Transducer`,
+:class:`Attitude`, :class:`DepthRange`, :class:`PlatformSurvey`, :class:`Mission`),
+:class:`Envelope`, :class:`OffsetModels`, :class:`NoiseTable`, :class:`Terrain`,
+:class:`Survey`, :class:`SurveyDesign`, and :class:`Data` for a whole (merged) document.
+
+Every number is a :class:`Sourced` value ``{value = ..., source = "..."}`` or ``{value = ...,
+assumption = "..."}`` (exactly one of the two notes); its bounds are the ``Field(ge=, le=, gt=)``
+of its declaration (:func:`number`), units are in the field names. Every table refuses keys it
+does not declare (``extra="forbid"``) with the nearest declared key suggested; an error becomes a
+one-line ``ValueError`` naming the key path, the value and the valid range
+(:func:`validation_message`), e.g. ``platforms.auv.transducers.port.tilt_deg.value must be a
+finite number in [-90.0, 90.0]; got 120.0``.
+
+The merge of shipped data, users' files and ``--set`` overrides stays on plain dicts
+(:mod:`sss_locus.experiments.datadoc`); the merged document is validated once by
+:func:`validate_document`.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from collections.abc import Mapping
+from typing import Annotated, Any, Generic, Literal, TypeVar, get_args, get_origin
+
+from annotated_types import Ge, Gt, Le, Lt
+from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, StringConstraints, ValidationError,
+                      field_validator, model_validator)
+from pydantic_core import PydanticCustomError
+
+#: Keys of sonars, platforms, envelopes and noise models (``_`` becomes ``-`` in figure labels).
+KEY_PATTERN = r"^[a-z][a-z0-9_]*$"
+Key = Annotated[str, StringConstraints(pattern=KEY_PATTERN)]
+
+
+def _non_empty(text: str) -> str:
+    if not text.strip():
+        raise PydanticCustomError("non_empty", "must be a non-empty string; got {got}", {"got": repr(text)})
+    return text
+
+
+#: A non-empty text (a name, a source, an assumption).
+Text = Annotated[str, Field(strict=True), AfterValidator(_non_empty)]
+
+
+def suggestion(name: str, known: Any) -> str:
+    """``"; did you mean `x`?"`` for the known name nearest to ``name``, or ``""``."""
+    close = difflib.get_close_matches(str(name), [str(k) for k in known], n=1, cutoff=0.6)
+    return f"; did you mean `{close[0]}`?" if close else ""
+
+
+class Table(BaseModel):
+    """A TOML table: frozen, only its declared keys (an unknown key names the nearest one)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _known_keys(cls, data: Any, handler):
+        if isinstance(data, Mapping):
+            for name in data:
+                if name not in cls.model_fields:
+                    known = sorted(cls.model_fields)
+                    raise PydanticCustomError(
+                        "unknown_key", "unknown key {name}{hint} (keys here: {known})",
+                        {"key": str(name), "name": repr(name), "hint": suggestion(name, known),
+                         "known": ", ".join(known)})
+        return handler(data)
+
+
+T = TypeVar("T")
+
+
+def _rule(field) -> str:
+    """The valid values of a :class:`Sourced` value's declaration, in words."""
+    annotation = field.annotation
+    if get_origin(annotation) is Literal:
+        return f"one of {list(get_args(annotation))}"
+    if annotation is bool:
+        return "true or false"
+    lo, hi, lo_open, hi_open = -math.inf, math.inf, True, True
+    for m in field.metadata:
+        if isinstance(m, (Ge, Gt)):
+            lo, lo_open = float(m.ge if isinstance(m, Ge) else m.gt), isinstance(m, Gt)
+        elif isinstance(m, (Le, Lt)):
+            hi, hi_open = float(m.le if isinstance(m, Le) else m.lt), isinstance(m, Lt)
+    return f"a finite number in {'(' if lo_open else '['}{lo}, {hi}{')' if hi_open else ']'}"
+
+
+class Sourced(Table, Generic[T]):
+    """A value with where it comes from: exactly one of ``source`` (a citation) and
+    ``assumption`` (what was assumed, and why)."""
+
+    value: T
+    source: Text | None = None
+    assumption: Text | None = None
+
+    @field_validator("value", mode="wrap")
+    @classmethod
+    def _in_range(cls, value: Any, handler):
+        try:
+            return handler(value)
+        except ValidationError:
+            raise PydanticCustomError("value_range", "must be {rule}; got {got}",
+                                      {"rule": _rule(cls.model_fields["value"]), "got": repr(value)}) from None
+
+    @model_validator(mode="after")
+    def _one_note(self):
+        notes = [k for k in ("source", "assumption") if getattr(self, k) is not None]
+        if len(notes) != 1:
+            raise PydanticCustomError("one_note", "needs exactly one of 'source' or 'assumption'; found {found}",
+                                      {"found": str(notes or "none")})
+        return self
+
+    @property
+    def note(self) -> str:
+        """``"source: ..."`` or ``"assumption: ..."`` (the provenance of the value)."""
+        return f"source: {self.source}" if self.source is not None else f"assumption: {self.assumption}"
+
+
+def number(ge: float | None = None, le: float | None = None, *, gt: float | None = None):
+    """The type of a sourced finite number within the given bounds (``None``: unbounded)."""
+    return Sourced[Annotated[float, Field(strict=True, allow_inf_nan=False, ge=ge, le=le, gt=gt)]]
+
+
+Finite = number()
+NonNegative = number(ge=0.0)
+Angle90 = number(ge=-90.0, le=90.0)
+Limit90 = number(ge=0.0, le=90.0)
+Fraction = number(ge=0.0, le=1.0)
+
+
+class Sonar(Table):
+    """``[sonars.<key>]``: a sidescan transducer model (the paper's Table I), FULL apertures."""
+
+    name: Text
+    azimuth_deg: number(gt=0.0, le=360.0)
+    elevation_deg: number(gt=0.0, le=180.0)
+    max_range_m: number(gt=0.0)
+    min_range_m: NonNegative
+
+    @model_validator(mode="after")
+    def _ranges(self):
+        if not self.max_range_m.value > self.min_range_m.value:
+            raise PydanticCustomError("order", "must exceed min_range_m = {other}; got {got}",
+                                      {"field": "max_range_m", "other": repr(self.min_range_m.value),
+                                       "got": repr(self.max_range_m.value)})
+        return self
+
+
+class Transducer(Table):
+    """``[platforms.<key>.transducers.<side>]``: one transducer's mounting."""
+
+    forward_offset_m: Finite
+    lateral_offset_m: NonNegative
+    depth_m: Finite
+    tilt_deg: Angle90
+
+
+class Transducers(Table):
+    port: Transducer
+    starboard: Transducer
+
+
+class DepthRange(Table):
+    """``[platforms.<key>.depth_m]``: depths of the reference point, metres."""
+
+    min: NonNegative
+    max: NonNegative
+
+    @model_validator(mode="after")
+    def _order(self):
+        if self.max.value < self.min.value:
+            raise PydanticCustomError("order", "must be >= min = {other}; got {got}",
+                                      {"field": "max", "other": repr(self.min.value), "got": repr(self.max.value)})
+        return self
+
+
+class Attitude(Table):
+    roll_max_deg: Limit90
+    pitch_max_deg: Limit90
+
+
+class PlatformSurvey(Table):
+    altitude_fraction_of_range: NonNegative | None = None
+
+
+class Mission(Table):
+    turn_radius_m: number(ge=0.0, le=1e4) | None = None
+    speed_m_s: number(ge=1e-3, le=100.0) | None = None
+
+
+class Platform(Table):
+    """``[platforms.<key>]``: a vehicle, its sonar (a key of ``[sonars]``) and their mounting.
+    (Fields in the order their provenance is listed.)"""
+
+    name: Text
+    sonar: Text
+    reference_point: str = ""
+    azimuth_positive: Sourced[Literal["down", "up"]]
+    transducers: Transducers
+    depth_m: DepthRange
+    attitude: Attitude
+    length_m: NonNegative | None = None
+    survey: PlatformSurvey = PlatformSurvey()
+    mission: Mission = Mission()
+
+
+class Envelope(Table):
+    """``[envelopes.<platform>]``: the survey envelope of a platform's pose-space study."""
+
+    altitude_min_m: Finite
+    altitude_max_m: Finite
+    pitch_min_deg: Finite
+    pitch_max_deg: Finite
+    same_altitude: Sourced[bool]
+
+
+class MatchedOffsets(Table):
+    jitter_m: NonNegative
+
+
+class OffsetModels(Table):
+    matched: MatchedOffsets
+
+
+class NoiseTable(Table):
+    """``[noise.<platform>]``: per-view measurement errors (standard deviations) and, optionally,
+    the per-pass navigation errors (all five or none)."""
+
+    range_resolution_m: NonNegative
+    range_sigma_per_resolution: NonNegative
+    sound_speed_relative_sigma: NonNegative
+    horizontal_sigma_m: NonNegative
+    vertical_sigma_m: NonNegative
+    roll_sigma_deg: NonNegative
+    pitch_sigma_deg: NonNegative
+    heading_sigma_deg: NonNegative
+    pass_offset_sigma_m: NonNegative | None = None
+    pass_heading_bias_sigma_deg: NonNegative | None = None
+    drift_sigma_fraction: NonNegative | None = None
+    ping_horizontal_sigma_m: NonNegative | None = None
+    ping_heading_sigma_deg: NonNegative | None = None
+
+
+Azimuth360 = number(ge=-360.0, le=360.0)
+Relief = number(ge=-1e3, le=1e3)
+
+
+class Slope(Table):
+    slope_deg: number(ge=0.0, le=60.0)
+    azimuth_deg: Azimuth360
+
+
+class Mound(Table):
+    height_m: Relief
+    sigma_m: number(ge=1e-3, le=1e5)
+
+
+class Step(Table):
+    height_m: Relief
+    width_m: number(ge=0.0, le=1e5)
+    azimuth_deg: Azimuth360
+
+
+class RandomRelief(Table):
+    rms_relief_m: number(ge=0.0, le=1e3)
+    correlation_length_m: number(ge=1e-2, le=1e5)
+    grid_spacing_m: number(ge=1e-3, le=1e3)
+
+
+class Terrain(Table):
+    """``[terrain]``: the parameters of the synthetic seafloors."""
+
+    slope: Slope
+    mound: Mound
+    step: Step
+    random: RandomRelief
+
+
+Length = number(ge=1.0, le=1e5)
+
+
+class Survey(Table):
+    """``[survey]``: the reconstruction study's survey."""
+
+    area_m: Length
+    line_spacing_m: Length
+    cross_line_spacing_m: Length
+    margin_m: number(ge=0.0, le=1e5)
+
+
+class SurveyDesign(Table):
+    """``[survey_design]``: the rules of the survey-design chapter's plans."""
+
+    range_scale_fraction: number(ge=1e-3, le=10.0)
+    standard_spacing_fraction: number(ge=1e-3, le=10.0)
+    standard_offset_fraction: Fraction
+    standard_altitude_min_fraction: Fraction
+    standard_altitude_max_fraction: Fraction
+    min_two_view_share: Fraction
+    run_in_turn_radii: number(ge=0.0, le=1000.0)
+    water_depth_m: number(ge=1e-3, le=12000.0) | None = None
+
+    @model_validator(mode="after")
+    def _order(self):
+        if self.standard_altitude_min_fraction.value > self.standard_altitude_max_fraction.value:
+            raise PydanticCustomError("order", "must not exceed standard_altitude_max_fraction = {other}; got {got}",
+                                      {"field": "standard_altitude_min_fraction",
+                                       "other": repr(self.standard_altitude_max_fraction.value),
+                                       "got": repr(self.standard_altitude_min_fraction.value)})
+        return self
+
+
+class Data(Table):
+    """A whole data document (shipped files, users' files and overrides merged); every table
+    optional here (a loader reading one file names a missing table it needs)."""
+
+    schema_version: int | None = None
+    sonars: dict[Key, Sonar] = {}
+    platforms: dict[Key, Platform] = {}
+    envelopes: dict[Key, Envelope] = {}
+    offset_models: OffsetModels | None = None
+    noise: dict[Key, NoiseTable] = {}
+    terrain: Terrain | None = None
+    survey: Survey | None = None
+    survey_design: SurveyDesign | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _sonars_exist(cls, data: Any):
+        if isinstance(data, Mapping) and isinstance(data.get("platforms"), Mapping):
+            sonars = data.get("sonars") if isinstance(data.get("sonars"), Mapping) else {}
+            for key, platform in data["platforms"].items():
+                name = platform.get("sonar") if isinstance(platform, Mapping) else None
+                if isinstance(name, str) and name not in sonars:
+                    raise PydanticCustomError("unknown_sonar", "platforms.{key}.sonar names unknown sonar {name}"
+                                              "{hint}; known: {known}",
+                                              {"key": key, "name": repr(name), "hint": suggestion(name, sonars),
+                                               "known": str(sorted(sonars))})
+        return data
+
+
+def validation_message(exc: ValidationError) -> str:
+    """The first error of ``exc`` in one line: the key path, what is wrong, the value, the rule."""
+    error = exc.errors(include_url=False)[0]
+    path = ".".join(str(part) for part in error["loc"])
+    kind, ctx, got = error["type"], error.get("ctx") or {}, error.get("input")
+    if kind == "unknown_key":
+        return f"{path + '.' if path else ''}{ctx['key']}: {error['msg']}"
+    if kind == "unknown_sonar" or not path:
+        return error["msg"].removeprefix("Value error, ")
+    if error["loc"] and error["loc"][-1] == "[key]":
+        return (f"{'.'.join(str(p) for p in error['loc'][:-1])}: keys must match {KEY_PATTERN} (a lower-case "
+                "letter, then lower-case letters, digits or '_')")
+    if kind == "missing":
+        return f"{path} is missing"
+    if kind in ("model_type", "dict_type", "model_attributes_type"):
+        return f"{path} must be a table; got {type(got).__name__}"
+    if kind in ("string_type", "string_pattern_mismatch"):
+        rule = f"match {KEY_PATTERN}" if kind == "string_pattern_mismatch" else "be a string"
+        return f"{path} must {rule}; got {got!r}"
+    if kind == "order":
+        return f"{path}.{ctx['field']} {error['msg']}"
+    if kind in ("value_range", "one_note", "non_empty"):
+        return f"{path} {error['msg']}"
+    return f"{path}: {error['msg'].replace('Input should be', 'must be')}; got {got!r}"
+
+
+def validated(model: type[BaseModel], doc: Any, where: str = "") -> Any:
+    """``model.model_validate(doc)``, an error as a one-line ``ValueError`` (its key path
+    prefixed by ``where``, the dotted path of ``doc``)."""
+    try:
+        return model.model_validate(doc)
+    except ValidationError as exc:
+        message = validation_message(exc)
+        raise ValueError(f"{where}.{message}" if where else message) from None
+
+
+def validate_document(doc: Mapping[str, Any], tables: tuple[str, ...] = ()) -> Data:
+    """The validated :class:`Data` of a parsed (merged) document: all of it, or only ``tables``,
+    each of which must be present (``ValueError("missing table ...")`` otherwise; the sonars are
+    validated with the platforms that name them)."""
+    if not isinstance(doc, Mapping):
+        raise ValueError(f"a data document must be a table; got {type(doc).__name__}")
+    if tables:
+        for name in tables:
+            if name not in doc:
+                raise ValueError(f"missing table {name}")
+        wanted = set(tables) | ({"sonars"} if "platforms" in tables else set())
+        doc = {k: v for k, v in doc.items() if k in wanted}
+    return validated(Data, doc)
+
+
+def entry(tables: Mapping[str, Any], section: str, key: str) -> Any:
+    """``tables[key]`` (the validated ``[<section>.<key>]`` table); an unknown ``key`` is refused
+    naming the keys the section has."""
+    if key not in tables:
+        raise ValueError(f"platform_key must be one of {sorted(tables)}; got {key!r}{suggestion(key, tables)}")
+    return tables[key]
+
+
+def provenance(table: BaseModel, path: str) -> dict[str, str]:
+    """``{dotted key path: "source: ..." | "assumption: ..."}`` of every sourced value in
+    ``table`` (at any depth, in declaration order), under the key path ``path``."""
+    out: dict[str, str] = {}
+    for name in type(table).model_fields:
+        value = getattr(table, name)
+        if isinstance(value, Sourced):
+            out[f"{path}.{name}"] = value.note
+        elif isinstance(value, BaseModel):
+            out.update(provenance(value, f"{path}.{name}"))
+    return out
+
+
+def values(table: BaseModel) -> dict[str, Any]:
+    """The sourced values of a flat table by key (absent optional keys left out)."""
+    return {name: getattr(table, name).value for name in type(table).model_fields
+            if isinstance(getattr(table, name), Sourced)}
