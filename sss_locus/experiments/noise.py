@@ -56,7 +56,7 @@ from ..paths import DATA_DIR
 from . import datadoc
 from .datamodel import models
 from .inputs import read_toml
-from .pass_noise import PASS_FIELDS, PassNoise, parse_pass_noise
+from .pass_noise import PassNoise, parse_pass_noise
 from .gaussian_norm import gaussian_norm_quantile  # noqa: F401 (part of this module's interface)
 from .rowstats import nanquantile_rows
 from .view_sets import Views, views_from_survey

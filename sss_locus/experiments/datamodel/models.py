@@ -7,10 +7,10 @@ One model per table: :class:`Sonar`, :class:`Platform` (with :class:`Transducer`
 
 Every number is a :class:`Sourced` value ``{value = ..., source = "..."}`` or ``{value = ...,
 assumption = "..."}`` (exactly one of the two notes); its bounds are the ``Field(ge=, le=, gt=)``
-of its declaration (:func:`number`), units are in the field names. Every table refuses keys it
+of its declaration (:func:`~sss_locus.experiments.datamodel.sourced.number`), units are in the field names. Every table refuses keys it
 does not declare (``extra="forbid"``) with the nearest declared key suggested; an error becomes a
 one-line ``ValueError`` naming the key path, the value and the valid range
-(:func:`validation_message`), e.g. ``platforms.auv.transducers.port.tilt_deg.value must be a
+(:func:`~sss_locus.experiments.datamodel.sourced.validation_message`), e.g. ``platforms.auv.transducers.port.tilt_deg.value must be a
 finite number in [-90.0, 90.0]; got 120.0``.
 
 The merge of shipped data, users' files and ``--set`` overrides stays on plain dicts
@@ -20,110 +20,14 @@ The merge of shipped data, users' files and ``--set`` overrides stays on plain d
 
 from __future__ import annotations
 
-import difflib
-import math
 from collections.abc import Mapping
-from typing import Annotated, Any, Generic, Literal, TypeVar, get_args, get_origin
+from typing import Any, Literal
 
-from annotated_types import Ge, Gt, Le, Lt
-from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, StringConstraints, ValidationError,
-                      field_validator, model_validator)
+from pydantic import BaseModel, model_validator
 from pydantic_core import PydanticCustomError
 
-#: Keys of sonars, platforms, envelopes and noise models (``_`` becomes ``-`` in figure labels).
-KEY_PATTERN = r"^[a-z][a-z0-9_]*$"
-Key = Annotated[str, StringConstraints(pattern=KEY_PATTERN)]
-
-
-def _non_empty(text: str) -> str:
-    if not text.strip():
-        raise PydanticCustomError("non_empty", "must be a non-empty string; got {got}", {"got": repr(text)})
-    return text
-
-
-#: A non-empty text (a name, a source, an assumption).
-Text = Annotated[str, Field(strict=True), AfterValidator(_non_empty)]
-
-
-def suggestion(name: str, known: Any) -> str:
-    """``"; did you mean `x`?"`` for the known name nearest to ``name``, or ``""``."""
-    close = difflib.get_close_matches(str(name), [str(k) for k in known], n=1, cutoff=0.6)
-    return f"; did you mean `{close[0]}`?" if close else ""
-
-
-class Table(BaseModel):
-    """A TOML table: frozen, only its declared keys (an unknown key names the nearest one)."""
-
-    model_config = ConfigDict(extra="forbid", frozen=True, strict=True)
-
-    @model_validator(mode="wrap")
-    @classmethod
-    def _known_keys(cls, data: Any, handler):
-        if isinstance(data, Mapping):
-            for name in data:
-                if name not in cls.model_fields:
-                    known = sorted(cls.model_fields)
-                    raise PydanticCustomError(
-                        "unknown_key", "unknown key {name}{hint} (keys here: {known})",
-                        {"key": str(name), "name": repr(name), "hint": suggestion(name, known),
-                         "known": ", ".join(known)})
-        return handler(data)
-
-
-T = TypeVar("T")
-
-
-def _rule(field) -> str:
-    """The valid values of a :class:`Sourced` value's declaration, in words."""
-    annotation = field.annotation
-    if get_origin(annotation) is Literal:
-        return f"one of {list(get_args(annotation))}"
-    if annotation is bool:
-        return "true or false"
-    lo, hi, lo_open, hi_open = -math.inf, math.inf, True, True
-    for m in field.metadata:
-        if isinstance(m, (Ge, Gt)):
-            lo, lo_open = float(m.ge if isinstance(m, Ge) else m.gt), isinstance(m, Gt)
-        elif isinstance(m, (Le, Lt)):
-            hi, hi_open = float(m.le if isinstance(m, Le) else m.lt), isinstance(m, Lt)
-    return f"a finite number in {'(' if lo_open else '['}{lo}, {hi}{')' if hi_open else ']'}"
-
-
-class Sourced(Table, Generic[T]):
-    """A value with where it comes from: exactly one of ``source`` (a citation) and
-    ``assumption`` (what was assumed, and why)."""
-
-    value: T
-    source: Text | None = None
-    assumption: Text | None = None
-
-    @field_validator("value", mode="wrap")
-    @classmethod
-    def _in_range(cls, value: Any, handler):
-        try:
-            return handler(value)
-        except ValidationError:
-            raise PydanticCustomError("value_range", "must be {rule}; got {got}",
-                                      {"rule": _rule(cls.model_fields["value"]), "got": repr(value)}) from None
-
-    @model_validator(mode="after")
-    def _one_note(self):
-        notes = [k for k in ("source", "assumption") if getattr(self, k) is not None]
-        if len(notes) != 1:
-            raise PydanticCustomError("one_note", "needs exactly one of 'source' or 'assumption'; found {found}",
-                                      {"found": str(notes or "none")})
-        return self
-
-    @property
-    def note(self) -> str:
-        """``"source: ..."`` or ``"assumption: ..."`` (the provenance of the value)."""
-        return f"source: {self.source}" if self.source is not None else f"assumption: {self.assumption}"
-
-
-def number(ge: float | None = None, le: float | None = None, *, gt: float | None = None):
-    """The type of a sourced finite number within the given bounds (``None``: unbounded)."""
-    return Sourced[Annotated[float, Field(strict=True, allow_inf_nan=False, ge=ge, le=le, gt=gt)]]
-
+from ..inputs import suggestion
+from .sourced import Key, Sourced, Table, Text, number, validated
 
 Finite = number()
 NonNegative = number(ge=0.0)
@@ -341,42 +245,6 @@ class Data(Table):
                                               {"key": key, "name": repr(name), "hint": suggestion(name, sonars),
                                                "known": str(sorted(sonars))})
         return data
-
-
-def validation_message(exc: ValidationError) -> str:
-    """The first error of ``exc`` in one line: the key path, what is wrong, the value, the rule."""
-    error = exc.errors(include_url=False)[0]
-    path = ".".join(str(part) for part in error["loc"])
-    kind, ctx, got = error["type"], error.get("ctx") or {}, error.get("input")
-    if kind == "unknown_key":
-        return f"{path + '.' if path else ''}{ctx['key']}: {error['msg']}"
-    if kind == "unknown_sonar" or not path:
-        return error["msg"].removeprefix("Value error, ")
-    if error["loc"] and error["loc"][-1] == "[key]":
-        return (f"{'.'.join(str(p) for p in error['loc'][:-1])}: keys must match {KEY_PATTERN} (a lower-case "
-                "letter, then lower-case letters, digits or '_')")
-    if kind == "missing":
-        return f"{path} is missing"
-    if kind in ("model_type", "dict_type", "model_attributes_type"):
-        return f"{path} must be a table; got {type(got).__name__}"
-    if kind in ("string_type", "string_pattern_mismatch"):
-        rule = f"match {KEY_PATTERN}" if kind == "string_pattern_mismatch" else "be a string"
-        return f"{path} must {rule}; got {got!r}"
-    if kind == "order":
-        return f"{path}.{ctx['field']} {error['msg']}"
-    if kind in ("value_range", "one_note", "non_empty"):
-        return f"{path} {error['msg']}"
-    return f"{path}: {error['msg'].replace('Input should be', 'must be')}; got {got!r}"
-
-
-def validated(model: type[BaseModel], doc: Any, where: str = "") -> Any:
-    """``model.model_validate(doc)``, an error as a one-line ``ValueError`` (its key path
-    prefixed by ``where``, the dotted path of ``doc``)."""
-    try:
-        return model.model_validate(doc)
-    except ValidationError as exc:
-        message = validation_message(exc)
-        raise ValueError(f"{where}.{message}" if where else message) from None
 
 
 def validate_document(doc: Mapping[str, Any], tables: tuple[str, ...] = ()) -> Data:
