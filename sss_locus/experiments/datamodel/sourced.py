@@ -67,6 +67,8 @@ def _rule(field) -> str:
             lo, lo_open = float(m.ge if isinstance(m, Ge) else m.gt), isinstance(m, Gt)
         elif isinstance(m, (Le, Lt)):
             hi, hi_open = float(m.le if isinstance(m, Le) else m.lt), isinstance(m, Lt)
+    if math.isinf(lo) and math.isinf(hi):
+        return "a finite number"
     return f"a finite number in {'(' if lo_open else '['}{lo}, {hi}{')' if hi_open else ']'}"
 
 
