@@ -248,7 +248,20 @@ def parse_envelope(doc: dict, platform_key: str) -> SurveyEnvelope:
 
 
 def envelope_from(data: models.Data, platform_key: str) -> SurveyEnvelope:
-    """The :class:`SurveyEnvelope` of ``platform_key`` in a validated data document."""
+    """The :class:`SurveyEnvelope` of ``platform_key`` in a validated data document.
+
+    Parameters
+    ----------
+    data : sss_locus.experiments.datamodel.models.Data
+        The validated document.
+    platform_key : str
+        Key of the platform in ``[envelopes]``.
+
+    Returns
+    -------
+    SurveyEnvelope
+        The envelope.
+    """
     m = models.entry(data.envelopes, "envelopes", platform_key)
     return SurveyEnvelope(m.altitude_min_m.value, m.altitude_max_m.value, m.pitch_min_deg.value,
                           m.pitch_max_deg.value, same_altitude=m.same_altitude.value)

@@ -262,8 +262,18 @@ def _platform(key: str, m: models.Platform, sonars: Mapping[str, Sonar],
 
 
 def platforms_from(data: models.Data) -> dict[str, Platform]:
-    """The platforms of a validated data document (:class:`~sss_locus.experiments.datamodel.models.Data`)
-    by key, in document order."""
+    """The platforms of a validated data document, by key, in document order.
+
+    Parameters
+    ----------
+    data : sss_locus.experiments.datamodel.models.Data
+        The validated document (its ``sonars`` and ``platforms``).
+
+    Returns
+    -------
+    dict of str to Platform
+        The platforms, each with its sonar and the provenance of its numbers.
+    """
     if not data.platforms:
         raise ValueError("platforms must contain at least one [platforms.<key>] table")
     sonars = {k: _sonar(k, s) for k, s in data.sonars.items()}

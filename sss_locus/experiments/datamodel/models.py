@@ -248,9 +248,26 @@ class Data(Table):
 
 
 def validate_document(doc: Mapping[str, Any], tables: tuple[str, ...] = ()) -> Data:
-    """The validated :class:`Data` of a parsed (merged) document: all of it, or only ``tables``,
-    each of which must be present (``ValueError("missing table ...")`` otherwise; the sonars are
-    validated with the platforms that name them)."""
+    """The validated :class:`Data` of a parsed (merged) document.
+
+    Parameters
+    ----------
+    doc : mapping
+        A parsed TOML document (shipped data, users' files and ``--set`` overrides merged).
+    tables : tuple of str
+        Validate only these top-level tables, each of which must be present (the sonars are
+        validated with the platforms that name them); empty: the whole document.
+
+    Returns
+    -------
+    Data
+        The validated document.
+
+    Raises
+    ------
+    ValueError
+        In one line, naming the key path of the first bad entry, its value and the valid range.
+    """
     if not isinstance(doc, Mapping):
         raise ValueError(f"a data document must be a table; got {type(doc).__name__}")
     if tables:
@@ -263,16 +280,44 @@ def validate_document(doc: Mapping[str, Any], tables: tuple[str, ...] = ()) -> D
 
 
 def entry(tables: Mapping[str, Any], section: str, key: str) -> Any:
-    """``tables[key]`` (the validated ``[<section>.<key>]`` table); an unknown ``key`` is refused
-    naming the keys the section has."""
+    """The validated ``[<section>.<key>]`` table; an unknown ``key`` is refused naming the keys
+    the section has.
+
+    Parameters
+    ----------
+    tables : mapping
+        The validated tables of the section by key (e.g. ``Data.noise``).
+    section : str
+        The section's name, for the message.
+    key : str
+        The platform's key.
+
+    Returns
+    -------
+    Table
+        ``tables[key]``.
+    """
     if key not in tables:
         raise ValueError(f"platform_key must be one of {sorted(tables)}; got {key!r}{suggestion(key, tables)}")
     return tables[key]
 
 
 def provenance(table: BaseModel, path: str) -> dict[str, str]:
-    """``{dotted key path: "source: ..." | "assumption: ..."}`` of every sourced value in
-    ``table`` (at any depth, in declaration order), under the key path ``path``."""
+    """Where each sourced value of a table comes from.
+
+    Parameters
+    ----------
+    table : pydantic.BaseModel
+        A validated table.
+    path : str
+        Its dotted key path (e.g. ``platforms.auv``).
+
+    Returns
+    -------
+    dict of str to str
+        ``{dotted key path: "source: ..." | "assumption: ..."}`` of every sourced value in
+        ``table``, at any depth, in declaration order.
+    """
     out: dict[str, str] = {}
     for name in type(table).model_fields:
         value = getattr(table, name)
@@ -284,6 +329,17 @@ def provenance(table: BaseModel, path: str) -> dict[str, str]:
 
 
 def values(table: BaseModel) -> dict[str, Any]:
-    """The sourced values of a flat table by key (absent optional keys left out)."""
+    """The sourced values of a flat table.
+
+    Parameters
+    ----------
+    table : pydantic.BaseModel
+        A validated table of sourced values.
+
+    Returns
+    -------
+    dict of str to Any
+        The values by key (absent optional keys left out).
+    """
     return {name: getattr(table, name).value for name in type(table).model_fields
             if isinstance(getattr(table, name), Sourced)}

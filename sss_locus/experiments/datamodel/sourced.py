@@ -104,14 +104,37 @@ class Sourced(Table, Generic[T]):
 
 
 def number(ge: float | None = None, le: float | None = None, *, gt: float | None = None):
-    """The type of a sourced finite number within the given bounds (``None``: unbounded)."""
+    """The type of a sourced finite number within bounds.
+
+    Parameters
+    ----------
+    ge, le, gt : float, optional
+        Lower bound (included), upper bound (included), lower bound (excluded); ``None``:
+        unbounded.
+
+    Returns
+    -------
+    type
+        ``Sourced[Annotated[float, Field(...)]]``, strict (no ``"15"``, no ``true``), finite.
+    """
     return Sourced[Annotated[float, Field(strict=True, allow_inf_nan=False, ge=ge, le=le, gt=gt)]]
 
 
 
 
 def validation_message(exc: ValidationError) -> str:
-    """The first error of ``exc`` in one line: the key path, what is wrong, the value, the rule."""
+    """The first error of a validation in one line.
+
+    Parameters
+    ----------
+    exc : pydantic.ValidationError
+        The error of a model's validation.
+
+    Returns
+    -------
+    str
+        The key path, what is wrong, the value and the rule (the valid range, the known keys).
+    """
     error = exc.errors(include_url=False)[0]
     path = ".".join(str(part) for part in error["loc"])
     kind, ctx, got = error["type"], error.get("ctx") or {}, error.get("input")
@@ -137,8 +160,22 @@ def validation_message(exc: ValidationError) -> str:
 
 
 def validated(model: type[BaseModel], doc: Any, where: str = "") -> Any:
-    """``model.model_validate(doc)``, an error as a one-line ``ValueError`` (its key path
-    prefixed by ``where``, the dotted path of ``doc``)."""
+    """``model.model_validate(doc)``, an error as a one-line ``ValueError``.
+
+    Parameters
+    ----------
+    model : type of pydantic.BaseModel
+        The model.
+    doc : Any
+        The parsed data.
+    where : str
+        The dotted key path of ``doc``, prefixed to the error's key path.
+
+    Returns
+    -------
+    pydantic.BaseModel
+        The validated model.
+    """
     try:
         return model.model_validate(doc)
     except ValidationError as exc:
