@@ -122,13 +122,15 @@ def number(ge: float | None = None, le: float | None = None, *, gt: float | None
 
 
 
-def validation_message(exc: ValidationError) -> str:
+def validation_message(exc: ValidationError, where: str = "") -> str:
     """The first error of a validation in one line.
 
     Parameters
     ----------
     exc : pydantic.ValidationError
         The error of a model's validation.
+    where : str
+        The dotted key path of the validated data (``""``: the document's top).
 
     Returns
     -------
@@ -136,27 +138,27 @@ def validation_message(exc: ValidationError) -> str:
         The key path, what is wrong, the value and the rule (the valid range, the known keys).
     """
     error = exc.errors(include_url=False)[0]
-    path = ".".join(str(part) for part in error["loc"])
-    kind, ctx, got = error["type"], error.get("ctx") or {}, error.get("input")
-    if kind == "unknown_key":
-        return f"{path + '.' if path else ''}{ctx['key']}: {error['msg']}"
-    if kind == "unknown_sonar" or not path:
-        return error["msg"].removeprefix("Value error, ")
-    if error["loc"] and error["loc"][-1] == "[key]":
-        return (f"{'.'.join(str(p) for p in error['loc'][:-1])}: keys must match {KEY_PATTERN.pattern} (a lower-case "
-                "letter, then lower-case letters, digits or '_')")
+    kind, ctx, got, loc = error["type"], error.get("ctx") or {}, error.get("input"), list(error["loc"])
+    if loc and loc[-1] == "[key]":
+        kind, loc = "bad_key", loc[:-1]
+    if kind in ("unknown_key", "order"):
+        loc.append(ctx["key" if kind == "unknown_key" else "field"])
+    path = ".".join(str(part) for part in [where, *loc] if part != "")
+    msg = error["msg"].removeprefix("Value error, ")
+    if kind == "unknown_sonar":
+        return msg
+    if kind in ("unknown_key", "bad_key"):
+        return f"{path}: " + (msg if kind == "unknown_key" else f"keys must match {KEY_PATTERN.pattern} (a "
+                              "lower-case letter, then lower-case letters, digits or '_')")
     if kind == "missing":
         return f"{path} is missing"
     if kind in ("model_type", "dict_type", "model_attributes_type"):
         return f"{path} must be a table; got {type(got).__name__}"
-    if kind in ("string_type", "string_pattern_mismatch"):
-        rule = f"match {KEY_PATTERN.pattern}" if kind == "string_pattern_mismatch" else "be a string"
-        return f"{path} must {rule}; got {got!r}"
-    if kind == "order":
-        return f"{path}.{ctx['field']} {error['msg']}"
-    if kind in ("value_range", "one_note", "non_empty"):
-        return f"{path} {error['msg']}"
-    return f"{path}: {error['msg'].replace('Input should be', 'must be')}; got {got!r}"
+    if kind == "string_type":
+        return f"{path} must be a string; got {got!r}"
+    if kind in ("value_range", "one_note", "non_empty", "order"):
+        return f"{path} {msg}"
+    return f"{path}: {msg.replace('Input should be', 'must be')}; got {got!r}"
 
 
 def validated(model: type[BaseModel], doc: Any, where: str = "") -> Any:
@@ -179,5 +181,4 @@ def validated(model: type[BaseModel], doc: Any, where: str = "") -> Any:
     try:
         return model.model_validate(doc)
     except ValidationError as exc:
-        message = validation_message(exc)
-        raise ValueError(f"{where}.{message}" if where else message) from None
+        raise ValueError(validation_message(exc, where)) from None
