@@ -185,3 +185,23 @@ def test_the_validated_values_are_the_files_values():
     assert tilt.note == "source: " + raw["platforms"]["auv"]["transducers"]["starboard"]["tilt_deg"]["source"]
     with pytest.raises(Exception):
         data.platforms["auv"].name = "x"  # frozen
+
+
+def test_the_survey_design_table_is_checked_before_any_work():
+    # before the data model, a bad survey_design value passed the preflight and failed inside the
+    # survey-design notebook; a share above 1 is not a share
+    with pytest.raises(ValueError) as info:
+        userdata.use([], ["survey_design.min_two_view_share=1.5"])
+    assert str(info.value) == ("survey_design.min_two_view_share.value must be a finite number in [0.0, 1.0]; "
+                               "got 1.5 (set by --set survey_design.min_two_view_share=1.5)")
+    assert userdata.active().is_default
+
+
+@pytest.mark.parametrize("table", ["survey", "mission"])
+def test_an_optional_table_given_as_a_number_is_refused_in_one_line(table, tmp_path):
+    # before the data model this was a TypeError with a traceback ("argument of type 'int' ...")
+    user = tmp_path / "mine.toml"
+    user.write_text(f"[platforms.auv]\n{table} = 3\n")
+    with pytest.raises(ValueError) as info:
+        userdata.use([user])
+    assert str(info.value) == f"platforms.auv.{table} must be a table; got int (from data file {user})"
