@@ -19,6 +19,7 @@ MODULES = (
     "pose_space", "pose_draw", "pose_stats", "pose_claims", "pose_reduce", "survey_passes", "planning",
     "envelopes", "platforms", "straight_pass", "view_sets", "noise", "three_view_patterns", "water",
     "water_study", "replicates", "rowstats", "scale", "gaussian_norm", "verdicts", "choices",
+    "datamodel.models", "datamodel.sourced",
 )
 """The ``sss_locus.experiments`` modules held to the rule (the chapters being rewritten join
 them when they are done)."""

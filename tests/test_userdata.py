@@ -228,7 +228,7 @@ def test_terrain_and_survey_are_overridden_by_key_and_validated(tmp_path):
     ('[terrain.random]\nrms_relief_m = { value = -1.0, assumption = "x" }\n', [],
      r"terrain\.random\.rms_relief_m\.value must be a finite number in \[0\.0, 1000\.0\]; got -1\.0 \(from data file "),
     ('[terrain.hills]\nheight_m = { value = 1.0, assumption = "x" }\n', [],
-     r"terrain\.hills is not a terrain model; allowed: .*\(from data file "),
+     r"terrain\.hills: unknown key 'hills' \(keys here: mound, random, slope, step\) \(from data file "),
     ('[survey]\nlanes_m = { value = 1.0, assumption = "x" }\n', [], r"survey\.lanes_m: unknown key 'lanes_m'.*\(from data file "),
     ("", ["survey.bogus_m=5"], r"survey\.bogus_m: unknown key 'bogus_m'.*\(set by --set survey\.bogus_m=5\)"),
     ("", ["survey.margin_m=-5"], r"survey\.margin_m\.value must be .*\(set by --set survey\.margin_m=-5\)"),

@@ -3,8 +3,9 @@
 Imports only :mod:`sss_locus.geometry` (and :mod:`sss_locus.paths`); never plots, formats prose,
 caches or knows about notebooks. Modules:
 
-``inputs``
-    Reading and validating the TOML inputs (every value sourced or marked as an assumption).
+``inputs``, ``datamodel``
+    Reading the TOML inputs; their schema as pydantic models (every value sourced or marked as
+    an assumption, with its valid range).
 ``platforms``, ``envelopes``
     Sonars, vehicles and mountings (``data/platforms.toml``); survey envelopes and across-track
     offset models (``data/survey.toml``).

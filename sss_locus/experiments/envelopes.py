@@ -17,7 +17,8 @@ import numpy as np
 
 from ..paths import DATA_DIR
 from . import datadoc
-from .inputs import platform_table, read_toml, sourced, table
+from .datamodel import models
+from .inputs import read_toml
 
 SURVEY_FILE: Path = DATA_DIR / "survey.toml"
 OFFSET_KINDS = ("independent", "matched")
@@ -243,12 +244,27 @@ def parse_envelope(doc: dict, platform_key: str) -> SurveyEnvelope:
     SurveyEnvelope
         The validated envelope.
     """
-    (t, p), prov = platform_table(doc, "envelopes", platform_key), {}
-    same = sourced(t, "same_altitude", p, prov, choices=(True, False))
-    if not isinstance(same, bool):
-        raise ValueError(f"{p}.same_altitude.value must be true or false; got {same!r}")
-    return SurveyEnvelope(*(sourced(t, k, p, prov) for k in (
-        "altitude_min_m", "altitude_max_m", "pitch_min_deg", "pitch_max_deg")), same_altitude=same)
+    return envelope_from(models.validate_document(doc, ("envelopes",)), platform_key)
+
+
+def envelope_from(data: models.Data, platform_key: str) -> SurveyEnvelope:
+    """The :class:`SurveyEnvelope` of ``platform_key`` in a validated data document.
+
+    Parameters
+    ----------
+    data : sss_locus.experiments.datamodel.models.Data
+        The validated document.
+    platform_key : str
+        Key of the platform in ``[envelopes]``.
+
+    Returns
+    -------
+    SurveyEnvelope
+        The envelope.
+    """
+    m = models.entry(data.envelopes, "envelopes", platform_key)
+    return SurveyEnvelope(m.altitude_min_m.value, m.altitude_max_m.value, m.pitch_min_deg.value,
+                          m.pitch_max_deg.value, same_altitude=m.same_altitude.value)
 
 
 def default_offset_model(kind: str = "independent", side_rule: str = "random",
@@ -278,5 +294,5 @@ def default_offset_model(kind: str = "independent", side_rule: str = "random",
         doc = datadoc.document() if path is None else read_toml(path)
         if path is None:
             datadoc.note_read("offset_models.matched")
-    t = table(table(doc, "offset_models", ""), "matched", "offset_models")
-    return OffsetModel(kind, sourced(t, "jitter_m", "offset_models.matched", {}, lo=0.0), side_rule)
+    data = models.validate_document(doc, ("offset_models",))
+    return OffsetModel(kind, data.offset_models.matched.jitter_m.value, side_rule)

@@ -54,8 +54,9 @@ from ..geometry import Aperture, relative_pose, three_view_points, two_view_locu
 from ..geometry.validation import check_memory
 from ..paths import DATA_DIR
 from . import datadoc
-from .inputs import platform_table, read_toml, sourced
-from .pass_noise import PASS_FIELDS, PassNoise, parse_pass_noise
+from .datamodel import models
+from .inputs import read_toml
+from .pass_noise import PassNoise, parse_pass_noise
 from .gaussian_norm import gaussian_norm_quantile  # noqa: F401 (part of this module's interface)
 from .rowstats import nanquantile_rows
 from .view_sets import Views, views_from_survey
@@ -202,12 +203,8 @@ def parse_noise_model(doc: dict, platform_key: str) -> NoiseModel:
     NoiseModel
         The validated model.
     """
-    t, where = platform_table(doc, "noise", platform_key)
-    names = [f.name for f in fields(NoiseModel)]
-    unknown = set(t) - set(names) - set(PASS_FIELDS)  # the per-pass keys: pass_noise.load_pass_noise
-    if unknown:
-        raise ValueError(f"{where} has unknown keys {sorted(unknown)}; allowed: {names + list(PASS_FIELDS)}")
-    return NoiseModel(**{n: sourced(t, n, where, {}, lo=0.0) for n in names})
+    m = models.entry(models.validate_document(doc, ("noise",)).noise, "noise", platform_key)
+    return NoiseModel(**{f.name: getattr(m, f.name).value for f in fields(NoiseModel)})
 
 
 def load_pass_noise(platform_key: str, path: str | Path | None = None) -> PassNoise:
@@ -230,8 +227,8 @@ def load_pass_noise(platform_key: str, path: str | Path | None = None) -> PassNo
     if path is None:
         datadoc.note_read(f"noise.{platform_key}")
     doc = datadoc.document() if path is None else read_toml(path)
-    t, where = platform_table(doc, "noise", platform_key)
-    return parse_pass_noise(t, where, parse_noise_model(doc, platform_key))
+    m = models.entry(models.validate_document(doc, ("noise",)).noise, "noise", platform_key)
+    return parse_pass_noise(m, f"noise.{platform_key}", parse_noise_model(doc, platform_key))
 
 
 # --------------------------------------------------------------------------------------------

@@ -71,22 +71,24 @@ class PassNoise:
 
 
 def parse_pass_noise(table, where: str, per_view) -> PassNoise:
-    """The :class:`PassNoise` of a ``[noise.<platform>]`` table (already parsed), each of
-    :data:`PASS_FIELDS` read with :func:`~sss_locus.experiments.inputs.sourced`. With none of
-    them present, the fallback of the module docstring from ``per_view`` (a
-    :class:`~sss_locus.experiments.noise.NoiseModel`); with some but not all, a ``ValueError``
-    naming the missing ones."""
-    from .inputs import sourced
+    """The :class:`PassNoise` of a ``[noise.<platform>]`` table (a validated
+    :class:`~sss_locus.experiments.datamodel.models.NoiseTable`, or a parsed table validated
+    here; ``where`` its key path). With none of :data:`PASS_FIELDS` present, the fallback of
+    the module docstring from ``per_view`` (a :class:`~sss_locus.experiments.noise.NoiseModel`);
+    with some but not all, a ``ValueError`` naming the missing ones."""
+    from .datamodel import models
 
-    present = [k for k in PASS_FIELDS if k in table]
+    if not isinstance(table, models.NoiseTable):
+        table = models.validated(models.NoiseTable, table, where)
+    present = [k for k in PASS_FIELDS if getattr(table, k) is not None]
     if not present:
         return PassNoise(pass_offset_sigma_m=per_view.horizontal_sigma_m,
                          pass_heading_bias_sigma_deg=per_view.heading_sigma_deg)
-    missing = [k for k in PASS_FIELDS if k not in table]
+    missing = [k for k in PASS_FIELDS if getattr(table, k) is None]
     if missing:
         raise ValueError(f"{where} has some per-pass navigation keys but not {missing} (give all of "
                          f"{list(PASS_FIELDS)}, or none for the per-view fallback)")
-    return PassNoise(**{k: sourced(table, k, where, {}, lo=0.0) for k in PASS_FIELDS})
+    return PassNoise(**{k: getattr(table, k).value for k in PASS_FIELDS})
 
 
 def view_errors(sigmas, standard, *, model: str, pass_noise: PassNoise | None = None, along_m=None,

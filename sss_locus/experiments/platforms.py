@@ -39,11 +39,11 @@ from scipy.spatial.transform import Rotation
 
 from ..paths import DATA_DIR
 from . import datadoc
-from .inputs import check_range, read_toml, sourced, string, table
+from .datamodel import models
+from .inputs import check_range, read_toml
 
 PLATFORMS_FILE: Path = DATA_DIR / "platforms.toml"
 SIDES: tuple[str, str] = ("port", "starboard")
-AZIMUTH_POSITIVE: tuple[str, str] = ("down", "up")
 
 
 @dataclass(frozen=True)
@@ -234,74 +234,51 @@ class Platform:
 # --------------------------------------------------------------------------------------------
 # Reading and validation
 # --------------------------------------------------------------------------------------------
-def _sonar(key: str, doc: Mapping[str, Any], provenance: dict[str, str]) -> Sonar:
-    path = f"sonars.{key}"
-    sonar = Sonar(
-        key=key,
-        name=string(doc, "name", path),
-        azimuth_deg=sourced(doc, "azimuth_deg", path, provenance, lo=1e-9, hi=360.0),
-        elevation_deg=sourced(doc, "elevation_deg", path, provenance, lo=1e-9, hi=180.0),
-        max_range_m=sourced(doc, "max_range_m", path, provenance, lo=1e-9),
-        min_range_m=sourced(doc, "min_range_m", path, provenance, lo=0.0),
-    )
-    if not sonar.max_range_m > sonar.min_range_m:
-        raise ValueError(f"{path}.max_range_m must exceed {path}.min_range_m")
-    return sonar
+def _sonar(key: str, m: models.Sonar) -> Sonar:
+    return Sonar(key=key, name=m.name, azimuth_deg=m.azimuth_deg.value, elevation_deg=m.elevation_deg.value,
+                 max_range_m=m.max_range_m.value, min_range_m=m.min_range_m.value)
 
 
-def _platform(key: str, doc: Mapping[str, Any], sonars: Mapping[str, Sonar],
-              provenance: dict[str, str]) -> Platform:
-    path = f"platforms.{key}"
-    sonar_key = string(doc, "sonar", path)
-    if sonar_key not in sonars:
-        raise ValueError(f"{path}.sonar names unknown sonar {sonar_key!r}; known: {sorted(sonars)}")
-    positive = sourced(doc, "azimuth_positive", path, provenance, choices=AZIMUTH_POSITIVE)
-    att = table(doc, "attitude", path)
-    depth = table(doc, "depth_m", path)
-    tables = table(doc, "transducers", path)
-    transducers = {}
-    for side in SIDES:
-        tpath = f"{path}.transducers"
-        t = table(tables, side, tpath)
-        tpath = f"{tpath}.{side}"
-        transducers[side] = Transducer(
-            side=side,
-            forward_offset_m=sourced(t, "forward_offset_m", tpath, provenance),
-            lateral_offset_m=sourced(t, "lateral_offset_m", tpath, provenance, lo=0.0),
-            depth_m=sourced(t, "depth_m", tpath, provenance),
-            tilt_deg=sourced(t, "tilt_deg", tpath, provenance, lo=-90.0, hi=90.0),
-            azimuth_positive=positive,
-        )
-    extra = set(tables) - set(SIDES)
-    if extra:
-        raise ValueError(f"{path}.transducers has unknown tables {sorted(extra)}; allowed: {list(SIDES)}")
-    depth_min = sourced(depth, "min", f"{path}.depth_m", provenance, lo=0.0)
-    depth_max = sourced(depth, "max", f"{path}.depth_m", provenance, lo=0.0)
-    if depth_max < depth_min:
-        raise ValueError(f"{path}.depth_m.max must be >= {path}.depth_m.min")
-    survey = doc.get("survey", {})
-    mission = doc.get("mission", {})
+def _platform(key: str, m: models.Platform, sonars: Mapping[str, Sonar],
+              sonar_provenance: Mapping[str, dict[str, str]]) -> Platform:
+    """The :class:`Platform` of a validated ``[platforms.<key>]`` table."""
+
+    def value(entry):
+        return None if entry is None else entry.value
+
+    transducers = {side: Transducer(side=side, forward_offset_m=t.forward_offset_m.value,
+                                    lateral_offset_m=t.lateral_offset_m.value, depth_m=t.depth_m.value,
+                                    tilt_deg=t.tilt_deg.value, azimuth_positive=m.azimuth_positive.value)
+                   for side, t in (("port", m.transducers.port), ("starboard", m.transducers.starboard))}
     return Platform(
-        key=key,
-        name=string(doc, "name", path),
-        sonar=sonars[sonar_key],
-        transducers=transducers,
-        roll_max_deg=sourced(att, "roll_max_deg", f"{path}.attitude", provenance, lo=0.0, hi=90.0),
-        pitch_max_deg=sourced(att, "pitch_max_deg", f"{path}.attitude", provenance, lo=0.0, hi=90.0),
-        depth_min_m=depth_min,
-        depth_max_m=depth_max,
-        length_m=(sourced(doc, "length_m", path, provenance, lo=0.0) if "length_m" in doc else None),
-        reference_point=doc.get("reference_point", ""),
-        altitude_fraction_of_range=(
-            sourced(survey, "altitude_fraction_of_range", f"{path}.survey", provenance, lo=0.0)
-            if "altitude_fraction_of_range" in survey else None),
-        turn_radius_m=(sourced(mission, "turn_radius_m", f"{path}.mission", provenance, lo=0.0, hi=1e4)
-                       if "turn_radius_m" in mission else None),
-        speed_m_s=(sourced(mission, "speed_m_s", f"{path}.mission", provenance, lo=1e-3, hi=100.0)
-                   if "speed_m_s" in mission else None),
-        provenance={k: v for k, v in provenance.items() if k.startswith(path + ".")
-                    or k.startswith(f"sonars.{sonar_key}.")},
+        key=key, name=m.name, sonar=sonars[m.sonar], transducers=transducers,
+        roll_max_deg=m.attitude.roll_max_deg.value, pitch_max_deg=m.attitude.pitch_max_deg.value,
+        depth_min_m=m.depth_m.min.value, depth_max_m=m.depth_m.max.value,
+        length_m=value(m.length_m), reference_point=m.reference_point,
+        altitude_fraction_of_range=value(m.survey.altitude_fraction_of_range),
+        turn_radius_m=value(m.mission.turn_radius_m), speed_m_s=value(m.mission.speed_m_s),
+        provenance={**sonar_provenance[m.sonar], **models.provenance(m, f"platforms.{key}")},
     )
+
+
+def platforms_from(data: models.Data) -> dict[str, Platform]:
+    """The platforms of a validated data document, by key, in document order.
+
+    Parameters
+    ----------
+    data : sss_locus.experiments.datamodel.models.Data
+        The validated document (its ``sonars`` and ``platforms``).
+
+    Returns
+    -------
+    dict of str to Platform
+        The platforms, each with its sonar and the provenance of its numbers.
+    """
+    if not data.platforms:
+        raise ValueError("platforms must contain at least one [platforms.<key>] table")
+    sonars = {k: _sonar(k, s) for k, s in data.sonars.items()}
+    notes = {k: models.provenance(s, f"sonars.{k}") for k, s in data.sonars.items()}
+    return {k: _platform(k, p, sonars, notes) for k, p in data.platforms.items()}
 
 
 def parse_platforms(doc: Mapping[str, Any]) -> dict[str, Platform]:
@@ -322,14 +299,7 @@ def parse_platforms(doc: Mapping[str, Any]) -> dict[str, Platform]:
     dict of str to Platform
         The platforms by key, in document order.
     """
-    provenance: dict[str, str] = {}
-    sonar_docs = table(doc, "sonars", "")
-    sonars = {k: _sonar(k, table(sonar_docs, k, "sonars"), provenance) for k in sonar_docs}
-    platform_docs = table(doc, "platforms", "")
-    if not platform_docs:
-        raise ValueError("platforms must contain at least one [platforms.<key>] table")
-    return {k: _platform(k, table(platform_docs, k, "platforms"), sonars, provenance)
-            for k in platform_docs}
+    return platforms_from(models.validate_document(doc, ("sonars", "platforms")))
 
 
 def load_platforms(path: str | Path | None = None) -> dict[str, Platform]:

@@ -1,14 +1,7 @@
-"""What a data document may hold, and what hardware can exist: checks run on the merged data
-(shipped ``data/*.toml``, ``--data`` files, ``--set`` overrides) before any work starts.
+"""What hardware can exist: rules across tables, checked on the merged data (shipped
+``data/*.toml``, ``--data`` files, ``--set`` overrides) before any work starts, after the data
+model (:mod:`sss_locus.experiments.datamodel.models`) has checked each table's keys and ranges.
 
-Known keys
-    The fields an entry of ``sonars``, ``platforms``, ``envelopes``, ``offset_models``,
-    ``noise`` or ``terrain`` may have are the fields the shipped entries of that table have (at
-    any depth; a number ``{value = ..., source|assumption = ...}`` is one field); a table of
-    numbers only (``survey``, :data:`~sss_locus.experiments.datadoc.FLAT_TABLES`) may hold the
-    shipped table's keys. Any other key is refused,
-    with the nearest known key suggested: a misspelt key would otherwise be merged, never read,
-    and listed as a change from the paper's inputs although nothing changed.
 Physical rules (:func:`check_hardware`)
     Each refused in one line naming the rule and the values:
 
@@ -36,59 +29,6 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..geometry.aperture import RADIANS_FAN_DEG, RADIANS_SHAPE_RATIO
-from .datadoc import FLAT_TABLES, USER_TABLES, shipped_document
-from .inputs import suggestion
-
-
-def _is_leaf(value: Any) -> bool:
-    return not isinstance(value, Mapping) or "value" in value
-
-
-def _fields(entry: Mapping[str, Any], into: dict[str, set[str]], prefix: str = "") -> None:
-    """Record, for each sub-table path of ``entry`` (``""`` its top), the keys it holds."""
-    into.setdefault(prefix, set()).update(entry)
-    for key, value in entry.items():
-        if not _is_leaf(value):
-            _fields(value, into, f"{prefix}.{key}" if prefix else key)
-
-
-def known_fields() -> dict[str, dict[str, set[str]]]:
-    """For each user table, the keys each of its sub-table paths may hold (from the shipped data)."""
-    shipped = shipped_document()
-    out: dict[str, dict[str, set[str]]] = {}
-    for table in USER_TABLES:
-        fields: dict[str, set[str]] = {}
-        for entry in shipped.get(table, {}).values():
-            if isinstance(entry, Mapping):
-                _fields(entry, fields)
-        out[table] = fields
-    return out
-
-
-def check_known_keys(doc: Mapping[str, Any]) -> None:
-    """Refuse the first key of ``doc``'s entries that no shipped entry has (see the module
-    docstring); the message starts with the key's full dotted path."""
-    known = known_fields()
-    for table in FLAT_TABLES:
-        _check_entry(doc.get(table) or {}, {"": set(shipped_document().get(table, {}))}, table, "")
-    for table in USER_TABLES:
-        if table in FLAT_TABLES:
-            continue
-        for key, entry in (doc.get(table) or {}).items():
-            if isinstance(entry, Mapping):
-                _check_entry(entry, known[table], f"{table}.{key}", "")
-
-
-def _check_entry(entry: Mapping[str, Any], known: dict[str, set[str]], path: str, prefix: str) -> None:
-    allowed = known.get(prefix, set())
-    for name, value in entry.items():
-        full = f"{path}.{name}"
-        if name not in allowed:
-            listing = ", ".join(sorted(allowed))
-            raise ValueError(f"{full}: unknown key {name!r}{suggestion(name, allowed)} "
-                             f"(keys here: {listing})")
-        if not _is_leaf(value):
-            _check_entry(value, known, full, f"{prefix}.{name}" if prefix else name)
 
 
 def _drawable(text: str) -> bool:

@@ -42,17 +42,9 @@ import numpy as np
 import pandas as pd
 
 from . import datadoc
-from .inputs import sourced, table
+from .datamodel import models
 from .survey_area import SurveyArea, principal_heading_deg
 from .survey_lines import across_extent, flown_positions, line_set, track_length
-
-SETTINGS = (("range_scale_fraction", 1e-3, 10.0), ("standard_spacing_fraction", 1e-3, 10.0),
-            ("standard_offset_fraction", 0.0, 1.0), ("standard_altitude_min_fraction", 0.0, 1.0),
-            ("standard_altitude_max_fraction", 0.0, 1.0), ("min_two_view_share", 0.0, 1.0),
-            ("run_in_turn_radii", 0.0, 1000.0))
-OPTIONAL_SETTINGS = (("water_depth_m", 1e-3, 12000.0),)
-"""Keys a user's ``--data`` file may add: ``water_depth_m`` (the mean water depth, used when
-neither the run nor the area file gives one; no shipped default)."""
 
 
 def load_settings(doc=None) -> dict:
@@ -61,18 +53,8 @@ def load_settings(doc=None) -> dict:
     if doc is None:
         datadoc.note_read("survey_design")
         doc = datadoc.document()
-    t = table(doc, "survey_design", "")
-    unknown = set(t) - {k for k, _, _ in SETTINGS + OPTIONAL_SETTINGS}
-    if unknown:
-        raise ValueError(f"survey_design.{sorted(unknown)[0]} is not a survey-design key; allowed: "
-                         f"{[k for k, _, _ in SETTINGS + OPTIONAL_SETTINGS]}")
-    prov: dict[str, str] = {}
-    out = {k: sourced(t, k, "survey_design", prov, lo=lo, hi=hi) for k, lo, hi in SETTINGS}
-    out.update({k: sourced(t, k, "survey_design", prov, lo=lo, hi=hi) for k, lo, hi in OPTIONAL_SETTINGS if k in t})
-    if out["standard_altitude_min_fraction"] > out["standard_altitude_max_fraction"]:
-        raise ValueError("survey_design.standard_altitude_min_fraction must not exceed standard_altitude_max_fraction")
-    out["provenance"] = prov
-    return out
+    table = models.validate_document(doc, ("survey_design",)).survey_design
+    return {**models.values(table), "provenance": models.provenance(table, "survey_design")}
 
 
 @dataclass(frozen=True)

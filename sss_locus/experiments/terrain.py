@@ -36,18 +36,11 @@ import numpy as np
 
 from ..paths import DATA_DIR
 from . import datadoc
-from .inputs import read_toml, sourced, table
+from .datamodel import models
+from .inputs import read_toml
 
 TERRAIN_FILE: Path = DATA_DIR / "terrain.toml"
 KINDS = ("flat", "slope", "mound", "step", "random")
-_KEYS = {"slope": (("slope_deg", 0.0, 60.0), ("azimuth_deg", -360.0, 360.0)),
-         "mound": (("height_m", -1e3, 1e3), ("sigma_m", 1e-3, 1e5)),
-         "step": (("height_m", -1e3, 1e3), ("width_m", 0.0, 1e5), ("azimuth_deg", -360.0, 360.0)),
-         "random": (("rms_relief_m", 0.0, 1e3), ("correlation_length_m", 1e-2, 1e5),
-                    ("grid_spacing_m", 1e-3, 1e3))}
-_SURVEY_KEYS = (("area_m", 1.0, 1e5), ("line_spacing_m", 1.0, 1e5),
-                ("cross_line_spacing_m", 1.0, 1e5), ("margin_m", 0.0, 1e5))
-
 
 def _number(value, name: str, lo: float = -math.inf, hi: float = math.inf) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
@@ -223,25 +216,14 @@ def parse_terrain_config(doc: dict) -> dict:
 
     Raises ``ValueError`` naming the full key path of a missing, unknown or out-of-range entry.
     """
-    prov: dict[str, str] = {}
-    out: dict = {"provenance": prov}
-    terrains = table(doc, "terrain", "")
-    unknown = set(terrains) - set(_KEYS)
-    if unknown:
-        raise ValueError(f"terrain.{sorted(unknown)[0]} is not a terrain model; allowed: {list(_KEYS)}")
-    for kind, keys in _KEYS.items():
-        t = table(terrains, kind, "terrain")
-        unknown = set(t) - {k for k, _, _ in keys}
-        if unknown:
-            raise ValueError(f"terrain.{kind} has unknown keys {sorted(unknown)}; allowed: "
-                             f"{[k for k, _, _ in keys]}")
-        out[kind] = {k: sourced(t, k, f"terrain.{kind}", prov, lo=lo, hi=hi) for k, lo, hi in keys}
-    s = table(doc, "survey", "")
-    unknown = set(s) - {k for k, _, _ in _SURVEY_KEYS}
-    if unknown:
-        raise ValueError(f"survey.{sorted(unknown)[0]} is not a survey key; allowed: "
-                         f"{[k for k, _, _ in _SURVEY_KEYS]}")
-    out["survey"] = {k: sourced(s, k, "survey", prov, lo=lo, hi=hi) for k, lo, hi in _SURVEY_KEYS}
+    data = models.validate_document(doc, ("terrain", "survey"))
+    tables = {kind: getattr(data.terrain, kind) for kind in models.Terrain.model_fields}
+    out: dict = {"provenance": {}}
+    for kind, t in tables.items():
+        out[kind] = models.values(t)
+        out["provenance"].update(models.provenance(t, f"terrain.{kind}"))
+    out["survey"] = models.values(data.survey)
+    out["provenance"].update(models.provenance(data.survey, "survey"))
     return out
 
 

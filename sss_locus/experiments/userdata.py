@@ -34,18 +34,17 @@ from . import inputs as inputs_module
 from .datadoc import (KEY_PATTERN, SET_NOTE, SHIPPED_FILES, USER_TABLES, DataInputs, activate, active,  # noqa: F401
                       check_user_document, document, file_sha256, files_read, label_key, make_inputs,
                       merge, parse_set, shipped_document)
-from .envelopes import default_offset_model, parse_envelope
-from .noise import parse_noise_model
-from .platforms import parse_platforms
-from .terrain import parse_terrain_config
+from .datamodel.models import validate_document
+from .envelopes import envelope_from, parse_envelope
+from .platforms import parse_platforms, platforms_from
 
 
 def validate(inputs: DataInputs) -> dict[str, Any]:
     """Read and validate everything ``inputs`` resolve to; return the merged document.
 
     Raises ``ValueError`` naming the file or the full key path of the first bad entry: unknown
-    keys (with the nearest known one) and impossible hardware included
-    (:mod:`sss_locus.experiments.schema`).
+    keys (with the nearest known one; :mod:`sss_locus.experiments.datamodel.models`) and
+    impossible hardware (:mod:`sss_locus.experiments.schema`) included.
     """
     for path in inputs.files:
         if Path(path).is_dir():
@@ -54,14 +53,8 @@ def validate(inputs: DataInputs) -> dict[str, Any]:
             raise ValueError(inputs_module.missing_file(path, "data file"))
     try:
         doc = document(inputs)
-        schema.check_known_keys(doc)
-        platforms = parse_platforms(doc)
-        envelopes = {key: parse_envelope(doc, key) for key in doc.get("envelopes", {})}
-        schema.check_hardware(platforms, envelopes)
-        for key in doc.get("noise", {}):
-            parse_noise_model(doc, key)
-        default_offset_model("matched", doc=doc)
-        parse_terrain_config(doc)
+        data = validate_document(doc, USER_TABLES)  # the whole schema (datamodel.models), once
+        schema.check_hardware(platforms_from(data), {key: envelope_from(data, key) for key in data.envelopes})
     except ValueError as exc:
         origin = _origin(str(exc), inputs)
         if origin:

@@ -1,0 +1,345 @@
+"""The schema of the data files (``data/*.toml`` and users' ``--data`` files) as pydantic v2 models.
+
+One model per table: :class:`Sonar`, :class:`Platform` (with :class:`Transducer`,
+:class:`Attitude`, :class:`DepthRange`, :class:`PlatformSurvey`, :class:`Mission`),
+:class:`Envelope`, :class:`OffsetModels`, :class:`NoiseTable`, :class:`Terrain`,
+:class:`Survey`, :class:`SurveyDesign`, and :class:`Data` for a whole (merged) document.
+
+Every number is a :class:`Sourced` value ``{value = ..., source = "..."}`` or ``{value = ...,
+assumption = "..."}`` (exactly one of the two notes); its bounds are the ``Field(ge=, le=, gt=)``
+of its declaration (:func:`~sss_locus.experiments.datamodel.sourced.number`), units are in the field names. Every table refuses keys it
+does not declare (``extra="forbid"``) with the nearest declared key suggested; an error becomes a
+one-line ``ValueError`` naming the key path, the value and the valid range
+(:func:`~sss_locus.experiments.datamodel.sourced.validation_message`), e.g. ``platforms.auv.transducers.port.tilt_deg.value must be a
+finite number in [-90.0, 90.0]; got 120.0``.
+
+The merge of shipped data, users' files and ``--set`` overrides stays on plain dicts
+(:mod:`sss_locus.experiments.datadoc`); the merged document is validated once by
+:func:`validate_document`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any, Literal
+
+from pydantic import BaseModel, model_validator
+from pydantic_core import PydanticCustomError
+
+from ..inputs import suggestion
+from .sourced import Key, Sourced, Table, Text, number, validated
+
+Finite = number()
+NonNegative = number(ge=0.0)
+Angle90 = number(ge=-90.0, le=90.0)
+Limit90 = number(ge=0.0, le=90.0)
+Fraction = number(ge=0.0, le=1.0)
+
+
+class Sonar(Table):
+    """``[sonars.<key>]``: a sidescan transducer model (the paper's Table I), FULL apertures."""
+
+    name: Text
+    azimuth_deg: number(gt=0.0, le=360.0)
+    elevation_deg: number(gt=0.0, le=180.0)
+    max_range_m: number(gt=0.0)
+    min_range_m: NonNegative
+
+    @model_validator(mode="after")
+    def _ranges(self):
+        if not self.max_range_m.value > self.min_range_m.value:
+            raise PydanticCustomError("order", "must exceed min_range_m = {other}; got {got}",
+                                      {"field": "max_range_m", "other": repr(self.min_range_m.value),
+                                       "got": repr(self.max_range_m.value)})
+        return self
+
+
+class Transducer(Table):
+    """``[platforms.<key>.transducers.<side>]``: one transducer's mounting."""
+
+    forward_offset_m: Finite
+    lateral_offset_m: NonNegative
+    depth_m: Finite
+    tilt_deg: Angle90
+
+
+class Transducers(Table):
+    port: Transducer
+    starboard: Transducer
+
+
+class DepthRange(Table):
+    """``[platforms.<key>.depth_m]``: depths of the reference point, metres."""
+
+    min: NonNegative
+    max: NonNegative
+
+    @model_validator(mode="after")
+    def _order(self):
+        if self.max.value < self.min.value:
+            raise PydanticCustomError("order", "must be >= min = {other}; got {got}",
+                                      {"field": "max", "other": repr(self.min.value), "got": repr(self.max.value)})
+        return self
+
+
+class Attitude(Table):
+    roll_max_deg: Limit90
+    pitch_max_deg: Limit90
+
+
+class PlatformSurvey(Table):
+    altitude_fraction_of_range: NonNegative | None = None
+
+
+class Mission(Table):
+    turn_radius_m: number(ge=0.0, le=1e4) | None = None
+    speed_m_s: number(ge=1e-3, le=100.0) | None = None
+
+
+class Platform(Table):
+    """``[platforms.<key>]``: a vehicle, its sonar (a key of ``[sonars]``) and their mounting.
+    (Fields in the order their provenance is listed.)"""
+
+    name: Text
+    sonar: Text
+    reference_point: str = ""
+    azimuth_positive: Sourced[Literal["down", "up"]]
+    transducers: Transducers
+    depth_m: DepthRange
+    attitude: Attitude
+    length_m: NonNegative | None = None
+    survey: PlatformSurvey = PlatformSurvey()
+    mission: Mission = Mission()
+
+
+class Envelope(Table):
+    """``[envelopes.<platform>]``: the survey envelope of a platform's pose-space study."""
+
+    altitude_min_m: Finite
+    altitude_max_m: Finite
+    pitch_min_deg: Finite
+    pitch_max_deg: Finite
+    same_altitude: Sourced[bool]
+
+
+class MatchedOffsets(Table):
+    jitter_m: NonNegative
+
+
+class OffsetModels(Table):
+    matched: MatchedOffsets
+
+
+class NoiseTable(Table):
+    """``[noise.<platform>]``: per-view measurement errors (standard deviations) and, optionally,
+    the per-pass navigation errors (all five or none)."""
+
+    range_resolution_m: NonNegative
+    range_sigma_per_resolution: NonNegative
+    sound_speed_relative_sigma: NonNegative
+    horizontal_sigma_m: NonNegative
+    vertical_sigma_m: NonNegative
+    roll_sigma_deg: NonNegative
+    pitch_sigma_deg: NonNegative
+    heading_sigma_deg: NonNegative
+    pass_offset_sigma_m: NonNegative | None = None
+    pass_heading_bias_sigma_deg: NonNegative | None = None
+    drift_sigma_fraction: NonNegative | None = None
+    ping_horizontal_sigma_m: NonNegative | None = None
+    ping_heading_sigma_deg: NonNegative | None = None
+
+
+Azimuth360 = number(ge=-360.0, le=360.0)
+Relief = number(ge=-1e3, le=1e3)
+
+
+class Slope(Table):
+    slope_deg: number(ge=0.0, le=60.0)
+    azimuth_deg: Azimuth360
+
+
+class Mound(Table):
+    height_m: Relief
+    sigma_m: number(ge=1e-3, le=1e5)
+
+
+class Step(Table):
+    height_m: Relief
+    width_m: number(ge=0.0, le=1e5)
+    azimuth_deg: Azimuth360
+
+
+class RandomRelief(Table):
+    rms_relief_m: number(ge=0.0, le=1e3)
+    correlation_length_m: number(ge=1e-2, le=1e5)
+    grid_spacing_m: number(ge=1e-3, le=1e3)
+
+
+class Terrain(Table):
+    """``[terrain]``: the parameters of the synthetic seafloors."""
+
+    slope: Slope
+    mound: Mound
+    step: Step
+    random: RandomRelief
+
+
+Length = number(ge=1.0, le=1e5)
+
+
+class Survey(Table):
+    """``[survey]``: the reconstruction study's survey."""
+
+    area_m: Length
+    line_spacing_m: Length
+    cross_line_spacing_m: Length
+    margin_m: number(ge=0.0, le=1e5)
+
+
+class SurveyDesign(Table):
+    """``[survey_design]``: the rules of the survey-design chapter's plans."""
+
+    range_scale_fraction: number(ge=1e-3, le=10.0)
+    standard_spacing_fraction: number(ge=1e-3, le=10.0)
+    standard_offset_fraction: Fraction
+    standard_altitude_min_fraction: Fraction
+    standard_altitude_max_fraction: Fraction
+    min_two_view_share: Fraction
+    run_in_turn_radii: number(ge=0.0, le=1000.0)
+    water_depth_m: number(ge=1e-3, le=12000.0) | None = None
+
+    @model_validator(mode="after")
+    def _order(self):
+        if self.standard_altitude_min_fraction.value > self.standard_altitude_max_fraction.value:
+            raise PydanticCustomError("order", "must not exceed standard_altitude_max_fraction = {other}; got {got}",
+                                      {"field": "standard_altitude_min_fraction",
+                                       "other": repr(self.standard_altitude_max_fraction.value),
+                                       "got": repr(self.standard_altitude_min_fraction.value)})
+        return self
+
+
+class Data(Table):
+    """A whole data document (shipped files, users' files and overrides merged); every table
+    optional here (a loader reading one file names a missing table it needs)."""
+
+    schema_version: int | None = None
+    sonars: dict[Key, Sonar] = {}
+    platforms: dict[Key, Platform] = {}
+    envelopes: dict[Key, Envelope] = {}
+    offset_models: OffsetModels | None = None
+    noise: dict[Key, NoiseTable] = {}
+    terrain: Terrain | None = None
+    survey: Survey | None = None
+    survey_design: SurveyDesign | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _sonars_exist(cls, data: Any):
+        if isinstance(data, Mapping) and isinstance(data.get("platforms"), Mapping):
+            sonars = data.get("sonars") if isinstance(data.get("sonars"), Mapping) else {}
+            for key, platform in data["platforms"].items():
+                name = platform.get("sonar") if isinstance(platform, Mapping) else None
+                if isinstance(name, str) and name not in sonars:
+                    raise PydanticCustomError("unknown_sonar", "platforms.{key}.sonar names unknown sonar {name}"
+                                              "{hint}; known: {known}",
+                                              {"key": key, "name": repr(name), "hint": suggestion(name, sonars),
+                                               "known": str(sorted(sonars))})
+        return data
+
+
+def validate_document(doc: Mapping[str, Any], tables: tuple[str, ...] = ()) -> Data:
+    """The validated :class:`Data` of a parsed (merged) document.
+
+    Parameters
+    ----------
+    doc : mapping
+        A parsed TOML document (shipped data, users' files and ``--set`` overrides merged).
+    tables : tuple of str
+        Validate only these top-level tables, each of which must be present (the sonars are
+        validated with the platforms that name them); empty: the whole document.
+
+    Returns
+    -------
+    Data
+        The validated document.
+
+    Raises
+    ------
+    ValueError
+        In one line, naming the key path of the first bad entry, its value and the valid range.
+    """
+    if not isinstance(doc, Mapping):
+        raise ValueError(f"a data document must be a table; got {type(doc).__name__}")
+    if tables:
+        for name in tables:
+            if name not in doc:
+                raise ValueError(f"missing table {name}")
+        wanted = set(tables) | ({"sonars"} if "platforms" in tables else set())
+        doc = {k: v for k, v in doc.items() if k in wanted}
+    return validated(Data, doc)
+
+
+def entry(tables: Mapping[str, Any], section: str, key: str) -> Any:
+    """The validated ``[<section>.<key>]`` table; an unknown ``key`` is refused naming the keys
+    the section has.
+
+    Parameters
+    ----------
+    tables : mapping
+        The validated tables of the section by key (e.g. ``Data.noise``).
+    section : str
+        The section's name, for the message.
+    key : str
+        The platform's key.
+
+    Returns
+    -------
+    Table
+        ``tables[key]``.
+    """
+    if key not in tables:
+        raise ValueError(f"platform_key must be one of {sorted(tables)}; got {key!r}{suggestion(key, tables)}")
+    return tables[key]
+
+
+def provenance(table: BaseModel, path: str) -> dict[str, str]:
+    """Where each sourced value of a table comes from.
+
+    Parameters
+    ----------
+    table : pydantic.BaseModel
+        A validated table.
+    path : str
+        Its dotted key path (e.g. ``platforms.auv``).
+
+    Returns
+    -------
+    dict of str to str
+        ``{dotted key path: "source: ..." | "assumption: ..."}`` of every sourced value in
+        ``table``, at any depth, in declaration order.
+    """
+    out: dict[str, str] = {}
+    for name in type(table).model_fields:
+        value = getattr(table, name)
+        if isinstance(value, Sourced):
+            out[f"{path}.{name}"] = value.note
+        elif isinstance(value, BaseModel):
+            out.update(provenance(value, f"{path}.{name}"))
+    return out
+
+
+def values(table: BaseModel) -> dict[str, Any]:
+    """The sourced values of a flat table.
+
+    Parameters
+    ----------
+    table : pydantic.BaseModel
+        A validated table of sourced values.
+
+    Returns
+    -------
+    dict of str to Any
+        The values by key (absent optional keys left out).
+    """
+    return {name: getattr(table, name).value for name in type(table).model_fields
+            if isinstance(getattr(table, name), Sourced)}
