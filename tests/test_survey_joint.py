@@ -119,3 +119,28 @@ def test_the_packages_scoring_ranks_crossing_lines_above_parallel_lines_as_the_s
             assert ev["n_joint"] >= 0.9 * ev["n_seen_twice"] > 0
             shape[crossing].append(ev["shape_median_m"])
     assert np.mean(shape[90.0]) < np.mean(shape[0.0]), shape
+
+
+def test_the_known_association_solve_reaches_the_robust_solves_optimum():
+    """Without wrong matches the quadratic loss without a gate (the survey design's joint solve)
+    and the reconstruction chapter's robust solve with its gate find the same features to within
+    centimetres (the soft-L1 loss down-weights the few residuals beyond three sigmas a little),
+    against errors of decimetres, on the same noisy survey."""
+    from sss_locus.experiments.reconstruction import reconstruct
+    from sss_locus.experiments.reconstruction_joint import adjustment_estimators
+    from sss_locus.experiments.survey_coverage import observe_lines
+
+    pf = load_platform("auv")
+    s = sd.make_setting(pf, AREA, "flat", n_features=150, seed=3, grid_m=40.0)
+    plan = _plan(pf, 90.0)
+    views, seen, info = observe_lines(pf, s.terrain, s.xy, plan.lines(AREA), plan.altitude_m, 0.0, False, 5, s.centre)
+    errors = {}
+    for known in (False, True):
+        t = reconstruct(views, seen, info["sensor_height_m"], load_noise_model("auv"), pf.sonar.aperture(), n_views=(3,),
+                        seed=7, navigation="per_pass", pass_noise=load_pass_noise("auv"), along_m=info["along_m"],
+                        extra=adjustment_estimators(pf.sonar.elevation_deg, ("joint",), known_association=known))
+        errors[known] = t[t.estimator == "joint"].set_index("feature")[["estimated", "error_x_m", "error_y_m", "error_v_m"]]
+    assert errors[True].estimated.sum() > 100 and (errors[True].estimated == errors[False].estimated).all()
+    ok = errors[True].estimated
+    d = np.abs(errors[True][ok].iloc[:, 1:].to_numpy() - errors[False][ok].iloc[:, 1:].to_numpy())
+    assert d.max() < 0.05 and np.median(d) < 0.005, (d.max(), np.median(d))
