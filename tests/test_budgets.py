@@ -81,21 +81,23 @@ def test_a_run_over_the_time_budget_names_the_scoring_sizes(tmp_path, machine_24
                        {"area": area, "noise_seeds": "[1, 2, 3]", "n_scored": "2", "platforms": '["boat"]'}, from_text=True)
 
 
-def test_the_estimate_bounds_the_measured_5_km_benchmark():
+@pytest.mark.parametrize("key, search_s, scoring_s", [("boat", 35.9, 5.3), ("auv", 70.1, 145.3)])
+def test_the_estimate_bounds_the_measured_5_km_benchmark(key, search_s, scoring_s):
     """The estimate against the measured benchmark (benchmarks/README.md, bench_survey_design.py,
-    5 km square, book profile, boat: search 35.9 s and joint scoring 5.3 s CPU, peak RSS 204 MB):
-    at or above the measurement (it is a bound: the joint scoring's time per feature and segment is
-    the slowest measured, a sparse survey) and within 20 times it."""
+    5 km square, book profile: search and joint scoring CPU seconds, peak RSS 204-207 MB): at or
+    above the measurement (a bound: the joint scoring's time per feature and segment is the
+    slowest measured, the AUV's sparse survey) and within 5 times it for the search and the AUV's
+    scoring (the boat's scoring converges fast and is over-estimated up to 100 times)."""
     from sss_locus.experiments.platforms import load_platform
     from sss_locus.experiments.survey_area import area_from_vertices, with_water_depth
     from sss_locus.experiments.survey_plans import load_settings
 
     area = with_water_depth(area_from_vertices([[0, 0], [5000, 0], [5000, 5000], [0, 5000]], name="sq"), 30.0, "t")
     p = dict(get_entry("survey_design").resolve("book"))
-    c = budgets.survey_design_cost(p, area, load_platform("boat"), load_settings())
-    assert 35.9 <= c["search_s"] <= 20 * 35.9
-    assert 5.3 <= c["scoring_s"] <= 100 * 5.3
-    assert c["bytes"] <= 204e6
+    c = budgets.survey_design_cost(p, area, load_platform(key), load_settings())
+    assert search_s <= c["search_s"] <= 5 * search_s
+    assert scoring_s <= c["scoring_s"] <= (5 if key == "auv" else 100) * scoring_s
+    assert c["bytes"] <= 210e6
 
 
 def test_a_thin_sliver_200_km_long_is_refused_not_hung(tmp_path, machine_24gb):
