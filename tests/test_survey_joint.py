@@ -144,3 +144,57 @@ def test_the_known_association_solve_reaches_the_robust_solves_optimum():
     ok = errors[True].estimated
     d = np.abs(errors[True][ok].iloc[:, 1:].to_numpy() - errors[False][ok].iloc[:, 1:].to_numpy())
     assert d.max() < 0.05 and np.median(d) < 0.005, (d.max(), np.median(d))
+
+
+def _scores(rows):
+    """Constructed score rows: (plan, kind, seed, total_m, n_joint, horizontal, shape) with the
+    NaN of the rule of 30 applied as score_plans applies it."""
+    out = pd.DataFrame(rows, columns=["plan_index", "kind", "seed", "total_m", "n_joint", "horizontal_median_m",
+                                      "shape_median_m"]).assign(covered_twice=1.0, eligible=True, vertical_median_m=0.1)
+    for col in scoring.ERRORS.values():
+        out.loc[out.n_joint < scoring.MIN_FEATURES, col] = np.nan
+    return out
+
+
+def test_the_rule_is_decided_on_the_named_error_and_a_plan_under_30_features_is_never_recommended():
+    """Constructed per-seed medians: plan 1's horizontal interval overlaps the standard plan's while
+    its map-shape interval lies below it, so it is recommended on the shape error only; plan 2 has
+    the smallest horizontal medians but one seed of 29 features, so it has no interval, is shown
+    as '—' and is never recommended; the intervals are Student's t over the seeds, computed here."""
+    from scipy import stats
+
+    from sss_locus.report.survey_design import noise_table_shown
+
+    std = [(0, "standard", 1, 1000.0, 200, 1.0, 0.90), (0, "standard", 2, 1000.0, 200, 1.4, 1.00),
+           (0, "standard", 3, 1000.0, 200, 1.2, 0.95)]
+    one = [(1, "search", 1, 900.0, 200, 0.9, 0.30), (1, "search", 2, 900.0, 200, 1.3, 0.35),
+           (1, "search", 3, 900.0, 200, 1.1, 0.32)]
+    two = [(2, "search", 1, 900.0, 200, 0.2, 0.20), (2, "search", 2, 900.0, 29, 0.1, 0.10),
+           (2, "search", 3, 900.0, 200, 0.2, 0.20)]
+    summary = scoring.summarise(_scores(std + one + two))
+    v = np.array([0.30, 0.35, 0.32])
+    half = stats.t.ppf(0.975, 2) * v.std(ddof=1) / math.sqrt(3)
+    assert summary.loc[1, ["error_shape_lo_m", "error_shape_hi_m"]].tolist() == pytest.approx([v.mean() - half, v.mean() + half])
+    assert summary.loc[2, "min_features"] == 29 and math.isnan(summary.loc[2, "error_horizontal_m"])
+    on_h = scoring.recommend_under_noise(summary, "horizontal")
+    on_s = scoring.recommend_under_noise(summary, "shape")
+    assert (on_h["recommended"], on_h["holds"], on_h["reason"]) == (0, False, "intervals overlap")
+    assert (on_s["recommended"], on_s["holds"], on_s["error"]) == (1, True, "shape")
+    shown = noise_table_shown(summary.assign(platform="auv").reset_index().set_index(["platform", "kind", "plan_index"]))
+    assert shown.loc[("auv", "search, plan 2"), "horizontal_error_m"] == "—"
+    assert shown.loc[("auv", "search, plan 2"), "fewest_features"] == 29
+    with pytest.raises(ValueError, match="error must be one of"):
+        scoring.recommend_under_noise(summary, "3d")
+
+
+def test_the_candidates_are_the_baselines_and_the_leading_eligible_plans_no_longer_than_the_standard():
+    plans = pd.DataFrame({"kind": ["standard", "lawnmower", "search", "search", "search", "search", "search"],
+                          "total_m": [1000.0, 1000.0, 900.0, 950.0, 1200.0, 800.0, 990.0],
+                          "eligible": [True, False, True, True, True, False, True],
+                          "locus_median_m": [0.5, 0.4, 0.3, 0.2, 0.1, 0.05, 0.25]})
+    assert list(scoring.candidates(plans, "locus_median_m", n_scored=2)) == [0, 1, 3, 6]  # 4 longer, 5 not eligible
+    assert list(scoring.candidates(plans, "locus_median_m", n_scored=0)) == [0, 1]
+    with pytest.raises(ValueError, match="n_scored must be an integer >= 0"):
+        scoring.candidates(plans, "locus_median_m", n_scored=-1)
+    with pytest.raises(ValueError, match="noise_seeds must be at least 3 distinct seeds"):
+        scoring.check_seeds([1, 2])
