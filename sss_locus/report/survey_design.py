@@ -276,7 +276,7 @@ def noise_table_shown(frame: pd.DataFrame) -> pd.DataFrame:
     ...     index=pd.MultiIndex.from_tuples([("boat", "standard", 0), ("boat", "search", 4)],
     ...                                     names=["platform", "kind", "plan_index"]))
     >>> noise_table_shown(f).reset_index()[["plan", "horizontal_error_m", "fewest_features"]].values.tolist()
-    [['standard', '0.9 (95 % CI 0.6–1.2)', 120], ['search, plan 4', '—', 12]]
+    [['standard', '0.90 (95 % CI 0.60–1.2)', 120], ['search, plan 4', '—', 12]]
     """
     rows = frame.reset_index()
     plan = rows["kind"].where(rows["kind"] != "search", "search, plan " + rows["plan_index"].astype(str))
