@@ -345,21 +345,28 @@ def test_the_verdict_sentence_says_whether_the_interval_excludes_the_standard_pl
                           "cross_spacing_m": [240.0, 200.0], "altitude_m": [21.0, 21.0], "pitch_deg": [0.0, 0.0]})
     std = (0, "standard", 1000.0, True, 3.0, 2.8, 3.2)
     for row, holds in (((1, "search", 900.0, True, 2.9, 2.6, 3.0), False), ((1, "search", 900.0, True, 2.0, 1.8, 2.2), True)):
-        summary = _summary([std, row]).assign(error_all_m=np.nan)
+        summary = _summary([std, row])
         v = recommend_under_noise(summary)
         text = noise_verdict_sentence(summary, v, plans, pf)
         assert ("so it is recommended" in text) == holds and ("the standard plan is kept" in text) == (not holds)
         assert "000°/180° lines 200 m apart" in text and "3.0 (95 % CI 2.8–3.2) m" in text and "10.0 % shorter" in text
-        assert verdict_words({"auv": v}, {"auv": pf}) == ("A plan beats the standard plan (auv)" if holds
-                                                          else "Standard plan kept (auv)")
+        assert "horizontal error of the joint estimate" in text and "at least 40 features each" in text
+        assert "map-shape 0.50 (95 % CI 0.40–0.60) m" in text and "5 seeds" in text
+        assert verdict_words({"auv": v}, {"auv": pf}) == (
+            "A plan beats the standard plan on the horizontal error (auv)" if holds else "Standard plan kept (auv)")
+    few = _summary([(0, "standard", 1000.0, True, np.nan, np.nan, np.nan), (1, "search", 900.0, True, 2.0, 1.8, 2.2)])
+    few.loc[0, "min_features"] = 29
+    text = noise_verdict_sentence(few, recommend_under_noise(few), plans, pf)
+    assert "fewer than 30 features (fewest 29)" in text and "not findings" in text
 
 
 def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
     """A 260 m x 200 m area is inside one swath of either platform: a plan of main lines only
     runs one line over it, and the whole chapter's computation (search and
     scoring under noise) completes (it raised IndexError in the reconstruction of a one-line plan)."""
-    from sss_locus.experiments.noise import load_noise_model
+    from sss_locus.experiments.noise import load_noise_model, load_pass_noise
     from sss_locus.experiments.surveydesign import scoring
+    from sss_locus.experiments.surveydesign.joint import plan_joint_errors
 
     small = deep(area_from_vertices([[0, 0], [260, 0], [260, 200], [0, 200]], name="pond"))
     grid = dict(headings_deg=[0.0], spacing_fractions=[1.6, 3.0], crossing_angles_deg=[math.nan, 0.0],
@@ -370,16 +377,23 @@ def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
         one = plans[plans.n_segments == 1]
         assert len(one), plans[["spacing_m", "crossing_deg", "n_segments"]]
         assert sd.plan_from_row(one.iloc[0]).lines(small).line.nunique() == 1
-        scores = scoring.score_plans(pf, small.key(), "flat", plans.assign(front=True), load_noise_model(key),
-                                     seeds=[0, 1, 2], n_features=30, grid_m=20.0, objective_col="locus_median_m")
-        assert set(scores.plan_index) == set(plans.index)
-        assert scores.loc[scores.plan_index.isin(one.index), "error_two_median_m"].isna().all()
-        assert (scores.loc[scores.plan_index.isin(one.index), "n_two_estimated"] == 0).all()
+        scores = scoring.score_plans(pf, small.key(), "flat", plans.assign(eligible=True), load_noise_model(key),
+                                     load_pass_noise(key), seeds=[0, 1, 2], n_features=30, grid_m=20.0,
+                                     objective_col="locus_median_m", n_scored=len(plans))
+        assert set(scores.plan_index) >= set(plans.index[plans.kind != "search"])
+        s = sd.make_setting(pf, small, "flat", n_features=30, seed=0, grid_m=20.0)
+        ev = plan_joint_errors(s, sd.plan_from_row(one.iloc[0]), load_noise_model(key), load_pass_noise(key), seed=0)
+        assert ev["n_passes"] == 1 and ev["n_joint"] == 0 and math.isnan(ev["horizontal_median_m"])
 
 
 def _summary(rows):
-    cols = ["plan_index", "kind", "total_m", "eligible", "error_two_m", "error_two_lo_m", "error_two_hi_m"]
-    return pd.DataFrame(rows, columns=cols).set_index("plan_index").assign(n_seeds=5)
+    """A summary of scored plans as :func:`scoring.summarise` makes it, the horizontal error given,
+    the vertical and map-shape errors fixed."""
+    cols = ["plan_index", "kind", "total_m", "eligible", "error_horizontal_m", "error_horizontal_lo_m",
+            "error_horizontal_hi_m"]
+    return pd.DataFrame(rows, columns=cols).set_index("plan_index").assign(
+        n_seeds=5, min_features=40, error_vertical_m=0.2, error_vertical_lo_m=0.1, error_vertical_hi_m=0.3,
+        error_shape_m=0.5, error_shape_lo_m=0.4, error_shape_hi_m=0.6)
 
 
 def test_a_plan_is_recommended_over_the_standard_only_where_its_interval_excludes_it():
@@ -410,7 +424,7 @@ def test_scores_drop_medians_of_fewer_than_30_features_and_intervals_come_from_t
     and the interval of every plan is the t interval of its per-seed medians, computed here."""
     from scipy import stats
 
-    from sss_locus.experiments.noise import load_noise_model
+    from sss_locus.experiments.noise import load_noise_model, load_pass_noise
     from sss_locus.experiments.surveydesign import scoring
 
     area = deep(area_from_vertices([[0, 0], [500, 0], [500, 300], [0, 300]], name="bay"))
@@ -418,21 +432,25 @@ def test_scores_drop_medians_of_fewer_than_30_features_and_intervals_come_from_t
                 cross_spacing_factors=[1.0], altitude_fractions=[0.14], pitches_deg=[0.0])
     pf = load_platform("auv")
     plans = sd.search_plans(pf, area.key(), "flat", "locus", grid, n_features=40, seed=0, grid_m=40.0)
-    scores = scoring.score_plans(pf, area.key(), "flat", plans, load_noise_model("auv"), seeds=[4, 5, 6],
+    noise = (load_noise_model("auv"), load_pass_noise("auv"))
+    scores = scoring.score_plans(pf, area.key(), "flat", plans, *noise, seeds=[4, 5, 6],
                                  n_features=40, grid_m=40.0, objective_col="locus_median_m")
     assert set(scores.seed) == {4, 5, 6}
-    for name, (col, n_col) in scoring.ERRORS.items():
-        assert scores.loc[scores[n_col] < 30, col].isna().all()
-        assert scores.loc[scores[n_col] >= 30, col].notna().all()
+    for col in scoring.ERRORS.values():
+        assert scores.loc[scores.n_joint < 30, col].isna().all()
+        assert scores.loc[scores.n_joint >= 30, col].notna().all()
     summary = scoring.summarise(scores)
     for i, g in scores.groupby("plan_index"):
-        v = g.error_two_median_m.to_numpy()
+        assert summary.loc[i, "min_features"] == g.n_joint.min()
+        v = g.shape_median_m.to_numpy()
         if np.all(np.isfinite(v)):
             half = stats.t.ppf(0.975, 2) * v.std(ddof=1) / math.sqrt(3)
-            assert summary.loc[i, "error_two_lo_m"] == pytest.approx(v.mean() - half)
-            assert summary.loc[i, "error_two_hi_m"] == pytest.approx(v.mean() + half)
+            assert summary.loc[i, "error_shape_lo_m"] == pytest.approx(v.mean() - half)
+            assert summary.loc[i, "error_shape_hi_m"] == pytest.approx(v.mean() + half)
+        else:
+            assert math.isnan(summary.loc[i, "error_shape_lo_m"])
     with pytest.raises(ValueError, match="noise_seeds must be at least 3 distinct seeds"):
-        scoring.score_plans(pf, area.key(), "flat", plans, load_noise_model("auv"), seeds=[1, 1, 2],
+        scoring.score_plans(pf, area.key(), "flat", plans, *noise, seeds=[1, 1, 2],
                             n_features=40, grid_m=40.0, objective_col="locus_median_m")
 
 

@@ -7,9 +7,13 @@ the parameter to change:
 
 * ``planning`` (and ``sss-locus answer``): the crossing-angle grid (``fine_step_deg`` up to
   40 deg, then ``coarse_step_deg``) times ``n_per_angle`` pass pairs per angle, every row kept;
-* ``survey_design``: the coverage grid's cells (the area's bounding box over ``grid_m``) times
-  the lines of the densest plan searched, per plan; and the feature sampler, which draws from
-  the area's bounding box (a thin area far from its box would need unbounded draws).
+* ``survey_design``: per plan searched, the coverage cells (over the area at ``grid_m``, or at
+  the coarser grid a large area is measured on, :func:`~sss_locus.experiments.survey_design.coverage_grid_m`)
+  times the lines whose swath reaches a cell (the densest plan's), and the features times the
+  plan's segments; then the joint scoring, ``noise_seeds`` times the ``n_scored`` leading plans
+  and the baselines, each the features times the segments; memory the larger of one plan's
+  coverage and one joint scoring (:func:`survey_design_cost`). And the feature sampler, which
+  draws from the area's bounding box (a thin area far from its box would need unbounded draws).
 
 The costs per unit were measured on this project's code (``BYTES_*``, ``SECONDS_*``, with the
 command in each constant's note); the memory budget is :func:`constraints.memory_budget` (half
@@ -35,12 +39,29 @@ DEFAULT_TIME_BUDGET_S = 24 * 3600.0
 BYTES_PER_PASS_PAIR = 2500.0
 #: Time per pass-pair row, seconds (measured 18-74 us on a shared 2-core machine).
 SECONDS_PER_PASS_PAIR = 20e-6
-#: Peak memory per coverage cell and line of a plan, bytes (measured 555-852 B with tracemalloc
-#: around ``survey_design.evaluate`` of the standard plan, example area, grid 10-20 m).
+#: Peak memory per coverage cell, bytes (the cells near one segment observed at once; bounded
+#: by all the cells: measured 555-852 B per cell and line with tracemalloc around
+#: ``survey_design.evaluate``, example area, grid 10-20 m).
 BYTES_PER_CELL_LINE = 900.0
-#: Time per coverage cell and line of one plan, seconds (measured 5.6-20 us, 100 us at ~4k
-#: cell-lines where fixed costs dominate).
-SECONDS_PER_CELL_LINE = 10e-6
+#: Time per coverage cell and line reaching it, one plan, seconds (measured 6 us: the 5 km
+#: boat's standard plan, 20,000 cells, 2.5 lines reaching a cell, 0.31 s CPU of
+#: ``survey_design.evaluate``; the benchmark's 82 plans 36 s, 0.44 s a plan).
+SECONDS_PER_CELL_LINE = 6e-6
+#: Time per feature and segment of one plan in the search (observation, best pairs, triples),
+#: seconds (measured 3.3 us: 200 and 4,000 features on the 5 km boat's 44 segments, 0.31 and
+#: 0.87 s CPU).
+SECONDS_PER_FEATURE_LINE = 4e-6
+#: Time per feature and segment of one plan and seed of the joint scoring, seconds
+#: (``surveydesign.joint.plan_joint_errors``; measured 30-70 us with 1,000-2,000 features on a
+#: 5 km square, up to 0.5 ms where 200 features over 25 km^2 leave the passes weakly tied and the
+#: solver needs a hundred evaluations: the AUV's 43 segments, 3-6 s CPU; the larger is used).
+SECONDS_PER_JOINT_FEATURE_LINE = 5e-4
+#: Fixed time per plan and seed of the joint scoring, seconds (measured 0.05-0.2 s on the
+#: example area's 6-9 segments with 200 features).
+SECONDS_PER_JOINT_RUN = 0.2
+#: Peak memory per feature and segment of the joint scoring, bytes (measured 1.1-1.6 kB with
+#: tracemalloc around ``plan_joint_errors``: 2,000 features on 44 and on 10 segments).
+BYTES_PER_FEATURE_LINE = 2000.0
 #: Most candidate points the feature sampler may draw (it draws from the area's bounding box).
 MAX_FEATURE_DRAWS = 20_000_000
 
@@ -110,11 +131,60 @@ def _plan_count(parameters: Mapping[str, Any]) -> int:
             * len(parameters["altitude_fractions"]) * len(parameters["pitches_deg"]) + 2)
 
 
+def survey_design_cost(parameters: Mapping[str, Any], area: Any, platform: Any, settings: Mapping[str, Any]) -> dict:
+    """The survey design's estimated cost for one platform (module docstring).
+
+    Parameters
+    ----------
+    parameters : mapping
+        The run's parameters (``grid_m``, ``n_features``, the search grid, ``noise_seeds``,
+        ``n_scored``).
+    area : SurveyArea
+    platform : Platform
+    settings : mapping
+        The validated ``survey_design`` table.
+
+    Returns
+    -------
+    dict
+        ``cells`` (coverage cells), ``grid_m`` (the grid they are on), ``segments`` (of the
+        densest plan; the scored plans, no longer than the standard plan, are costed with its
+        two sets of lines), ``plans``, ``scored`` (plans scored per seed), ``search_s``,
+        ``scoring_s`` (seconds), ``bytes`` (peak memory).
+    """
+    from sss_locus.experiments.survey_design import coverage_grid_m
+
+    x0, y0, x1, y1 = area.polygon.bounds
+    grid = coverage_grid_m(area, float(parameters["grid_m"]))
+    cells = math.ceil((x1 - x0) / grid) * math.ceil((y1 - y0) / grid) * min(1.0, area.area_m2 / max((x1 - x0) * (y1 - y0), 1e-9))
+    fractions = list(parameters["spacing_fractions"]) + [settings["standard_spacing_fraction"]]
+    cross = min(parameters["cross_spacing_factors"]) if parameters["crossing_angles_deg"] else math.inf
+    second = 1 / cross if math.isfinite(cross) else 0.0
+    reach = platform.sonar.max_range_m * settings["range_scale_fraction"]
+    spacing = min(fractions) * reach
+    segments = (math.hypot(x1 - x0, y1 - y0) / spacing + 1) * (1 + second)
+    per_cell = 2 * reach / spacing * (1 + second) + 1
+    # the scored plans are no longer than the standard plan: its two sets of lines
+    scored_segments = (math.hypot(x1 - x0, y1 - y0) / (settings["standard_spacing_fraction"] * reach) + 1) * 2
+    plans = _plan_count(parameters)
+    n = float(parameters["n_features"])
+    scored = min(int(parameters.get("n_scored", 8)), plans) + 3
+    seeds = len(parameters.get("noise_seeds", []))
+    search_s = plans * (cells * per_cell * SECONDS_PER_CELL_LINE + n * segments * SECONDS_PER_FEATURE_LINE)
+    scoring_s = seeds * scored * (SECONDS_PER_JOINT_RUN + n * scored_segments * SECONDS_PER_JOINT_FEATURE_LINE)
+    return {"cells": cells, "grid_m": grid, "segments": segments, "plans": plans, "scored": scored,
+            "search_s": search_s, "scoring_s": scoring_s,
+            "bytes": max(cells * BYTES_PER_CELL_LINE, n * segments * BYTES_PER_FEATURE_LINE)}
+
+
 def check_survey_design(parameters: Mapping[str, Any], area: Any, platforms: list[Any], settings: Mapping[str, Any]) -> None:
     """The survey design's budget (module docstring): ``area`` a
     :class:`~sss_locus.experiments.survey_area.SurveyArea`, ``platforms`` the
     :class:`~sss_locus.experiments.platforms.Platform` of the run, ``settings`` the validated
-    ``survey_design`` table. Checked before the features are drawn."""
+    ``survey_design`` table. Checked before the features are drawn; a refusal names the
+    parameters whose cost dominates (the coverage grid is coarsened to at most
+    :data:`~sss_locus.experiments.survey_design.MAX_COVERAGE_CELLS` cells, so ``grid_m`` never
+    dominates)."""
     x0, y0, x1, y1 = area.polygon.bounds
     box_m2 = max((x1 - x0) * (y1 - y0), 1e-9)
     fill = area.area_m2 / box_m2
@@ -124,21 +194,21 @@ def check_survey_design(parameters: Mapping[str, Any], area: Any, platforms: lis
             f"area {area.name!r} fills only {fill:.2g} of its bounding box ({x1 - x0:,.0f} m x {y1 - y0:,.0f} m), so "
             f"drawing n_features = {n_features} features inside it would take about {n_features / fill:.2g} draws "
             f"(at most {MAX_FEATURE_DRAWS:,}): use a wider area (-p area) or fewer n_features")
-    grid_m = parameters["grid_m"]
-    cells = math.ceil((x1 - x0) / grid_m) * math.ceil((y1 - y0) / grid_m)
-    diagonal = math.hypot(x1 - x0, y1 - y0)
-    fractions = list(parameters["spacing_fractions"]) + [settings["standard_spacing_fraction"]]
-    cross = min(parameters["cross_spacing_factors"]) if parameters["crossing_angles_deg"] else math.inf
-    plans = _plan_count(parameters)  # the search, then a few of them rescored on every noise seed
-    runs = plans + len(parameters.get("noise_seeds", [])) * min(plans, 30)
-    for platform in platforms:
-        spacing = min(fractions) * platform.sonar.max_range_m * settings["range_scale_fraction"]
-        lines = (diagonal / spacing + 1) * (1 + (1 / cross if math.isfinite(cross) else 0))
-        need, need_s = cells * lines * BYTES_PER_CELL_LINE, runs * cells * lines * SECONDS_PER_CELL_LINE
-        coarser = grid_m * math.sqrt(max(need / memory_budget(), need_s / time_budget_s())) * 1.05
-        _refuse(f"the coverage of area {area.name!r} ({cells:,} cells of grid_m = {grid_m:g} m x up to "
-                f"{lines:,.0f} lines of {platform.key!r}, {runs} plan runs)", need, need_s,
-                f"raise grid_m (to about {coarser:,.3g} m or more) or use a smaller area (-p area)")
+    costs = [survey_design_cost(parameters, area, platform, settings) for platform in platforms]
+    if not costs:
+        return
+    need = max(c["bytes"] for c in costs)
+    search_s, scoring_s = sum(c["search_s"] for c in costs), sum(c["scoring_s"] for c in costs)
+    worst = max(costs, key=lambda c: c["bytes"])
+    seeds = len(parameters.get("noise_seeds", []))
+    if need > memory_budget() or search_s >= scoring_s:  # the features times the segments dominate
+        change = f"lower n_features (now {n_features}) or use a smaller area (-p area)"
+    else:
+        change = (f"lower noise_seeds (now {seeds} seeds), n_scored (now {parameters.get('n_scored', 8)}) or "
+                  f"n_features (now {n_features}), or use a smaller area (-p area)")
+    _refuse(f"the survey design over area {area.name!r} ({n_features:,} features, {worst['cells']:,.0f} coverage cells "
+            f"of {worst['grid_m']:.3g} m, up to {worst['segments']:,.0f} segments a plan, {worst['plans']} plans, "
+            f"{worst['scored']} scored with the joint adjustment on {seeds} seeds)", need, search_s + scoring_s, change)
 
 
 def check_parameters(parameters: Mapping[str, Any]) -> None:

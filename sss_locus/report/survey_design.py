@@ -176,49 +176,60 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     return ax.figure
 
 
-def error_text(row, name: str = "two") -> str:
-    """A plan's mean error over the seeds with its 95 % interval (a row of
-    :func:`~sss_locus.experiments.surveydesign.scoring.summarise`), e.g. ``"2.6 (95 % CI 2.4–2.8) m"``;
-    ``"too few features"`` without an interval."""
+#: The joint estimate's errors (:data:`~sss_locus.experiments.surveydesign.scoring.ERRORS`) in words.
+ERROR_LABELS = {"horizontal": "horizontal", "vertical": "vertical", "shape": "map-shape"}
+
+
+def error_text(row, name: str = "horizontal") -> str:
+    """A plan's mean error ``name`` (of :data:`ERROR_LABELS`) over the seeds with its 95 %
+    interval (a row of :func:`~sss_locus.experiments.surveydesign.scoring.summarise`), e.g.
+    ``"2.6 (95 % CI 2.4–2.8) m"``; ``"too few features"`` without an interval."""
     if not math.isfinite(row[f"error_{name}_lo_m"]):
         return "too few features"
     return fmt_ci(row[f"error_{name}_m"], row[f"error_{name}_lo_m"], row[f"error_{name}_hi_m"]) + " m"
 
 
-_err = error_text
+def _counts(row) -> str:
+    return f"{int(row.n_seeds)} seeds, at least {int(row.min_features):,} features each"
+
+
+def _beside(row, decided: str) -> str:
+    others = [e for e in ERROR_LABELS if e != decided]
+    return "; ".join(f"{ERROR_LABELS[e]} {error_text(row, e)}" for e in others)
 
 
 def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataFrame, platform) -> str:
-    """The recommendation under the noise model in one or two sentences
-    (:func:`sss_locus.experiments.surveydesign.scoring.recommend_under_noise`): the two-view
-    errors with their intervals over the seeds, and whether the interval excludes the standard
-    plan's."""
+    """The recommendation with the joint adjustment under the noise model in one or two sentences
+    (:func:`sss_locus.experiments.surveydesign.scoring.recommend_under_noise`): the deciding
+    error of the standard plan and of the best plan with their intervals over the seeds and the
+    counts behind them, the other two errors beside, and whether the interval excludes the
+    standard plan's."""
     name, std = platform.name, summary.loc[verdict["standard"]]
-    k = int(std.n_seeds)
+    e = verdict["error"]
+    what = f"{ERROR_LABELS[e]} error of the joint estimate"
     if verdict["reason"] == "too few features":
-        return (f"For the {name}, some seed gave fewer than 30 features a two-view estimate: the errors are not "
-                "findings and the standard plan is kept.")
+        return (f"For the {name}, some seed gave the standard plan's joint estimate fewer than 30 features (fewest "
+                f"{int(std.min_features)}): its errors are not findings and the standard plan is kept.")
     if verdict["reason"] == "the standard plan is the best":
-        return (f"For the {name}, no plan as short as the standard plan has a smaller mean two-view error under the "
-                f"noise model: the standard plan ({_err(std)} over {k} seeds) is kept.")
+        return (f"For the {name}, no plan as short as the standard plan has a smaller mean {what}: the standard plan "
+                f"({error_text(std, e)}; {_beside(std, e)}; {_counts(std)}) is kept.")
     b = summary.loc[verdict["best"]]
     label = plan_label(plans.loc[verdict["best"]])
     longer = b.total_m / std.total_m - 1.0
     length = f"a track {fmt_percent(abs(longer))} {'shorter' if longer < 0 else 'longer'}"
-    if not verdict["holds"]:
-        return (f"For the {name}, the best plan as short as the standard plan under the noise model ({label}) has a "
-                f"two-view error of {_err(b)} against the standard plan's {_err(std)} (means over {k} seeds), on "
-                f"{length}: the intervals overlap, so the standard plan is kept.")
-    return (f"For the {name}, the plan of {label} has a two-view error of {_err(b)} against the standard plan's {_err(std)} "
-            f"(means over {k} seeds), on {length}: its interval lies below the standard plan's, so it is recommended.")
+    head = (f"For the {name}, the {'plan' if verdict['holds'] else 'best plan as short as the standard plan'} of "
+            f"{label} has a {what} of {error_text(b, e)} ({_beside(b, e)}; {_counts(b)}) against the standard plan's "
+            f"{error_text(std, e)} ({_beside(std, e)}; {_counts(std)}), on {length}: ")
+    return head + ("its interval lies below the standard plan's, so it is recommended." if verdict["holds"]
+                   else "the intervals overlap, so the standard plan is kept.")
 
 
 def verdict_words(verdicts: dict, platforms: dict) -> str:
-    """The claims-page verdict: per platform, whether a plan beat the standard plan under the
-    noise model, the platforms by their keys (``"a plan beats the standard plan (auv); standard plan
-    kept (boat)"``)."""
-    parts = [f"{'a plan beats the standard plan' if v['holds'] else 'standard plan kept'} ({k})"
-             for k, v in verdicts.items() if k in platforms]
+    """The claims-page verdict: per platform, whether a plan beat the standard plan on the
+    deciding error of the joint estimate, the platforms by their keys (``"a plan beats the
+    standard plan on the horizontal error (auv); standard plan kept (boat)"``)."""
+    parts = [(f"a plan beats the standard plan on the {ERROR_LABELS[v['error']]} error" if v["holds"]
+              else "standard plan kept") + f" ({k})" for k, v in verdicts.items() if k in platforms]
     text = "; ".join(parts)
     return text[0].upper() + text[1:]
 
@@ -236,41 +247,44 @@ def with_compass(frame: pd.DataFrame) -> pd.DataFrame:
 
 
 def noise_table_shown(frame: pd.DataFrame) -> pd.DataFrame:
-    """The noise-scored plans as a reader reads them: one row a plan, each error with its interval.
+    """The plans scored with the joint adjustment as a reader reads them: one row a plan, each
+    error with its interval.
 
     Parameters
     ----------
     frame : pandas.DataFrame
-        Indexed by ``(platform, kind, plan_index)``, with ``total_m``, ``covered_twice`` and, for
-        ``two`` (the two-view estimate) and ``all`` (all views), ``error_<e>_m`` with its 95 %
-        interval ``error_<e>_lo_m``/``error_<e>_hi_m`` and ``min_features_<e>`` (the fewest
-        features a median used; NaN error where under 30).
+        Indexed by ``(platform, kind, plan_index)``, with ``total_m``, ``covered_twice``,
+        ``n_seeds``, ``min_features`` (the fewest features a seed's medians used) and, for each
+        error of :data:`ERROR_LABELS`, ``error_<e>_m`` with its 95 % interval
+        ``error_<e>_lo_m``/``error_<e>_hi_m`` (NaN where a seed had under 30 features).
 
     Returns
     -------
     pandas.DataFrame
         Indexed by ``(platform, plan)``: ``plan`` is the kind, searched plans named by their
         number (``"search, plan 4"``: several searched plans of one platform are told apart);
-        columns ``track_km``, ``covered_twice``, ``two_view_error_m`` and ``all_views_error_m``
-        (text: the mean over the seeds of the median 3-D error and its 95 % interval, or ``"—"``
-        under 30 features) and the fewest features each used.
+        columns ``track_km``, ``covered_twice``, ``horizontal_error_m``, ``vertical_error_m``,
+        ``map_shape_error_m`` (text: the mean over the seeds of the median error and its 95 %
+        interval, or ``"—"`` under 30 features), ``seeds`` and ``fewest_features``.
 
-    >>> f = pd.DataFrame({"total_m": [8000.0, 7000.0], "covered_twice": [1.0, 1.0],
-    ...     "error_two_m": [3.9, float("nan")], "error_two_lo_m": [3.6, float("nan")],
-    ...     "error_two_hi_m": [4.2, float("nan")], "min_features_two": [120, 12],
-    ...     "error_all_m": [2.0, 1.0], "error_all_lo_m": [1.5, 0.5], "error_all_hi_m": [2.5, 1.5],
-    ...     "min_features_all": [40, 31]},
+    >>> f = pd.DataFrame({"total_m": [8000.0, 7000.0], "covered_twice": [1.0, 1.0], "n_seeds": [5, 5],
+    ...     "min_features": [120, 12], "error_horizontal_m": [0.9, float("nan")],
+    ...     "error_horizontal_lo_m": [0.6, float("nan")], "error_horizontal_hi_m": [1.2, float("nan")],
+    ...     "error_vertical_m": [0.2, float("nan")], "error_vertical_lo_m": [0.1, float("nan")],
+    ...     "error_vertical_hi_m": [0.3, float("nan")], "error_shape_m": [0.5, float("nan")],
+    ...     "error_shape_lo_m": [0.4, float("nan")], "error_shape_hi_m": [0.6, float("nan")]},
     ...     index=pd.MultiIndex.from_tuples([("boat", "standard", 0), ("boat", "search", 4)],
     ...                                     names=["platform", "kind", "plan_index"]))
-    >>> noise_table_shown(f).reset_index()[["plan", "two_view_error_m"]].values.tolist()
-    [['standard', '3.9 (95 % CI 3.6–4.2)'], ['search, plan 4', '—']]
+    >>> noise_table_shown(f).reset_index()[["plan", "horizontal_error_m", "fewest_features"]].values.tolist()
+    [['standard', '0.90 (95 % CI 0.60–1.2)', 120], ['search, plan 4', '—', 12]]
     """
     rows = frame.reset_index()
     plan = rows["kind"].where(rows["kind"] != "search", "search, plan " + rows["plan_index"].astype(str))
     out = pd.DataFrame({"platform": rows["platform"], "plan": plan, "track_km": rows["total_m"] / 1e3,
                         "covered_twice": rows["covered_twice"]})
-    for e, name in (("two", "two_view_error_m"), ("all", "all_views_error_m")):
+    for e, label in ERROR_LABELS.items():
         v, lo, hi = (rows[f"error_{e}{s}_m"].to_numpy(float) for s in ("", "_lo", "_hi"))
-        out[name] = fmt_ci_cells(v, lo, hi)
-        out[f"fewest_features_{e}"] = rows[f"min_features_{e}"]
+        out[f"{label.replace('-', '_')}_error_m"] = fmt_ci_cells(v, lo, hi)
+    out["seeds"] = rows["n_seeds"]
+    out["fewest_features"] = rows["min_features"]
     return out.set_index(["platform", "plan"])
