@@ -14,7 +14,8 @@ Layout
 ``BOOK_DIR``
     The book's own pages and ``references.bib`` (``book/``).
 ``build_dir()``
-    The build area (git-ignored), ``_build/`` by default. Set the environment variable
+    The build area (git-ignored), ``_build/`` by default: the run context's
+    (:mod:`sss_locus.pipeline.context`). Set the environment variable
     ``SSS_LOCUS_BUILD_DIR`` to put it elsewhere; the tests do this so that a test build never
     overwrites the ``book``-profile outputs. ``--name NAME`` (``sss-locus run``/``book``) makes
     ``<build>/NAME`` the build area of that command, a book of its own beside the reproduction
@@ -45,6 +46,7 @@ Layout
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -58,14 +60,9 @@ TOC_FILE: Path = REPO_ROOT / "_toc.yml"
 LOCK_FILE: Path = REPO_ROOT / "environment.lock"
 CITATION_FILE: Path = REPO_ROOT / "CITATION.cff"
 
+#: The user's settings of the build area and the cache (read by :mod:`sss_locus.pipeline.context`).
 BUILD_DIR_ENV = "SSS_LOCUS_BUILD_DIR"
-#: Set with ``BUILD_DIR_ENV`` by ``--name NAME``: the build area is the named area ``NAME``
-#: (``_build/NAME``), not the reproduction (see :mod:`sss_locus.pipeline.areas`).
-BUILD_NAME_ENV = "SSS_LOCUS_BUILD_NAME"
 CACHE_DIR_ENV = "SSS_LOCUS_CACHE_DIR"
-#: Set by ``sss-locus run``/``book`` for the kernels: the folder the command was started in, so a
-#: relative input path given as a parameter (a survey area file) means what the user typed.
-CALLER_DIR_ENV = "SSS_LOCUS_CALLER_DIR"
 
 #: Folder names inside the build area (also used in ``_toc.yml`` and ``_config.yml``).
 SOURCE_SUBDIR = "source"
@@ -76,15 +73,24 @@ EXTRA_SUBDIR = "_extra"
 MATHJAX_SUBDIR = "mathjax"
 
 
+def _default_areas() -> tuple[Path, str | None, Path]:
+    return REPO_ROOT / "_build", None, REPO_ROOT / ".cache"
+
+
+#: ``() -> (build area, build-area name, cache folder)`` of this process: the run context's
+#: (:func:`sss_locus.pipeline.context.current`, which installs itself here when imported; it reads
+#: ``SSS_LOCUS_BUILD_DIR`` and ``SSS_LOCUS_CACHE_DIR``), else ``<repo>/_build`` and ``<repo>/.cache``.
+areas_setting: Callable[[], tuple[Path, str | None, Path]] = _default_areas
+
+
 def build_dir() -> Path:
-    """Root of the build area: ``$SSS_LOCUS_BUILD_DIR`` or ``<repo>/_build``."""
-    override = os.environ.get(BUILD_DIR_ENV)
-    return Path(override).resolve() if override else REPO_ROOT / "_build"
+    """Root of the build area: the run context's (``$SSS_LOCUS_BUILD_DIR`` or ``<repo>/_build``)."""
+    return areas_setting()[0]
 
 
 def build_name() -> str | None:
     """Name of the named build area in use (``--name``), ``None`` in the reproduction's area."""
-    return os.environ.get(BUILD_NAME_ENV) or None
+    return areas_setting()[1]
 
 
 def source_dir() -> Path:
@@ -133,9 +139,8 @@ def index_html() -> Path:
 
 
 def cache_dir() -> Path:
-    """Root of the result cache: ``$SSS_LOCUS_CACHE_DIR`` or ``<repo>/.cache``."""
-    override = os.environ.get(CACHE_DIR_ENV)
-    return Path(override).resolve() if override else REPO_ROOT / ".cache"
+    """Root of the result cache: the run context's (``$SSS_LOCUS_CACHE_DIR`` or ``<repo>/.cache``)."""
+    return areas_setting()[2]
 
 
 def site_url(path: Path) -> str:

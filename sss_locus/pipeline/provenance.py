@@ -9,21 +9,12 @@ Every function returns a string and never raises: outside a git checkout the com
 from __future__ import annotations
 
 import hashlib
-import os
 from typing import Any
 import subprocess
 from datetime import datetime, timezone
 from pathlib import Path
 
 from sss_locus import paths
-
-
-#: Environment variables set by the notebook runner (``sss-locus run`` / ``sss-locus book``)
-#: so that code running inside a kernel knows which notebook and profile it belongs to.
-NOTEBOOK_ENV = "SSS_LOCUS_NOTEBOOK"
-PROFILE_ENV = "SSS_LOCUS_PROFILE"
-#: The run's resolved notebook parameters as JSON (read by :mod:`sss_locus.pipeline.publish`).
-PARAMETERS_ENV = "SSS_LOCUS_PARAMETERS"
 
 
 def json_default(value: Any) -> Any:
@@ -128,20 +119,6 @@ def science_sha256() -> str:
     parts = (tree_sha256(pkg / "geometry", patterns=("*.py",))
              + tree_sha256(pkg / "experiments", patterns=("*.py",)) + tree_sha256(paths.DATA_DIR))
     return hashlib.sha256(parts.encode()).hexdigest()
-
-
-def current_notebook() -> str:
-    """Repository-relative path of the notebook being run, as told by the runner.
-
-    ``"interactive"`` when the code is not run by ``sss-locus run``/``book`` (for example a
-    plain ``papermill`` call or an interactive session).
-    """
-    return os.environ.get(NOTEBOOK_ENV, "interactive")
-
-
-def current_profile() -> str:
-    """Parameter profile of the current run (``"none"`` outside the runner)."""
-    return os.environ.get(PROFILE_ENV, "none")
 
 
 def utc_now() -> str:
