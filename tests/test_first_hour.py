@@ -75,7 +75,7 @@ def test_a_users_file_is_published_by_name_and_sha256_never_by_its_local_path(tm
     import json
 
     from sss_locus import paths
-    from sss_locus.pipeline import provenance, publish
+    from sss_locus.pipeline import publish
 
     mine = tmp_path / "home" / "me" / "myboat.toml"
     mine.parent.mkdir(parents=True)
