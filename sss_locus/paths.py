@@ -6,11 +6,14 @@ the constants (or call :func:`build_dir`) from here.
 Layout
 ------
 ``REPO_ROOT``
-    The repository checkout (the folder holding ``pyproject.toml``).
+    The repository checkout (the folder holding ``pyproject.toml``); only the book's own sources
+    (``book/``, ``_config.yml``, ``_toc.yml``, ``environment.lock``, ``CITATION.cff``) need it.
 ``DATA_DIR``
-    Committed inputs with their sources (``data/``).
+    Committed inputs with their sources (``data/``); an installed package (no checkout,
+    :data:`IN_CHECKOUT` false) has them as package data, ``sss_locus/_shipped/data``.
 ``NOTEBOOKS_DIR`` / ``REGISTRY_FILE``
-    Notebook sources, committed without outputs, and ``notebooks/registry.toml`` listing them.
+    Notebook sources, committed without outputs, and ``notebooks/registry.toml`` listing them
+    (installed: ``sss_locus/_shipped/notebooks``).
 ``BOOK_DIR``
     The book's own pages and ``references.bib`` (``book/``).
 ``build_dir()``
@@ -38,7 +41,8 @@ Layout
     - ``failed/<name>.ipynb``: the notebook of the last failed run, for reading (never rendered),
     - ``.lock``: the build area's lock (run commits and book builds, one at a time).
 ``cache_dir()``
-    On-disk cache of expensive results (``.cache/`` by default, git-ignored; override with
+    On-disk cache of expensive results (``.cache/`` by default, git-ignored; an installed package
+    without a checkout puts ``_build/`` and ``.cache/`` in the working directory; override with
     ``SSS_LOCUS_CACHE_DIR``). Entries are keyed on notebook, parameters, seed and package version,
     so a test build and the book build can share it safely.
 """
@@ -50,9 +54,22 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-REPO_ROOT: Path = Path(__file__).resolve().parents[1]
-DATA_DIR: Path = REPO_ROOT / "data"
-NOTEBOOKS_DIR: Path = REPO_ROOT / "notebooks"
+PACKAGE_DIR: Path = Path(__file__).resolve().parent
+REPO_ROOT: Path = PACKAGE_DIR.parent
+#: Whether the package runs from a source checkout (``pyproject.toml`` and ``data/`` beside it),
+#: not from an installed wheel. Only the book's own sources need the checkout.
+IN_CHECKOUT: bool = (REPO_ROOT / "pyproject.toml").is_file() and (REPO_ROOT / "data").is_dir()
+
+
+def _shipped(name: str) -> Path:
+    """The installed copy of the checkout's ``name/`` folder (package data, see ``setup.py``)."""
+    from importlib.resources import files
+
+    return Path(str(files("sss_locus") / "_shipped" / name))
+
+
+DATA_DIR: Path = REPO_ROOT / "data" if IN_CHECKOUT else _shipped("data")
+NOTEBOOKS_DIR: Path = REPO_ROOT / "notebooks" if IN_CHECKOUT else _shipped("notebooks")
 REGISTRY_FILE: Path = NOTEBOOKS_DIR / "registry.toml"
 BOOK_DIR: Path = REPO_ROOT / "book"
 CONFIG_FILE: Path = REPO_ROOT / "_config.yml"
@@ -73,8 +90,14 @@ EXTRA_SUBDIR = "_extra"
 MATHJAX_SUBDIR = "mathjax"
 
 
+def work_root() -> Path:
+    """Where the build area and the cache go by default: the checkout, else (an installed
+    package) the working directory."""
+    return REPO_ROOT if IN_CHECKOUT else Path.cwd()
+
+
 def _default_areas() -> tuple[Path, str | None, Path]:
-    return REPO_ROOT / "_build", None, REPO_ROOT / ".cache"
+    return work_root() / "_build", None, work_root() / ".cache"
 
 
 #: ``() -> (build area, build-area name, cache folder)`` of this process: the run context's

@@ -14,7 +14,8 @@ runner and kernel through the environment.
 2. else the file named by ``SSS_LOCUS_RUN`` (a kernel, or a child ``sss-locus run``), read once;
 3. else, the **default** — a notebook opened by hand in Jupyter, a script, a test — from the
    user's settings (:func:`from_environment`): ``SSS_LOCUS_BUILD_DIR`` (the build area,
-   ``<repo>/_build`` by default), ``SSS_LOCUS_CACHE_DIR`` (``<repo>/.cache``),
+   ``<repo>/_build`` by default; an installed package without a checkout: ``_build`` in the
+   working directory), ``SSS_LOCUS_CACHE_DIR`` (``<repo>/.cache``, or ``.cache`` there),
    ``SSS_LOCUS_MEMORY_BUDGET`` (bytes; half the RAM), ``SSS_LOCUS_TIME_BUDGET_S`` (a day) and
    ``SSS_LOCUS_SCHEDULER`` (``local:N`` or a Dask address; unset: in-process); no run key,
    notebook ``"interactive"``, profile ``"none"``, no parameters, figures into ``figures/`` of
@@ -141,8 +142,8 @@ def from_environment(environ: Mapping[str, str] | None = None) -> RunContext:
     build = env.get(paths.BUILD_DIR_ENV)
     cache = env.get(paths.CACHE_DIR_ENV)
     return RunContext(
-        build_dir=Path(build).resolve() if build else paths.REPO_ROOT / "_build",
-        cache_dir=Path(cache).resolve() if cache else paths.REPO_ROOT / ".cache",
+        build_dir=Path(build).resolve() if build else paths.work_root() / "_build",
+        cache_dir=Path(cache).resolve() if cache else paths.work_root() / ".cache",
         caller_dir=Path.cwd(),
         scheduler=env.get(scale.SCHEDULER_ENV, ""),
         memory_budget=env.get(validation.MEMORY_BUDGET_ENV, ""),

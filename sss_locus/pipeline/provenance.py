@@ -104,7 +104,7 @@ def code_sha256() -> str:
     The package version alone does not change when the code is edited in place (editable
     install), so caches and up-to-date checks key on this as well.
     """
-    parts = tree_sha256(paths.REPO_ROOT / "sss_locus", patterns=("*.py",)) + tree_sha256(paths.DATA_DIR)
+    parts = tree_sha256(paths.PACKAGE_DIR, patterns=("*.py",)) + tree_sha256(paths.DATA_DIR)
     return hashlib.sha256(parts.encode()).hexdigest()
 
 
@@ -115,7 +115,7 @@ def science_sha256() -> str:
     The cache keys on this (:mod:`sss_locus.pipeline.cache`), so editing the report or pipeline
     layers never invalidates a simulation.
     """
-    pkg = paths.REPO_ROOT / "sss_locus"
+    pkg = paths.PACKAGE_DIR
     parts = (tree_sha256(pkg / "geometry", patterns=("*.py",))
              + tree_sha256(pkg / "experiments", patterns=("*.py",)) + tree_sha256(paths.DATA_DIR))
     return hashlib.sha256(parts.encode()).hexdigest()
