@@ -10,8 +10,8 @@ Notebooks publish figures with :func:`sss_locus.pipeline.publish.publish`, which
 and the notebook places the figure with ``{glue:figure} fig-locus-concept`` and
 ``:name: fig-locus-concept`` in a markdown cell of the *same* notebook.
 
-Where it writes (:func:`default_out_dir`): into ``$SSS_LOCUS_FIGURES_DIR`` when the runner
-set it (``sss-locus run`` / ``book`` point it at the run's private staging folder and move the
+Where it writes (:func:`default_out_dir`): into the run context's ``figures_dir`` when the
+runner set it (``sss-locus run`` / ``book`` point it at the run's private staging folder and move the
 figures into the build area, :func:`sss_locus.paths.figures_dir`, only when the whole run
 succeeded), otherwise into ``figures/`` beside the run (the kernel's working directory, which
 ``papermill --cwd`` sets to the output's folder). A plain papermill run or an interactive session
