@@ -28,6 +28,13 @@ SCHEDULER_ENV = "SSS_LOCUS_SCHEDULER"
 
 
 def _environment_scheduler() -> str:
+    """The scheduler setting of a script: the environment variable :data:`SCHEDULER_ENV`.
+
+    Returns
+    -------
+    str
+        ``local:N``, a scheduler address, or ``""`` (in-process).
+    """
     return os.environ.get(SCHEDULER_ENV, "")
 
 

@@ -180,6 +180,13 @@ MEMORY_BUDGET_ENV = "SSS_LOCUS_MEMORY_BUDGET"
 
 
 def _environment_memory_budget() -> str:
+    """The memory budget of a script, as set: the environment variable :data:`MEMORY_BUDGET_ENV`.
+
+    Returns
+    -------
+    str
+        Bytes as text, or ``""`` (half the physical memory).
+    """
     return os.environ.get(MEMORY_BUDGET_ENV, "")
 
 
