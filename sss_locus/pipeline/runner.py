@@ -28,7 +28,6 @@ import shutil
 import signal
 import subprocess
 import sys
-import tempfile
 import time
 import uuid
 from collections.abc import Iterator, Sequence
@@ -288,6 +287,15 @@ def _nothing() -> Iterator[None]:
     yield
 
 
+@contextmanager
+def _removed(folder: Path) -> Iterator[None]:
+    """Delete ``folder`` when the block ends (a killed process's: :func:`.orphans.remove_stale_staging`)."""
+    try:
+        yield
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
 def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=print,
              verbose: bool = False, overrides: dict[str, str] | None = None, data: Any = None) -> None:
     """Run several registered notebooks with one profile, up to ``jobs`` at a time.
@@ -313,9 +321,9 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
         return
     install_kernelspec()
     children: dict[str, subprocess.Popen] = {}
-    shared = tempfile.TemporaryDirectory(prefix="sss-locus-book-")  # the children's run context
+    shared = paths.build_dir() / "tmp" / f"{orphans.STAGING_PREFIX}book-{os.getpid()}-{uuid.uuid4().hex[:12]}"
     child_env = context.child_environment(context.current().replace(quiet_batches=True), os.environ,
-                                          Path(shared.name) / context.FILE_NAME)
+                                          shared / context.FILE_NAME)  # the children's run context
 
     def one(entry: NotebookEntry) -> tuple[int, str, str]:
         cmd = [sys.executable, "-m", "sss_locus.pipeline.cli", "run", entry.name, "--profile", profile,
@@ -335,7 +343,7 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
 
     failures: list[str] = []
     futures: dict = {}
-    with shared, atomic.signals_as_exceptions(), ThreadPoolExecutor(max_workers=jobs) as pool:
+    with _removed(shared), atomic.signals_as_exceptions(), ThreadPoolExecutor(max_workers=jobs) as pool:
         try:
             futures = {pool.submit(one, entry): entry for entry in entries}
             for future in as_completed(futures):
