@@ -207,6 +207,7 @@ def test_science_fingerprint_covers_geometry_experiments_and_data_only(tmp_path,
         (root / rel).parent.mkdir(parents=True, exist_ok=True)
         (root / rel).write_text("a = 1\n")
     monkeypatch.setattr(paths, "REPO_ROOT", root)
+    monkeypatch.setattr(paths, "PACKAGE_DIR", root / "sss_locus")
     monkeypatch.setattr(paths, "DATA_DIR", root / "data")
     base = provenance.science_sha256()
     for rel in ("sss_locus/report/r.py", "sss_locus/pipeline/p.py"):
