@@ -6,15 +6,19 @@ the constants (or call :func:`build_dir`) from here.
 Layout
 ------
 ``REPO_ROOT``
-    The repository checkout (the folder holding ``pyproject.toml``).
+    The repository checkout (the folder holding ``pyproject.toml``); only the book's own sources
+    (``book/``, ``_config.yml``, ``_toc.yml``, ``environment.lock``, ``CITATION.cff``) need it.
 ``DATA_DIR``
-    Committed inputs with their sources (``data/``).
+    Committed inputs with their sources (``data/``); an installed package (no checkout,
+    :data:`IN_CHECKOUT` false) has them as package data, ``sss_locus/_shipped/data``.
 ``NOTEBOOKS_DIR`` / ``REGISTRY_FILE``
-    Notebook sources, committed without outputs, and ``notebooks/registry.toml`` listing them.
+    Notebook sources, committed without outputs, and ``notebooks/registry.toml`` listing them
+    (installed: ``sss_locus/_shipped/notebooks``).
 ``BOOK_DIR``
     The book's own pages and ``references.bib`` (``book/``).
 ``build_dir()``
-    The build area (git-ignored), ``_build/`` by default. Set the environment variable
+    The build area (git-ignored), ``_build/`` by default: the run context's
+    (:mod:`sss_locus.pipeline.context`). Set the environment variable
     ``SSS_LOCUS_BUILD_DIR`` to put it elsewhere; the tests do this so that a test build never
     overwrites the ``book``-profile outputs. ``--name NAME`` (``sss-locus run``/``book``) makes
     ``<build>/NAME`` the build area of that command, a book of its own beside the reproduction
@@ -37,7 +41,8 @@ Layout
     - ``failed/<name>.ipynb``: the notebook of the last failed run, for reading (never rendered),
     - ``.lock``: the build area's lock (run commits and book builds, one at a time).
 ``cache_dir()``
-    On-disk cache of expensive results (``.cache/`` by default, git-ignored; override with
+    On-disk cache of expensive results (``.cache/`` by default, git-ignored; an installed package
+    without a checkout puts ``_build/`` and ``.cache/`` in the working directory; override with
     ``SSS_LOCUS_CACHE_DIR``). Entries are keyed on notebook, parameters, seed and package version,
     so a test build and the book build can share it safely.
 """
@@ -45,12 +50,26 @@ Layout
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-REPO_ROOT: Path = Path(__file__).resolve().parents[1]
-DATA_DIR: Path = REPO_ROOT / "data"
-NOTEBOOKS_DIR: Path = REPO_ROOT / "notebooks"
+PACKAGE_DIR: Path = Path(__file__).resolve().parent
+REPO_ROOT: Path = PACKAGE_DIR.parent
+#: Whether the package runs from a source checkout (``pyproject.toml`` and ``data/`` beside it),
+#: not from an installed wheel. Only the book's own sources need the checkout.
+IN_CHECKOUT: bool = (REPO_ROOT / "pyproject.toml").is_file() and (REPO_ROOT / "data").is_dir()
+
+
+def _shipped(name: str) -> Path:
+    """The installed copy of the checkout's ``name/`` folder (package data, see ``setup.py``)."""
+    from importlib.resources import files
+
+    return Path(str(files("sss_locus") / "_shipped" / name))
+
+
+DATA_DIR: Path = REPO_ROOT / "data" if IN_CHECKOUT else _shipped("data")
+NOTEBOOKS_DIR: Path = REPO_ROOT / "notebooks" if IN_CHECKOUT else _shipped("notebooks")
 REGISTRY_FILE: Path = NOTEBOOKS_DIR / "registry.toml"
 BOOK_DIR: Path = REPO_ROOT / "book"
 CONFIG_FILE: Path = REPO_ROOT / "_config.yml"
@@ -58,14 +77,9 @@ TOC_FILE: Path = REPO_ROOT / "_toc.yml"
 LOCK_FILE: Path = REPO_ROOT / "environment.lock"
 CITATION_FILE: Path = REPO_ROOT / "CITATION.cff"
 
+#: The user's settings of the build area and the cache (read by :mod:`sss_locus.pipeline.context`).
 BUILD_DIR_ENV = "SSS_LOCUS_BUILD_DIR"
-#: Set with ``BUILD_DIR_ENV`` by ``--name NAME``: the build area is the named area ``NAME``
-#: (``_build/NAME``), not the reproduction (see :mod:`sss_locus.pipeline.areas`).
-BUILD_NAME_ENV = "SSS_LOCUS_BUILD_NAME"
 CACHE_DIR_ENV = "SSS_LOCUS_CACHE_DIR"
-#: Set by ``sss-locus run``/``book`` for the kernels: the folder the command was started in, so a
-#: relative input path given as a parameter (a survey area file) means what the user typed.
-CALLER_DIR_ENV = "SSS_LOCUS_CALLER_DIR"
 
 #: Folder names inside the build area (also used in ``_toc.yml`` and ``_config.yml``).
 SOURCE_SUBDIR = "source"
@@ -76,15 +90,30 @@ EXTRA_SUBDIR = "_extra"
 MATHJAX_SUBDIR = "mathjax"
 
 
+def work_root() -> Path:
+    """Where the build area and the cache go by default: the checkout, else (an installed
+    package) the working directory."""
+    return REPO_ROOT if IN_CHECKOUT else Path.cwd()
+
+
+def _default_areas() -> tuple[Path, str | None, Path]:
+    return work_root() / "_build", None, work_root() / ".cache"
+
+
+#: ``() -> (build area, build-area name, cache folder)`` of this process: the run context's
+#: (:func:`sss_locus.pipeline.context.current`, which installs itself here when imported; it reads
+#: ``SSS_LOCUS_BUILD_DIR`` and ``SSS_LOCUS_CACHE_DIR``), else ``<repo>/_build`` and ``<repo>/.cache``.
+areas_setting: Callable[[], tuple[Path, str | None, Path]] = _default_areas
+
+
 def build_dir() -> Path:
-    """Root of the build area: ``$SSS_LOCUS_BUILD_DIR`` or ``<repo>/_build``."""
-    override = os.environ.get(BUILD_DIR_ENV)
-    return Path(override).resolve() if override else REPO_ROOT / "_build"
+    """Root of the build area: the run context's (``$SSS_LOCUS_BUILD_DIR`` or ``<repo>/_build``)."""
+    return areas_setting()[0]
 
 
 def build_name() -> str | None:
     """Name of the named build area in use (``--name``), ``None`` in the reproduction's area."""
-    return os.environ.get(BUILD_NAME_ENV) or None
+    return areas_setting()[1]
 
 
 def source_dir() -> Path:
@@ -133,9 +162,8 @@ def index_html() -> Path:
 
 
 def cache_dir() -> Path:
-    """Root of the result cache: ``$SSS_LOCUS_CACHE_DIR`` or ``<repo>/.cache``."""
-    override = os.environ.get(CACHE_DIR_ENV)
-    return Path(override).resolve() if override else REPO_ROOT / ".cache"
+    """Root of the result cache: the run context's (``$SSS_LOCUS_CACHE_DIR`` or ``<repo>/.cache``)."""
+    return areas_setting()[2]
 
 
 def site_url(path: Path) -> str:

@@ -50,8 +50,26 @@ def build_area(tmp_path, monkeypatch):
     area = tmp_path / "build"
     monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(area))
     monkeypatch.setenv("SSS_LOCUS_CACHE_DIR", str(tmp_path / "cache"))
-    monkeypatch.delenv("SSS_LOCUS_FIGURES_DIR", raising=False)
     return area
+
+
+@pytest.fixture
+def run_context():
+    """``run_context(**changes)``: for the rest of the test, the run context
+    (:func:`sss_locus.pipeline.context.current`) is the current one with ``changes``; calling it
+    again replaces the previous changes, ``run_context()`` with none goes back to the default."""
+    from contextlib import ExitStack
+
+    from sss_locus.pipeline import context
+
+    stack = ExitStack()
+
+    def enter(**changes):
+        stack.close()
+        return stack.enter_context(context.use(context.current().replace(**changes))) if changes else None
+
+    yield enter
+    stack.close()
 
 
 # -- skipped checks: named on a developer's machine, failures in CI ---------------------------------

@@ -431,9 +431,10 @@ def test_a_paper_figure_computed_beside_the_users_cites_what_the_papers_does(qui
 
 
 def test_editing_one_user_value_makes_exactly_its_readers_stale(user_book):
-    env = {**user_book["env"], paths.BUILD_DIR_ENV: str(user_book["my_auv"]), paths.BUILD_NAME_ENV: "my_auv"}
-    script = ("import json, sys; from sss_locus.pipeline import outputs, registry; "
-              "print(json.dumps(sorted(e.name for e in registry.load_registry().values() "
+    env = {**user_book["env"], paths.BUILD_DIR_ENV: str(user_book["my_auv"])}
+    script = ("import json, sys; from sss_locus.pipeline import context, outputs, registry\n"
+              "with context.use(context.current().replace(build_name='my_auv')):\n"
+              "    print(json.dumps(sorted(e.name for e in registry.load_registry().values() "
               "if outputs.problems([e]))))")
 
     def stale():

@@ -69,21 +69,20 @@ def test_answer_names_every_driver_in_words_and_reads_both_offset_models(build_a
     assert "- matched" in out and "- independent" not in out
 
 
-def test_a_users_file_is_published_by_name_and_sha256_never_by_its_local_path(tmp_path, monkeypatch):
+def test_a_users_file_is_published_by_name_and_sha256_never_by_its_local_path(tmp_path, monkeypatch, run_context):
     """Issue 37: manifests carried the absolute local path of the user's data file."""
     import hashlib
     import json
 
     from sss_locus import paths
-    from sss_locus.pipeline import provenance, publish
+    from sss_locus.pipeline import publish
 
     mine = tmp_path / "home" / "me" / "myboat.toml"
     mine.parent.mkdir(parents=True)
     mine.write_bytes(BLUEBOAT.read_bytes())
     assert paths.public_path(mine) == "myboat.toml"
     assert paths.public_path(BLUEBOAT) == "data/examples/my_blueboat.toml"
-    monkeypatch.setenv(provenance.PARAMETERS_ENV, json.dumps(
-        {"data_files": [str(mine)], "area": str(mine), "platforms": ["my_blueboat"], "seed": 1}))
+    run_context(parameters={"data_files": [str(mine)], "area": str(mine), "platforms": ["my_blueboat"], "seed": 1})
     params = publish.run_parameters()
     assert params == {"data_files": ["myboat.toml"], "area": "myboat.toml", "platforms": ["my_blueboat"], "seed": 1}
     userdata.use([mine])
@@ -93,7 +92,7 @@ def test_a_users_file_is_published_by_name_and_sha256_never_by_its_local_path(tm
     assert str(tmp_path) not in json.dumps(record)
 
 
-def test_a_named_books_front_page_and_every_page_say_what_it_was_built_from(build_area, monkeypatch, tmp_path):
+def test_a_named_books_front_page_and_every_page_say_what_it_was_built_from(build_area, monkeypatch, tmp_path, run_context):
     """Issue 37: a user's book had the reproduction's title and introduction, nothing naming the
     build area, the profile or the data."""
     import hashlib
@@ -105,7 +104,7 @@ def test_a_named_books_front_page_and_every_page_say_what_it_was_built_from(buil
     from sss_locus.pipeline import areanotice, bookbuild
     from sss_locus.pipeline.registry import load_registry
 
-    monkeypatch.setenv(paths.BUILD_NAME_ENV, "myboat")
+    run_context(build_name="myboat")
     mine = tmp_path / "home" / "myboat.toml"
     mine.parent.mkdir()
     mine.write_bytes(BLUEBOAT.read_bytes())
@@ -141,7 +140,7 @@ def test_a_named_books_front_page_and_every_page_say_what_it_was_built_from(buil
     assert "myboat" in config["title"]
     assert "Build area &#x27;myboat&#x27;" in config["html"]["announcement"]
     assert "myboat.toml" in config["html"]["announcement"] and str(tmp_path) not in config["html"]["announcement"]
-    monkeypatch.delenv(paths.BUILD_NAME_ENV)  # the reproduction: nothing added
+    run_context()  # the reproduction: nothing added
     front.write_text("# T\n")
     bookbuild.stage_config(root, [], front_page=front)
     assert front.read_text() == "# T\n" and "announcement" not in (yaml.safe_load(
@@ -209,7 +208,7 @@ def test_a_users_area_file_is_named_by_its_name_in_captions_and_the_injected_cel
     assert str(tmp_path) not in "".join(cell["source"]) and 'area = "harbour.toml"' in "".join(cell["source"])
 
 
-def test_a_named_books_notice_names_the_users_truth_file(build_area, monkeypatch, tmp_path):
+def test_a_named_books_notice_names_the_users_truth_file(build_area, monkeypatch, tmp_path, run_context):
     """The your-pings chapter run on a user's sightings with a truth file of their own (its map
     draws each estimate's distance from it): the front page and the line atop every page named
     the sightings but not the truth file; the shipped example's truth stays unnamed."""
@@ -220,7 +219,7 @@ def test_a_named_books_notice_names_the_users_truth_file(build_area, monkeypatch
     from sss_locus.pipeline import areanotice
     from sss_locus.pipeline.registry import load_registry
 
-    monkeypatch.setenv(paths.BUILD_NAME_ENV, "harbour")
+    run_context(build_name="harbour")
     sightings, truth = tmp_path / "home" / "my_sightings.csv", tmp_path / "home" / "my_truth.csv"
     sightings.parent.mkdir()
     sightings.write_text("feature\n")

@@ -207,6 +207,7 @@ def test_science_fingerprint_covers_geometry_experiments_and_data_only(tmp_path,
         (root / rel).parent.mkdir(parents=True, exist_ok=True)
         (root / rel).write_text("a = 1\n")
     monkeypatch.setattr(paths, "REPO_ROOT", root)
+    monkeypatch.setattr(paths, "PACKAGE_DIR", root / "sss_locus")
     monkeypatch.setattr(paths, "DATA_DIR", root / "data")
     base = provenance.science_sha256()
     for rel in ("sss_locus/report/r.py", "sss_locus/pipeline/p.py"):
@@ -229,18 +230,16 @@ def test_a_hit_records_the_data_entries_its_computation_read(tmp_path, monkeypat
         load_platform("auv")  # a loader: notes platforms.auv and its sonar
         return pd.DataFrame({"x": [1.0]})
 
-    def run(name):
-        record = tmp_path / name
-        monkeypatch.setenv(datadoc.READS_ENV, str(record))
-        cached_result(KEY, compute, cache_dir=tmp_path / "cache")
-        return set(record.read_text().split()) if record.exists() else set()
+    def run():
+        with datadoc.recording() as reads:  # a run's recording (the kernel's, context.enter_kernel)
+            cached_result(KEY, compute, cache_dir=tmp_path / "cache")
+        return reads
 
-    cold, warm = run("cold.txt"), run("warm.txt")
+    cold, warm = run(), run()
     assert "platforms.auv" in cold and any(e.startswith("sonars.") for e in cold)
-    assert warm == cold
-    monkeypatch.delenv(datadoc.READS_ENV)
+    assert warm == cold  # a hit notes what its computation read
     cached_result({**KEY, "seed": 9}, compute, cache_dir=tmp_path / "cache")  # outside a run: nothing noted
-    assert datadoc.READS_ENV not in __import__("os").environ
+    assert datadoc.reads_so_far() is None
 
 
 def test_an_entry_without_its_data_reads_is_recomputed(tmp_path):

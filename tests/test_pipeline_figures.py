@@ -27,9 +27,8 @@ def fig():
     plt.close(figure)
 
 
-def test_all_files_and_manifest_are_written(tmp_path, fig, monkeypatch):
-    monkeypatch.setenv(provenance.NOTEBOOK_ENV, "notebooks/concept.ipynb")
-    monkeypatch.setenv(provenance.PROFILE_ENV, "quick")
+def test_all_files_and_manifest_are_written(tmp_path, fig, run_context):
+    run_context(notebook="notebooks/concept.ipynb", profile="quick")
     manifest = export_figure(fig, "fig-demo-one", DATA, caption="Two spheres meet in a circle. Details.",
                              parameters={"n": np.int64(4), "seed": 7}, out_dir=tmp_path)
     names = {p.name for p in tmp_path.iterdir()}
@@ -125,16 +124,15 @@ def test_remove_figures_of_one_notebook_only(tmp_path, fig):
     assert [m["label"] for m in load_manifests(tmp_path)] == ["fig-b"]
 
 
-def test_default_folder_is_beside_the_run_never_the_build_area(tmp_path, fig, monkeypatch):
+def test_default_folder_is_beside_the_run_never_the_build_area(tmp_path, fig, monkeypatch, run_context):
     """Outside the runner (plain papermill, interactive) figures go to figures/ in the working
     directory (papermill --cwd: the output's folder); the runner points them at its staging."""
     monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path / "build"))
-    monkeypatch.delenv("SSS_LOCUS_FIGURES_DIR", raising=False)
     monkeypatch.chdir(tmp_path)
     export_figure(fig, "fig-demo", DATA, caption="C.", parameters={})
     assert (tmp_path / "figures" / "fig-demo.png").is_file()
     assert not (tmp_path / "build").exists()
-    monkeypatch.setenv("SSS_LOCUS_FIGURES_DIR", str(tmp_path / "staging"))
+    run_context(figures_dir=tmp_path / "staging")
     export_figure(fig, "fig-demo", DATA, caption="C.", parameters={})
     assert (tmp_path / "staging" / "fig-demo.json").is_file()
     assert not [p for p in tmp_path.rglob("*") if ".tmp-" in p.name]  # no temporary file left

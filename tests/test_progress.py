@@ -68,11 +68,11 @@ def test_callback_follows_the_futures_on_a_dask_cluster(monkeypatch):
     _assert_same(on_cluster, serial)
 
 
-def test_cached_studies_report_to_the_runner_file_and_keep_their_key(tmp_path, monkeypatch):
+def test_cached_studies_report_to_the_runner_file_and_keep_their_key(tmp_path, monkeypatch, run_context):
     monkeypatch.delenv(scale.SCHEDULER_ENV, raising=False)
     monkeypatch.setenv("SSS_LOCUS_CACHE_DIR", str(tmp_path / "cache"))
     target = tmp_path / "progress.txt"
-    monkeypatch.setenv(progress.PROGRESS_ENV, str(target))
+    run_context(progress_file=target)
     spec = PoseSpaceSpec(load_platform("boat"))
     first = cache.cached(sample_pose_space)(spec, 2 * BLOCK_SIZE, 1, chunk_size=BLOCK_SIZE)
     lines = [line.split("\t") for line in target.read_text().splitlines()]
@@ -84,7 +84,7 @@ def test_cached_studies_report_to_the_runner_file_and_keep_their_key(tmp_path, m
                                             progress=lambda *a: calls.append(a))
     assert calls == [] and again.equals(first)
     assert len(target.read_text().splitlines()) == 2
-    monkeypatch.delenv(progress.PROGRESS_ENV)
+    run_context()
     assert progress.batch_reporter("x") is None  # outside a runner's kernel: no reporting
 
 

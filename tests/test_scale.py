@@ -198,7 +198,7 @@ def test_both_local_cluster_paths_give_workers_the_documented_memory_trim(monkey
     before = dict(__import__("os").environ)
     args = argparse.Namespace(workers=2, scheduler=None)
     with scaleout.scheduler_environment(args):
-        address = __import__("os").environ[scale.SCHEDULER_ENV]
+        address = scale.scheduler_setting()  # the run context's, which the kernels get
         with distributed.Client(address) as dask_client:
             via_cli = _worker_environ(dask_client, names)
     try:

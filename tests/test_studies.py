@@ -46,14 +46,14 @@ def test_nothing_changes_when_no_study_is_skipped(tmp_path):
     assert studies.drop_skipped(path) == [] and path.read_text() == before
 
 
-def test_a_failed_chapter_gets_a_page_with_its_error_and_its_figures_leave_the_book(build_area, monkeypatch):
+def test_a_failed_chapter_gets_a_page_with_its_error_and_its_figures_leave_the_book(build_area, monkeypatch, run_context):
     """Issue 37: one failed chapter meant no site at all for a named book. Its page now says it
     failed, with the failing cell, the error and the traceback of the kept notebook."""
     from sss_locus import paths
     from sss_locus.pipeline import bookbuild, failedchapters
     from sss_locus.pipeline.registry import load_registry
 
-    monkeypatch.setenv(paths.BUILD_NAME_ENV, "myboat")
+    run_context(build_name="myboat")
     entries = load_registry()
     entry = entries["survey_passes"]
     error = {"output_type": "error", "ename": "ValueError", "evalue": "envelope pitch exceeds the limit",

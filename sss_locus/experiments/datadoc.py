@@ -7,10 +7,10 @@ from __future__ import annotations
 import copy
 import hashlib
 import json
-import os
 import re
 import tomllib
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -171,34 +171,41 @@ def files_read(inputs: DataInputs | None = None) -> list[dict[str, str]]:
     return rows
 
 
-#: Environment variable naming a file to which the loaders append the data entries they read
-#: (set by the runner for a notebook's kernel; see :func:`note_read`).
-READS_ENV = "SSS_LOCUS_DATA_READS"
+#: The open recordings of data entries read (:func:`recording`), innermost last; none: not recorded.
+_RECORDINGS: list[set[str]] = []
 
 
 def note_read(*entries: str) -> None:
-    """Record that this process read the data entries ``entries`` (dotted key paths such as
-    ``platforms.auv`` or a whole table ``platforms``), when :data:`READS_ENV` names a file.
+    """Report that the data entries ``entries`` (dotted key paths such as ``platforms.auv`` or a
+    whole table ``platforms``) were read: kept in memory by the open :func:`recording`, if any.
 
-    The runner hashes exactly these entries of the run's merged data into the executed copy, so
-    an edit to a user file makes stale the runs that read the edited entries, and no others.
+    Who records is the caller's business (the pipeline records a run's reads and hashes exactly
+    these entries of the run's merged data into its executed copy, so an edit to a user file makes
+    stale the runs that read the edited entries, and no others); this module writes nothing.
     """
-    target = os.environ.get(READS_ENV)
-    if target:
-        with open(target, "a", encoding="utf-8") as fh:
-            fh.write("".join(f"{e}\n" for e in entries))
+    if _RECORDINGS:
+        _RECORDINGS[-1].update(entries)
 
 
 def reads_so_far() -> set[str] | None:
-    """The data entries this run has read so far (:func:`note_read`), ``None`` outside a run that
-    records them (no :data:`READS_ENV`)."""
-    target = os.environ.get(READS_ENV)
-    if not target:
-        return None
+    """The data entries read since the outermost open :func:`recording` began, ``None`` when
+    nothing records them."""
+    return set().union(*_RECORDINGS) if _RECORDINGS else None
+
+
+@contextmanager
+def recording() -> Iterator[set[str]]:
+    """Within the block, record the data entries read (:func:`note_read`) into the set it gives;
+    on leaving, an enclosing recording gets them too (a computation inside a run)."""
+    reads: set[str] = set()
+    depth = len(_RECORDINGS)
+    _RECORDINGS.append(reads)
     try:
-        return set(Path(target).read_text(encoding="utf-8").split())
-    except OSError:
-        return set()
+        yield reads
+    finally:
+        del _RECORDINGS[depth:]
+        if _RECORDINGS:
+            _RECORDINGS[-1].update(reads)
 
 
 def entries_sha256(entries: Iterable[str], inputs: DataInputs | None = None) -> dict[str, str]:

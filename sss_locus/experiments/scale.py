@@ -6,7 +6,8 @@ Each study is split into fixed chunks whose random draws come from their own
 chunks' results are combined in chunk order. Where a chunk runs therefore does not change a
 single number: the result is bit-identical serial, with one worker or with many.
 
-The choice is made by the environment variable :data:`SCHEDULER_ENV` (``sss-locus run`` and
+The choice is the scheduler setting (:data:`scheduler_setting`): the environment variable
+:data:`SCHEDULER_ENV` of a script, the run context's scheduler in a run (``sss-locus run`` and
 ``sss-locus book`` set it from ``--scheduler ADDRESS`` / ``--workers N``):
 
 * unset or empty: every chunk runs here, in order; Dask is not imported;
@@ -24,6 +25,22 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 SCHEDULER_ENV = "SSS_LOCUS_SCHEDULER"
+
+
+def _environment_scheduler() -> str:
+    """The scheduler setting of a script: the environment variable :data:`SCHEDULER_ENV`.
+
+    Returns
+    -------
+    str
+        ``local:N``, a scheduler address, or ``""`` (in-process).
+    """
+    return os.environ.get(SCHEDULER_ENV, "")
+
+
+#: ``() -> str``: the scheduler setting. A script's is ``$SSS_LOCUS_SCHEDULER``; a process of the
+#: pipeline answers from its run context (:mod:`sss_locus.pipeline.context` installs itself).
+scheduler_setting: Callable[[], str] = _environment_scheduler
 """Environment variable naming the Dask scheduler (see the module docstring)."""
 
 _CLIENTS: dict[str, Any] = {}
@@ -167,7 +184,7 @@ def map_chunks(fn: Callable, tasks: Sequence[tuple], progress: Callable[[int, in
     list
         The results, in task order.
     """
-    setting = os.environ.get(SCHEDULER_ENV, "")
+    setting = scheduler_setting()
     if parse_scheduler(setting) is None or len(tasks) < 2:
         results = []
         for task in tasks:
@@ -224,7 +241,7 @@ def map_reduce(map_fn: Callable, tasks: Sequence[tuple], reduce_fn: Callable, n_
     reduced : list
         In part order.
     """
-    setting = os.environ.get(SCHEDULER_ENV, "")
+    setting = scheduler_setting()
     if parse_scheduler(setting) is None or len(tasks) < 2:
         outputs = map_chunks(map_fn, tasks, progress)
         return ([out[0] for out in outputs],

@@ -304,20 +304,18 @@ def with_water_depth(area: SurveyArea, depth_m, source: str) -> SurveyArea:
 
 def load_area(path: str | Path) -> SurveyArea:
     """Read a survey area from a TOML or GeoJSON file (see the module docstring). A relative path
-    is looked up from the working directory, then from the folder the ``sss-locus`` command was
-    started in (:data:`sss_locus.paths.CALLER_DIR_ENV`), then from the repository's root (so the
+    is looked up from the working directory, then from the repository's root (so the
     shipped ``data/examples/survey_area.toml`` is found from any run). The area records the
     file's SHA-256 (``sha256``), where it was found (``path``) and, in ``source`` and
     ``water_depth_source``, the file as published (:func:`sss_locus.paths.public_path`: its
     repository path, else its name only)."""
     import hashlib
-    import os
 
-    from ..paths import CALLER_DIR_ENV, REPO_ROOT, public_path
+    from ..paths import REPO_ROOT, public_path
 
     p = Path(path).expanduser()
     if not p.is_absolute():
-        tries = [Path.cwd(), Path(os.environ.get(CALLER_DIR_ENV) or Path.cwd()), REPO_ROOT]
+        tries = [Path.cwd(), REPO_ROOT]  # a run's kernel gets it resolved (pipeline.userfiles)
         p = next((d / p for d in tries if (d / p).is_file()), p)
     if not p.is_file():
         raise ValueError(missing_file(path if str(path).strip() else "", "area file"))

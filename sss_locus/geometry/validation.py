@@ -24,6 +24,7 @@ factor, angles and statuses do not change).
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 
 import numpy as np
 
@@ -178,9 +179,26 @@ def as_rotation_matrices(value, name: str = "R") -> np.ndarray:
 MEMORY_BUDGET_ENV = "SSS_LOCUS_MEMORY_BUDGET"
 
 
+def _environment_memory_budget() -> str:
+    """The memory budget of a script, as set: the environment variable :data:`MEMORY_BUDGET_ENV`.
+
+    Returns
+    -------
+    str
+        Bytes as text, or ``""`` (half the physical memory).
+    """
+    return os.environ.get(MEMORY_BUDGET_ENV, "")
+
+
+#: ``() -> str``: the memory budget as set. A script's is ``$SSS_LOCUS_MEMORY_BUDGET``; a process
+#: of the pipeline answers from its run context (:mod:`sss_locus.pipeline.context` installs itself).
+memory_budget_setting: Callable[[], str] = _environment_memory_budget
+
+
 def memory_budget() -> int:
-    """Bytes one request may plan to use: ``$SSS_LOCUS_MEMORY_BUDGET`` or half the physical memory."""
-    text = os.environ.get(MEMORY_BUDGET_ENV)
+    """Bytes one request may plan to use: the setting (``$SSS_LOCUS_MEMORY_BUDGET``, or the run
+    context's) or half the physical memory."""
+    text = memory_budget_setting()
     if text:
         try:
             return int(float(text))

@@ -16,4 +16,9 @@ provenance, book build and the ``sss-locus`` command line.
     notebooks; commit, environment and code fingerprints.
 ``bookbuild``, ``cli``
     Staging and building the Jupyter Book; the ``sss-locus`` command.
+``context``
+    The run context: what every process of a run knows of it (imported here, so that whichever
+    pipeline module a process loads, :mod:`sss_locus.paths` and the budgets answer from it).
 """
+
+from sss_locus.pipeline import context  # noqa: F401

@@ -14,9 +14,7 @@ chapters' (a later ``sss-locus book`` reuses them, and the other way round).
 
 from __future__ import annotations
 
-import tempfile
 import time
-from pathlib import Path
 from typing import Any
 
 import pandas as pd
@@ -128,17 +126,15 @@ def answer(key: str, profile: str = "quick", pairs: list[list[str]] | None = Non
     :func:`sss_locus.experiments.userdata.use`); return what :func:`compute` returned plus the
     data record (``data``, :func:`sss_locus.experiments.userdata.figure_record`)."""
     from sss_locus.experiments import userdata
-    from sss_locus.pipeline.runner import patched_environ
 
     if not isinstance(top, int) or top < 1:
         raise ValueError(f"--top must be a positive integer; got {top!r}")
     planning, pose = _parameters(profile, key, pairs or [])
     offset_specs(planning, offsets)  # a bad --offsets before any work
     start = time.perf_counter()
-    with tempfile.TemporaryDirectory() as tmp:  # the data entries the computation reads
-        with patched_environ({userdata.datadoc.READS_ENV: str(Path(tmp) / "reads.txt")}):
-            result = compute(key, planning, pose, offsets)
-            result["data"] = userdata.figure_record([key], read=userdata.datadoc.reads_so_far())
+    with userdata.datadoc.recording() as reads:  # the data entries the computation reads
+        result = compute(key, planning, pose, offsets)
+    result["data"] = userdata.figure_record([key], read=reads)
     data, grid = result["data"], result["grid"]
     log(f"platform `{key}`: {userdata.describe_platform(key)}; profile {profile!r}")
     log("data: " + ", ".join(f"{f['path']} ({f['role']}, sha256 {f['sha256'][:12]})" for f in data["files"])

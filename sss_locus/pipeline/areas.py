@@ -33,15 +33,13 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
+from sss_locus.pipeline import context
 
 #: A build area's name: a folder of ``_build/`` (lower-case letters, digits, ``_`` and ``-``).
 NAME_PATTERN = re.compile(r"[a-z0-9][a-z0-9_-]{0,63}")
 #: Folders of a build area that a name must not shadow.
 RESERVED = frozenset({"html", "source", "jupyter-book", "jupyter", "tmp", "failed", "singlehtml", "pdf",
                       "chromium-profile"})
-#: Set (to "1") once a command has checked the reproduction for all the runs it starts, so the
-#: ``sss-locus run`` child processes of ``sss-locus book --jobs N`` do not check again.
-CHECKED_ENV = "SSS_LOCUS_REPRODUCTION_CHECKED"
 
 
 def check_name(name: str) -> str:
@@ -60,16 +58,15 @@ def named_dir(name: str) -> Path:
 @contextmanager
 def entered(name: str | None) -> Iterator[None]:
     """Within the block, :func:`sss_locus.paths.build_dir` is the area of ``name`` (no-op for
-    ``None``); child processes inherit it. The environment is restored afterwards."""
-    from sss_locus.pipeline.runner import patched_environ
-
-    values = {CHECKED_ENV: os.environ.get(CHECKED_ENV, "")}  # restored afterwards, like the area
+    ``None``): the run context's build area (:mod:`sss_locus.pipeline.context`), which child
+    processes get in their context file. The context is restored afterwards."""
+    ctx = context.current()
     if name is not None:
-        if paths.build_name() is not None:
+        if ctx.build_name is not None:
             raise ValueError(f"--name {name!r}: this process already works in the build area "
-                             f"{paths.build_name()!r} ({paths.build_dir()})")
-        values.update({paths.BUILD_DIR_ENV: str(named_dir(name)), paths.BUILD_NAME_ENV: name})
-    with patched_environ(values):
+                             f"{ctx.build_name!r} ({ctx.build_dir})")
+        ctx = ctx.replace(build_dir=named_dir(name), build_name=name)
+    with context.use(ctx):
         yield
 
 
@@ -107,9 +104,9 @@ def check_reproduction(runs: Iterable[tuple[Any, Mapping[str, Any]]], *, replace
     """Refuse, before anything starts, runs into the reproduction (no ``--name``) whose inputs are
     not the paper's (:func:`differs_from_paper`), naming the figures they would replace; a no-op
     in a named area, with ``replace`` (``--replace-reproduction``) or once checked
-    (:data:`CHECKED_ENV`)."""
-    if paths.build_name() is not None or replace or os.environ.get(CHECKED_ENV):
-        os.environ[CHECKED_ENV] = "1"
+    (the run context's ``reproduction_checked``, which child runs of ``book --jobs N`` inherit)."""
+    if paths.build_name() is not None or replace or context.current().reproduction_checked:
+        _mark_checked()
         return
     from sss_locus.pipeline import export
 
@@ -132,4 +129,9 @@ def check_reproduction(runs: Iterable[tuple[Any, Mapping[str, Any]]], *, replace
             f"and without a name it would replace {shown} in the reproduction ({paths.build_dir()}); "
             f"--name {name} puts it in {paths.build_dir() / name} (--replace-reproduction overwrites the "
             "reproduction on purpose).")
-    os.environ[CHECKED_ENV] = "1"
+    _mark_checked()
+
+
+def _mark_checked() -> None:
+    """The rest of the command (its :func:`entered` block) and its child runs: checked."""
+    context.amend(reproduction_checked=True)

@@ -23,14 +23,12 @@ the RAM, ``$SSS_LOCUS_MEMORY_BUDGET``), the time budget :func:`time_budget_s`.
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Mapping
 from typing import Any
 
 from sss_locus.pipeline.constraints import memory_budget
+from sss_locus.pipeline.context import TIME_BUDGET_ENV, current  # the time budget's setting (seconds)
 
-#: Overrides the time budget (seconds) of :func:`time_budget_s`.
-TIME_BUDGET_ENV = "SSS_LOCUS_TIME_BUDGET_S"
 #: Default time budget of one run, seconds (a day).
 DEFAULT_TIME_BUDGET_S = 24 * 3600.0
 #: Peak memory per kept pass-pair row of the planning curve, bytes (measured: 180 B kept, up to
@@ -71,8 +69,8 @@ class BudgetError(ValueError):
 
 
 def time_budget_s() -> float:
-    """Seconds a run may be estimated to take: ``$SSS_LOCUS_TIME_BUDGET_S`` or a day."""
-    text = os.environ.get(TIME_BUDGET_ENV)
+    """Seconds a run may be estimated to take: the run context's (``$SSS_LOCUS_TIME_BUDGET_S``) or a day."""
+    text = current().time_budget_s
     if not text:
         return DEFAULT_TIME_BUDGET_S
     try:

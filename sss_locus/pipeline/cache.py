@@ -48,7 +48,6 @@ import inspect
 import json
 import os
 import shutil
-import tempfile
 import time
 import uuid
 from collections.abc import Callable, Mapping
@@ -112,24 +111,11 @@ def _read_valid(folder: Path, key: str) -> tuple[bool, list[pd.DataFrame] | None
 
 
 def _noting_reads(compute: Callable[[], Any]) -> tuple[Any, list[str]]:
-    """``compute()`` and the data entries its loaders read (:func:`sss_locus.experiments.datadoc.note_read`,
-    into a private file for the call), which are passed on to the run's own record, if any."""
-    run_record = os.environ.get(datadoc.READS_ENV)
-    handle, name = tempfile.mkstemp(prefix="sss-locus-reads-", suffix=".txt")  # a run's TMPDIR: its staging
-    os.close(handle)
-    private = Path(name)
-    os.environ[datadoc.READS_ENV] = str(private)
-    try:
+    """``compute()`` and the data entries its loaders read (:func:`sss_locus.experiments.datadoc.recording`),
+    which the run's own recording, if any, gets too."""
+    with datadoc.recording() as reads:
         result = compute()
-        reads = sorted(set(private.read_text(encoding="utf-8").split())) if private.exists() else []
-    finally:
-        if run_record is None:
-            os.environ.pop(datadoc.READS_ENV, None)
-        else:
-            os.environ[datadoc.READS_ENV] = run_record
-        private.unlink(missing_ok=True)
-    datadoc.note_read(*reads)
-    return result, reads
+    return result, sorted(reads)
 
 
 def cached_result(

@@ -266,7 +266,7 @@ def _check_cache_folder() -> None:
     """The result cache must be a folder this process can write (or create), before any work."""
     from sss_locus.pipeline.preflight import check_writable
 
-    given = os.environ.get(paths.CACHE_DIR_ENV)
+    given = paths.cache_dir() != paths.work_root() / ".cache"  # set by $SSS_LOCUS_CACHE_DIR
     check_writable(paths.cache_dir(), f"result cache ({paths.CACHE_DIR_ENV})" if given else "result cache")
 
 

@@ -10,8 +10,8 @@ Notebooks publish figures with :func:`sss_locus.pipeline.publish.publish`, which
 and the notebook places the figure with ``{glue:figure} fig-locus-concept`` and
 ``:name: fig-locus-concept`` in a markdown cell of the *same* notebook.
 
-Where it writes (:func:`default_out_dir`): into ``$SSS_LOCUS_FIGURES_DIR`` when the runner
-set it (``sss-locus run`` / ``book`` point it at the run's private staging folder and move the
+Where it writes (:func:`default_out_dir`): into the run context's ``figures_dir`` when the
+runner set it (``sss-locus run`` / ``book`` point it at the run's private staging folder and move the
 figures into the build area, :func:`sss_locus.paths.figures_dir`, only when the whole run
 succeeded), otherwise into ``figures/`` beside the run (the kernel's working directory, which
 ``papermill --cwd`` sets to the output's folder). A plain papermill run or an interactive session
@@ -46,7 +46,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, citation, provenance, readability
+from sss_locus.pipeline import atomic, citation, context, provenance, readability
 
 if TYPE_CHECKING:  # pandas is imported where a figure's data is written: the CLI starts without it
     import pandas as pd
@@ -60,8 +60,6 @@ DATA_NAME_PATTERN = re.compile(r"[a-z0-9]+(?:[_-][a-z0-9]+)*")
 #: Names of attached files (e.g. ``mission.plan``): a data name and an extension.
 ATTACHMENT_PATTERN = re.compile(DATA_NAME_PATTERN.pattern + r"\.[a-z0-9]+")
 #: Set by the runner: the folder a run exports into, and the run key recorded in each manifest.
-FIGURES_DIR_ENV = "SSS_LOCUS_FIGURES_DIR"
-RUN_KEY_ENV = "SSS_LOCUS_RUN_KEY"
 MIN_DPI = 200
 IMAGE_FORMATS = ("png", "svg", "pdf")
 # Fixed metadata so that SVG and PDF bytes do not change with the clock.
@@ -100,9 +98,10 @@ def _normalise_data(label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame])
 
 
 def default_out_dir() -> Path:
-    """``$SSS_LOCUS_FIGURES_DIR`` (set by the runner), else ``figures/`` in the working directory."""
-    override = os.environ.get(FIGURES_DIR_ENV)
-    return Path(override) if override else Path.cwd() / paths.FIGURES_SUBDIR
+    """The run context's ``figures_dir`` (the runner's staging folder), else ``figures/`` in the
+    working directory."""
+    given = context.current().figures_dir
+    return given if given is not None else Path.cwd() / paths.FIGURES_SUBDIR
 
 
 def _write_atomic(path: Path, text: str) -> None:
@@ -191,7 +190,7 @@ def export_figure(
         Random seed of the run; defaults to ``parameters["seed"]`` when present.
     notebook : str, optional
         Notebook that drew the figure; defaults to what the runner reports
-        (:func:`sss_locus.pipeline.provenance.current_notebook`).
+        (the run context's, :mod:`sss_locus.pipeline.context`).
     cell : int, optional
         Execution count (``In [n]``) of the notebook cell that drew the figure; recorded in the
         manifest so that the book links the figure to that cell.
@@ -262,9 +261,9 @@ def export_figure(
     manifest: dict[str, Any] = {
         "label": label,
         "caption": caption.strip(),
-        "notebook": notebook or provenance.current_notebook(),
+        "notebook": notebook or context.current().notebook,
         "cell": int(cell) if isinstance(cell, (int, np.integer)) and cell > 0 else None,
-        "profile": provenance.current_profile(),
+        "profile": context.current().profile,
         "parameters": params,
         "seed": json.loads(json.dumps(seed, default=provenance.json_default)),
         "git_commit": provenance.git_commit(),
@@ -273,7 +272,7 @@ def export_figure(
         "run_time_utc": provenance.utc_now(),
         "dpi": int(dpi),
         "text": text,  # smallest drawn text and picture width: readability on the page
-        "run_key": os.environ.get(RUN_KEY_ENV), "build_area": paths.build_name(),  # its executed copy, area
+        "run_key": context.current().run_key, "build_area": paths.build_name(),  # its executed copy, area
         "data_inputs": with_files(data_inputs(params, platforms), input_files),
     }
     bib_path = out / f"{label}.bib"

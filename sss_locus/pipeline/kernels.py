@@ -39,11 +39,6 @@ def hermetic_env() -> dict[str, str]:
         "MPLBACKEND": "Agg",
         "JUPYTER_PLATFORM_DIRS": "1",
         "PYDEVD_DISABLE_FILE_VALIDATION": "1",
-        # Children (kernels, jupyter-book) must see the same build area and cache.
-        paths.BUILD_DIR_ENV: str(paths.build_dir()),
-        paths.CACHE_DIR_ENV: str(paths.cache_dir()),
-        # Relative paths among the parameters are the user's: kept from the outermost command.
-        paths.CALLER_DIR_ENV: os.environ.get(paths.CALLER_DIR_ENV) or os.getcwd(),
     }
     for key in ("IPYTHONDIR", "JUPYTER_DATA_DIR", "JUPYTER_RUNTIME_DIR", "JUPYTER_CONFIG_DIR", "MPLCONFIGDIR"):
         Path(env[key]).mkdir(parents=True, exist_ok=True)
@@ -56,11 +51,16 @@ def hermetic_env() -> dict[str, str]:
 #: (pandas, SciPy, matplotlib), which took about 0.4 s of CPU at every kernel's exit, and papermill
 #: waits for that exit. Every library's own exit handler still runs (registered later, run first);
 #: what is skipped is the finalisation of objects in reference cycles still alive at exit, which
-#: Python never promises (a run's files are written and closed by its cells).
+#: Python never promises (a run's files are written and closed by its cells). Before the first
+#: cell, the kernel reads its run context (``SSS_LOCUS_RUN``) and, after every cell, records the
+#: data entries its loaders have read (:func:`sss_locus.pipeline.context.enter_kernel`).
 KERNEL_LAUNCHER = ("import atexit, gc, sys\n"
                    "if sys.path and sys.path[0] == '':\n    del sys.path[0]\n"
                    "atexit.register(gc.freeze)\n"
-                   "from ipykernel import kernelapp\nkernelapp.launch_new_instance()")
+                   "from ipykernel import kernelapp\n"
+                   "app = kernelapp.IPKernelApp.instance()\napp.initialize()\n"
+                   "from sss_locus.pipeline import context\ncontext.enter_kernel(app.shell)\n"
+                   "app.start()")
 
 
 def install_kernelspec() -> Path:

@@ -9,12 +9,12 @@
   cluster, as each future completes). A notebook's kernel runs in a child process whose output
   belongs to the notebook, so the callback does not write to the terminal: the pipeline's cache
   wrapper (:func:`sss_locus.pipeline.cache.cached`) gives every study it computes a
-  :func:`batch_reporter`, which appends one line per batch to the file named by
-  :data:`PROGRESS_ENV` (in the run's staging folder). The runner reads that file while the
+  :func:`batch_reporter`, which appends one line per batch to the run context's
+  ``progress_file`` (in the run's staging folder; :mod:`sss_locus.pipeline.context`). The runner reads that file while the
   notebook runs (:func:`relay_batches`) and shows the bar. Nothing reaches the executed
   notebook. Cache hits compute nothing and show no bar. With ``book --jobs N`` (N > 1) the
   notebooks run in child processes whose output is collected, so only the notebook lines and
-  bar are shown (:data:`QUIET_ENV`).
+  bar are shown (the context's ``quiet_batches``).
 
 On a terminal (``isatty()``) the bars are tqdm bars on stderr and the lines go to stdout above
 them. Anywhere else (a CI log, a pipe, a file) there are no bars and no terminal codes: plain
@@ -26,7 +26,6 @@ most of a quick run's, print nothing). Batch bars likewise appear only after
 
 from __future__ import annotations
 
-import os
 import sys
 import threading
 import time
@@ -36,10 +35,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-#: Environment variable naming the file a kernel appends its batch progress to (set by the runner).
-PROGRESS_ENV = "SSS_LOCUS_PROGRESS"
-#: Set to ``1`` (by ``book --jobs N``, for its child runs): show no batch progress.
-QUIET_ENV = "SSS_LOCUS_QUIET_BATCHES"
+from sss_locus.pipeline import context
+
 START_PREFIX = "start "
 #: Seconds between two reads of the progress file.
 POLL_S = 0.5
@@ -65,9 +62,9 @@ def start_line(name: str, profile: str) -> str:
 def batch_reporter(label: str) -> Callable[[int, int], None] | None:
     """A ``progress(done, total)`` callback for one study, for a kernel started by the runner:
     it appends ``<call id>\\t<label>\\t<done>\\t<total>`` to the file named by
-    :data:`PROGRESS_ENV`. ``None`` when that variable is unset (a plain papermill or Python run)."""
-    target = os.environ.get(PROGRESS_ENV, "")
-    if not target:
+    the run context's ``progress_file``. ``None`` outside a run (a plain papermill or Python run)."""
+    target = context.current().progress_file
+    if target is None:
         return None
     call = uuid.uuid4().hex[:12]
 
@@ -118,8 +115,9 @@ def relay_batches(path: Path, name: str, write: Callable[[str], Any] = print,
     """While the body runs, show the batch progress a kernel appends to ``path`` (see
     :func:`batch_reporter`) for notebook ``name``: tqdm bars on ``stream`` (default stderr) if
     it is a terminal, else lines through ``write`` (one per ``every_s`` seconds of a study, default :data:`PLAIN_EVERY_S`, and
-    its last batch if any was shown). Nothing when :data:`QUIET_ENV` is ``1``."""
-    if os.environ.get(QUIET_ENV) == "1":
+    its last batch if any was shown). Nothing when the run context says ``quiet_batches`` (a child
+    run of ``book --jobs N``)."""
+    if context.current().quiet_batches:
         yield
         return
     view = _BatchView(name, write, sys.stderr if stream is None else stream,

@@ -9,21 +9,12 @@ Every function returns a string and never raises: outside a git checkout the com
 from __future__ import annotations
 
 import hashlib
-import os
 from typing import Any
 import subprocess
 from datetime import datetime, timezone
 from pathlib import Path
 
 from sss_locus import paths
-
-
-#: Environment variables set by the notebook runner (``sss-locus run`` / ``sss-locus book``)
-#: so that code running inside a kernel knows which notebook and profile it belongs to.
-NOTEBOOK_ENV = "SSS_LOCUS_NOTEBOOK"
-PROFILE_ENV = "SSS_LOCUS_PROFILE"
-#: The run's resolved notebook parameters as JSON (read by :mod:`sss_locus.pipeline.publish`).
-PARAMETERS_ENV = "SSS_LOCUS_PARAMETERS"
 
 
 def json_default(value: Any) -> Any:
@@ -113,7 +104,7 @@ def code_sha256() -> str:
     The package version alone does not change when the code is edited in place (editable
     install), so caches and up-to-date checks key on this as well.
     """
-    parts = tree_sha256(paths.REPO_ROOT / "sss_locus", patterns=("*.py",)) + tree_sha256(paths.DATA_DIR)
+    parts = tree_sha256(paths.PACKAGE_DIR, patterns=("*.py",)) + tree_sha256(paths.DATA_DIR)
     return hashlib.sha256(parts.encode()).hexdigest()
 
 
@@ -124,24 +115,10 @@ def science_sha256() -> str:
     The cache keys on this (:mod:`sss_locus.pipeline.cache`), so editing the report or pipeline
     layers never invalidates a simulation.
     """
-    pkg = paths.REPO_ROOT / "sss_locus"
+    pkg = paths.PACKAGE_DIR
     parts = (tree_sha256(pkg / "geometry", patterns=("*.py",))
              + tree_sha256(pkg / "experiments", patterns=("*.py",)) + tree_sha256(paths.DATA_DIR))
     return hashlib.sha256(parts.encode()).hexdigest()
-
-
-def current_notebook() -> str:
-    """Repository-relative path of the notebook being run, as told by the runner.
-
-    ``"interactive"`` when the code is not run by ``sss-locus run``/``book`` (for example a
-    plain ``papermill`` call or an interactive session).
-    """
-    return os.environ.get(NOTEBOOK_ENV, "interactive")
-
-
-def current_profile() -> str:
-    """Parameter profile of the current run (``"none"`` outside the runner)."""
-    return os.environ.get(PROFILE_ENV, "none")
 
 
 def utc_now() -> str:

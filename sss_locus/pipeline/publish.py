@@ -43,26 +43,19 @@ notebook ``"interactive"``, profile ``"none"``, parameters ``{}``.
 from __future__ import annotations
 
 import json
-import os
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import pandas as pd
 
 from sss_locus import paths
-from sss_locus.pipeline import export, provenance
+from sss_locus.pipeline import context, export, provenance
 
 
 def run_parameters() -> dict[str, Any]:
     """The parameters of the current run, as resolved by the runner (``{}`` outside it)."""
-    text = os.environ.get(provenance.PARAMETERS_ENV)
-    if not text:
-        return {}
-    try:
-        values = json.loads(text)
-    except ValueError:
-        return {}
-    return paths.public_values(values) if isinstance(values, dict) else {}  # a user's file by its name
+    values = json.loads(json.dumps(dict(context.current().parameters), default=provenance.json_default))
+    return paths.public_values(values)  # a user's file by its name
 
 
 def publish(fig: Any, label: str, data: pd.DataFrame | Mapping[str, pd.DataFrame], *,

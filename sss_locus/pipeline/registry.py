@@ -258,9 +258,10 @@ class NotebookEntry:
 
     @property
     def source_relative(self) -> str:
-        """Repository-relative source path (used as the notebook's identity in manifests)."""
+        """Repository-relative source path (used as the notebook's identity in manifests):
+        ``notebooks/<name>.ipynb``, in a checkout or installed."""
         try:
-            return self.source.relative_to(paths.REPO_ROOT).as_posix()
+            return self.source.relative_to(paths.NOTEBOOKS_DIR.parent).as_posix()
         except ValueError:
             return self.source.as_posix()
 
@@ -288,11 +289,12 @@ class NotebookEntry:
 def load_registry(registry_file: Path | None = None, root: Path | None = None) -> dict[str, NotebookEntry]:
     """Read and check the registry; entries in file order.
 
-    ``root`` is the folder that ``source`` paths are relative to (default: the repository).
+    ``root`` is the folder that ``source`` paths are relative to (default: the repository, or the
+    installed package's copy of ``notebooks/``'s parent).
     Every malformed shape raises ``ValueError`` naming the file and the key.
     """
     registry_file = paths.REGISTRY_FILE if registry_file is None else Path(registry_file)
-    root = paths.REPO_ROOT if root is None else Path(root)
+    root = paths.NOTEBOOKS_DIR.parent if root is None else Path(root)
     try:
         with open(registry_file, "rb") as fh:
             data = tomllib.load(fh)

@@ -37,26 +37,24 @@ from pathlib import Path
 from typing import Any
 
 from sss_locus import paths
-from sss_locus.pipeline import (atomic, budgets, export, faults, kernels, orphans, outputs, paperinputs, paramcell,
+from sss_locus.pipeline import (atomic, budgets, context, export, faults, kernels, orphans, outputs, paperinputs, paramcell,
                                 preflight, progress, provenance, studies, userfiles)
 from sss_locus.pipeline.kernels import KERNEL_NAME, hermetic_env, install_kernelspec
 from sss_locus.pipeline.outputs import run_key
-from sss_locus.experiments.datadoc import READS_ENV
 from sss_locus.pipeline.registry import NotebookEntry
 
-@contextmanager
-def patched_environ(values: dict[str, str]) -> Iterator[None]:
-    """Temporarily set environment variables (kernels inherit them)."""
-    saved = {key: os.environ.get(key) for key in values}
-    os.environ.update(values)
-    try:
-        yield
-    finally:
-        for key, old in saved.items():
-            if old is None:
-                os.environ.pop(key, None)
-            else:
-                os.environ[key] = old
+def kernel_environment(staging: Path) -> dict[str, str]:
+    """The environment of a run's papermill process and kernel: this one's without any
+    ``SSS_LOCUS_*`` variable, the hermetic folders (:func:`.kernels.hermetic_env`), the connection
+    file in the staging folder, and :data:`.context.RUN_ENV` naming the run's context file there."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("SSS_LOCUS_")}
+    env.update(hermetic_env())
+    env.update({
+        "JUPYTER_RUNTIME_DIR": str(staging / "runtime"),  # connection file goes with the staging folder
+        "TMPDIR": str(staging / "runtime"),  # jupyter_client writes it with tempfile.mkstemp
+        context.RUN_ENV: str(staging / context.FILE_NAME),
+    })
+    return env
 
 
 def resolve_parameters(entry: NotebookEntry, profile: str, overrides: dict[str, Any] | None = None,
@@ -180,6 +178,7 @@ def _papermill_child(args: Path, log_file: Path) -> int:
     """One papermill process for ``args``, its output in ``log_file``; its exit code."""
     with open(log_file, "wb") as log_fh:
         child = subprocess.Popen([sys.executable, "-c", _CHILD, str(args)], stdout=log_fh,
+                                 env=kernel_environment(args.parent),
                                  stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True,
                                  preexec_fn=orphans.die_with_parent)  # even if we are SIGKILLed
         try:
@@ -230,22 +229,17 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     orphans.remove_stale_temporaries(figures, executed.parent)  # ... during their commit
     staging = tmp_root / f".run-{entry.name}-{os.getpid()}-{uuid.uuid4().hex[:12]}"
     key = run_key(entry, profile, parameters)
-    env = hermetic_env()
-    env.update({
-        provenance.NOTEBOOK_ENV: entry.source_relative, provenance.PROFILE_ENV: profile,
-        provenance.PARAMETERS_ENV: json.dumps(parameters, sort_keys=True, default=provenance.json_default),
-        export.FIGURES_DIR_ENV: str(staging / "figures"), export.RUN_KEY_ENV: key,
-        "JUPYTER_RUNTIME_DIR": str(staging / "runtime"),  # connection file goes with the staging folder
-        "TMPDIR": str(staging / "runtime"),  # jupyter_client writes it with tempfile.mkstemp
-        READS_ENV: str(staging / "data-reads.txt"),  # the data entries the kernel's loaders read
-        progress.PROGRESS_ENV: str(staging / "progress.txt"),  # the kernel's studies' batches
-    })
+    run = context.current().replace(  # what the kernel knows of its run: one file, one variable
+        notebook=entry.source_relative, profile=profile, parameters=parameters, run_key=key,
+        figures_dir=staging / "figures", progress_file=staging / "progress.txt",
+        data_reads_file=staging / "data-reads.txt")  # the data entries the kernel's loaders read
     staged = staging / executed.name
     start = time.perf_counter()
     log(progress.start_line(entry.name, profile))
     try:
-        with atomic.signals_as_exceptions(), patched_environ(env):
+        with atomic.signals_as_exceptions():
             (staging / "runtime").mkdir(parents=True)
+            context.write(run, staging)
             install_kernelspec()
             try:
                 with progress.relay_batches(staging / "progress.txt", entry.name, log):
@@ -293,12 +287,21 @@ def _nothing() -> Iterator[None]:
     yield
 
 
+@contextmanager
+def _removed(folder: Path) -> Iterator[None]:
+    """Delete ``folder`` when the block ends (a killed process's: :func:`.orphans.remove_stale_staging`)."""
+    try:
+        yield
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
 def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=print,
              verbose: bool = False, overrides: dict[str, str] | None = None, data: Any = None) -> None:
     """Run several registered notebooks with one profile, up to ``jobs`` at a time.
 
-    With ``jobs > 1`` each notebook runs in its own ``sss-locus run`` process (the environment
-    variables a run sets are per process). Every notebook is attempted; failures are reported
+    With ``jobs > 1`` each notebook runs in its own ``sss-locus run`` process, which gets this
+    process's run context (:mod:`.context`) in a file. Every notebook is attempted; failures are reported
     together at the end as a ``RuntimeError``. ``overrides`` (command-line text) apply to the
     notebooks that declare each parameter; ``data`` are the ``--data``/``--set`` inputs. If this process is interrupted, the running
     children get SIGTERM (each cleans up after itself) before the interruption propagates.
@@ -318,6 +321,9 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
         return
     install_kernelspec()
     children: dict[str, subprocess.Popen] = {}
+    shared = paths.build_dir() / "tmp" / f"{orphans.STAGING_PREFIX}book-{os.getpid()}-{uuid.uuid4().hex[:12]}"
+    child_env = context.child_environment(context.current().replace(quiet_batches=True), os.environ,
+                                          shared / context.FILE_NAME)  # the children's run context
 
     def one(entry: NotebookEntry) -> tuple[int, str, str]:
         cmd = [sys.executable, "-m", "sss_locus.pipeline.cli", "run", entry.name, "--profile", profile,
@@ -329,7 +335,7 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
             cmd += [arg for o in data.sets for arg in ("--set", o)]
         log(progress.start_line(entry.name, profile))  # the child's own start line comes too late
         child = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                 stdin=subprocess.DEVNULL, env={**os.environ, progress.QUIET_ENV: "1"},
+                                 stdin=subprocess.DEVNULL, env=child_env,
                                  preexec_fn=orphans.die_with_parent)  # a SIGKILLed book takes its runs along
         children[entry.name] = child
         out, err = child.communicate()
@@ -337,7 +343,7 @@ def run_many(entries: Sequence[NotebookEntry], profile: str, jobs: int = 1, log=
 
     failures: list[str] = []
     futures: dict = {}
-    with atomic.signals_as_exceptions(), ThreadPoolExecutor(max_workers=jobs) as pool:
+    with _removed(shared), atomic.signals_as_exceptions(), ThreadPoolExecutor(max_workers=jobs) as pool:
         try:
             futures = {pool.submit(one, entry): entry for entry in entries}
             for future in as_completed(futures):

@@ -1,7 +1,7 @@
 """``--scheduler`` / ``--workers`` of ``sss-locus run`` and ``sss-locus book``.
 
-The notebooks' Monte Carlo studies read :data:`sss_locus.experiments.scale.SCHEDULER_ENV`
-(kernels inherit this process's environment). ``--workers N`` starts one local cluster of
+The notebooks' Monte Carlo studies read the run context's scheduler
+(:mod:`sss_locus.pipeline.context`, passed to the kernels in their context file). ``--workers N`` starts one local cluster of
 ``N`` worker processes here (at most the cores this process may use; :func:`sss_locus.experiments.scale.start_local_cluster`, the
 launcher ``local:N`` uses too), shared by every notebook of the run; ``--scheduler ADDRESS``
 uses a running Dask scheduler. Neither given: the studies run in the kernel, without Dask.
@@ -15,7 +15,8 @@ import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from sss_locus.experiments.scale import SCHEDULER_ENV, start_local_cluster
+from sss_locus.experiments.scale import start_local_cluster
+from sss_locus.pipeline import context
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -37,7 +38,7 @@ def available_cores() -> int:
 
 @contextmanager
 def scheduler_environment(args: argparse.Namespace) -> Iterator[None]:
-    """Set :data:`SCHEDULER_ENV` for the duration of a command (and start a local cluster)."""
+    """The run context's scheduler for the duration of a command (and start a local cluster)."""
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be a positive integer; got {args.workers}")
     if args.workers is not None and args.workers > available_cores():
@@ -48,19 +49,15 @@ def scheduler_environment(args: argparse.Namespace) -> Iterator[None]:
     if args.scheduler is None and args.workers is None:
         yield
         return
-    saved = os.environ.get(SCHEDULER_ENV)
     cluster = None
     try:
         if args.workers is not None:
             cluster = start_local_cluster(args.workers)
-            os.environ[SCHEDULER_ENV] = cluster.scheduler_address
+            address = cluster.scheduler_address
         else:
-            os.environ[SCHEDULER_ENV] = args.scheduler
-        yield
+            address = args.scheduler
+        with context.use(context.current().replace(scheduler=address)):
+            yield
     finally:
-        if saved is None:
-            os.environ.pop(SCHEDULER_ENV, None)
-        else:
-            os.environ[SCHEDULER_ENV] = saved
         if cluster is not None:
             cluster.close()

@@ -22,7 +22,7 @@ from typing import Any
 import pandas as pd
 
 from sss_locus import paths
-from sss_locus.pipeline import atomic, citation, export, provenance
+from sss_locus.pipeline import atomic, citation, context, export, provenance
 
 
 def export_table(frame: pd.DataFrame, label: str, *, caption: str, parameters: Mapping[str, Any],
@@ -56,10 +56,10 @@ def export_table(frame: pd.DataFrame, label: str, *, caption: str, parameters: M
         tmp.unlink(missing_ok=True)
     manifest: dict[str, Any] = {
         "label": label, "kind": "table", "caption": caption.strip(),
-        "notebook": notebook or provenance.current_notebook(), "profile": provenance.current_profile(),
+        "notebook": notebook or context.current().notebook, "profile": context.current().profile,
         "parameters": params, "seed": params.get("seed"), "git_commit": provenance.git_commit(),
         "lock_sha256": provenance.lock_sha256(), "package_version": provenance.package_version(),
-        "run_time_utc": provenance.utc_now(), "run_key": os.environ.get(export.RUN_KEY_ENV),
+        "run_time_utc": provenance.utc_now(), "run_key": context.current().run_key,
         "build_area": paths.build_name(),
         "data_inputs": export.with_files(export.data_inputs(params, platforms), input_files),
     }

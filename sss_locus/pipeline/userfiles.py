@@ -7,7 +7,7 @@ import hashlib
 from pathlib import Path
 
 from sss_locus import paths
-from sss_locus.pipeline import provenance
+from sss_locus.pipeline import context, provenance
 
 
 def _unquote(text: str) -> str:
@@ -19,12 +19,13 @@ def _unquote(text: str) -> str:
 
 
 def _resolve(path: str) -> Path:
-    """``path`` relative to the current directory, else to the repository (where the worked
+    """``path`` relative to the folder the command was started in (the run context's
+    ``caller_dir``), else to the repository (where the worked
     example lives): relative to the repository when inside it (the same on every checkout),
     otherwise absolute; as given when not found (the reader then names it). Quotes around it
     (``-p observations '"my.csv"'``, a Python string literal) are removed."""
     given = Path(_unquote(path)).expanduser()
-    found = next((p for p in (given, paths.REPO_ROOT / given) if p.is_file()), None)
+    found = next((p for p in (context.current().caller_dir / given, paths.REPO_ROOT / given) if p.is_file()), None)
     if found is None:
         return given
     found = found.resolve()
