@@ -57,6 +57,28 @@ MIN_SEGMENT_M = 1.0
 """Clipped pieces shorter than this are dropped (a line grazing a vertex)."""
 
 
+def heading_from_compass_deg(compass_deg) -> float:
+    """A compass heading (degrees clockwise from north, as a surveyor gives it and as every
+    output of the chapter writes it) as this module's heading (degrees counter-clockwise from
+    east, in [0, 360)): ``(90 - compass) mod 360``; 0 (north) gives 90, 90 (east) gives 0.
+
+    Parameters
+    ----------
+    compass_deg : float
+        Compass heading, degrees clockwise from the local frame's north (true north at the
+        area's origin).
+
+    Returns
+    -------
+    float
+        Heading, degrees counter-clockwise from east (``+x``).
+    """
+    if isinstance(compass_deg, bool) or not isinstance(compass_deg, (int, float, np.integer, np.floating)) \
+            or not math.isfinite(compass_deg):
+        raise ValueError(f"a compass heading must be a finite number of degrees; got {compass_deg!r}")
+    return float((90.0 - float(compass_deg)) % 360.0) + 0.0
+
+
 def uturn_length_m(d_m, radius_m) -> np.ndarray:
     """Length of the shortest turn between anti-parallel lines ``d_m`` apart (module docstring)."""
     d, r = np.broadcast_arrays(np.abs(np.asarray(d_m, float)), np.asarray(radius_m, float))
