@@ -21,11 +21,19 @@ TOML::
     origin_lonlat = [-111.80, 40.25]                         # optional with vertices_m
     water_depth_m = 12.0                                     # mean water depth over the area, m
     water_beyond_m = 50.0                                    # optional: navigable water past the edge, m
+    # or, instead of water_depth_m, a bathymetry grid (a raster in any CRS; relative to this file):
+    # bathymetry = "harbour.tif"
+    # bathymetry_values = "depth"                            # "depth" (positive down) or "elevation"
 
 ``water_depth_m`` (optional; also a GeoJSON feature's property) is the mean depth of the
 seafloor below the sea surface over the area, which sets the altitudes a vehicle can fly; a run
 may give it instead (:func:`with_water_depth`). An area without one is refused by the survey
-design (no hidden default). ``water_beyond_m`` (optional) is how far past the area's outer edge
+design (no hidden default). Instead of ``water_depth_m``, ``bathymetry`` names a raster
+file of the depths (a path relative to the area file; also a GeoJSON feature's property) with
+``bathymetry_values`` its sign convention (``"depth"``, positive down, or ``"elevation"``, positive
+up): read and checked by :mod:`sss_locus.experiments.surveydesign.bathymetry` when the area is
+loaded; the area's ``water_depth_m`` is then the grid's mean over the area and its
+``water_depth_source`` names the file, its SHA-256 and the depths' range. ``water_beyond_m`` (optional) is how far past the area's outer edge
 the water is navigable: survey lines, run-ins and turns stay within it (0: the edge is a shore);
 without it the water around the area is open and lines run as far as their swath reaches.
 
@@ -134,6 +142,8 @@ class SurveyArea:
         Where the depth comes from (the area file, a run parameter).
     water_beyond_m : float or None
         Navigable water past the outer edge, m (``None``: open water).
+    bathymetry : tuple
+        ``()``, or the bathymetry grid's ``(path found, file as published, SHA-256, values)``.
     """
 
     polygon: object
@@ -145,6 +155,7 @@ class SurveyArea:
     water_depth_m: float | None = None
     water_depth_source: str = ""
     water_beyond_m: float | None = None
+    bathymetry: tuple = ()
 
     @property
     def area_m2(self) -> float:
@@ -171,7 +182,8 @@ class SurveyArea:
         """A JSON-able description (for caches and manifests)."""
         return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
                 "source": self.source, "sha256": self.sha256, "water_depth_m": self.water_depth_m,
-                "water_depth_source": self.water_depth_source, "water_beyond_m": self.water_beyond_m}
+                "water_depth_source": self.water_depth_source, "water_beyond_m": self.water_beyond_m,
+                "bathymetry": list(self.bathymetry)}
 
 
 def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str = "survey area",
@@ -284,6 +296,12 @@ def _from_geojson(doc, source: str) -> SurveyArea:
 
 
 def _depth_from(area: SurveyArea, doc, source: str) -> SurveyArea:
+    if "bathymetry" in doc or "bathymetry_values" in doc:
+        grid, values = doc.get("bathymetry"), doc.get("bathymetry_values")
+        if not isinstance(grid, str) or not grid.strip() or "water_depth_m" in doc:
+            raise ValueError(f"{source}: a bathymetry grid needs bathymetry = \"FILE\" (a raster, path relative to "
+                             "the area file) with bathymetry_values = \"depth\" or \"elevation\", and no water_depth_m")
+        area = replace(area, bathymetry=(grid, grid, "", values))  # found and read by load_area
     if "water_beyond_m" in doc:
         v = doc["water_beyond_m"]
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not (0 <= v <= 1e5):
@@ -297,6 +315,9 @@ def _depth_from(area: SurveyArea, doc, source: str) -> SurveyArea:
 def with_water_depth(area: SurveyArea, depth_m, source: str) -> SurveyArea:
     """``area`` with its mean water depth ``depth_m`` (m, in (0, 12000]) from ``source``; a bad
     value is refused in one line naming ``source``."""
+    if area.bathymetry:
+        raise ValueError(f"{source}: the area {area.name!r} gives a bathymetry grid ({area.bathymetry[1]}), whose depths "
+                         "are used; drop this water depth")
     if isinstance(depth_m, bool) or not isinstance(depth_m, (int, float)) or not (0 < depth_m <= 12000):
         raise ValueError(f"{source} must be a number of metres in (0, 12000]; got {depth_m!r}")
     return replace(area, water_depth_m=float(depth_m), water_depth_source=source)
@@ -327,6 +348,14 @@ def load_area(path: str | Path) -> SurveyArea:
     area = _load_area(p, str(path))  # its errors name the file as given
     shown = public_path(p.resolve())  # what captions, pages and manifests name: never a local absolute path
     depth_source = f"{shown}: water_depth_m" if area.water_depth_source else ""
+    if area.bathymetry:  # the grid beside the area file, read and checked now
+        from .surveydesign.bathymetry import load_bathymetry
+
+        grid = (p.parent / Path(area.bathymetry[0]).expanduser()).resolve()
+        grid_shown = public_path(grid)
+        b = load_bathymetry(grid, area.bathymetry[3], area, shown=grid_shown)
+        area = replace(area, bathymetry=(str(grid), grid_shown, b.sha256, b.values), water_depth_m=b.mean_m)
+        depth_source = b.describe()
     return replace(area, source=shown, water_depth_source=depth_source,
                    sha256=hashlib.sha256(p.read_bytes()).hexdigest(), path=str(p.resolve()))
 
@@ -348,10 +377,12 @@ def _load_area(p: Path, source: str) -> SurveyArea:
     if not isinstance(area, dict):
         raise ValueError(f"{source}: missing table [area] (with vertices_m or vertices_lonlat)")
     unknown = set(area) - {"name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "source",
-                           "assumption", "water_depth_m", "water_beyond_m"}
+                           "assumption", "water_depth_m", "water_beyond_m",
+                           "bathymetry", "bathymetry_values"}
     if unknown:
         raise ValueError(f"{source}: unknown keys in [area]: {sorted(unknown)} (allowed: name, vertices_m, "
-                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m, water_beyond_m)")
+                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m, water_beyond_m, "
+                         "bathymetry, bathymetry_values)")
     if ("vertices_m" in area) == ("vertices_lonlat" in area):
         raise ValueError(f"{source}: [area] needs exactly one of vertices_m or vertices_lonlat")
     name = str(area.get("name", p.stem))
@@ -373,7 +404,8 @@ def area_from_key(key: dict) -> SurveyArea:
                               holes_m=[np.asarray(r.coords) for r in poly.interiors],
                               name=key.get("name", "survey area"), source=key.get("source", "vertices"))
     return replace(area, sha256=key.get("sha256", ""), water_depth_m=key.get("water_depth_m"),
-                   water_depth_source=key.get("water_depth_source", ""), water_beyond_m=key.get("water_beyond_m"))
+                   water_depth_source=key.get("water_depth_source", ""), water_beyond_m=key.get("water_beyond_m"),
+                   bathymetry=tuple(key.get("bathymetry", ())))
 
 
 def principal_heading_deg(area: SurveyArea) -> float:

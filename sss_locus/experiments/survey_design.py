@@ -131,6 +131,21 @@ def depth_settings(area: SurveyArea, settings: dict) -> dict:
     return out
 
 
+def load_area_bathymetry(area: SurveyArea):
+    """The :class:`~sss_locus.experiments.surveydesign.bathymetry.Bathymetry` of an area whose
+    file gives a grid (``area.bathymetry``), read again (cached per file and area); ``None``
+    without one."""
+    from .surveydesign.bathymetry import load_bathymetry
+
+    if not area.bathymetry:
+        return None
+    path, shown, sha, values = area.bathymetry
+    b = load_bathymetry(path, values, area, shown=shown)
+    if sha and b.sha256 != sha:
+        raise ValueError(f"{shown} changed since the area was read (SHA-256 {b.sha256[:12]}, was {sha[:12]}): rerun")
+    return b
+
+
 def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: int, seed: int,
                  grid_m: float, settings: dict | None = None) -> Setting:
     """Validate the inputs and draw the features (module docstring)."""
@@ -147,8 +162,16 @@ def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: i
     settings = depth_settings(area, load_settings() if settings is None else settings)
     c = area.polygon.centroid
     x0, y0, x1, y1 = area.polygon.bounds
-    terrain = terrain_from_config(terrain_kind, load_terrain_config(),
-                                  extent_m=2.5 * max(x1 - x0, y1 - y0), seed=seed)
+    grid_depths = np.zeros(0)
+    if area.bathymetry:  # the area's own seafloor
+        if terrain_kind != "flat":
+            raise ValueError(f"terrain {terrain_kind!r} and the area's bathymetry grid ({area.bathymetry[1]}) both give "
+                             "the seafloor: keep terrain 'flat' (the default) with a bathymetry grid")
+        bathy = load_area_bathymetry(area)
+        terrain, grid_depths = bathy.terrain((c.x, c.y)), bathy.area_depths_m
+    else:
+        terrain = terrain_from_config(terrain_kind, load_terrain_config(),
+                                      extent_m=2.5 * max(x1 - x0, y1 - y0), seed=seed)
     rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(2801,)))
     xy = np.zeros((0, 2))
     while len(xy) < n:
@@ -156,7 +179,8 @@ def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: i
         xy = np.vstack([xy, cand[shapely.contains_xy(area.polygon, cand[:, 0], cand[:, 1])]])
     edge = np.asarray(area.polygon.exterior.coords)
     probe = np.vstack([edge, xy])
-    heights = terrain.height_m(probe[:, 0] - c.x, probe[:, 1] - c.y)
+    heights = np.concatenate([terrain.height_m(probe[:, 0] - c.x, probe[:, 1] - c.y),
+                              settings["water_depth_m"] - grid_depths])  # every grid cell of the area
     return Setting(platform, area, terrain, settings, xy[:n], heights, (c.x, c.y), grid_m, seed)
 
 
