@@ -186,3 +186,17 @@ def test_the_area_key_round_trips_the_grid(grid_area):
     back = area_from_key(grid_area.key())
     assert back.bathymetry == grid_area.bathymetry
     assert sd.load_area_bathymetry(back).mean_m == pytest.approx(grid_area.water_depth_m)
+
+
+def test_an_edited_grid_changes_the_runs_area_hash(tmp_path):
+    """The run key's ``area_sha256`` covers the grid beside the area file (an edited grid makes
+    the run stale), not only the area file's bytes."""
+    from sss_locus.pipeline.userfiles import area_parameters
+
+    _write_tif(tmp_path / "harbour.tif")
+    path = str(_area_file(tmp_path))
+    before = area_parameters(path)["area_sha256"]
+    _write_tif(tmp_path / "harbour.tif", sign=2.0)
+    assert area_parameters(path)["area_sha256"] != before
+    (tmp_path / "harbour.tif").unlink()
+    assert area_parameters(path)["area_sha256"] not in ("", before)  # the area file alone
