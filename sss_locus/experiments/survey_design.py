@@ -17,8 +17,9 @@ survey_lines` (lines and turns), :mod:`~sss_locus.experiments.survey_coverage` (
 :mod:`~sss_locus.experiments.survey_plans` (plan space, limits, baselines).
 
 Evaluation (:func:`evaluate`): ``n_features`` features uniform over the area (seeded), on the
-terrain, observed by every segment of the plan; cost from the track (lines and turns) and the
-platform's speed; coverage measured on a grid (of ``grid_m``, coarser over an area that would
+terrain, observed by every segment of the plan; cost from the track the mission flies (lines,
+U-turns, transits and the return to the start:
+:func:`~sss_locus.experiments.surveydesign.route.track_cost`) and the platform's speed; coverage measured on a grid (of ``grid_m``, coarser over an area that would
 need more than :data:`MAX_COVERAGE_CELLS` cells: :func:`coverage_grid_m`); the objectives of every feature seen twice.
 Every plan is evaluated on the same features (common random numbers), so plans are compared
 on equal terms.
@@ -51,10 +52,10 @@ import pandas as pd
 
 from .survey_area import SurveyArea, area_from_key
 from .survey_coverage import coverage, observe_lines
-from .survey_lines import track_length
 from .survey_objectives import pair_loci, reconstruction_errors, three_view_closure
 from .survey_plans import (Plan, check_mission, lawnmower_plan, load_settings, plan_grid, plan_ok,
                            standard_plan, water_depth)
+from .surveydesign.route import flight_path, track_cost
 from .terrain import KINDS, load_terrain_config, terrain_from_config
 
 OBJECTIVES = {"locus": "locus_median_m", "three_view": "unresolved_share", "reconstruction": "error_two_median_m"}
@@ -191,7 +192,7 @@ def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dic
     lines = plan.lines(s.area)
     if lines.empty:
         raise ValueError(f"plan {plan} leaves no line inside the area")
-    cost = track_length(lines, p.turn_radius_m)
+    cost = track_cost(flight_path(s.area, lines, p.turn_radius_m)[0])  # the track the mission flies
     same = p.fixed_depth
     seed = s.seed + seed_offset
     cov = coverage(p, s.terrain, s.area, lines, plan.altitude_m, plan.pitch_deg, same, grid_m=s.grid_m,
@@ -203,7 +204,7 @@ def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dic
     two = pairs["n_seen"] >= 2
     closed = three_view_closure(views, seen, ap)
     row = {**plan.row(), "n_segments": cost["n_segments"], "lines_m": cost["lines_m"], "turns_m": cost["turns_m"],
-           "total_m": cost["total_m"], "time_h": cost["total_m"] / p.speed_m_s / 3600.0,
+           "transits_m": cost["transits_m"], "total_m": cost["total_m"], "time_h": cost["total_m"] / p.speed_m_s / 3600.0,
            "covered_once": cov["once"], "covered_twice": cov["twice"], "holes": cov["holes"],
            "n_holes": cov["n_holes"], "nadir_gap_m": cov["nadir_gap_m"],
            "two_view_share": float(two.mean()), "three_view_share": float(closed.mean()),

@@ -40,7 +40,9 @@ The lines in order, joined by turns of a vehicle with minimum turning radius ``R
   to the cross lines): the straight distance plus ``R`` times the heading change in radians
   (a turn on the spot replaced by an arc: an approximation of the Dubins distance, stated).
 
-The track length counts the lines and the turns; time is the length over the survey speed.
+This is the formula of the track's length; the survey design costs a plan by the track its mission
+flies instead (:func:`sss_locus.experiments.surveydesign.route.track_cost`: the same U-turns,
+plus the transits and the return to the start, leg by leg).
 """
 
 from __future__ import annotations

@@ -27,8 +27,8 @@ the area (also lines outside it), with a run-in and run-out of ``run_in_turn_rad
     perpendicular to the depth contours on a slope (along its azimuth), else along the area's
     long axis;
 ``lawnmower``
-    one set of lines at the standard heading and altitude, spaced so that its track is as long
-    as the standard plan's (bisection on the spacing; lines come in whole numbers, so the
+    one set of lines at the standard heading and altitude, spaced so that its flown track
+    (:func:`~sss_locus.experiments.surveydesign.route.track_cost`) is as long as the standard plan's (bisection on the spacing; lines come in whole numbers, so the
     longest track not longer than the standard's): the same effort spent on plain parallel
     lines.
 """
@@ -44,7 +44,8 @@ import pandas as pd
 from . import datadoc
 from .inputs import sourced, table
 from .survey_area import SurveyArea, principal_heading_deg
-from .survey_lines import across_extent, flown_positions, line_set, track_length
+from .survey_lines import across_extent, flown_positions, line_set
+from .surveydesign.route import flight_path, track_cost
 
 SETTINGS = (("range_scale_fraction", 1e-3, 10.0), ("standard_spacing_fraction", 1e-3, 10.0),
             ("standard_offset_fraction", 0.0, 1.0), ("standard_altitude_min_fraction", 0.0, 1.0),
@@ -209,14 +210,15 @@ def standard_plan(platform, area: SurveyArea, terrain, settings, heights_m) -> P
 
 def lawnmower_plan(platform, area: SurveyArea, standard: Plan) -> Plan:
     """Parallel lines only, spaced so the track is as long as the standard plan's (bisection)."""
-    target = track_length(standard.lines(area), platform.turn_radius_m)["total_m"]
+    flown_m = lambda lines: track_cost(flight_path(area, lines, platform.turn_radius_m)[0])["total_m"]  # noqa: E731
+    target = flown_m(standard.lines(area))
     mk = lambda s: Plan(standard.heading_deg, s, math.nan, s, standard.altitude_m, 0.0, "lawnmower",  # noqa: E731
                         standard.reach_m, standard.run_m, standard.near_m)
     lo, hi = 1.0, standard.spacing_m * 4
     for _ in range(40):
         mid = 0.5 * (lo + hi)
         lines = mk(mid).lines(area)
-        total = track_length(lines, platform.turn_radius_m)["total_m"] if len(lines) else 0.0
+        total = flown_m(lines) if len(lines) else 0.0
         lo, hi = (mid, hi) if total > target else (lo, mid)
     return mk(hi)
 

@@ -26,7 +26,8 @@ Formats (:data:`FORMATS`):
     RFC 7946 FeatureCollection (:mod:`sss_locus.pipeline.geojson7946`: counter-clockwise
     exteriors, cut at the antimeridian, 7 decimals, densified to 0.1 m): the area, the inclusion
     fence, the exclusion fences, one LineString per segment (properties ``set, line, segment,
-    course_true_deg, length_m``) and the whole track.
+    course_true_deg, length_m``) and the whole track (with its ``lines_m``, ``turns_m``,
+    ``transits_m`` and ``total_m``, the plan's cost: the track as flown).
 ``plan``
     QGroundControl plan (JSON) for an ArduPilot vehicle: ``MAV_CMD_DO_CHANGE_SPEED`` (178,
     ground speed, the survey speed) first, one ``MAV_CMD_NAV_WAYPOINT`` (16, ``frame`` 3: global,
@@ -102,6 +103,8 @@ def geojson_text(area, lines: pd.DataFrame, points: pd.DataFrame, fence, holes, 
 
     _need_origin(area, "geojson")
     feat = lambda geom, props: {"type": "Feature", "properties": props, "geometry": geom}  # noqa: E731
+    from sss_locus.experiments.surveydesign.route import track_cost
+
     features = [feat(polygon_geometry(area, area.polygon), {"name": area.name, "role": "survey area",
                                                            "origin_lonlat": list(area.origin_lonlat),
                                                            **({"water_depth_m": area.water_depth_m}
@@ -117,7 +120,8 @@ def geojson_text(area, lines: pd.DataFrame, points: pd.DataFrame, fence, holes, 
                              {"role": "survey line", "set": r["set"], "line": int(r.line), "segment": int(r.segment),
                               "course_true_deg": round(course, 3), "length_m": round(float(r.length_m), 3)}))
     features.append(feat(line_geometry(area, points[["east_m", "north_m"]].to_numpy()),
-                         {"role": "track", "note": "lines, turns and transits in flying order"}))
+                         {"role": "track", "note": "lines, turns and transits in flying order",
+                          **{k: round(v, 3) for k, v in track_cost(points).items() if k.endswith("_m")}}))
     return json.dumps({"type": "FeatureCollection", "features": features}, indent=1) + "\n"
 
 

@@ -48,13 +48,13 @@ def plan_label(row) -> str:
 
 
 def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water_depth_m: float,
-                 depth_source: str, ardupilot: bool = True, flown_m: float | None = None) -> str:
+                 depth_source: str, ardupilot: bool = True) -> str:
     """The caption of a recommended plan's figure: the plan, the water depth it used and where
     that came from, its cost and coverage (``cov`` of
     :func:`sss_locus.experiments.survey_design.plan_coverage`), the area file with its SHA-256
     and the mission ``files`` beside the figure (without an origin only the CSV, and why; for a
-    vehicle that does not run ArduPilot no ArduPilot mission, and why); ``flown_m`` the length of
-    the mission's own track (its turns and transits as written), beside the plan's cost."""
+    vehicle that does not run ArduPilot no ArduPilot mission, and why); the cost is the track the
+    mission flies (``row.total_m``: lines, U-turns, transits and the return to the start)."""
     names = ", ".join(f"`{n}`" for n in files)
     why = ("" if area.origin_lonlat is not None else
            " (the others need longitude/latitude: give the area file an `origin_lonlat`)")
@@ -66,8 +66,8 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water
                 f"lines run past the area by their swath's reach and a run-in of {row.run_m:.0f} m; "
                 if area.water_beyond_m is None else
                 f"lines, run-ins and turns stay within {area.water_beyond_m:g} m of the area's edge (its water_beyond_m); ")
-            + f"{row.total_m / 1e3:.2f} km including turns of radius {platform.turn_radius_m:g} m"
-            + ("" if flown_m is None else f" (the mission's track as written: {flown_m / 1e3:.2f} km)") + ", "
+            + f"{row.total_m / 1e3:.2f} km flown (the mission's track: lines, turns of radius "
+            f"{platform.turn_radius_m:g} m, transits and the return to the start), "
             + f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "
             f"{fmt_percent(cov['twice'])} of the area, holes: {cov['n_holes']}. Grey dotted: WGS 84 meridians and "
             f"parallels. Area file `{area_file}` "
@@ -96,7 +96,7 @@ def plot_front(fronts: dict, objective: str, platforms: dict):
         rec = t[t.recommended] if "recommended" in t else t.iloc[:0]
         ax.scatter(rec.total_m / 1e3, rec[col], s=220, facecolors="none", edgecolors="tab:green", lw=2.2,
                    label="recommended", zorder=5)
-        ax.set_xlabel("track length incl. turns (km)")
+        ax.set_xlabel("track flown: lines, turns, transits (km)")
         ax.set_title(platform_title(platforms[key], width=90 // len(keys)), fontsize=9)  # a panel's width
     axes[0][0].set_ylabel(OBJECTIVE_LABELS[objective])
     handles, labels = axes[0][0].get_legend_handles_labels()

@@ -18,6 +18,10 @@ grown by that much, a U-turn that would leave it replaced by a transit inside it
 simplified to at most ``max_vertices`` vertices while still containing it; the **exclusion
 fences** are the area's holes. :func:`check_inside` is the check every mission writer runs: every point of
 the track inside the inclusion fence and outside every exclusion fence, else a one-line error.
+
+Cost (:func:`track_cost`): the length of that track, leg by leg, as the vehicle flies it: the
+lines, the U-turns, and the transits (including the return to the first line's start); the
+survey design's cost and time of every plan come from it, not from a formula.
 """
 
 from __future__ import annotations
@@ -153,3 +157,32 @@ def check_inside(path: pd.DataFrame, fence, holes, *, what: str = "track") -> No
         inside = legs.intersection(h.buffer(-1e-6))
         if not inside.is_empty:
             raise ValueError(f"{what}: the track crosses hole {k + 1} of the area for {inside.length:.1f} m")
+
+
+def track_cost(path: pd.DataFrame) -> dict[str, float]:
+    """Lengths of a :func:`flight_path` track, m, leg by leg (module docstring): ``lines_m`` (legs
+    ending at a ``line end``), ``turns_m`` (U-turns), ``transits_m`` (transits and the return),
+    ``total_m`` (their sum, the polyline's length), and ``n_segments`` (line segments).
+
+    Parameters
+    ----------
+    path : pandas.DataFrame
+        The track of :func:`flight_path`, columns :data:`PATH_COLUMNS`, in flying order.
+
+    Returns
+    -------
+    dict
+        The lengths above (m) and ``n_segments``.
+    """
+    xy = path[["east_m", "north_m"]].to_numpy(float)
+    kind = path["kind"].to_numpy()
+    leg = np.hypot(*np.diff(xy, axis=0).T) if len(xy) > 1 else np.zeros(0)
+    into, before = kind[1:], kind[:-1]
+    # a leg into a line's start closes the junction it ends (a U-turn's last arc, or a transit)
+    closes = np.where(np.isin(before, ("turn", "transit")), before, "transit")
+    what = np.where(into == "line start", closes, into)
+    lines = float(leg[what == "line end"].sum())
+    turns = float(leg[what == "turn"].sum())
+    transits = float(leg[np.isin(what, ("transit", "return"))].sum())
+    return {"lines_m": lines, "turns_m": turns, "transits_m": transits, "total_m": float(leg.sum()),
+            "n_segments": int(np.sum(kind == "line start"))}
