@@ -21,6 +21,10 @@ TOML::
     origin_lonlat = [-111.80, 40.25]                         # optional with vertices_m
     water_depth_m = 12.0                                     # mean water depth over the area, m
     water_beyond_m = 50.0                                    # optional: navigable water past the edge, m
+    # optional: where the vehicle may go (a walled harbour's water; default: the area, grown by
+    # water_beyond_m when given, else open water) and how far it keeps off walls and holes, m:
+    # navigable_m = [[-20, -20], [820, -20], [820, 520], [-20, 520]]   # or navigable_lonlat
+    # wall_clearance_m = 5.0
     # or, instead of water_depth_m, a bathymetry grid (a raster in any CRS; relative to this file):
     # bathymetry = "harbour.tif"
     # bathymetry_values = "depth"                            # "depth" (positive down) or "elevation"
@@ -33,7 +37,14 @@ file of the depths (a path relative to the area file; also a GeoJSON feature's p
 ``bathymetry_values`` its sign convention (``"depth"``, positive down, or ``"elevation"``, positive
 up): read and checked by :mod:`sss_locus.experiments.surveydesign.bathymetry` when the area is
 loaded; the area's ``water_depth_m`` is then the grid's mean over the area and its
-``water_depth_source`` names the file, its SHA-256 and the depths' range. ``water_beyond_m`` (optional) is how far past the area's outer edge
+``water_depth_source`` names the file, its SHA-256 and the depths' range. **Navigable water** (:meth:`SurveyArea.water`): the area is where to survey; ``navigable_m``
+(a ring in the local frame) or ``navigable_lonlat`` (WGS 84 degrees, also a GeoJSON feature's
+property) is the water the vehicle may use, e.g. a walled harbour's basin (it must contain the
+area; the area's holes, a pier or an island, are land within it). Lines, run-ins, turns and
+transits keep ``wall_clearance_m`` off its edge and off every hole, and the mission's geofence
+never reaches past it (:mod:`sss_locus.experiments.surveydesign.route`). Without a
+``wall_clearance_m`` in the file, :func:`load_area` takes ``survey_design.wall_clearance_m`` of
+the run's data (an assumption, stated there). ``water_beyond_m`` (optional) is how far past the area's outer edge
 the water is navigable: survey lines, run-ins and turns stay within it (0: the edge is a shore);
 without it the water around the area is open and lines run as far as their swath reaches.
 
@@ -142,6 +153,10 @@ class SurveyArea:
         Where the depth comes from (the area file, a run parameter).
     water_beyond_m : float or None
         Navigable water past the outer edge, m (``None``: open water).
+    navigable_wkt : str
+        The navigable water's outline (WKT, local metres), ``""``: see :meth:`water`.
+    wall_clearance_m : float
+        How far the vehicle keeps off the navigable water's edge and the holes, m.
     bathymetry : tuple
         ``()``, or the bathymetry grid's ``(path found, file as published, SHA-256, values)``.
     """
@@ -156,6 +171,23 @@ class SurveyArea:
     water_depth_source: str = ""
     water_beyond_m: float | None = None
     bathymetry: tuple = ()
+    navigable_wkt: str = ""
+    wall_clearance_m: float = 0.0
+
+    def water(self):
+        """The navigable water (a shapely Polygon, local metres, the area's holes cut out): the
+        ``navigable`` outline, else the area's outer ring grown by ``water_beyond_m``; ``None``
+        when neither is given (open water)."""
+        import shapely
+
+        if self.navigable_wkt:
+            outline = shapely.from_wkt(self.navigable_wkt)
+        elif self.water_beyond_m is not None:
+            outline = shapely.Polygon(self.polygon.exterior).buffer(self.water_beyond_m, quad_segs=4)
+        else:
+            return None
+        holes = [shapely.Polygon(r) for r in self.polygon.interiors]
+        return outline.difference(shapely.union_all(holes)) if holes else outline
 
     @property
     def area_m2(self) -> float:
@@ -183,7 +215,8 @@ class SurveyArea:
         return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
                 "source": self.source, "sha256": self.sha256, "water_depth_m": self.water_depth_m,
                 "water_depth_source": self.water_depth_source, "water_beyond_m": self.water_beyond_m,
-                "bathymetry": list(self.bathymetry)}
+                "bathymetry": list(self.bathymetry), "navigable_wkt": self.navigable_wkt,
+                "wall_clearance_m": self.wall_clearance_m}
 
 
 def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str = "survey area",
@@ -295,7 +328,36 @@ def _from_geojson(doc, source: str) -> SurveyArea:
     return _depth_from(area, props, source)
 
 
+def _navigable_from(area: SurveyArea, doc, source: str) -> SurveyArea:
+    """``area`` with the navigable water and the wall clearance of ``doc`` (module docstring)."""
+    import shapely
+
+    if "wall_clearance_m" in doc:
+        v = doc["wall_clearance_m"]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (0 <= v <= 1000):
+            raise ValueError(f"{source}: wall_clearance_m must be a number of metres in [0, 1000]; got {v!r}")
+        area = replace(area, wall_clearance_m=float(v))
+    keys = [k for k in ("navigable_m", "navigable_lonlat") if k in doc]
+    if not keys:
+        return area
+    if len(keys) > 1 or "water_beyond_m" in doc:
+        raise ValueError(f"{source}: give one of navigable_m, navigable_lonlat or water_beyond_m")
+    ring = doc[keys[0]]
+    if keys[0] == "navigable_lonlat":
+        if area.origin_lonlat is None or not _numeric(ring) or np.asarray(ring, float).ndim != 2:
+            raise ValueError(f"{source}: navigable_lonlat must be [longitude, latitude] pairs of an area with an origin")
+        ring = np.column_stack(area.to_local(*np.asarray(ring, float).T))
+    water = area_from_vertices(ring, source=f"{source}: {keys[0]}").polygon
+    outside = area.polygon.difference(water.buffer(1e-6))
+    if not outside.is_empty:
+        far = max(shapely.Point(q).distance(water) for q in shapely.get_coordinates(outside))
+        raise ValueError(f"{source}: the navigable water must contain the area; {outside.area:.0f} m^2 of the area lie "
+                         f"outside it, up to {far:.1f} m")
+    return replace(area, navigable_wkt=water.wkt)
+
+
 def _depth_from(area: SurveyArea, doc, source: str) -> SurveyArea:
+    area = _navigable_from(area, doc, source)
     if "bathymetry" in doc or "bathymetry_values" in doc:
         grid, values = doc.get("bathymetry"), doc.get("bathymetry_values")
         if not isinstance(grid, str) or not grid.strip() or "water_depth_m" in doc:
@@ -348,6 +410,10 @@ def load_area(path: str | Path) -> SurveyArea:
     area = _load_area(p, str(path))  # its errors name the file as given
     shown = public_path(p.resolve())  # what captions, pages and manifests name: never a local absolute path
     depth_source = f"{shown}: water_depth_m" if area.water_depth_source else ""
+    if area.water() is not None and not _gives(p, "wall_clearance_m"):  # walls: the run's clearance
+        from .survey_plans import load_settings
+
+        area = replace(area, wall_clearance_m=float(load_settings()["wall_clearance_m"]))
     if area.bathymetry:  # the grid beside the area file, read and checked now
         from .surveydesign.bathymetry import load_bathymetry
 
@@ -358,6 +424,13 @@ def load_area(path: str | Path) -> SurveyArea:
         depth_source = b.describe()
     return replace(area, source=shown, water_depth_source=depth_source,
                    sha256=hashlib.sha256(p.read_bytes()).hexdigest(), path=str(p.resolve()))
+
+
+def _gives(p: Path, key: str) -> bool:
+    """Whether the area file ``p`` sets ``key`` (in ``[area]``, or a GeoJSON feature's properties)."""
+    if p.suffix.lower() in (".geojson", ".json"):
+        return f'"{key}"' in p.read_text(encoding="utf-8-sig")
+    return key in read_toml(p).get("area", {})
 
 
 def _load_area(p: Path, source: str) -> SurveyArea:
@@ -378,11 +451,11 @@ def _load_area(p: Path, source: str) -> SurveyArea:
         raise ValueError(f"{source}: missing table [area] (with vertices_m or vertices_lonlat)")
     unknown = set(area) - {"name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "source",
                            "assumption", "water_depth_m", "water_beyond_m",
-                           "bathymetry", "bathymetry_values"}
+                           "bathymetry", "bathymetry_values", "navigable_m", "navigable_lonlat", "wall_clearance_m"}
     if unknown:
         raise ValueError(f"{source}: unknown keys in [area]: {sorted(unknown)} (allowed: name, vertices_m, "
                          "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m, water_beyond_m, "
-                         "bathymetry, bathymetry_values)")
+                         "bathymetry, bathymetry_values, navigable_m, navigable_lonlat, wall_clearance_m)")
     if ("vertices_m" in area) == ("vertices_lonlat" in area):
         raise ValueError(f"{source}: [area] needs exactly one of vertices_m or vertices_lonlat")
     name = str(area.get("name", p.stem))
@@ -405,7 +478,8 @@ def area_from_key(key: dict) -> SurveyArea:
                               name=key.get("name", "survey area"), source=key.get("source", "vertices"))
     return replace(area, sha256=key.get("sha256", ""), water_depth_m=key.get("water_depth_m"),
                    water_depth_source=key.get("water_depth_source", ""), water_beyond_m=key.get("water_beyond_m"),
-                   bathymetry=tuple(key.get("bathymetry", ())))
+                   bathymetry=tuple(key.get("bathymetry", ())), navigable_wkt=key.get("navigable_wkt", ""),
+                   wall_clearance_m=key.get("wall_clearance_m", 0.0))
 
 
 def principal_heading_deg(area: SurveyArea) -> float:

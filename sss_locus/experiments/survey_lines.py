@@ -24,8 +24,12 @@ fewest the unbounded pattern gives any position; e.g. 2 for a 200 % plan); a lin
 its swath reaches (the area cut by the band ``|c' - c| <= reach``; a concave area can give
 several pieces), extended by ``run_m`` before and after (the run-in and run-out); the line is
 then cut where it would come within ``run_m`` of a hole of the area (an island or an exclusion
-zone: the vehicle does not cross it, and runs out before it) and, when the area gives
-``water_beyond_m``, where it would leave the water that far past the area's edge (a shore).
+zone: the vehicle does not cross it, and runs out before it; at least the area's
+``wall_clearance_m`` off it) and, when the area gives navigable water
+(:meth:`~sss_locus.experiments.survey_area.SurveyArea.water`: ``navigable_m`` or
+``water_beyond_m``), where it would come within ``wall_clearance_m`` of its edge (a wall, a
+shore). Where the U-turn to the next line would not fit in that water, the lines' ends are
+pulled back until it does (:func:`sss_locus.experiments.surveydesign.turns.fit_turns`).
 
 Track (:func:`track_length`)
 ----------------------------
@@ -123,8 +127,10 @@ def _line_pieces(area: SurveyArea, c: float, e, n, a0: float, a1: float, reach_m
     seen = band.intersection(area.polygon)
     parts = [g for g in getattr(seen, "geoms", [seen]) if g.geom_type == "Polygon" and not g.is_empty]
     lines = [shapely.LineString([c * n + a * e, c * n + b * e]) for a, b in _intervals(parts, e, run_m)]
-    holes = shapely.MultiPolygon([shapely.Polygon(r).buffer(run_m) for r in area.polygon.interiors])
-    water = None if area.water_beyond_m is None else shapely.Polygon(area.polygon.exterior).buffer(area.water_beyond_m)
+    clear = area.wall_clearance_m
+    holes = shapely.MultiPolygon([shapely.Polygon(r).buffer(max(run_m, clear)) for r in area.polygon.interiors])
+    water = area.water()
+    water = None if water is None else water.buffer(-clear)  # the wall clearance kept
     out = []
     for g in lines:
         cut = g.intersection(water) if water is not None else g

@@ -50,7 +50,7 @@ from .surveydesign.route import flight_path, track_cost
 SETTINGS = (("range_scale_fraction", 1e-3, 10.0), ("standard_spacing_fraction", 1e-3, 10.0),
             ("standard_offset_fraction", 0.0, 1.0), ("standard_altitude_min_fraction", 0.0, 1.0),
             ("standard_altitude_max_fraction", 0.0, 1.0), ("min_two_view_share", 0.0, 1.0),
-            ("run_in_turn_radii", 0.0, 1000.0))
+            ("run_in_turn_radii", 0.0, 1000.0), ("wall_clearance_m", 0.0, 1000.0))
 OPTIONAL_SETTINGS = (("water_depth_m", 1e-3, 12000.0),)
 """Keys a user's ``--data`` file may add: ``water_depth_m`` (the mean water depth, used when
 neither the run nor the area file gives one; no shipped default)."""
@@ -91,6 +91,7 @@ class Plan:
     reach_m: float = 0.0
     run_m: float = 0.0
     near_m: float = 0.0
+    turn_radius_m: float = 0.0
 
     def lines(self, area: SurveyArea) -> pd.DataFrame:
         """The plan's segments in run order: main lines, then the second set (``set`` ``"cross"``
@@ -105,11 +106,21 @@ class Plan:
                                  self.near_m)
         main = line_set(area, self.heading_deg, self.spacing_m, name="main", across_m=at[0], **fly)
         if math.isnan(self.crossing_deg):
-            return main
+            return self._fit(area, main)
         offset = 0.5 if repeat else 0.0
         cross = line_set(area, (self.heading_deg + self.crossing_deg) % 360.0, self.cross_spacing_m,
                          offset=offset, name="repeat" if repeat else "cross", across_m=at[1], **fly)
-        return pd.concat([main, cross], ignore_index=True)
+        return self._fit(area, pd.concat([main, cross], ignore_index=True))
+
+    def _fit(self, area: SurveyArea, lines: pd.DataFrame) -> pd.DataFrame:
+        """``lines`` with their ends pulled back where a U-turn would leave the navigable water
+        (:func:`~sss_locus.experiments.surveydesign.turns.fit_turns`; open water: as they are)."""
+        from .surveydesign.turns import fit_turns
+
+        water = area.water()
+        if water is None or self.turn_radius_m <= 0 or lines.empty:
+            return lines
+        return fit_turns(lines, water.buffer(-area.wall_clearance_m), self.turn_radius_m)[0]
 
     def row(self) -> dict:
         return asdict(self)
@@ -140,7 +151,7 @@ def flown(platform, settings, plan: Plan) -> Plan:
 
     near = max(0.0, min(float(swath_m(platform, [port], [plan.altitude_m])[0][0]) for port in (True, False)))
     return replace(plan, reach_m=swath_reach_m(platform, settings, plan.altitude_m), near_m=near,
-                   run_m=settings["run_in_turn_radii"] * platform.turn_radius_m)
+                   run_m=settings["run_in_turn_radii"] * platform.turn_radius_m, turn_radius_m=platform.turn_radius_m)
 
 
 def check_mission(platform) -> None:
@@ -213,7 +224,7 @@ def lawnmower_plan(platform, area: SurveyArea, standard: Plan) -> Plan:
     flown_m = lambda lines: track_cost(flight_path(area, lines, platform.turn_radius_m)[0])["total_m"]  # noqa: E731
     target = flown_m(standard.lines(area))
     mk = lambda s: Plan(standard.heading_deg, s, math.nan, s, standard.altitude_m, 0.0, "lawnmower",  # noqa: E731
-                        standard.reach_m, standard.run_m, standard.near_m)
+                        standard.reach_m, standard.run_m, standard.near_m, standard.turn_radius_m)
     lo, hi = 1.0, standard.spacing_m * 4
     for _ in range(40):
         mid = 0.5 * (lo + hi)

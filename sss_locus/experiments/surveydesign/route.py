@@ -10,12 +10,18 @@ inclusion fence shrunk by the turn radius and outside every hole grown by the tu
 ``margin_m`` (a visibility graph over those polygons' vertices, solved with
 :func:`scipy.sparse.csgraph.dijkstra`); a straight leg when that is already free.
 
-Fences (:func:`fences`): the **inclusion fence** is the area's outer ring joined with every line
-and U-turn of the track, grown by ``R + margin_m`` (room for the vehicle's own turns and for the
-transits; a line segment that lies apart, beyond a notch, joined to the rest by a corridor as
-wide along the shortest way), or, when the area gives ``water_beyond_m`` (a shore that far past its edge), the area
-grown by that much, a U-turn that would leave it replaced by a transit inside it; its outer ring
-simplified to at most ``max_vertices`` vertices while still containing it; the **exclusion
+Fences (:func:`fences`): in open water the **inclusion fence** is the area's outer ring joined
+with every line and U-turn of the track, grown by ``R + margin_m`` (room for the vehicle's own
+turns and for the transits; a line segment that lies apart, beyond a notch, joined to the rest
+by a corridor as wide along the shortest way), its outer ring simplified to at most
+``max_vertices`` vertices while still containing it. When the area gives navigable water
+(:meth:`~sss_locus.experiments.survey_area.SurveyArea.water`: ``navigable_m`` or
+``water_beyond_m``), the track keeps the area's ``wall_clearance_m`` off its edge and its holes
+(lines cut and their ends pulled back for the turns by
+:func:`~sss_locus.experiments.surveydesign.turns.fit_turns`; a U-turn that still leaves it
+replaced by a transit inside it), and the fence is the navigable water's outline itself, never
+past it (with more than ``max_vertices`` vertices: shrunk by half the clearance and simplified
+by a quarter, still holding the track); the **exclusion
 fences** are the area's holes. :func:`check_inside` is the check every mission writer runs: every point of
 the track inside the inclusion fence and outside every exclusion fence, else a one-line error.
 
@@ -44,8 +50,11 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
     import shapely
 
     outer = shapely.Polygon(area.polygon.exterior)
-    if area.water_beyond_m is not None:  # the navigable water is the fence
-        grown = outer.buffer(area.water_beyond_m, quad_segs=4)
+    water = area.water()
+    if water is not None:  # the navigable water: the fence never reaches past it
+        water = max(getattr(water, "geoms", [water]), key=lambda g: g.area)
+        return _water_fence(shapely.Polygon(water.exterior), legs, area.wall_clearance_m, max_vertices), \
+            [shapely.Polygon(r) for r in area.polygon.interiors]
     else:
         grown = shapely.union_all([outer, legs]).buffer(turn_radius_m + margin_m, quad_segs=4)
         parts = sorted(getattr(grown, "geoms", [grown]), key=lambda g: g.area, reverse=True)
@@ -66,6 +75,20 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
     return fence, [shapely.Polygon(r) for r in area.polygon.interiors]
 
 
+def _water_fence(outline, legs, clearance_m: float, max_vertices: int):
+    """The inclusion fence in navigable water: its outline, or, when that has more than
+    ``max_vertices`` vertices, the outline shrunk by half the clearance and simplified by a
+    quarter of it (so it stays inside the outline and still holds the track, which keeps the
+    whole clearance), when that holds ``legs``."""
+    if len(outline.exterior.coords) - 1 <= max_vertices or clearance_m <= 0:
+        return outline
+    import shapely
+
+    cand = outline.buffer(-clearance_m / 2, join_style="mitre").simplify(clearance_m / 4)
+    ok = cand.geom_type == "Polygon" and outline.buffer(1e-6).covers(cand) and cand.buffer(1e-6).covers(legs)
+    return shapely.Polygon(cand.exterior) if ok else outline
+
+
 def _transit(a, b, free, nodes, room) -> list:
     """Shortest polyline from ``a`` to ``b`` inside the polygon ``free`` (widened by ``room``
     about ``a`` and ``b``: the ends may lie near a hole or on a shore) through ``nodes`` and the
@@ -77,6 +100,7 @@ def _transit(a, b, free, nodes, room) -> list:
 
     ok = free.union(shapely.Point(a).buffer(room[0])).union(shapely.Point(b).buffer(room[0])).intersection(room[1])
     ok = ok.buffer(1e-6)
+    shapely.prepare(ok)  # many segments are tested against it
     if ok.covers(shapely.LineString([a, b])):
         return [b]
     entries = [] if free.is_empty else [shapely.get_coordinates(shapely.shortest_line(free, shapely.points([a, b])))[::2]]
@@ -105,8 +129,8 @@ def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: fl
 
     R = float(turn_radius_m)
     L = lines.reset_index(drop=True)
-    water = None if area.water_beyond_m is None else \
-        shapely.Polygon(area.polygon.exterior).buffer(area.water_beyond_m + 0.01, quad_segs=4)
+    water = area.water()  # the navigable water less the wall clearance (None: open water)
+    water = None if water is None else water.buffer(0.01 - area.wall_clearance_m)
     joins: dict[int, tuple[str, np.ndarray]] = {}
     for k in range(1, len(L)):
         a, b = L.iloc[k - 1], L.iloc[k]
@@ -186,3 +210,15 @@ def track_cost(path: pd.DataFrame) -> dict[str, float]:
     transits = float(leg[np.isin(what, ("transit", "return"))].sum())
     return {"lines_m": lines, "turns_m": turns, "transits_m": transits, "total_m": float(leg.sum()),
             "n_segments": int(np.sum(kind == "line start"))}
+
+
+def turn_misfits(area, lines: pd.DataFrame, turn_radius_m: float) -> list[str]:
+    """The U-turns of ``lines`` that do not fit in the area's navigable water with its wall
+    clearance, one sentence each naming the lines (:func:`~.turns.fit_turns`; open water: none);
+    the track joins those lines by a transit inside the water."""
+    from .turns import fit_turns
+
+    water = area.water()
+    if water is None or lines.empty:
+        return []
+    return fit_turns(lines, water.buffer(-area.wall_clearance_m), turn_radius_m)[1]
