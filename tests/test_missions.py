@@ -16,7 +16,7 @@ import pytest
 pytest.importorskip("shapely")
 pytest.importorskip("pyproj")
 
-from sss_locus.experiments.survey_area import area_from_vertices, load_area  # noqa: E402
+from sss_locus.experiments.survey_area import MIN_CLEARANCE_M, area_from_vertices, load_area  # noqa: E402
 from sss_locus.experiments.survey_plans import Plan  # noqa: E402
 from sss_locus.pipeline.missions import mission_files  # noqa: E402
 
@@ -300,8 +300,9 @@ def test_a_transit_along_a_shore_steps_in_by_the_turn_radius_not_across_the_harb
 
     harbour = [[0, 0], [800, 0], [800, 350], [500, 350], [500, 700], [0, 700]]  # L-shaped, concave
     area = dataclasses.replace(area_from_vertices(harbour, name="walled"), water_beyond_m=0.0)
-    lines = pd.DataFrame([("main", 0, 0, 90.0, 0, 96, 800, 96), ("main", 1, 0, 270.0, 800, 288, 0, 288),
-                          ("main", 2, 0, 90.0, 0, 480, 500, 480), ("main", 3, 0, 270.0, 500, 672, 0, 672)],
+    c = MIN_CLEARANCE_M  # the lines end as close to the walls as a track may come
+    lines = pd.DataFrame([("main", 0, 0, 90.0, c, 96, 800 - c, 96), ("main", 1, 0, 270.0, 800 - c, 288, c, 288),
+                          ("main", 2, 0, 90.0, c, 480, 500 - c, 480), ("main", 3, 0, 270.0, 500 - c, 672, c, 672)],
                          columns=["set", "line", "segment", "heading_deg", "x0_m", "y0_m", "x1_m", "y1_m"])
     R = 5.0
     path, _, _ = flight_path(area, lines, R)

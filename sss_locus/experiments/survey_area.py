@@ -80,6 +80,9 @@ MIN_AREA_M2 = 100.0
 MAX_VERTICES = 100_000
 """Most vertices (all rings) an area may have: a survey boundary needs far fewer; more (a
 coastline traced at centimetres) would make every coverage test slow."""
+MIN_CLEARANCE_M = 0.5
+"""Least clearance off the navigable water's edge, m, whatever ``wall_clearance_m`` says: a track
+on the fence itself would leave it by the mission files' coordinate rounding (1e-7 degrees)."""
 MAX_FILE_BYTES = 16_000_000
 """Largest area file read, bytes (a file of :data:`MAX_VERTICES` vertices is about 4 MB)."""
 MAX_ORIGIN_DISTANCE_M = 100_000.0
@@ -173,6 +176,12 @@ class SurveyArea:
     bathymetry: tuple = ()
     navigable_wkt: str = ""
     wall_clearance_m: float = 0.0
+
+    @property
+    def clearance_m(self) -> float:
+        """The clearance the track keeps in navigable water, m: ``wall_clearance_m``, at least
+        :data:`MIN_CLEARANCE_M`."""
+        return max(self.wall_clearance_m, MIN_CLEARANCE_M)
 
     def water(self):
         """The navigable water (a shapely Polygon, local metres, the area's holes cut out): the
@@ -411,9 +420,13 @@ def load_area(path: str | Path) -> SurveyArea:
     shown = public_path(p.resolve())  # what captions, pages and manifests name: never a local absolute path
     depth_source = f"{shown}: water_depth_m" if area.water_depth_source else ""
     if area.water() is not None and not _gives(p, "wall_clearance_m"):  # walls: the run's clearance
-        from .survey_plans import load_settings
+        from . import datadoc
+        from .inputs import sourced, table
 
-        area = replace(area, wall_clearance_m=float(load_settings()["wall_clearance_m"]))
+        datadoc.note_read("survey_design")  # the key survey_plans.load_settings validates with the others
+        clearance = sourced(table(datadoc.document(), "survey_design", ""), "wall_clearance_m", "survey_design", {},
+                            lo=0.0, hi=1000.0)
+        area = replace(area, wall_clearance_m=float(clearance))
     if area.bathymetry:  # the grid beside the area file, read and checked now
         from .surveydesign.bathymetry import load_bathymetry
 

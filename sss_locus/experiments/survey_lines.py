@@ -127,7 +127,7 @@ def _line_pieces(area: SurveyArea, c: float, e, n, a0: float, a1: float, reach_m
     seen = band.intersection(area.polygon)
     parts = [g for g in getattr(seen, "geoms", [seen]) if g.geom_type == "Polygon" and not g.is_empty]
     lines = [shapely.LineString([c * n + a * e, c * n + b * e]) for a, b in _intervals(parts, e, run_m)]
-    clear = area.wall_clearance_m
+    clear = area.clearance_m
     holes = shapely.MultiPolygon([shapely.Polygon(r).buffer(max(run_m, clear)) for r in area.polygon.interiors])
     water = area.water()
     water = None if water is None else water.buffer(-clear)  # the wall clearance kept

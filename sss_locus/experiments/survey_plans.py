@@ -120,7 +120,7 @@ class Plan:
         water = area.water()
         if water is None or self.turn_radius_m <= 0 or lines.empty:
             return lines
-        return fit_turns(lines, water.buffer(-area.wall_clearance_m), self.turn_radius_m)[0]
+        return fit_turns(lines, water.buffer(-area.clearance_m), self.turn_radius_m)[0]
 
     def row(self) -> dict:
         return asdict(self)

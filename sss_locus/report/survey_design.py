@@ -48,13 +48,15 @@ def plan_label(row) -> str:
 
 
 def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water_depth_m: float,
-                 depth_source: str, ardupilot: bool = True) -> str:
+                 depth_source: str, ardupilot: bool = True, turn_notes=()) -> str:
     """The caption of a recommended plan's figure: the plan, the water depth it used and where
     that came from, its cost and coverage (``cov`` of
     :func:`sss_locus.experiments.survey_design.plan_coverage`), the area file with its SHA-256
     and the mission ``files`` beside the figure (without an origin only the CSV, and why; for a
     vehicle that does not run ArduPilot no ArduPilot mission, and why); the cost is the track the
-    mission flies (``row.total_m``: lines, U-turns, transits and the return to the start)."""
+    mission flies (``row.total_m``: lines, U-turns, transits and the return to the start); in
+    navigable water (a walled harbour) its clearance, and ``turn_notes`` the turns that did not fit
+    (:func:`sss_locus.experiments.surveydesign.route.turn_misfits`)."""
     names = ", ".join(f"`{n}`" for n in files)
     why = ("" if area.origin_lonlat is not None else
            " (the others need longitude/latitude: give the area file an `origin_lonlat`)")
@@ -64,8 +66,12 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water
     return (f"Recommended plan for the {platform.name} over {area.name}: {plan_label(row)}; water depth "
             f"{water_depth_m:g} m ({depth_source}); " + (
                 f"lines run past the area by their swath's reach and a run-in of {row.run_m:.0f} m; "
-                if area.water_beyond_m is None else
-                f"lines, run-ins and turns stay within {area.water_beyond_m:g} m of the area's edge (its water_beyond_m); ")
+                if area.water() is None else
+                f"lines, run-ins, turns and transits stay in the navigable water ("
+                + ("its navigable outline" if area.navigable_wkt else f"{area.water_beyond_m:g} m past the area's edge")
+                + f"), {area.clearance_m:g} m off its edge and holes, line ends pulled back where a turn needs room; "
+                "the inclusion fence (red dashed) never reaches past it; ")
+            + (f"Where the water is narrow: {'; '.join(turn_notes)}. " if turn_notes else "")
             + f"{row.total_m / 1e3:.2f} km flown (the mission's track: lines, turns of radius "
             f"{platform.turn_radius_m:g} m, transits and the return to the start), "
             + f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "

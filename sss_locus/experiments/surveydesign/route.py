@@ -53,7 +53,7 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
     water = area.water()
     if water is not None:  # the navigable water: the fence never reaches past it
         water = max(getattr(water, "geoms", [water]), key=lambda g: g.area)
-        return _water_fence(shapely.Polygon(water.exterior), legs, area.wall_clearance_m, max_vertices), \
+        return _water_fence(shapely.Polygon(water.exterior), legs, area.clearance_m, max_vertices), \
             [shapely.Polygon(r) for r in area.polygon.interiors]
     else:
         grown = shapely.union_all([outer, legs]).buffer(turn_radius_m + margin_m, quad_segs=4)
@@ -130,7 +130,7 @@ def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: fl
     R = float(turn_radius_m)
     L = lines.reset_index(drop=True)
     water = area.water()  # the navigable water less the wall clearance (None: open water)
-    water = None if water is None else water.buffer(0.01 - area.wall_clearance_m)
+    water = None if water is None else water.buffer(0.01 - area.clearance_m)
     joins: dict[int, tuple[str, np.ndarray]] = {}
     for k in range(1, len(L)):
         a, b = L.iloc[k - 1], L.iloc[k]
@@ -221,4 +221,4 @@ def turn_misfits(area, lines: pd.DataFrame, turn_radius_m: float) -> list[str]:
     water = area.water()
     if water is None or lines.empty:
         return []
-    return fit_turns(lines, water.buffer(-area.wall_clearance_m), turn_radius_m)[1]
+    return fit_turns(lines, water.buffer(-area.clearance_m), turn_radius_m)[1]

@@ -131,7 +131,6 @@ def fit_turns(lines, free, radius_m: float, *, max_pull_m: float | None = None):
     misfits = []
     start, end = L[["x0_m", "y0_m"]].to_numpy(float).copy(), L[["x1_m", "y1_m"]].to_numpy(float).copy()
     head, sets, nums = L.heading_deg.to_numpy(float), L["set"].to_numpy(), L.line.to_numpy()
-    length = np.hypot(*(end - start).T)
     for k in range(1, len(L)):
         dh = (head[k] - head[k - 1] + 180.0) % 360.0 - 180.0
         if R <= 0 or sets[k - 1] != sets[k] or abs(abs(dh) - 180.0) > 1e-6:
@@ -139,7 +138,7 @@ def fit_turns(lines, free, radius_m: float, *, max_pull_m: float | None = None):
         h = math.radians(head[k - 1])
         e = np.array([math.cos(h), math.sin(h)])
         p, q = end[k - 1].copy(), start[k].copy()
-        room = min(length[k - 1], length[k]) - 1.0
+        room = min(float(np.hypot(*(end[k - 1] - start[k - 1]))), float(np.hypot(*(end[k] - start[k])))) - 1.0
         pull, fits = 0.0, turn_fits(free, p, head[k - 1], q, R)
         while not fits and pull + R / 2 <= min(pull_max, room):
             pull += R / 2
