@@ -53,7 +53,8 @@ GeoJSON (RFC 7946: longitude/latitude, WGS 84): a ``Polygon``, or a ``Feature`` 
 unless the feature's properties give ``origin_lonlat``. Holes (inner rings) are kept.
 
 ``holes_m`` (rings in metres of the local frame) may go with either kind of vertices; with
-``vertices_lonlat`` they are in the frame around the origin.
+``vertices_lonlat`` they are in the frame around the origin; ``holes_lonlat`` (rings of WGS 84
+degrees) goes with ``vertices_lonlat``.
 
 Validation: every ring closed or not, at least three distinct vertices of numbers (not booleans
 or strings), a valid polygon (:func:`shapely.is_valid`: no self-intersection), an area of at
@@ -464,20 +465,23 @@ def _load_area(p: Path, source: str) -> SurveyArea:
         raise ValueError(f"{source}: missing table [area] (with vertices_m or vertices_lonlat)")
     unknown = set(area) - {"name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "source",
                            "assumption", "water_depth_m", "water_beyond_m",
-                           "bathymetry", "bathymetry_values", "navigable_m", "navigable_lonlat", "wall_clearance_m"}
+                           "bathymetry", "bathymetry_values", "navigable_m", "navigable_lonlat", "wall_clearance_m",
+                           "holes_lonlat"}
     if unknown:
         raise ValueError(f"{source}: unknown keys in [area]: {sorted(unknown)} (allowed: name, vertices_m, "
                          "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m, water_beyond_m, "
-                         "bathymetry, bathymetry_values, navigable_m, navigable_lonlat, wall_clearance_m)")
+                         "bathymetry, bathymetry_values, navigable_m, navigable_lonlat, wall_clearance_m, holes_lonlat)")
     if ("vertices_m" in area) == ("vertices_lonlat" in area):
         raise ValueError(f"{source}: [area] needs exactly one of vertices_m or vertices_lonlat")
+    if "holes_lonlat" in area and "vertices_lonlat" not in area:
+        raise ValueError(f"{source}: holes_lonlat goes with vertices_lonlat (with vertices_m, give holes_m)")
     name = str(area.get("name", p.stem))
     if "vertices_m" in area:
         out = area_from_vertices(area["vertices_m"], origin_lonlat=area.get("origin_lonlat"),
                                  holes_m=area.get("holes_m", ()), name=name, source=source)
     else:
         out = area_from_lonlat(area["vertices_lonlat"], area.get("origin_lonlat"), holes_m=area.get("holes_m", []),
-                               name=name, source=source)
+                               holes_lonlat=area.get("holes_lonlat", []), name=name, source=source)
     return _depth_from(out, area, source)
 
 
