@@ -200,3 +200,44 @@ def test_an_edited_grid_changes_the_runs_area_hash(tmp_path):
     assert area_parameters(path)["area_sha256"] != before
     (tmp_path / "harbour.tif").unlink()
     assert area_parameters(path)["area_sha256"] not in ("", before)  # the area file alone
+
+
+def test_an_auvs_mission_depth_follows_the_grid_and_a_boat_stays_at_the_surface(grid_area):
+    """The mission CSV's depth at each waypoint: the AUV (terrain following at 8 m altitude) at
+    the plane's depth there minus 8 m (evaluated here from longitude/latitude); the boat at 0."""
+    import io
+
+    from sss_locus.pipeline.missions import mission_files
+
+    auv, boat = load_platform("auv"), load_platform("boat")
+    settings = sd.depth_settings(grid_area, sd.load_settings())
+    lines = pd.DataFrame([("main", 0, 0, 20.0, 150.0, 580.0, 150.0, 0.0, 560.0)], columns=list(LINE_COLUMNS))
+    for pf, want in ((auv, lambda lon, lat: _plane_depth(lon, lat) - 8.0), (boat, lambda lon, lat: 0.0 * lon)):
+        depth = sd.vehicle_depth_m(pf, grid_area, settings, 8.0 if pf is auv else settings["water_depth_m"])
+        files = mission_files(grid_area, lines, depth_m=depth, turn_radius_m=pf.turn_radius_m, speed_m_s=1.5,
+                              ardupilot=False)
+        csv = pd.read_csv(io.StringIO(files["mission.csv"]))
+        assert np.allclose(csv.depth_m, want(csv.lon.to_numpy(), csv.lat.to_numpy()), atol=0.05), pf.key
+    assert csv.depth_m.eq(0.0).all()
+
+
+def test_the_plan_map_draws_the_grids_depth_contours(grid_area):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.report.survey_design import plot_plan
+
+    boat = load_platform("boat")
+    lines = pd.DataFrame([("main", 0, 0, -50.0, 150.0, 650.0, 150.0, 0.0, 700.0)], columns=list(LINE_COLUMNS))
+    cov = coverage(boat, sd.load_area_bathymetry(grid_area).terrain(grid_area.polygon.centroid.coords[0]), grid_area,
+                   lines, grid_area.water_depth_m, 0.0, True, grid_m=20.0, seed=1,
+                   centre=grid_area.polygon.centroid.coords[0])
+    fig = plot_plan(grid_area, lines, cov["grid"], 20.0, 0.0, boat, "t", bathymetry=sd.load_area_bathymetry(grid_area))
+    ax = fig.axes[0]
+    levels = [float(t.get_text().removesuffix(" m")) for t in ax.texts if t.get_text().endswith(" m")]
+    assert levels and min(levels) >= 12.0 and max(levels) <= 24.0  # labelled contours within the area's depths
+    assert any("depth contour (" in t.get_text() for t in ax.get_legend().get_texts())
+    assert ax.get_xlim()[1] < 800  # the grid's margin does not widen the map
+    plt.close(fig)

@@ -99,3 +99,23 @@ def test_bad_navigable_water_is_refused_in_one_line(tmp_path, navigable, extra, 
     with pytest.raises(ValueError, match=message) as err:
         load_area(_area_file(tmp_path, extra=extra, navigable=navigable))
     assert "\n" not in str(err.value) and "basin.toml" in str(err.value)
+
+
+def test_the_plan_caption_names_the_navigable_water_its_clearance_and_the_turns_that_do_not_fit(tmp_path):
+    import math
+
+    import pandas as pd
+
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.report.survey_design import plan_caption
+
+    area = load_area(_area_file(tmp_path))
+    row = pd.Series(dict(heading_deg=0.0, spacing_m=120.0, crossing_deg=math.nan, cross_spacing_m=120.0,
+                         altitude_m=12.0, pitch_deg=0.0, total_m=5000.0, time_h=0.9, run_m=6.0))
+    note = "the turn from main line 3 to line 4 does not fit in the navigable water"
+    text = plan_caption(load_platform("boat"), area, "basin.toml", row, dict(once=1.0, twice=0.5, n_holes=0),
+                        ["mission.csv"], water_depth_m=12.0, depth_source="basin.toml: water_depth_m",
+                        turn_notes=[note])
+    assert "stay in the navigable water (its navigable outline), 6 m off its edge and holes" in text
+    assert note in text and "never reaches past it" in text
+    assert "5.00 km flown (the mission's track: lines, turns of radius 3 m, transits and the return" in text

@@ -147,6 +147,18 @@ def load_area_bathymetry(area: SurveyArea):
     return b
 
 
+def vehicle_depth_m(platform, area: SurveyArea, settings: dict, altitude_m: float):
+    """The depth (m, below the sea surface) a plan's vehicle flies at, for its mission files: a
+    platform of fixed depth (a surface vessel) ``water depth - altitude`` (its own depth); any
+    other over the mean seafloor ``water depth - altitude``, or, over a bathymetry grid (it
+    follows the terrain at ``altitude_m``), a function of local east/north metres: the depth there
+    minus ``altitude_m``."""
+    grid = None if platform.fixed_depth else load_area_bathymetry(area)
+    if grid is None:
+        return float(settings["water_depth_m"]) - float(altitude_m)
+    return lambda east_m, north_m: grid.depth_at(east_m, north_m) - float(altitude_m)
+
+
 def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: int, seed: int,
                  grid_m: float, settings: dict | None = None) -> Setting:
     """Validate the inputs and draw the features (module docstring)."""
