@@ -119,3 +119,22 @@ def test_the_plan_caption_names_the_navigable_water_its_clearance_and_the_turns_
     assert "stay in the navigable water (its navigable outline), 6 m off its edge and holes" in text
     assert note in text and "never reaches past it" in text
     assert "5.00 km flown (the mission's track: lines, turns of radius 3 m, transits and the return" in text
+
+
+def test_a_geojson_area_gives_its_navigable_water_and_clearance_as_properties(tmp_path):
+    """The same basin as a GeoJSON Feature (RFC 7946 longitude/latitude): ``navigable_lonlat`` and
+    ``wall_clearance_m`` in its properties, read into the area's local frame (checked here
+    against the basin's metres through pyproj)."""
+    from pyproj import Transformer
+
+    t = Transformer.from_crs(f"+proj=aeqd +lat_0={ORIGIN[1]} +lon_0={ORIGIN[0]} +ellps=WGS84", "EPSG:4326",
+                             always_xy=True)
+    ll = lambda ring: [list(t.transform(x, y)) for x, y in ring]  # noqa: E731
+    doc = {"type": "Feature", "geometry": {"type": "Polygon", "coordinates": [ll(AREA + AREA[:1]), ll(PIER + PIER[:1])]},
+           "properties": {"name": "basin", "origin_lonlat": list(ORIGIN), "water_depth_m": 12.0,
+                          "navigable_lonlat": ll(BASIN), "wall_clearance_m": 3.0}}
+    (tmp_path / "basin.geojson").write_text(json.dumps(doc))
+    area = load_area(tmp_path / "basin.geojson")
+    assert area.wall_clearance_m == 3.0
+    water = shapely.from_wkt(area.navigable_wkt)
+    assert water.symmetric_difference(shapely.Polygon(BASIN)).area < 1.0
