@@ -159,8 +159,9 @@ class SurveyArea:
         Navigable water past the outer edge, m (``None``: open water).
     navigable_wkt : str
         The navigable water's outline (WKT, local metres), ``""``: see :meth:`water`.
-    wall_clearance_m : float
-        How far the vehicle keeps off the navigable water's edge and the holes, m.
+    wall_clearance_m : float or None
+        How far the vehicle keeps off the navigable water's edge and the holes, m (``None``: not
+        given; :func:`load_area` then takes the run's ``survey_design.wall_clearance_m``).
     bathymetry : tuple
         ``()``, or the bathymetry grid's ``(path found, file as published, SHA-256, values)``.
     """
@@ -176,13 +177,13 @@ class SurveyArea:
     water_beyond_m: float | None = None
     bathymetry: tuple = ()
     navigable_wkt: str = ""
-    wall_clearance_m: float = 0.0
+    wall_clearance_m: float | None = None
 
     @property
     def clearance_m(self) -> float:
         """The clearance the track keeps in navigable water, m: ``wall_clearance_m``, at least
         :data:`MIN_CLEARANCE_M`."""
-        return max(self.wall_clearance_m, MIN_CLEARANCE_M)
+        return max(self.wall_clearance_m or 0.0, MIN_CLEARANCE_M)
 
     def water(self):
         """The navigable water (a shapely Polygon, local metres, the area's holes cut out): the
@@ -420,7 +421,7 @@ def load_area(path: str | Path) -> SurveyArea:
     area = _load_area(p, str(path))  # its errors name the file as given
     shown = public_path(p.resolve())  # what captions, pages and manifests name: never a local absolute path
     depth_source = f"{shown}: water_depth_m" if area.water_depth_source else ""
-    if area.water() is not None and not _gives(p, "wall_clearance_m"):  # walls: the run's clearance
+    if area.water() is not None and area.wall_clearance_m is None:  # walls: the run's clearance
         from . import datadoc
         from .inputs import sourced, table
 
@@ -438,13 +439,6 @@ def load_area(path: str | Path) -> SurveyArea:
         depth_source = b.describe()
     return replace(area, source=shown, water_depth_source=depth_source,
                    sha256=hashlib.sha256(p.read_bytes()).hexdigest(), path=str(p.resolve()))
-
-
-def _gives(p: Path, key: str) -> bool:
-    """Whether the area file ``p`` sets ``key`` (in ``[area]``, or a GeoJSON feature's properties)."""
-    if p.suffix.lower() in (".geojson", ".json"):
-        return f'"{key}"' in p.read_text(encoding="utf-8-sig")
-    return key in read_toml(p).get("area", {})
 
 
 def _load_area(p: Path, source: str) -> SurveyArea:
@@ -496,7 +490,7 @@ def area_from_key(key: dict) -> SurveyArea:
     return replace(area, sha256=key.get("sha256", ""), water_depth_m=key.get("water_depth_m"),
                    water_depth_source=key.get("water_depth_source", ""), water_beyond_m=key.get("water_beyond_m"),
                    bathymetry=tuple(key.get("bathymetry", ())), navigable_wkt=key.get("navigable_wkt", ""),
-                   wall_clearance_m=key.get("wall_clearance_m", 0.0))
+                   wall_clearance_m=key.get("wall_clearance_m"))
 
 
 def principal_heading_deg(area: SurveyArea) -> float:
