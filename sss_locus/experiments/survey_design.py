@@ -197,6 +197,24 @@ def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: i
     return Setting(platform, area, terrain, settings, xy[:n], heights, (c.x, c.y), grid_m, seed)
 
 
+_FLOWN: dict = {}
+
+
+def flown_cost(area: SurveyArea, lines: pd.DataFrame, turn_radius_m: float) -> dict:
+    """:func:`~sss_locus.experiments.surveydesign.route.track_cost` of the track the mission of
+    ``lines`` flies over ``area`` (remembered for the last few hundred line tables: the scoring
+    evaluates a plan again on every seed, with the same track)."""
+    import json
+
+    key = (json.dumps(area.key(), sort_keys=True, default=str), pd.util.hash_pandas_object(lines, index=False).to_numpy().tobytes(),
+           float(turn_radius_m))
+    if key not in _FLOWN:
+        if len(_FLOWN) > 512:
+            _FLOWN.clear()
+        _FLOWN[key] = track_cost(flight_path(area, lines, turn_radius_m)[0])
+    return dict(_FLOWN[key])
+
+
 def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dict:
     """Cost, coverage and objectives of one plan (module docstring); with ``noise`` also the
     reconstruction errors under it."""
@@ -204,7 +222,7 @@ def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dic
     lines = plan.lines(s.area)
     if lines.empty:
         raise ValueError(f"plan {plan} leaves no line inside the area")
-    cost = track_cost(flight_path(s.area, lines, p.turn_radius_m)[0])  # the track the mission flies
+    cost = flown_cost(s.area, lines, p.turn_radius_m)  # the track the mission flies
     same = p.fixed_depth
     seed = s.seed + seed_offset
     cov = coverage(p, s.terrain, s.area, lines, plan.altitude_m, plan.pitch_deg, same, grid_m=s.grid_m,
