@@ -5,6 +5,7 @@ ArduPilot and a missing origin refused; the files published with the figure's ma
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 
@@ -15,7 +16,7 @@ import pytest
 pytest.importorskip("shapely")
 pytest.importorskip("pyproj")
 
-from sss_locus.experiments.survey_area import area_from_vertices, load_area  # noqa: E402
+from sss_locus.experiments.survey_area import MIN_CLEARANCE_M, area_from_vertices, load_area  # noqa: E402
 from sss_locus.experiments.survey_plans import Plan  # noqa: E402
 from sss_locus.pipeline.missions import mission_files  # noqa: E402
 
@@ -299,8 +300,9 @@ def test_a_transit_along_a_shore_steps_in_by_the_turn_radius_not_across_the_harb
 
     harbour = [[0, 0], [800, 0], [800, 350], [500, 350], [500, 700], [0, 700]]  # L-shaped, concave
     area = dataclasses.replace(area_from_vertices(harbour, name="walled"), water_beyond_m=0.0)
-    lines = pd.DataFrame([("main", 0, 0, 90.0, 0, 96, 800, 96), ("main", 1, 0, 270.0, 800, 288, 0, 288),
-                          ("main", 2, 0, 90.0, 0, 480, 500, 480), ("main", 3, 0, 270.0, 500, 672, 0, 672)],
+    c = MIN_CLEARANCE_M  # the lines end as close to the walls as a track may come
+    lines = pd.DataFrame([("main", 0, 0, 90.0, c, 96, 800 - c, 96), ("main", 1, 0, 270.0, 800 - c, 288, c, 288),
+                          ("main", 2, 0, 90.0, c, 480, 500 - c, 480), ("main", 3, 0, 270.0, 500 - c, 672, c, 672)],
                          columns=["set", "line", "segment", "heading_deg", "x0_m", "y0_m", "x1_m", "y1_m"])
     R = 5.0
     path, _, _ = flight_path(area, lines, R)
@@ -362,3 +364,41 @@ def test_return_to_launch_flies_no_leg_outside_the_fence(name, tmp_path):
         fence = shapely.Polygon(local([q[1] for q in f], [q[0] for q in f]))
         assert fence.buffer(0.01).covers(leg), (heading, leg.difference(fence).length)
         assert not any(leg.intersects(shapely.Polygon(h).buffer(-0.01)) for h in holes), heading
+
+
+@pytest.mark.parametrize("name", ["concave", "holed"])
+def test_a_plans_cost_is_the_length_the_mission_flies(name, tmp_path):
+    """The design's cost of a plan (``evaluate``'s ``total_m`` and ``time_h``) against the path
+    of the mission file's waypoints read back by pymavlink, measured here with pyproj's geodesic
+    on WGS 84 (home, then every waypoint; return to launch flies no leg: the track ends at home).
+    The old formula (lines plus U-turns, no transits, no return) is shorter than the mission."""
+    from pymavlink import mavwp
+    from pyproj import Geod
+
+    from sss_locus.experiments import survey_design as sd
+    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.survey_design import plan_from_row
+    from sss_locus.experiments.survey_lines import track_length
+
+    verts, holes, origin = AREAS[name]
+    area = dataclasses.replace(area_from_vertices(verts, holes_m=holes, origin_lonlat=origin, name=name),
+                               water_depth_m=20.0, water_depth_source="test")
+    boat = load_platform("boat")
+    s = sd.make_setting(boat, area, "flat", n_features=20, seed=0, grid_m=20.0)
+    plan = sd.standard_for(s)
+    row = sd.evaluate(s, plan)
+    lines = plan_from_row(row).lines(area)
+    files = mission_files(area, lines, ardupilot=True, depth_m=0.0, turn_radius_m=boat.turn_radius_m,
+                          speed_m_s=boat.speed_m_s)
+    (tmp_path / "m.waypoints").write_text(files["mission.waypoints"])
+    loader = mavwp.MAVWPLoader()
+    loader.load(str(tmp_path / "m.waypoints"))
+    items = [loader.wp(i) for i in range(loader.count())]
+    nav = [it for it in items if it.command == 16]  # home and the waypoints
+    lat, lon = np.array([it.x for it in nav]), np.array([it.y for it in nav])
+    flown = float(np.sum(Geod(ellps="WGS84").inv(lon[:-1], lat[:-1], lon[1:], lat[1:])[2]))
+    assert row["total_m"] == pytest.approx(flown, rel=1e-4, abs=0.5)
+    assert row["time_h"] == pytest.approx(flown / boat.speed_m_s / 3600.0, rel=1e-4)
+    assert row["lines_m"] + row["turns_m"] + row["transits_m"] == pytest.approx(row["total_m"])
+    assert row["lines_m"] == pytest.approx(lines.length_m.sum())
+    assert track_length(lines, boat.turn_radius_m)["total_m"] < flown - 100.0

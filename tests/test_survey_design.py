@@ -521,3 +521,33 @@ def test_a_plans_second_set_is_named_for_what_it_is():
         assert set(lines["set"]) == {"main", name}, (crossing, set(lines["set"]))
         second = lines[lines["set"] == name]
         assert np.allclose(second.heading_deg % 180.0, (90.0 + crossing) % 180.0)
+
+
+def test_headings_deg_are_compass_headings_on_input():
+    """``-p headings_deg=[0]`` (compass: north) gives north-south lines, 90 east-west; the
+    chapter's defaults (book and quick profiles), converted, are the headings searched before
+    the parameter became a compass heading (0, 45, 90 degrees from east; quick: 0), so the same
+    lines are searched."""
+    import ast
+    import tomllib
+
+    from sss_locus.experiments.survey_lines import heading_from_compass_deg
+    from sss_locus.paths import REPO_ROOT
+
+    area = area_from_vertices(RECT)
+    north = line_set(area, heading_from_compass_deg(0), 100.0)
+    assert np.allclose(north.x0_m, north.x1_m) and (np.abs(north.y1_m - north.y0_m) > 100).all()
+    east = line_set(area, heading_from_compass_deg(90), 100.0)
+    assert np.allclose(east.y0_m, east.y1_m) and (np.abs(east.x1_m - east.x0_m) > 100).all()
+    assert heading_from_compass_deg(45) == 45.0 and heading_from_compass_deg(270) == 180.0
+    nb = json.loads((REPO_ROOT / "notebooks" / "survey_design.ipynb").read_text())
+    params = next("".join(c["source"]) for c in nb["cells"] if "parameters" in c["metadata"].get("tags", []))
+    line = next(x for x in params.splitlines() if x.startswith("headings_deg"))
+    assert "compass" in line and "clockwise from north" in line
+    book = ast.literal_eval(line.split("=", 1)[1].split("#")[0].strip())
+    assert [heading_from_compass_deg(h) for h in book] == [0.0, 45.0, 90.0]
+    quick = tomllib.loads((REPO_ROOT / "notebooks" / "registry.toml").read_text())
+    quick = quick["notebooks"]["survey_design"]["profiles"]["quick"]["headings_deg"]
+    assert [heading_from_compass_deg(h) for h in quick] == [0.0]
+    with pytest.raises(ValueError, match="compass heading"):
+        heading_from_compass_deg(float("nan"))

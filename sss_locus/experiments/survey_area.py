@@ -21,11 +21,30 @@ TOML::
     origin_lonlat = [-111.80, 40.25]                         # optional with vertices_m
     water_depth_m = 12.0                                     # mean water depth over the area, m
     water_beyond_m = 50.0                                    # optional: navigable water past the edge, m
+    # optional: where the vehicle may go (a walled harbour's water; default: the area, grown by
+    # water_beyond_m when given, else open water) and how far it keeps off walls and holes, m:
+    # navigable_m = [[-20, -20], [820, -20], [820, 520], [-20, 520]]   # or navigable_lonlat
+    # wall_clearance_m = 5.0
+    # or, instead of water_depth_m, a bathymetry grid (a raster in any CRS; relative to this file):
+    # bathymetry = "harbour.tif"
+    # bathymetry_values = "depth"                            # "depth" (positive down) or "elevation"
 
 ``water_depth_m`` (optional; also a GeoJSON feature's property) is the mean depth of the
 seafloor below the sea surface over the area, which sets the altitudes a vehicle can fly; a run
 may give it instead (:func:`with_water_depth`). An area without one is refused by the survey
-design (no hidden default). ``water_beyond_m`` (optional) is how far past the area's outer edge
+design (no hidden default). Instead of ``water_depth_m``, ``bathymetry`` names a raster
+file of the depths (a path relative to the area file; also a GeoJSON feature's property) with
+``bathymetry_values`` its sign convention (``"depth"``, positive down, or ``"elevation"``, positive
+up): read and checked by :mod:`sss_locus.experiments.surveydesign.bathymetry` when the area is
+loaded; the area's ``water_depth_m`` is then the grid's mean over the area and its
+``water_depth_source`` names the file, its SHA-256 and the depths' range. **Navigable water** (:meth:`SurveyArea.water`): the area is where to survey; ``navigable_m``
+(a ring in the local frame) or ``navigable_lonlat`` (WGS 84 degrees, also a GeoJSON feature's
+property) is the water the vehicle may use, e.g. a walled harbour's basin (it must contain the
+area; the area's holes, a pier or an island, are land within it). Lines, run-ins, turns and
+transits keep ``wall_clearance_m`` off its edge and off every hole, and the mission's geofence
+never reaches past it (:mod:`sss_locus.experiments.surveydesign.route`). Without a
+``wall_clearance_m`` in the file, :func:`load_area` takes ``survey_design.wall_clearance_m`` of
+the run's data (an assumption, stated there). ``water_beyond_m`` (optional) is how far past the area's outer edge
 the water is navigable: survey lines, run-ins and turns stay within it (0: the edge is a shore);
 without it the water around the area is open and lines run as far as their swath reaches.
 
@@ -34,7 +53,8 @@ GeoJSON (RFC 7946: longitude/latitude, WGS 84): a ``Polygon``, or a ``Feature`` 
 unless the feature's properties give ``origin_lonlat``. Holes (inner rings) are kept.
 
 ``holes_m`` (rings in metres of the local frame) may go with either kind of vertices; with
-``vertices_lonlat`` they are in the frame around the origin.
+``vertices_lonlat`` they are in the frame around the origin; ``holes_lonlat`` (rings of WGS 84
+degrees) goes with ``vertices_lonlat``.
 
 Validation: every ring closed or not, at least three distinct vertices of numbers (not booleans
 or strings), a valid polygon (:func:`shapely.is_valid`: no self-intersection), an area of at
@@ -61,6 +81,9 @@ MIN_AREA_M2 = 100.0
 MAX_VERTICES = 100_000
 """Most vertices (all rings) an area may have: a survey boundary needs far fewer; more (a
 coastline traced at centimetres) would make every coverage test slow."""
+MIN_CLEARANCE_M = 0.5
+"""Least clearance off the navigable water's edge, m, whatever ``wall_clearance_m`` says: a track
+on the fence itself would leave it by the mission files' coordinate rounding (1e-7 degrees)."""
 MAX_FILE_BYTES = 16_000_000
 """Largest area file read, bytes (a file of :data:`MAX_VERTICES` vertices is about 4 MB)."""
 MAX_ORIGIN_DISTANCE_M = 100_000.0
@@ -134,6 +157,13 @@ class SurveyArea:
         Where the depth comes from (the area file, a run parameter).
     water_beyond_m : float or None
         Navigable water past the outer edge, m (``None``: open water).
+    navigable_wkt : str
+        The navigable water's outline (WKT, local metres), ``""``: see :meth:`water`.
+    wall_clearance_m : float or None
+        How far the vehicle keeps off the navigable water's edge and the holes, m (``None``: not
+        given; :func:`load_area` then takes the run's ``survey_design.wall_clearance_m``).
+    bathymetry : tuple
+        ``()``, or the bathymetry grid's ``(path found, file as published, SHA-256, values)``.
     """
 
     polygon: object
@@ -145,6 +175,30 @@ class SurveyArea:
     water_depth_m: float | None = None
     water_depth_source: str = ""
     water_beyond_m: float | None = None
+    bathymetry: tuple = ()
+    navigable_wkt: str = ""
+    wall_clearance_m: float | None = None
+
+    @property
+    def clearance_m(self) -> float:
+        """The clearance the track keeps in navigable water, m: ``wall_clearance_m``, at least
+        :data:`MIN_CLEARANCE_M`."""
+        return max(self.wall_clearance_m or 0.0, MIN_CLEARANCE_M)
+
+    def water(self):
+        """The navigable water (a shapely Polygon, local metres, the area's holes cut out): the
+        ``navigable`` outline, else the area's outer ring grown by ``water_beyond_m``; ``None``
+        when neither is given (open water)."""
+        import shapely
+
+        if self.navigable_wkt:
+            outline = shapely.from_wkt(self.navigable_wkt)
+        elif self.water_beyond_m is not None:
+            outline = shapely.Polygon(self.polygon.exterior).buffer(self.water_beyond_m, quad_segs=4)
+        else:
+            return None
+        holes = [shapely.Polygon(r) for r in self.polygon.interiors]
+        return outline.difference(shapely.union_all(holes)) if holes else outline
 
     @property
     def area_m2(self) -> float:
@@ -171,7 +225,9 @@ class SurveyArea:
         """A JSON-able description (for caches and manifests)."""
         return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
                 "source": self.source, "sha256": self.sha256, "water_depth_m": self.water_depth_m,
-                "water_depth_source": self.water_depth_source, "water_beyond_m": self.water_beyond_m}
+                "water_depth_source": self.water_depth_source, "water_beyond_m": self.water_beyond_m,
+                "bathymetry": list(self.bathymetry), "navigable_wkt": self.navigable_wkt,
+                "wall_clearance_m": self.wall_clearance_m}
 
 
 def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str = "survey area",
@@ -283,7 +339,42 @@ def _from_geojson(doc, source: str) -> SurveyArea:
     return _depth_from(area, props, source)
 
 
+def _navigable_from(area: SurveyArea, doc, source: str) -> SurveyArea:
+    """``area`` with the navigable water and the wall clearance of ``doc`` (module docstring)."""
+    import shapely
+
+    if "wall_clearance_m" in doc:
+        v = doc["wall_clearance_m"]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (0 <= v <= 1000):
+            raise ValueError(f"{source}: wall_clearance_m must be a number of metres in [0, 1000]; got {v!r}")
+        area = replace(area, wall_clearance_m=float(v))
+    keys = [k for k in ("navigable_m", "navigable_lonlat") if k in doc]
+    if not keys:
+        return area
+    if len(keys) > 1 or "water_beyond_m" in doc:
+        raise ValueError(f"{source}: give one of navigable_m, navigable_lonlat or water_beyond_m")
+    ring = doc[keys[0]]
+    if keys[0] == "navigable_lonlat":
+        if area.origin_lonlat is None or not _numeric(ring) or np.asarray(ring, float).ndim != 2:
+            raise ValueError(f"{source}: navigable_lonlat must be [longitude, latitude] pairs of an area with an origin")
+        ring = np.column_stack(area.to_local(*np.asarray(ring, float).T))
+    water = area_from_vertices(ring, source=f"{source}: {keys[0]}").polygon
+    outside = area.polygon.difference(water.buffer(1e-6))
+    if not outside.is_empty:
+        far = max(shapely.Point(q).distance(water) for q in shapely.get_coordinates(outside))
+        raise ValueError(f"{source}: the navigable water must contain the area; {outside.area:.0f} m^2 of the area lie "
+                         f"outside it, up to {far:.1f} m")
+    return replace(area, navigable_wkt=water.wkt)
+
+
 def _depth_from(area: SurveyArea, doc, source: str) -> SurveyArea:
+    area = _navigable_from(area, doc, source)
+    if "bathymetry" in doc or "bathymetry_values" in doc:
+        grid, values = doc.get("bathymetry"), doc.get("bathymetry_values")
+        if not isinstance(grid, str) or not grid.strip() or "water_depth_m" in doc:
+            raise ValueError(f"{source}: a bathymetry grid needs bathymetry = \"FILE\" (a raster, path relative to "
+                             "the area file) with bathymetry_values = \"depth\" or \"elevation\", and no water_depth_m")
+        area = replace(area, bathymetry=(grid, grid, "", values))  # found and read by load_area
     if "water_beyond_m" in doc:
         v = doc["water_beyond_m"]
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not (0 <= v <= 1e5):
@@ -297,6 +388,9 @@ def _depth_from(area: SurveyArea, doc, source: str) -> SurveyArea:
 def with_water_depth(area: SurveyArea, depth_m, source: str) -> SurveyArea:
     """``area`` with its mean water depth ``depth_m`` (m, in (0, 12000]) from ``source``; a bad
     value is refused in one line naming ``source``."""
+    if area.bathymetry:
+        raise ValueError(f"{source}: the area {area.name!r} gives a bathymetry grid ({area.bathymetry[1]}), whose depths "
+                         "are used; drop this water depth")
     if isinstance(depth_m, bool) or not isinstance(depth_m, (int, float)) or not (0 < depth_m <= 12000):
         raise ValueError(f"{source} must be a number of metres in (0, 12000]; got {depth_m!r}")
     return replace(area, water_depth_m=float(depth_m), water_depth_source=source)
@@ -325,6 +419,22 @@ def load_area(path: str | Path) -> SurveyArea:
     area = _load_area(p, str(path))  # its errors name the file as given
     shown = public_path(p.resolve())  # what captions, pages and manifests name: never a local absolute path
     depth_source = f"{shown}: water_depth_m" if area.water_depth_source else ""
+    if area.water() is not None and area.wall_clearance_m is None:  # walls: the run's clearance
+        from . import datadoc
+        from .inputs import sourced, table
+
+        datadoc.note_read("survey_design")  # the key survey_plans.load_settings validates with the others
+        clearance = sourced(table(datadoc.document(), "survey_design", ""), "wall_clearance_m", "survey_design", {},
+                            lo=0.0, hi=1000.0)
+        area = replace(area, wall_clearance_m=float(clearance))
+    if area.bathymetry:  # the grid beside the area file, read and checked now
+        from .surveydesign.bathymetry import load_bathymetry
+
+        grid = (p.parent / Path(area.bathymetry[0]).expanduser()).resolve()
+        grid_shown = public_path(grid)
+        b = load_bathymetry(grid, area.bathymetry[3], area, shown=grid_shown)
+        area = replace(area, bathymetry=(str(grid), grid_shown, b.sha256, b.values), water_depth_m=b.mean_m)
+        depth_source = b.describe()
     return replace(area, source=shown, water_depth_source=depth_source,
                    sha256=hashlib.sha256(p.read_bytes()).hexdigest(), path=str(p.resolve()))
 
@@ -346,19 +456,24 @@ def _load_area(p: Path, source: str) -> SurveyArea:
     if not isinstance(area, dict):
         raise ValueError(f"{source}: missing table [area] (with vertices_m or vertices_lonlat)")
     unknown = set(area) - {"name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "source",
-                           "assumption", "water_depth_m", "water_beyond_m"}
+                           "assumption", "water_depth_m", "water_beyond_m",
+                           "bathymetry", "bathymetry_values", "navigable_m", "navigable_lonlat", "wall_clearance_m",
+                           "holes_lonlat"}
     if unknown:
         raise ValueError(f"{source}: unknown keys in [area]: {sorted(unknown)} (allowed: name, vertices_m, "
-                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m, water_beyond_m)")
+                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m, water_beyond_m, "
+                         "bathymetry, bathymetry_values, navigable_m, navigable_lonlat, wall_clearance_m, holes_lonlat)")
     if ("vertices_m" in area) == ("vertices_lonlat" in area):
         raise ValueError(f"{source}: [area] needs exactly one of vertices_m or vertices_lonlat")
+    if "holes_lonlat" in area and "vertices_lonlat" not in area:
+        raise ValueError(f"{source}: holes_lonlat goes with vertices_lonlat (with vertices_m, give holes_m)")
     name = str(area.get("name", p.stem))
     if "vertices_m" in area:
         out = area_from_vertices(area["vertices_m"], origin_lonlat=area.get("origin_lonlat"),
                                  holes_m=area.get("holes_m", ()), name=name, source=source)
     else:
         out = area_from_lonlat(area["vertices_lonlat"], area.get("origin_lonlat"), holes_m=area.get("holes_m", []),
-                               name=name, source=source)
+                               holes_lonlat=area.get("holes_lonlat", []), name=name, source=source)
     return _depth_from(out, area, source)
 
 
@@ -371,7 +486,9 @@ def area_from_key(key: dict) -> SurveyArea:
                               holes_m=[np.asarray(r.coords) for r in poly.interiors],
                               name=key.get("name", "survey area"), source=key.get("source", "vertices"))
     return replace(area, sha256=key.get("sha256", ""), water_depth_m=key.get("water_depth_m"),
-                   water_depth_source=key.get("water_depth_source", ""), water_beyond_m=key.get("water_beyond_m"))
+                   water_depth_source=key.get("water_depth_source", ""), water_beyond_m=key.get("water_beyond_m"),
+                   bathymetry=tuple(key.get("bathymetry", ())), navigable_wkt=key.get("navigable_wkt", ""),
+                   wall_clearance_m=key.get("wall_clearance_m"))
 
 
 def principal_heading_deg(area: SurveyArea) -> float:

@@ -17,8 +17,9 @@ survey_lines` (lines and turns), :mod:`~sss_locus.experiments.survey_coverage` (
 :mod:`~sss_locus.experiments.survey_plans` (plan space, limits, baselines).
 
 Evaluation (:func:`evaluate`): ``n_features`` features uniform over the area (seeded), on the
-terrain, observed by every segment of the plan; cost from the track (lines and turns) and the
-platform's speed; coverage measured on a grid (of ``grid_m``, coarser over an area that would
+terrain, observed by every segment of the plan; cost from the track the mission flies (lines,
+U-turns, transits and the return to the start:
+:func:`~sss_locus.experiments.surveydesign.route.track_cost`) and the platform's speed; coverage measured on a grid (of ``grid_m``, coarser over an area that would
 need more than :data:`MAX_COVERAGE_CELLS` cells: :func:`coverage_grid_m`); the objectives of every feature seen twice.
 Every plan is evaluated on the same features (common random numbers), so plans are compared
 on equal terms.
@@ -51,10 +52,10 @@ import pandas as pd
 
 from .survey_area import SurveyArea, area_from_key
 from .survey_coverage import coverage, observe_lines
-from .survey_lines import track_length
 from .survey_objectives import pair_loci, reconstruction_errors, three_view_closure
 from .survey_plans import (Plan, check_mission, lawnmower_plan, load_settings, plan_grid, plan_ok,
                            standard_plan, water_depth)
+from .surveydesign.route import flight_path, track_cost
 from .terrain import KINDS, load_terrain_config, terrain_from_config
 
 OBJECTIVES = {"locus": "locus_median_m", "three_view": "unresolved_share", "reconstruction": "error_two_median_m"}
@@ -131,6 +132,33 @@ def depth_settings(area: SurveyArea, settings: dict) -> dict:
     return out
 
 
+def load_area_bathymetry(area: SurveyArea):
+    """The :class:`~sss_locus.experiments.surveydesign.bathymetry.Bathymetry` of an area whose
+    file gives a grid (``area.bathymetry``), read again (cached per file and area); ``None``
+    without one."""
+    from .surveydesign.bathymetry import load_bathymetry
+
+    if not area.bathymetry:
+        return None
+    path, shown, sha, values = area.bathymetry
+    b = load_bathymetry(path, values, area, shown=shown)
+    if sha and b.sha256 != sha:
+        raise ValueError(f"{shown} changed since the area was read (SHA-256 {b.sha256[:12]}, was {sha[:12]}): rerun")
+    return b
+
+
+def vehicle_depth_m(platform, area: SurveyArea, settings: dict, altitude_m: float):
+    """The depth (m, below the sea surface) a plan's vehicle flies at, for its mission files: a
+    platform of fixed depth (a surface vessel) ``water depth - altitude`` (its own depth); any
+    other over the mean seafloor ``water depth - altitude``, or, over a bathymetry grid (it
+    follows the terrain at ``altitude_m``), a function of local east/north metres: the depth there
+    minus ``altitude_m``."""
+    grid = None if platform.fixed_depth else load_area_bathymetry(area)
+    if grid is None:
+        return float(settings["water_depth_m"]) - float(altitude_m)
+    return lambda east_m, north_m: grid.depth_at(east_m, north_m) - float(altitude_m)
+
+
 def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: int, seed: int,
                  grid_m: float, settings: dict | None = None) -> Setting:
     """Validate the inputs and draw the features (module docstring)."""
@@ -147,8 +175,16 @@ def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: i
     settings = depth_settings(area, load_settings() if settings is None else settings)
     c = area.polygon.centroid
     x0, y0, x1, y1 = area.polygon.bounds
-    terrain = terrain_from_config(terrain_kind, load_terrain_config(),
-                                  extent_m=2.5 * max(x1 - x0, y1 - y0), seed=seed)
+    grid_depths = np.zeros(0)
+    if area.bathymetry:  # the area's own seafloor
+        if terrain_kind != "flat":
+            raise ValueError(f"terrain {terrain_kind!r} and the area's bathymetry grid ({area.bathymetry[1]}) both give "
+                             "the seafloor: keep terrain 'flat' (the default) with a bathymetry grid")
+        bathy = load_area_bathymetry(area)
+        terrain, grid_depths = bathy.terrain((c.x, c.y)), bathy.area_depths_m
+    else:
+        terrain = terrain_from_config(terrain_kind, load_terrain_config(),
+                                      extent_m=2.5 * max(x1 - x0, y1 - y0), seed=seed)
     rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(2801,)))
     xy = np.zeros((0, 2))
     while len(xy) < n:
@@ -156,8 +192,27 @@ def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: i
         xy = np.vstack([xy, cand[shapely.contains_xy(area.polygon, cand[:, 0], cand[:, 1])]])
     edge = np.asarray(area.polygon.exterior.coords)
     probe = np.vstack([edge, xy])
-    heights = terrain.height_m(probe[:, 0] - c.x, probe[:, 1] - c.y)
+    heights = np.concatenate([terrain.height_m(probe[:, 0] - c.x, probe[:, 1] - c.y),
+                              settings["water_depth_m"] - grid_depths])  # every grid cell of the area
     return Setting(platform, area, terrain, settings, xy[:n], heights, (c.x, c.y), grid_m, seed)
+
+
+_FLOWN: dict = {}
+
+
+def flown_cost(area: SurveyArea, lines: pd.DataFrame, turn_radius_m: float) -> dict:
+    """:func:`~sss_locus.experiments.surveydesign.route.track_cost` of the track the mission of
+    ``lines`` flies over ``area`` (remembered for the last few hundred line tables: the scoring
+    evaluates a plan again on every seed, with the same track)."""
+    import json
+
+    key = (json.dumps(area.key(), sort_keys=True, default=str), pd.util.hash_pandas_object(lines, index=False).to_numpy().tobytes(),
+           float(turn_radius_m))
+    if key not in _FLOWN:
+        if len(_FLOWN) > 512:
+            _FLOWN.clear()
+        _FLOWN[key] = track_cost(flight_path(area, lines, turn_radius_m)[0])
+    return dict(_FLOWN[key])
 
 
 def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dict:
@@ -167,7 +222,7 @@ def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dic
     lines = plan.lines(s.area)
     if lines.empty:
         raise ValueError(f"plan {plan} leaves no line inside the area")
-    cost = track_length(lines, p.turn_radius_m)
+    cost = flown_cost(s.area, lines, p.turn_radius_m)  # the track the mission flies
     same = p.fixed_depth
     seed = s.seed + seed_offset
     cov = coverage(p, s.terrain, s.area, lines, plan.altitude_m, plan.pitch_deg, same, grid_m=s.grid_m,
@@ -179,7 +234,7 @@ def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dic
     two = pairs["n_seen"] >= 2
     closed = three_view_closure(views, seen, ap)
     row = {**plan.row(), "n_segments": cost["n_segments"], "lines_m": cost["lines_m"], "turns_m": cost["turns_m"],
-           "total_m": cost["total_m"], "time_h": cost["total_m"] / p.speed_m_s / 3600.0,
+           "transits_m": cost["transits_m"], "total_m": cost["total_m"], "time_h": cost["total_m"] / p.speed_m_s / 3600.0,
            "covered_once": cov["once"], "covered_twice": cov["twice"], "holes": cov["holes"],
            "n_holes": cov["n_holes"], "nadir_gap_m": cov["nadir_gap_m"],
            "two_view_share": float(two.mean()), "three_view_share": float(closed.mean()),

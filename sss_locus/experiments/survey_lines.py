@@ -24,8 +24,12 @@ fewest the unbounded pattern gives any position; e.g. 2 for a 200 % plan); a lin
 its swath reaches (the area cut by the band ``|c' - c| <= reach``; a concave area can give
 several pieces), extended by ``run_m`` before and after (the run-in and run-out); the line is
 then cut where it would come within ``run_m`` of a hole of the area (an island or an exclusion
-zone: the vehicle does not cross it, and runs out before it) and, when the area gives
-``water_beyond_m``, where it would leave the water that far past the area's edge (a shore).
+zone: the vehicle does not cross it, and runs out before it; at least the area's
+``wall_clearance_m`` off it) and, when the area gives navigable water
+(:meth:`~sss_locus.experiments.survey_area.SurveyArea.water`: ``navigable_m`` or
+``water_beyond_m``), where it would come within ``wall_clearance_m`` of its edge (a wall, a
+shore). Where the U-turn to the next line would not fit in that water, the lines' ends are
+pulled back until it does (:func:`sss_locus.experiments.surveydesign.turns.fit_turns`).
 
 Track (:func:`track_length`)
 ----------------------------
@@ -40,7 +44,9 @@ The lines in order, joined by turns of a vehicle with minimum turning radius ``R
   to the cross lines): the straight distance plus ``R`` times the heading change in radians
   (a turn on the spot replaced by an arc: an approximation of the Dubins distance, stated).
 
-The track length counts the lines and the turns; time is the length over the survey speed.
+This is the formula of the track's length; the survey design costs a plan by the track its mission
+flies instead (:func:`sss_locus.experiments.surveydesign.route.track_cost`: the same U-turns,
+plus the transits and the return to the start, leg by leg).
 """
 
 from __future__ import annotations
@@ -55,6 +61,28 @@ from .survey_area import SurveyArea
 LINE_COLUMNS = ("set", "line", "segment", "x0_m", "y0_m", "x1_m", "y1_m", "heading_deg", "length_m")
 MIN_SEGMENT_M = 1.0
 """Clipped pieces shorter than this are dropped (a line grazing a vertex)."""
+
+
+def heading_from_compass_deg(compass_deg) -> float:
+    """A compass heading (degrees clockwise from north, as a surveyor gives it and as every
+    output of the chapter writes it) as this module's heading (degrees counter-clockwise from
+    east, in [0, 360)): ``(90 - compass) mod 360``; 0 (north) gives 90, 90 (east) gives 0.
+
+    Parameters
+    ----------
+    compass_deg : float
+        Compass heading, degrees clockwise from the local frame's north (true north at the
+        area's origin).
+
+    Returns
+    -------
+    float
+        Heading, degrees counter-clockwise from east (``+x``).
+    """
+    if isinstance(compass_deg, bool) or not isinstance(compass_deg, (int, float, np.integer, np.floating)) \
+            or not math.isfinite(compass_deg):
+        raise ValueError(f"a compass heading must be a finite number of degrees; got {compass_deg!r}")
+    return float((90.0 - float(compass_deg)) % 360.0) + 0.0
 
 
 def uturn_length_m(d_m, radius_m) -> np.ndarray:
@@ -99,8 +127,10 @@ def _line_pieces(area: SurveyArea, c: float, e, n, a0: float, a1: float, reach_m
     seen = band.intersection(area.polygon)
     parts = [g for g in getattr(seen, "geoms", [seen]) if g.geom_type == "Polygon" and not g.is_empty]
     lines = [shapely.LineString([c * n + a * e, c * n + b * e]) for a, b in _intervals(parts, e, run_m)]
-    holes = shapely.MultiPolygon([shapely.Polygon(r).buffer(run_m) for r in area.polygon.interiors])
-    water = None if area.water_beyond_m is None else shapely.Polygon(area.polygon.exterior).buffer(area.water_beyond_m)
+    clear = area.clearance_m
+    holes = shapely.MultiPolygon([shapely.Polygon(r).buffer(max(run_m, clear)) for r in area.polygon.interiors])
+    water = area.water()
+    water = None if water is None else water.buffer(-clear)  # the wall clearance kept
     out = []
     for g in lines:
         cut = g.intersection(water) if water is not None else g

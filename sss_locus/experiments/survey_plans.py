@@ -27,8 +27,8 @@ the area (also lines outside it), with a run-in and run-out of ``run_in_turn_rad
     perpendicular to the depth contours on a slope (along its azimuth), else along the area's
     long axis;
 ``lawnmower``
-    one set of lines at the standard heading and altitude, spaced so that its track is as long
-    as the standard plan's (bisection on the spacing; lines come in whole numbers, so the
+    one set of lines at the standard heading and altitude, spaced so that its flown track
+    (:func:`~sss_locus.experiments.surveydesign.route.track_cost`) is as long as the standard plan's (bisection on the spacing; lines come in whole numbers, so the
     longest track not longer than the standard's): the same effort spent on plain parallel
     lines.
 """
@@ -44,7 +44,8 @@ import pandas as pd
 from . import datadoc
 from .datamodel import models
 from .survey_area import SurveyArea, principal_heading_deg
-from .survey_lines import across_extent, flown_positions, line_set, track_length
+from .survey_lines import across_extent, flown_positions, line_set
+from .surveydesign.route import flight_path, track_cost
 
 
 def load_settings(doc=None) -> dict:
@@ -72,6 +73,7 @@ class Plan:
     reach_m: float = 0.0
     run_m: float = 0.0
     near_m: float = 0.0
+    turn_radius_m: float = 0.0
 
     def lines(self, area: SurveyArea) -> pd.DataFrame:
         """The plan's segments in run order: main lines, then the second set (``set`` ``"cross"``
@@ -86,11 +88,21 @@ class Plan:
                                  self.near_m)
         main = line_set(area, self.heading_deg, self.spacing_m, name="main", across_m=at[0], **fly)
         if math.isnan(self.crossing_deg):
-            return main
+            return self._fit(area, main)
         offset = 0.5 if repeat else 0.0
         cross = line_set(area, (self.heading_deg + self.crossing_deg) % 360.0, self.cross_spacing_m,
                          offset=offset, name="repeat" if repeat else "cross", across_m=at[1], **fly)
-        return pd.concat([main, cross], ignore_index=True)
+        return self._fit(area, pd.concat([main, cross], ignore_index=True))
+
+    def _fit(self, area: SurveyArea, lines: pd.DataFrame) -> pd.DataFrame:
+        """``lines`` with their ends pulled back where a U-turn would leave the navigable water
+        (:func:`~sss_locus.experiments.surveydesign.turns.fit_turns`; open water: as they are)."""
+        from .surveydesign.turns import fit_turns
+
+        water = area.water()
+        if water is None or self.turn_radius_m <= 0 or lines.empty:
+            return lines
+        return fit_turns(lines, water.buffer(-area.clearance_m), self.turn_radius_m)[0]
 
     def row(self) -> dict:
         return asdict(self)
@@ -121,7 +133,7 @@ def flown(platform, settings, plan: Plan) -> Plan:
 
     near = max(0.0, min(float(swath_m(platform, [port], [plan.altitude_m])[0][0]) for port in (True, False)))
     return replace(plan, reach_m=swath_reach_m(platform, settings, plan.altitude_m), near_m=near,
-                   run_m=settings["run_in_turn_radii"] * platform.turn_radius_m)
+                   run_m=settings["run_in_turn_radii"] * platform.turn_radius_m, turn_radius_m=platform.turn_radius_m)
 
 
 def check_mission(platform) -> None:
@@ -191,14 +203,15 @@ def standard_plan(platform, area: SurveyArea, terrain, settings, heights_m) -> P
 
 def lawnmower_plan(platform, area: SurveyArea, standard: Plan) -> Plan:
     """Parallel lines only, spaced so the track is as long as the standard plan's (bisection)."""
-    target = track_length(standard.lines(area), platform.turn_radius_m)["total_m"]
+    flown_m = lambda lines: track_cost(flight_path(area, lines, platform.turn_radius_m)[0])["total_m"]  # noqa: E731
+    target = flown_m(standard.lines(area))
     mk = lambda s: Plan(standard.heading_deg, s, math.nan, s, standard.altitude_m, 0.0, "lawnmower",  # noqa: E731
-                        standard.reach_m, standard.run_m, standard.near_m)
+                        standard.reach_m, standard.run_m, standard.near_m, standard.turn_radius_m)
     lo, hi = 1.0, standard.spacing_m * 4
     for _ in range(40):
         mid = 0.5 * (lo + hi)
         lines = mk(mid).lines(area)
-        total = track_length(lines, platform.turn_radius_m)["total_m"] if len(lines) else 0.0
+        total = flown_m(lines) if len(lines) else 0.0
         lo, hi = (mid, hi) if total > target else (lo, mid)
     return mk(hi)
 

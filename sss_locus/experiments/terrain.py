@@ -63,7 +63,8 @@ class Terrain:
     params : dict
         The model's parameters (as given to its constructor).
     grid : tuple or None
-        ``random`` only: ``(x0, y0, spacing, heights (ny, nx))``, the grid's lower-left corner.
+        ``random`` and ``bathymetry`` (a survey area's grid,
+        :mod:`sss_locus.experiments.surveydesign.bathymetry`; beyond it, the nearest edge) only: ``(x0, y0, spacing, heights (ny, nx))``, the grid's lower-left corner.
     """
 
     kind: str
@@ -92,6 +93,10 @@ class Terrain:
             a = math.radians(p["azimuth_deg"])
             dist = np.abs(-x * math.sin(a) + y * math.cos(a))
             return np.where(dist <= p["width_m"] / 2.0, -p["height_m"], 0.0)
+        if self.kind == "bathymetry":  # a grid read from a file: beyond it, its nearest edge cell
+            x0, y0, dx, h = self.grid
+            x = np.clip(x, x0, x0 + (h.shape[1] - 1) * dx)
+            y = np.clip(y, y0, y0 + (h.shape[0] - 1) * dx)
         return _bilinear(self.grid, x, y)
 
     def point_on_seafloor(self, x, y) -> np.ndarray:

@@ -10,8 +10,9 @@ Waypoints (:func:`waypoints`): the whole track of
 :func:`sss_locus.experiments.surveydesign.route.flight_path` in flying order: the start and end
 of every segment, the points of every U-turn of the platform's turn radius, and the transit
 legs (inside the fence, around holes). ``kind`` says which. Depth is the vehicle reference
-point's depth below the sea surface over the mean seafloor (``water depth - altitude``; 0 for a
-surface vessel). ``course_true_deg`` is the **compass course** from a waypoint to the next:
+point's depth below the sea surface (``water depth - altitude``; 0 for a surface vessel; over a
+bathymetry grid, a terrain-following vehicle's depth at each waypoint: the local depth minus
+its altitude). ``course_true_deg`` is the **compass course** from a waypoint to the next:
 degrees clockwise from true north (the geodesic's initial azimuth on WGS 84); the last
 waypoint repeats its predecessor's. Every point is checked inside the inclusion fence and
 outside the exclusion fences (:func:`~sss_locus.experiments.surveydesign.route.check_inside`)
@@ -26,7 +27,8 @@ Formats (:data:`FORMATS`):
     RFC 7946 FeatureCollection (:mod:`sss_locus.pipeline.geojson7946`: counter-clockwise
     exteriors, cut at the antimeridian, 7 decimals, densified to 0.1 m): the area, the inclusion
     fence, the exclusion fences, one LineString per segment (properties ``set, line, segment,
-    course_true_deg, length_m``) and the whole track.
+    course_true_deg, length_m``) and the whole track (with its ``lines_m``, ``turns_m``,
+    ``transits_m`` and ``total_m``, the plan's cost: the track as flown).
 ``plan``
     QGroundControl plan (JSON) for an ArduPilot vehicle: ``MAV_CMD_DO_CHANGE_SPEED`` (178,
     ground speed, the survey speed) first, one ``MAV_CMD_NAV_WAYPOINT`` (16, ``frame`` 3: global,
@@ -65,15 +67,20 @@ DO_CHANGE_SPEED = 178
 MAV_TYPE_SURFACE_BOAT = 11
 
 
-def waypoints(area, lines: pd.DataFrame, depth_m: float, turn_radius_m: float):
+def waypoints(area, lines: pd.DataFrame, depth_m, turn_radius_m: float):
     """The plan's waypoints (module docstring), with ``lon``/``lat``/``course_true_deg`` when
-    ``area`` has an origin; also the inclusion fence and the exclusion fences (local metres)."""
+    ``area`` has an origin; also the inclusion fence and the exclusion fences (local metres).
+    ``depth_m``: the vehicle's depth, m, one number or a function of local east/north metres
+    (arrays) giving it at each waypoint (a terrain-following vehicle over a bathymetry grid:
+    :func:`sss_locus.experiments.survey_design.vehicle_depth_m`)."""
     from sss_locus.experiments.surveydesign.route import check_inside, flight_path
 
     path, fence, holes = flight_path(area, lines, turn_radius_m)
     check_inside(path, fence, holes, what=f"the track over {area.name!r}")
+    depth = depth_m(path.east_m.to_numpy(), path.north_m.to_numpy()) if callable(depth_m) else \
+        np.full(len(path), float(depth_m))
     out = path.assign(east_m=path.east_m.round(6) + 0.0, north_m=path.north_m.round(6) + 0.0,  # no -0.0
-                      depth_m=float(depth_m) + 0.0)
+                      depth_m=np.round(np.asarray(depth, float), 3) + 0.0)
     out.insert(0, "seq", np.arange(len(out)))
     if area.origin_lonlat is not None:
         from pyproj import Geod
@@ -102,6 +109,8 @@ def geojson_text(area, lines: pd.DataFrame, points: pd.DataFrame, fence, holes, 
 
     _need_origin(area, "geojson")
     feat = lambda geom, props: {"type": "Feature", "properties": props, "geometry": geom}  # noqa: E731
+    from sss_locus.experiments.surveydesign.route import track_cost
+
     features = [feat(polygon_geometry(area, area.polygon), {"name": area.name, "role": "survey area",
                                                            "origin_lonlat": list(area.origin_lonlat),
                                                            **({"water_depth_m": area.water_depth_m}
@@ -117,7 +126,8 @@ def geojson_text(area, lines: pd.DataFrame, points: pd.DataFrame, fence, holes, 
                              {"role": "survey line", "set": r["set"], "line": int(r.line), "segment": int(r.segment),
                               "course_true_deg": round(course, 3), "length_m": round(float(r.length_m), 3)}))
     features.append(feat(line_geometry(area, points[["east_m", "north_m"]].to_numpy()),
-                         {"role": "track", "note": "lines, turns and transits in flying order"}))
+                         {"role": "track", "note": "lines, turns and transits in flying order",
+                          **{k: round(v, 3) for k, v in track_cost(points).items() if k.endswith("_m")}}))
     return json.dumps({"type": "FeatureCollection", "features": features}, indent=1) + "\n"
 
 

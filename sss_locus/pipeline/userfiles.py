@@ -63,7 +63,31 @@ def area_parameters(path: str) -> dict[str, str]:
     names it): an edited area makes the run stale."""
     found = _resolve(path)
     full = paths.REPO_ROOT / found
-    return {"area": str(found), "area_sha256": provenance.file_sha256(full) if full.is_file() else ""}
+    if not full.is_file():
+        return {"area": str(found), "area_sha256": ""}
+    digest = provenance.file_sha256(full)
+    grid = _bathymetry_file(full)
+    if grid is not None and grid.is_file():  # the area's bathymetry grid: an edited grid makes the run stale too
+        digest = hashlib.sha256((digest + provenance.file_sha256(grid)).encode()).hexdigest()
+    return {"area": str(found), "area_sha256": digest}
+
+
+def _bathymetry_file(area_file: Path) -> Path | None:
+    """The bathymetry grid an area file names (``bathymetry``, relative to it), or ``None``; an
+    unreadable file gives ``None`` (the chapter's reader names what is wrong)."""
+    import json
+    import tomllib
+
+    try:
+        if area_file.suffix.lower() in (".geojson", ".json"):
+            doc = json.loads(area_file.read_text(encoding="utf-8-sig"))
+            doc = doc.get("properties") or (doc.get("features") or [{}])[0].get("properties") or {}
+        else:
+            doc = tomllib.loads(area_file.read_text(encoding="utf-8")).get("area", {})
+        name = doc.get("bathymetry")
+    except (ValueError, AttributeError, TypeError, IndexError, OSError, RecursionError):
+        return None
+    return (area_file.parent / Path(name).expanduser()) if isinstance(name, str) and name.strip() else None
 
 
 def file_parameters(parameters: dict) -> dict[str, str]:

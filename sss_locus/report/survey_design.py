@@ -48,13 +48,15 @@ def plan_label(row) -> str:
 
 
 def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water_depth_m: float,
-                 depth_source: str, ardupilot: bool = True, flown_m: float | None = None) -> str:
+                 depth_source: str, ardupilot: bool = True, turn_notes=()) -> str:
     """The caption of a recommended plan's figure: the plan, the water depth it used and where
     that came from, its cost and coverage (``cov`` of
     :func:`sss_locus.experiments.survey_design.plan_coverage`), the area file with its SHA-256
     and the mission ``files`` beside the figure (without an origin only the CSV, and why; for a
-    vehicle that does not run ArduPilot no ArduPilot mission, and why); ``flown_m`` the length of
-    the mission's own track (its turns and transits as written), beside the plan's cost."""
+    vehicle that does not run ArduPilot no ArduPilot mission, and why); the cost is the track the
+    mission flies (``row.total_m``: lines, U-turns, transits and the return to the start); in
+    navigable water (a walled harbour) its clearance, and ``turn_notes`` the turns that did not fit
+    (:func:`sss_locus.experiments.surveydesign.route.turn_misfits`)."""
     names = ", ".join(f"`{n}`" for n in files)
     why = ("" if area.origin_lonlat is not None else
            " (the others need longitude/latitude: give the area file an `origin_lonlat`)")
@@ -62,12 +64,16 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water
         why = (" (no `.plan` or `.waypoints`: this vehicle does not run ArduPilot; convert the CSV or GeoJSON "
                "into its own planner's mission format)")
     return (f"Recommended plan for the {platform.name} over {area.name}: {plan_label(row)}; water depth "
-            f"{water_depth_m:g} m ({depth_source}); " + (
+            f"{water_depth_m:.3g} m ({depth_source}); " + (
                 f"lines run past the area by their swath's reach and a run-in of {row.run_m:.0f} m; "
-                if area.water_beyond_m is None else
-                f"lines, run-ins and turns stay within {area.water_beyond_m:g} m of the area's edge (its water_beyond_m); ")
-            + f"{row.total_m / 1e3:.2f} km including turns of radius {platform.turn_radius_m:g} m"
-            + ("" if flown_m is None else f" (the mission's track as written: {flown_m / 1e3:.2f} km)") + ", "
+                if area.water() is None else
+                f"lines, run-ins, turns and transits stay in the navigable water ("
+                + ("its navigable outline" if area.navigable_wkt else f"{area.water_beyond_m:g} m past the area's edge")
+                + f"), {area.clearance_m:g} m off its edge and holes, line ends pulled back where a turn needs room; "
+                "the inclusion fence (red dashed) never reaches past it; ")
+            + (f"turns that do not fit: {'; '.join(turn_notes)}; " if turn_notes else "")
+            + f"{row.total_m / 1e3:.2f} km flown (the mission's track: lines, turns of radius "
+            f"{platform.turn_radius_m:g} m, transits and the return to the start), "
             + f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "
             f"{fmt_percent(cov['twice'])} of the area, holes: {cov['n_holes']}. Grey dotted: WGS 84 meridians and "
             f"parallels. Area file `{area_file}` "
@@ -96,7 +102,7 @@ def plot_front(fronts: dict, objective: str, platforms: dict):
         rec = t[t.recommended] if "recommended" in t else t.iloc[:0]
         ax.scatter(rec.total_m / 1e3, rec[col], s=220, facecolors="none", edgecolors="tab:green", lw=2.2,
                    label="recommended", zorder=5)
-        ax.set_xlabel("track length incl. turns (km)")
+        ax.set_xlabel("track flown: lines, turns, transits (km)")
         ax.set_title(platform_title(platforms[key], width=90 // len(keys)), fontsize=9)  # a panel's width
     axes[0][0].set_ylabel(OBJECTIVE_LABELS[objective])
     handles, labels = axes[0][0].get_legend_handles_labels()
@@ -109,12 +115,14 @@ AREA_EDGE = "0.3"
 
 
 def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadir_gap_m: float, platform,
-              title: str, ax=None, track: pd.DataFrame | None = None, fence=None):
+              title: str, ax=None, track: pd.DataFrame | None = None, fence=None, bathymetry=None):
     """The plan over the area: coverage cells by the number of lines that see them (holes red),
     cut at the area's edge (dashed), the lines as arrows in run order, the nadir gap of each line
     hatched; with ``track`` (the waypoints of :func:`sss_locus.pipeline.missions.waypoints`) the
-    turns and transits, with ``fence`` the inclusion fence; on the area's WGS 84 graticule with a
-    scale bar (:mod:`sss_locus.report.survey_map`)."""
+    turns and transits, with ``fence`` the inclusion fence, with ``bathymetry`` (a
+    :class:`~sss_locus.experiments.surveydesign.bathymetry.Bathymetry`) its depth contours inside
+    the area, labelled in metres; on the area's WGS 84 graticule with a scale bar
+    (:mod:`sss_locus.report.survey_map`)."""
     if ax is None:
         fig, ax = plt.subplots(figsize=(PAGE_WIDTH_IN, 5.2), constrained_layout=True)
     cmap = ListedColormap(["tab:red", "#c6dbef", "#6baed6", "#2171b5"])
@@ -132,6 +140,18 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     for ring in area.polygon.interiors:  # holes of the area: islands, exclusion zones
         ax.add_patch(PolygonPatch(np.asarray(ring.coords), closed=True, facecolor="0.85", edgecolor=AREA_EDGE,
                                   lw=1.0, hatch="xx"))
+    if bathymetry is not None:
+        b = bathymetry
+        gx, gy = b.x0_m + b.spacing_m * np.arange(b.depth_m.shape[1]), b.y0_m + b.spacing_m * np.arange(b.depth_m.shape[0])
+        bx0, by0, bx1, by1 = area.polygon.bounds  # the grid over the area only (it spans more)
+        ix = (gx >= bx0 - b.spacing_m) & (gx <= bx1 + b.spacing_m)
+        iy = (gy >= by0 - b.spacing_m) & (gy <= by1 + b.spacing_m)
+        cs = ax.contour(gx[ix], gy[iy], b.depth_m[np.ix_(iy, ix)], levels=_depth_levels(b.area_depths_m),
+                        colors="saddlebrown", linewidths=0.6, alpha=0.8, zorder=2)
+        inside = PolygonPatch(xy, closed=True, transform=ax.transData)
+        cs.set_clip_path(inside)
+        for label in ax.clabel(cs, fmt=lambda v: f"{v:g} m", fontsize=7, inline=True):
+            label.set_clip_path(inside)
     if track is not None:
         ax.plot(track.east_m, track.north_m, color="0.35", lw=0.6, zorder=2)
     if fence is not None:
@@ -169,11 +189,24 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     if (lines["set"] != "main").any():
         handles.append(plt.Line2D([], [], color="tab:orange"))
         labels.append("cross / repeat line")
+    if bathymetry is not None:
+        handles.append(plt.Line2D([], [], color="saddlebrown", lw=0.6))
+        labels.append(f"depth contour ({bathymetry.file})")
     if nadir_gap_m > 0:
         handles.append(PolygonPatch([[0, 0], [1, 0], [1, 1]], fill=False, hatch="////", edgecolor="0.3"))
         labels.append(f"nadir gap (±{nadir_gap_m:.0f} m)")
     ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9, frameon=False)
     return ax.figure
+
+
+def _depth_levels(depths_m) -> list[float]:
+    """About six round depth contours spanning ``depths_m`` (m)."""
+    lo, hi = float(np.min(depths_m)), float(np.max(depths_m))
+    if hi - lo <= 0:
+        return [lo]
+    step = 10 ** math.floor(math.log10((hi - lo) / 6))
+    step *= next(k for k in (1, 2, 5, 10) if (hi - lo) / (k * step) <= 7)
+    return [float(v) for v in np.arange(math.ceil(lo / step) * step, hi + 1e-9, step)]
 
 
 #: The joint estimate's errors (:data:`~sss_locus.experiments.surveydesign.scoring.ERRORS`) in words.

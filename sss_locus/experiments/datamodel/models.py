@@ -206,6 +206,7 @@ class SurveyDesign(Table):
     standard_altitude_max_fraction: Fraction
     min_two_view_share: Fraction
     run_in_turn_radii: number(ge=0.0, le=1000.0)
+    wall_clearance_m: number(ge=0.0, le=1000.0)
     water_depth_m: number(ge=1e-3, le=12000.0) | None = None
 
     @model_validator(mode="after")

@@ -10,14 +10,24 @@ inclusion fence shrunk by the turn radius and outside every hole grown by the tu
 ``margin_m`` (a visibility graph over those polygons' vertices, solved with
 :func:`scipy.sparse.csgraph.dijkstra`); a straight leg when that is already free.
 
-Fences (:func:`fences`): the **inclusion fence** is the area's outer ring joined with every line
-and U-turn of the track, grown by ``R + margin_m`` (room for the vehicle's own turns and for the
-transits; a line segment that lies apart, beyond a notch, joined to the rest by a corridor as
-wide along the shortest way), or, when the area gives ``water_beyond_m`` (a shore that far past its edge), the area
-grown by that much, a U-turn that would leave it replaced by a transit inside it; its outer ring
-simplified to at most ``max_vertices`` vertices while still containing it; the **exclusion
+Fences (:func:`fences`): in open water the **inclusion fence** is the area's outer ring joined
+with every line and U-turn of the track, grown by ``R + margin_m`` (room for the vehicle's own
+turns and for the transits; a line segment that lies apart, beyond a notch, joined to the rest
+by a corridor as wide along the shortest way), its outer ring simplified to at most
+``max_vertices`` vertices while still containing it. When the area gives navigable water
+(:meth:`~sss_locus.experiments.survey_area.SurveyArea.water`: ``navigable_m`` or
+``water_beyond_m``), the track keeps the area's ``wall_clearance_m`` off its edge and its holes
+(lines cut and their ends pulled back for the turns by
+:func:`~sss_locus.experiments.surveydesign.turns.fit_turns`; a U-turn that still leaves it
+replaced by a transit inside it), and the fence is the navigable water's outline itself, never
+past it (with more than ``max_vertices`` vertices: shrunk by half the clearance and simplified
+by a quarter, still holding the track); the **exclusion
 fences** are the area's holes. :func:`check_inside` is the check every mission writer runs: every point of
 the track inside the inclusion fence and outside every exclusion fence, else a one-line error.
+
+Cost (:func:`track_cost`): the length of that track, leg by leg, as the vehicle flies it: the
+lines, the U-turns, and the transits (including the return to the first line's start); the
+survey design's cost and time of every plan come from it, not from a formula.
 """
 
 from __future__ import annotations
@@ -40,10 +50,15 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
     import shapely
 
     outer = shapely.Polygon(area.polygon.exterior)
-    if area.water_beyond_m is not None:  # the navigable water is the fence
-        grown = outer.buffer(area.water_beyond_m, quad_segs=4)
+    water = area.water()
+    if water is not None:  # the navigable water: the fence never reaches past it
+        water = max(getattr(water, "geoms", [water]), key=lambda g: g.area)
+        return _water_fence(shapely.Polygon(water.exterior), legs, area.clearance_m, max_vertices), \
+            [shapely.Polygon(r) for r in area.polygon.interiors]
     else:
-        grown = shapely.union_all([outer, legs]).buffer(turn_radius_m + margin_m, quad_segs=4)
+        grow = turn_radius_m + margin_m  # each piece grown on its own, then joined: fast, and no closer
+        grown = shapely.union_all([outer.buffer(grow, join_style="mitre"),
+                                   *shapely.buffer(shapely.get_parts(legs), grow, cap_style="square", join_style="mitre")])
         parts = sorted(getattr(grown, "geoms", [grown]), key=lambda g: g.area, reverse=True)
         main = parts[0]
         for part in parts[1:]:  # a line's segment beyond a notch, apart from the rest: bridged, never dropped
@@ -62,6 +77,20 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
     return fence, [shapely.Polygon(r) for r in area.polygon.interiors]
 
 
+def _water_fence(outline, legs, clearance_m: float, max_vertices: int):
+    """The inclusion fence in navigable water: its outline, or, when that has more than
+    ``max_vertices`` vertices, the outline shrunk by half the clearance and simplified by a
+    quarter of it (so it stays inside the outline and still holds the track, which keeps the
+    whole clearance), when that holds ``legs``."""
+    if len(outline.exterior.coords) - 1 <= max_vertices or clearance_m <= 0:
+        return outline
+    import shapely
+
+    cand = outline.buffer(-clearance_m / 2, join_style="mitre").simplify(clearance_m / 4)
+    ok = cand.geom_type == "Polygon" and outline.buffer(1e-6).covers(cand) and cand.buffer(1e-6).covers(legs)
+    return shapely.Polygon(cand.exterior) if ok else outline
+
+
 def _transit(a, b, free, nodes, room) -> list:
     """Shortest polyline from ``a`` to ``b`` inside the polygon ``free`` (widened by ``room``
     about ``a`` and ``b``: the ends may lie near a hole or on a shore) through ``nodes`` and the
@@ -73,6 +102,7 @@ def _transit(a, b, free, nodes, room) -> list:
 
     ok = free.union(shapely.Point(a).buffer(room[0])).union(shapely.Point(b).buffer(room[0])).intersection(room[1])
     ok = ok.buffer(1e-6)
+    shapely.prepare(ok)  # many segments are tested against it
     if ok.covers(shapely.LineString([a, b])):
         return [b]
     entries = [] if free.is_empty else [shapely.get_coordinates(shapely.shortest_line(free, shapely.points([a, b])))[::2]]
@@ -101,8 +131,8 @@ def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: fl
 
     R = float(turn_radius_m)
     L = lines.reset_index(drop=True)
-    water = None if area.water_beyond_m is None else \
-        shapely.Polygon(area.polygon.exterior).buffer(area.water_beyond_m + 0.01, quad_segs=4)
+    water = area.water()  # the navigable water less the wall clearance (None: open water)
+    water = None if water is None else water.buffer(0.01 - area.clearance_m)
     joins: dict[int, tuple[str, np.ndarray]] = {}
     for k in range(1, len(L)):
         a, b = L.iloc[k - 1], L.iloc[k]
@@ -113,7 +143,7 @@ def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: fl
                 joins[k] = ("turn", pts)  # else a transit inside the water
     legs = [shapely.LineString([(r.x0_m, r.y0_m), (r.x1_m, r.y1_m)]) for r in L.itertuples()]
     legs += [shapely.LineString(np.vstack([[L.x1_m[k - 1], L.y1_m[k - 1]], p])) for k, (_, p) in joins.items()]
-    fence, holes = fences(area, shapely.union_all(legs), R, margin_m=margin_m)
+    fence, holes = fences(area, shapely.MultiLineString(legs), R, margin_m=margin_m)
     navigable = fence if water is None else water  # a shore: transits stay in the water itself
     free = navigable.buffer(-R, join_style="mitre")
     room = navigable
@@ -153,3 +183,44 @@ def check_inside(path: pd.DataFrame, fence, holes, *, what: str = "track") -> No
         inside = legs.intersection(h.buffer(-1e-6))
         if not inside.is_empty:
             raise ValueError(f"{what}: the track crosses hole {k + 1} of the area for {inside.length:.1f} m")
+
+
+def track_cost(path: pd.DataFrame) -> dict[str, float]:
+    """Lengths of a :func:`flight_path` track, m, leg by leg (module docstring): ``lines_m`` (legs
+    ending at a ``line end``), ``turns_m`` (U-turns), ``transits_m`` (transits and the return),
+    ``total_m`` (their sum, the polyline's length), and ``n_segments`` (line segments).
+
+    Parameters
+    ----------
+    path : pandas.DataFrame
+        The track of :func:`flight_path`, columns :data:`PATH_COLUMNS`, in flying order.
+
+    Returns
+    -------
+    dict
+        The lengths above (m) and ``n_segments``.
+    """
+    xy = path[["east_m", "north_m"]].to_numpy(float)
+    kind = path["kind"].to_numpy()
+    leg = np.hypot(*np.diff(xy, axis=0).T) if len(xy) > 1 else np.zeros(0)
+    into, before = kind[1:], kind[:-1]
+    # a leg into a line's start closes the junction it ends (a U-turn's last arc, or a transit)
+    closes = np.where(np.isin(before, ("turn", "transit")), before, "transit")
+    what = np.where(into == "line start", closes, into)
+    lines = float(leg[what == "line end"].sum())
+    turns = float(leg[what == "turn"].sum())
+    transits = float(leg[np.isin(what, ("transit", "return"))].sum())
+    return {"lines_m": lines, "turns_m": turns, "transits_m": transits, "total_m": float(leg.sum()),
+            "n_segments": int(np.sum(kind == "line start"))}
+
+
+def turn_misfits(area, lines: pd.DataFrame, turn_radius_m: float) -> list[str]:
+    """The U-turns of ``lines`` that do not fit in the area's navigable water with its wall
+    clearance, one sentence each naming the lines (:func:`~.turns.fit_turns`; open water: none);
+    the track joins those lines by a transit inside the water."""
+    from .turns import fit_turns
+
+    water = area.water()
+    if water is None or lines.empty:
+        return []
+    return fit_turns(lines, water.buffer(-area.clearance_m), turn_radius_m)[1]

@@ -89,3 +89,65 @@ def uturn_points(p_end, heading_deg: float, q_start, radius_m: float, *, step_de
     if np.hypot(*(best[-1] - Q)) > 1e-6:
         best = np.vstack([best, Q])
     return best
+
+
+def turn_fits(free, p_end, heading_deg: float, q_start, radius_m: float) -> bool:
+    """Whether the U-turn of :func:`uturn_points` from ``p_end`` to ``q_start`` stays in ``free``
+    (a shapely geometry: the water the vehicle may use, its clearance already taken off)."""
+    import shapely
+
+    pts = uturn_points(p_end, heading_deg, q_start, radius_m)
+    return bool(free.buffer(1e-6).covers(shapely.LineString(np.vstack([np.asarray(p_end, float), pts]))))
+
+
+def fit_turns(lines, free, radius_m: float, *, max_pull_m: float | None = None):
+    """The U-turns of a line table made to fit in the navigable water ``free`` (shapely, the
+    wall clearance taken off): where the turn from a line's end to the next (anti-parallel)
+    line's start leaves ``free``, both ends are pulled back along their lines, in steps of half
+    the turn radius, until it fits (the lines get shorter; at most ``max_pull_m``, default 4
+    radii, and never below 1 m of line).
+
+    Parameters
+    ----------
+    lines : pandas.DataFrame
+        Segments in run order, columns of :data:`sss_locus.experiments.survey_lines.LINE_COLUMNS`
+        (headings degrees counter-clockwise from east; local metres).
+    free : shapely geometry
+        Where the vehicle may be.
+    radius_m : float
+        The vehicle's turn radius, m.
+
+    Returns
+    -------
+    lines : pandas.DataFrame
+        A copy with the pulled-back ends and their ``length_m``.
+    misfits : list of str
+        One sentence per turn that fits nowhere, naming the lines (the track then joins them by
+        a transit inside the water, :mod:`.route`).
+    """
+    L = lines.reset_index(drop=True).copy()
+    R = float(radius_m)
+    pull_max = 4 * R if max_pull_m is None else float(max_pull_m)
+    misfits = []
+    start, end = L[["x0_m", "y0_m"]].to_numpy(float).copy(), L[["x1_m", "y1_m"]].to_numpy(float).copy()
+    head, sets, nums = L.heading_deg.to_numpy(float), L["set"].to_numpy(), L.line.to_numpy()
+    for k in range(1, len(L)):
+        dh = (head[k] - head[k - 1] + 180.0) % 360.0 - 180.0
+        if R <= 0 or sets[k - 1] != sets[k] or abs(abs(dh) - 180.0) > 1e-6:
+            continue
+        h = math.radians(head[k - 1])
+        e = np.array([math.cos(h), math.sin(h)])
+        p, q = end[k - 1].copy(), start[k].copy()
+        room = min(float(np.hypot(*(end[k - 1] - start[k - 1]))), float(np.hypot(*(end[k] - start[k])))) - 1.0
+        pull, fits = 0.0, turn_fits(free, p, head[k - 1], q, R)
+        while not fits and pull + R / 2 <= min(pull_max, room):
+            pull += R / 2
+            fits = turn_fits(free, p - pull * e, head[k - 1], q - pull * e, R)
+        if not fits:
+            misfits.append(f"the turn from {sets[k - 1]} line {int(nums[k - 1])} to line {int(nums[k])} does not fit in "
+                           f"the navigable water, even with the lines' ends pulled back {pull:.3g} m: a transit joins them")
+        elif pull > 0:
+            end[k - 1], start[k] = p - pull * e, q - pull * e
+    L[["x0_m", "y0_m"]], L[["x1_m", "y1_m"]] = start, end
+    L["length_m"] = np.hypot(*(end - start).T)
+    return L, misfits
