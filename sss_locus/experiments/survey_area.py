@@ -421,12 +421,11 @@ def load_area(path: str | Path) -> SurveyArea:
     depth_source = f"{shown}: water_depth_m" if area.water_depth_source else ""
     if area.water() is not None and area.wall_clearance_m is None:  # walls: the run's clearance
         from . import datadoc
-        from .inputs import sourced, table
+        from .datamodel import models
 
-        datadoc.note_read("survey_design")  # the key survey_plans.load_settings validates with the others
-        clearance = sourced(table(datadoc.document(), "survey_design", ""), "wall_clearance_m", "survey_design", {},
-                            lo=0.0, hi=1000.0)
-        area = replace(area, wall_clearance_m=float(clearance))
+        datadoc.note_read("survey_design")  # the table survey_plans.load_settings validates too
+        settings = models.values(models.validate_document(datadoc.document(), ("survey_design",)).survey_design)
+        area = replace(area, wall_clearance_m=float(settings["wall_clearance_m"]))
     if area.bathymetry:  # the grid beside the area file, read and checked now
         from .surveydesign.bathymetry import load_bathymetry
 
