@@ -33,7 +33,7 @@ quick-book: $(STAMP) pyc
 	$(VENV)/bin/sss-locus book --profile quick
 
 pdf: $(STAMP)
-	$(VPY) -m sss_locus.pipeline.bookpdf
+	$(VPY) -m sss_locus.pipeline.book.bookpdf
 
 # On every core (pytest-xdist). Tests sharing an expensive fixture form one group (conftest.py);
 # --no-loadscope-reorder keeps the order conftest.py sets: the book tests last, while the shared

@@ -13,7 +13,7 @@ samples instead of 1,000,000), the load average at start and end, and each targe
 with the measured value.
 
 Last (also alone, with ``--reduce-only``), the pose-space study reduced on the workers
-(``sss_locus.experiments.pose_reduce.reduce_pose_space``: rho table and heatmaps from
+(``sss_locus.experiments.pose_space.reduce.reduce_pose_space``: rho table and heatmaps from
 summaries): its end-to-end rate against the kernel-only rate, in-process against 2 local
 worker processes (bit-identical?), and the bytes per sample the client receives against the
 bytes per sample of the table that ``sample_pose_space`` sends back.
@@ -66,14 +66,16 @@ def _timed_kernel(modules):
 
 
 def measure_studies(quick: bool) -> dict:
-    from sss_locus.experiments import noise, planning, pose_space, survey_passes
-    from sss_locus.experiments.envelopes import OffsetModel, load_envelope
-    from sss_locus.experiments.platforms import load_platform
-    from sss_locus.experiments.pose_stats import heatmaps, spearman_table, with_derived
+    from sss_locus.experiments.noise import study as noise
+    from sss_locus.experiments.survey_passes import planning, study as survey_passes
+    from sss_locus.experiments.pose_space import study as pose_space
+    from sss_locus.experiments.datamodel.envelopes import OffsetModel, load_envelope
+    from sss_locus.experiments.datamodel.platforms import load_platform
+    from sss_locus.experiments.pose_space.stats import heatmaps, spearman_table, with_derived
     try:
-        from sss_locus.experiments.pose_claims import claim_metrics
+        from sss_locus.experiments.pose_space.claims import claim_metrics
     except ImportError:  # a baseline tree from before pose_claims
-        from sss_locus.experiments.pose_stats import claim_metrics
+        from sss_locus.experiments.pose_space.stats import claim_metrics
 
     spent = _timed_kernel([pose_space, survey_passes, noise])
     out = {}
@@ -115,7 +117,7 @@ def measure_studies(quick: bool) -> dict:
 
 def book_values(tree: Path, names) -> dict:
     """The book profile's parameter values of each notebook as ``tree`` declares them."""
-    code = ("import json, sys; from sss_locus.pipeline.registry import get_entry; "
+    code = ("import json, sys; from sss_locus.pipeline.run.registry import get_entry; "
             "print(json.dumps({n: get_entry(n).resolve('book') for n in sys.argv[1:]}, default=list))")
     out = subprocess.run([sys.executable, "-c", code, *names], cwd=tree, env=dict(os.environ, PYTHONPATH=str(tree)),
                          check=True, capture_output=True, text=True).stdout
@@ -159,7 +161,7 @@ def measure_notebooks(trees: dict, names) -> tuple[dict, dict]:
                            SSS_LOCUS_CACHE_DIR=f"{tmp}/cache{i}")
                 env.pop("SSS_LOCUS_SCHEDULER", None)
                 start = time.perf_counter()
-                done = subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli", "run", name, "--profile",
+                done = subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli.command", "run", name, "--profile",
                                        "book", *extra, "--output", f"{tmp}/run{i}-{name}/{name}.ipynb"], cwd=tree, env=env,
                                       capture_output=True, text=True)
                 if done.returncode != 0:
@@ -185,16 +187,16 @@ def _best_of(repeats: int, run):
 
 
 def measure_dask(quick: bool) -> dict:
-    from sss_locus.experiments import scale
-    from sss_locus.experiments.platforms import load_platform
-    from sss_locus.experiments.pose_space import PoseSpaceSpec, sample_pose_space
+    from sss_locus.experiments.stats import scale
+    from sss_locus.experiments.datamodel.platforms import load_platform
+    from sss_locus.experiments.pose_space.study import PoseSpaceSpec, sample_pose_space
 
     spec, n = PoseSpaceSpec(load_platform("auv")), (200_000 if quick else 1_000_000)
     os.environ.pop(scale.SCHEDULER_ENV, None)
     t_serial, serial = _best_of(DASK_REPEATS, lambda: sample_pose_space(spec, n, 3))
     os.environ[scale.SCHEDULER_ENV] = "local:2"
     # start the cluster, import the studies on EVERY worker (a task may not reach both) and warm up
-    scale.client("local:2").run(importlib.import_module, "sss_locus.experiments.pose_space")
+    scale.client("local:2").run(importlib.import_module, "sss_locus.experiments.pose_space.study")
     sample_pose_space(spec, 4 * 65536, 4)
     t_par, parallel = _best_of(DASK_REPEATS, lambda: sample_pose_space(spec, n, 3))
     scale.close_clients()
@@ -204,16 +206,17 @@ def measure_dask(quick: bool) -> dict:
 
 
 def measure_reduce(quick: bool) -> dict:
-    """The pose-space study reduced on the workers (``experiments/pose_reduce.py``: Spearman rho
+    """The pose-space study reduced on the workers (``experiments/pose_space/reduce.py``: Spearman rho
     table with replicate intervals and the five heatmaps' exact per-bin medians): end to end
     in-process against the kernel's share of it, in-process against 2 local worker processes
     (best of :data:`DASK_REPEATS` each, bit-identical?), and the bytes per sample the client
     receives, against the bytes per sample of the table ``sample_pose_space`` sends back."""
     import pickle
 
-    from sss_locus.experiments import pose_space, scale
-    from sss_locus.experiments.platforms import load_platform
-    from sss_locus.experiments.pose_reduce import reduce_pose_space
+    from sss_locus.experiments.pose_space import study as pose_space
+    from sss_locus.experiments.stats import scale
+    from sss_locus.experiments.datamodel.platforms import load_platform
+    from sss_locus.experiments.pose_space.reduce import reduce_pose_space
 
     spec, n = pose_space.PoseSpaceSpec(load_platform("auv")), (200_000 if quick else 1_000_000)
     run = lambda: reduce_pose_space(spec, n, 3, n_bins=16, min_count=30)  # the book's bins
@@ -226,7 +229,7 @@ def measure_reduce(quick: bool) -> dict:
     chunk = pose_space.sample_pose_space(spec, 65536, 3)  # one chunk of the table path
     table_bytes = len(pickle.dumps(chunk)) / len(chunk)
     os.environ[scale.SCHEDULER_ENV] = "local:2"
-    scale.client("local:2").run(importlib.import_module, "sss_locus.experiments.pose_reduce")
+    scale.client("local:2").run(importlib.import_module, "sss_locus.experiments.pose_space.reduce")
     reduce_pose_space(spec, 200_000, 4)  # warm-up on the workers
     t_par, parallel = _best_of(DASK_REPEATS, run)
     scale.close_clients()

@@ -3,9 +3,9 @@
 A 5 km x 5 km square (an origin near Utah Lake, water 30 m deep), each platform of the book, the
 survey-design chapter's book-profile parameters (``notebooks/survey_design.ipynb``'s defaults:
 the search grid, 200 features, a 20 m coverage grid, five noise seeds, the eight leading plans
-scored): the search (:func:`~sss_locus.experiments.survey_design.search_plans`) and the scoring
+scored): the search (:func:`~sss_locus.experiments.survey_design.front.search_plans`) and the scoring
 of the candidates with the joint adjustment under the noise model
-(:func:`~sss_locus.experiments.surveydesign.scoring.score_plans`), timed separately, without the
+(:func:`~sss_locus.experiments.survey_design.scoring.score_plans`), timed separately, without the
 cache, with peak memory (``ru_maxrss``). Also the one-line case: a 260 m x 200 m area planned end
 to end.
 
@@ -37,11 +37,11 @@ BOOK = dict(headings_deg=[0.0, 45.0, 90.0], spacing_fractions=[0.8, 1.2, 1.6],
 
 
 def main() -> None:
-    from sss_locus.experiments import survey_design as sd
-    from sss_locus.experiments.noise import load_noise_model, load_pass_noise
-    from sss_locus.experiments.platforms import load_platform
-    from sss_locus.experiments.survey_area import area_from_vertices, with_water_depth
-    from sss_locus.experiments.surveydesign import scoring
+    from sss_locus.experiments.survey_design import front as sd
+    from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+    from sss_locus.experiments.datamodel.platforms import load_platform
+    from sss_locus.experiments.survey_design.area import area_from_vertices, with_water_depth
+    from sss_locus.experiments.survey_design import scoring
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--km", type=float, default=5.0, help="side of the square area, km")

@@ -18,11 +18,11 @@ Layout
     The book's own pages and ``references.bib`` (``book/``).
 ``build_dir()``
     The build area (git-ignored), ``_build/`` by default: the run context's
-    (:mod:`sss_locus.pipeline.context`). Set the environment variable
+    (:mod:`sss_locus.pipeline.run.context`). Set the environment variable
     ``SSS_LOCUS_BUILD_DIR`` to put it elsewhere; the tests do this so that a test build never
     overwrites the ``book``-profile outputs. ``--name NAME`` (``sss-locus run``/``book``) makes
     ``<build>/NAME`` the build area of that command, a book of its own beside the reproduction
-    (:mod:`sss_locus.pipeline.areas`). Inside it:
+    (:mod:`sss_locus.pipeline.book.areas`). Inside it:
 
     - ``html/index.html``: the built book (where Jupyter Book users look for it),
     - ``source/``: the *staged* book source. ``sss-locus book`` copies ``_config.yml``,
@@ -77,7 +77,7 @@ TOC_FILE: Path = REPO_ROOT / "_toc.yml"
 LOCK_FILE: Path = REPO_ROOT / "environment.lock"
 CITATION_FILE: Path = REPO_ROOT / "CITATION.cff"
 
-#: The user's settings of the build area and the cache (read by :mod:`sss_locus.pipeline.context`).
+#: The user's settings of the build area and the cache (read by :mod:`sss_locus.pipeline.run.context`).
 BUILD_DIR_ENV = "SSS_LOCUS_BUILD_DIR"
 CACHE_DIR_ENV = "SSS_LOCUS_CACHE_DIR"
 
@@ -101,7 +101,7 @@ def _default_areas() -> tuple[Path, str | None, Path]:
 
 
 #: ``() -> (build area, build-area name, cache folder)`` of this process: the run context's
-#: (:func:`sss_locus.pipeline.context.current`, which installs itself here when imported; it reads
+#: (:func:`sss_locus.pipeline.run.context.current`, which installs itself here when imported; it reads
 #: ``SSS_LOCUS_BUILD_DIR`` and ``SSS_LOCUS_CACHE_DIR``), else ``<repo>/_build`` and ``<repo>/.cache``.
 areas_setting: Callable[[], tuple[Path, str | None, Path]] = _default_areas
 

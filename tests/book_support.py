@@ -68,7 +68,7 @@ class QuickBook:
             env = {**self.env, "LOG": str(self.log), "ERR": str(self.errlog), "RC": str(self.rc)}
             process = subprocess.Popen(
                 ["bash", "-c", _WRAPPER, "quick-book",
-                 sys.executable, "-m", "sss_locus.pipeline.cli", "book", "--profile", "quick"],
+                 sys.executable, "-m", "sss_locus.pipeline.cli.command", "book", "--profile", "quick"],
                 env=env, stdin=subprocess.DEVNULL, start_new_session=True)
             self.pid.write_text(str(process.pid))
             self.meta.write_text(f"{time.time()} {_mtime(DEFAULT_INDEX)}")

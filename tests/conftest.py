@@ -56,11 +56,11 @@ def build_area(tmp_path, monkeypatch):
 @pytest.fixture
 def run_context():
     """``run_context(**changes)``: for the rest of the test, the run context
-    (:func:`sss_locus.pipeline.context.current`) is the current one with ``changes``; calling it
+    (:func:`sss_locus.pipeline.run.context.current`) is the current one with ``changes``; calling it
     again replaces the previous changes, ``run_context()`` with none goes back to the default."""
     from contextlib import ExitStack
 
-    from sss_locus.pipeline import context
+    from sss_locus.pipeline.run import context
 
     stack = ExitStack()
 

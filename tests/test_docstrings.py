@@ -16,9 +16,9 @@ import re
 import pytest
 
 MODULES = (
-    "pose_space", "pose_draw", "pose_stats", "pose_claims", "pose_reduce", "survey_passes", "planning",
-    "envelopes", "platforms", "straight_pass", "view_sets", "noise", "three_view_patterns", "water",
-    "water_study", "replicates", "rowstats", "scale", "gaussian_norm", "verdicts", "choices",
+    "pose_space.study", "pose_space.draw", "pose_space.stats", "pose_space.claims", "pose_space.reduce", "survey_passes.study", "survey_passes.planning",
+    "datamodel.envelopes", "datamodel.platforms", "passes.straight_pass", "passes.view_sets", "noise.study", "three_views.patterns", "datamodel.water_column",
+    "water.study", "stats.replicates", "stats.rowstats", "stats.scale", "stats.gaussian_norm", "survey_passes.verdicts", "pose_space.choices",
     "datamodel.models", "datamodel.sourced",
 )
 """The ``sss_locus.experiments`` modules held to the rule (the chapters being rewritten join

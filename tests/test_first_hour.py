@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from sss_locus.experiments import userdata
+from sss_locus.experiments.datamodel import userdata
 from sss_locus.paths import REPO_ROOT
 
 BLUEBOAT = REPO_ROOT / "data" / "examples" / "my_blueboat.toml"
@@ -18,8 +18,8 @@ def _shipped_data_afterwards():
 
 
 def test_the_blueboat_example_passes_every_check_and_is_a_surface_boat():
-    from sss_locus.experiments.envelopes import load_envelope
-    from sss_locus.experiments.platforms import load_platform
+    from sss_locus.experiments.datamodel.envelopes import load_envelope
+    from sss_locus.experiments.datamodel.platforms import load_platform
 
     inputs = userdata.use([BLUEBOAT])
     assert userdata.hardware_flags(inputs) == []
@@ -51,8 +51,8 @@ def test_answer_names_every_driver_in_words_and_reads_both_offset_models(build_a
     ``-p offset_models '["matched:10:same"]'``)."""
     import re
 
-    from sss_locus.experiments.pose_stats import CANDIDATES
-    from sss_locus.pipeline import answer, cli
+    from sss_locus.experiments.pose_space.stats import CANDIDATES
+    from sss_locus.pipeline.cli import answer, command as cli
 
     assert set(answer.QUANTITY_WORDS) == set(CANDIDATES)  # a word for every quantity ranked
     code = cli.main(["answer", "--data", str(BLUEBOAT), "-p", "platform", "my_blueboat", "--top", "14"])
@@ -75,7 +75,7 @@ def test_a_users_file_is_published_by_name_and_sha256_never_by_its_local_path(tm
     import json
 
     from sss_locus import paths
-    from sss_locus.pipeline import publish
+    from sss_locus.pipeline.publish import publish
 
     mine = tmp_path / "home" / "me" / "myboat.toml"
     mine.parent.mkdir(parents=True)
@@ -101,8 +101,8 @@ def test_a_named_books_front_page_and_every_page_say_what_it_was_built_from(buil
     import yaml
 
     from sss_locus import paths
-    from sss_locus.pipeline import areanotice, bookbuild
-    from sss_locus.pipeline.registry import load_registry
+    from sss_locus.pipeline.book import areanotice, bookbuild
+    from sss_locus.pipeline.run.registry import load_registry
 
     run_context(build_name="myboat")
     mine = tmp_path / "home" / "myboat.toml"
@@ -167,7 +167,7 @@ def test_the_downloadable_notebooks_carry_no_local_path(build_area, tmp_path):
     import json
 
     from sss_locus import paths
-    from sss_locus.pipeline import bookbuild
+    from sss_locus.pipeline.book import bookbuild
 
     mine = tmp_path / "home" / "myboat.toml"
     executed = paths.executed_dir() / "rigs.ipynb"
@@ -187,8 +187,8 @@ def test_a_users_area_file_is_named_by_its_name_in_captions_and_the_injected_cel
     the page's injected-parameters cell carried its local absolute path."""
     import json
 
-    from sss_locus.experiments.survey_area import load_area
-    from sss_locus.pipeline import runner
+    from sss_locus.experiments.survey_design.area import load_area
+    from sss_locus.pipeline.run import runner
 
     mine = tmp_path / "home" / "me" / "harbour.toml"
     mine.parent.mkdir(parents=True)
@@ -216,8 +216,8 @@ def test_a_named_books_notice_names_the_users_truth_file(build_area, monkeypatch
     import json
 
     from sss_locus import paths
-    from sss_locus.pipeline import areanotice
-    from sss_locus.pipeline.registry import load_registry
+    from sss_locus.pipeline.book import areanotice
+    from sss_locus.pipeline.run.registry import load_registry
 
     run_context(build_name="harbour")
     sightings, truth = tmp_path / "home" / "my_sightings.csv", tmp_path / "home" / "my_truth.csv"
@@ -243,7 +243,7 @@ def test_the_sites_source_copies_of_the_notebooks_carry_no_local_path(tmp_path):
     paths (only the ``notebooks/`` copies were made public)."""
     import json
 
-    from sss_locus.pipeline import bookbuild
+    from sss_locus.pipeline.book import bookbuild
 
     mine = tmp_path / "home" / "me" / "harbour.toml"
     source = tmp_path / "html" / "_sources" / "executed" / "survey_design.ipynb"

@@ -55,7 +55,7 @@ def installed(tmp_path_factory):
 def test_the_wheel_carries_the_shipped_data_and_chapters_and_finds_them(installed, tmp_path):
     python, _ = installed
     code = ("import sss_locus, sss_locus.paths as p, sys\n"
-            "from sss_locus.pipeline.registry import load_registry\n"
+            "from sss_locus.pipeline.run.registry import load_registry\n"
             "print(sss_locus.__file__); print(p.IN_CHECKOUT); print(p.DATA_DIR)\n"
             "print(sorted(f.name for f in p.DATA_DIR.glob('*.toml')))\n"
             "print(load_registry()['planning'].source_relative)")
@@ -80,7 +80,7 @@ def test_answer_runs_from_any_folder_with_the_installed_package(installed, tmp_p
     out = subprocess.run([str(sss_locus), *argv], cwd=tmp_path, capture_output=True, text=True, timeout=300, env=env)
     assert out.returncode == 0, out.stderr[-3000:]
     assert (tmp_path / ".cache").is_dir() and not (paths.REPO_ROOT / "my_auv.toml").exists()
-    checkout = subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli", *argv], cwd=tmp_path,
+    checkout = subprocess.run([sys.executable, "-m", "sss_locus.pipeline.cli.command", *argv], cwd=tmp_path,
                               capture_output=True, text=True, timeout=300,
                               env={**env, "SSS_LOCUS_CACHE_DIR": str(tmp_path / "checkout-cache")})
     assert checkout.returncode == 0, checkout.stderr[-3000:]

@@ -37,8 +37,8 @@ ALLOWED = {
 #: Modules allowed to import matplotlib: the report layer, and the pipeline's figure files
 #: (export writes a finished figure to PNG/SVG/PDF, publish closes it, readability measures the
 #: drawn text while the PNG is saved).
-MATPLOTLIB_OK = {"sss_locus.pipeline.export", "sss_locus.pipeline.publish",
-                 "sss_locus.pipeline.readability"}
+MATPLOTLIB_OK = {"sss_locus.pipeline.publish.export", "sss_locus.pipeline.publish.publish",
+                 "sss_locus.pipeline.publish.readability"}
 
 
 def _modules() -> dict[str, Path]:
@@ -78,7 +78,7 @@ def _imports(module: str, path: Path) -> list[tuple[str, list[str]]]:
             else:
                 target = node.module or ""
             names = [a.name for a in node.names]
-            # `from sss_locus.pipeline import export` imports the module sss_locus.pipeline.export
+            # `from sss_locus.pipeline.publish import export` imports the module sss_locus.pipeline.publish.export
             subs = [f"{target}.{n}" for n in names if f"{target}.{n}" in MODULES]
             found += [(s, []) for s in subs] or [(target, names)]
     return found

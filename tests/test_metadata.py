@@ -30,7 +30,8 @@ def test_every_statement_of_the_version_takes_the_package_version(tmp_path):
     import yaml
 
     pybtex_database = pytest.importorskip("pybtex.database")
-    from sss_locus.pipeline import bookbuild, citation, provenance
+    from sss_locus.pipeline.book import bookbuild
+    from sss_locus.pipeline.publish import citation, provenance
 
     version = sss_locus.__version__
     assert json.loads(citation.ZENODO_FILE.read_text(encoding="utf-8"))["version"] == version
@@ -49,7 +50,7 @@ def test_project_entry_carries_the_cff_address_and_doi():
     import pytest
 
     pybtex_database = pytest.importorskip("pybtex.database")
-    from sss_locus.pipeline import citation
+    from sss_locus.pipeline.publish import citation
 
     cff = {**citation.load_cff(), "doi": "10.5281/zenodo.123", "repository-code": "https://example.org/r#x"}
     fields = pybtex_database.parse_string(citation.project_bibtex(cff), "bibtex").entries["sss-locus"].fields

@@ -129,7 +129,7 @@ def _regions_overlap(a: str, b: str) -> bool | None:
 def build(work: Path, seed: int, profile: str) -> Path:
     out = work / f"seed{seed}"
     env = dict(os.environ, SSS_LOCUS_BUILD_DIR=str(out / "build"), SSS_LOCUS_CACHE_DIR=str(out / "cache"))
-    cmd = [sys.executable, "-m", "sss_locus.pipeline.cli", "book", "--profile", profile,
+    cmd = [sys.executable, "-m", "sss_locus.pipeline.cli.command", "book", "--profile", profile,
            "-p", "seed", str(seed), "-p", "check_seed", str(3 - seed)]
     print(f"== building the {profile} book with seed {seed}", flush=True)
     if subprocess.run(cmd, cwd=REPO, env=env, capture_output=True, text=True).returncode != 0:

@@ -1,7 +1,7 @@
 """Regenerate the your-pings chapter's worked example (SYNTHETIC) in data/examples/your_pings/.
 
 The sightings are made by the project's own simulator over a known terrain
-(:mod:`sss_locus.experiments.your_pings_example`): the reconstruction chapter's survey layout and
+(:mod:`sss_locus.experiments.your_pings.example`): the reconstruction chapter's survey layout and
 ``random`` terrain of ``data/terrain.toml``, the shipped AUV of ``data/platforms.toml`` at the
 altitude of its survey rule (10 % of the sonar's range) with the navigation noise of
 ``data/noise.toml``. The local frame is placed at an invented position (70 W, 43 N, in the Gulf
@@ -15,11 +15,11 @@ It writes example_sightings.csv, example.xtf, example_xtf_matches.csv and exampl
 
 from __future__ import annotations
 
-from sss_locus.experiments.observations import LocalFrame
-from sss_locus.experiments.platforms import load_platform
-from sss_locus.experiments.terrain import load_terrain_config, terrain_from_config
-from sss_locus.experiments.terrain_survey import SurveyLayout
-from sss_locus.experiments.your_pings_example import write_example
+from sss_locus.experiments.sonar_files.observations import LocalFrame
+from sss_locus.experiments.datamodel.platforms import load_platform
+from sss_locus.experiments.datamodel.terrain import load_terrain_config, terrain_from_config
+from sss_locus.experiments.reconstruction.terrain_survey import SurveyLayout
+from sss_locus.experiments.your_pings.example import write_example
 from sss_locus.paths import DATA_DIR
 
 FOLDER = DATA_DIR / "examples" / "your_pings"

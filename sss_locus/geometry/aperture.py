@@ -31,7 +31,7 @@ class Aperture:
     elevation the narrow beam (along-track). Drawn with the fan horizontal (the paper's figure),
     ``y`` is to the left and ``z`` up; on a vehicle the fan is the vertical across-track plane, so
     ``y`` points down and inboard and ``z`` along-track (``data/README.md``,
-    :mod:`sss_locus.experiments.platforms`; ``Transducer.world_pose`` composes it with a vehicle
+    :mod:`sss_locus.experiments.datamodel.platforms`; ``Transducer.world_pose`` composes it with a vehicle
     pose).
 
     Parameters

@@ -14,7 +14,7 @@ the same form as the aperture bounds, so :func:`~sss_locus.geometry.locus.two_vi
 the circle by them with the same exact interval arithmetic (:mod:`sss_locus.geometry.arcs`),
 intersected with both apertures. Nothing is sampled.
 
-Degenerate half-spaces (documented behaviour, tested in ``tests/test_locus_halfspaces.py``)
+Degenerate half-spaces (documented behaviour, tested in ``tests/geometry/test_locus_halfspaces.py``)
 ------------------------------------------------------------------------------------------
 ``n = 0``
     The condition is ``0 <= d``: vacuous (the whole circle) when ``d >= 0``, empty when
@@ -27,7 +27,7 @@ Plane tangent to the circle
     it. Computed, the tangency is decided by the rounded coefficients, and near ``-D/M = ±1``
     the arc half-width ``arccos(-D/M)`` turns a relative rounding error ``e`` into about
     ``sqrt(2 e)`` rad: a gap or an arc of up to a few 1e-8 rad (about 3e-7 m on a circle of
-    radius 8.7 m in ``tests/test_locus_halfspaces.py``) can appear at the point of tangency.
+    radius 8.7 m in ``tests/geometry/test_locus_halfspaces.py``) can appear at the point of tangency.
     No tolerance snaps it away, as for the aperture bounds; configurations exactly tangent to
     a plane have probability zero in the Monte Carlo studies.
 Circle wholly outside
@@ -37,7 +37,7 @@ Circle wholly outside
 World frame of the helpers
 --------------------------
 The helpers take sensor 1's sensor-to-world rotation in a world frame with ``z`` up (the
-frame of :mod:`sss_locus.experiments.platforms` and :func:`sss_locus.relative_pose`); only the
+frame of :mod:`sss_locus.experiments.datamodel.platforms` and :func:`sss_locus.relative_pose`); only the
 world's vertical matters. ``up = W^T e_z`` (the third row of ``W``) is the vertical in frame 1,
 so a point ``p1`` lies ``up . p1`` metres above sensor 1.
 """

@@ -191,7 +191,7 @@ def _environment_memory_budget() -> str:
 
 
 #: ``() -> str``: the memory budget as set. A script's is ``$SSS_LOCUS_MEMORY_BUDGET``; a process
-#: of the pipeline answers from its run context (:mod:`sss_locus.pipeline.context` installs itself).
+#: of the pipeline answers from its run context (:mod:`sss_locus.pipeline.run.context` installs itself).
 memory_budget_setting: Callable[[], str] = _environment_memory_budget
 
 

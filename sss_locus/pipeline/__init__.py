@@ -1,24 +1,29 @@
 """Running the notebooks and building the book: registry, runner, cache, figure export and
 provenance, book build and the ``sss-locus`` command line.
 
-``registry``
-    ``notebooks/registry.toml``: notebooks, executed copies, parameter profiles.
-``runner``, ``outputs``, ``atomic``
-    Hermetic, atomic papermill runs (staging folder, commit under the build area's lock, signals
-    as exceptions), up-to-date checks and the consistency check of executed copies and figures.
-``constraints``
-    Ranges, allowed values and memory bounds declared in notebook parameter comments.
-``cache``
-    ``cached(fn)``: Parquet results keyed on the function, its arguments and a fingerprint of
-    ``geometry/``, ``experiments/`` and ``data/``.
-``export``, ``publish``, ``provenance``
-    Citable figure files with manifests and BibTeX; ``publish`` (export, glue, close) for
-    notebooks; commit, environment and code fingerprints.
-``bookbuild``, ``cli``
-    Staging and building the Jupyter Book; the ``sss-locus`` command.
-``context``
-    The run context: what every process of a run knows of it (imported here, so that whichever
-    pipeline module a process loads, :mod:`sss_locus.paths` and the budgets answer from it).
+Rooms (grouped by job; CONTRIBUTING.md, "Architecture"):
+
+``run/``
+    Running notebooks: registry, runner, kernels, cache, atomic commits, preflight checks,
+    budgets, progress, a user's files as parameters. Modules: ``atomic``, ``budgets``,
+    ``cache``, ``constraints``, ``context``, ``faults``, ``kernels``, ``orphans``, ``outputs``,
+    ``paramcell``, ``preflight``, ``progress``, ``registry``, ``runner``, ``scaleout``,
+    ``transaction``, ``userfiles``.
+``publish/``
+    Publishing: citable figures and tables, provenance, citation metadata, readability, mission
+    files. Modules: ``citation``, ``export``, ``geojson7946``, ``latex_ascii``, ``missions``,
+    ``provenance``, ``publish``, ``readability``, ``table_export``.
+``book/``
+    Building the book: staging, indexes, the claims page, build areas, the PDF. Modules:
+    ``areanotice``, ``areas``, ``bookbuild``, ``bookpdf``, ``buildlog``, ``claimsindex``,
+    ``failedchapters``, ``figindex``, ``paperinputs``, ``pdfcheck``, ``pdflinks``, ``studies``.
+``chapters/``
+    One facade per chapter: everything its notebook calls, in one import. Modules: ``common``,
+    ``concept``, ``derivation``, ``noise``, ``planning``, ``pose_space``, ``reconstruction``,
+    ``rigs``, ``survey_passes``, ``three_views``, ``water``, ``your_pings``.
+``cli/``
+    The ``sss-locus`` command line: ``run``, ``book``, ``answer``, ``xtf``. Modules: ``answer``,
+    ``command``, ``xtfinfo``.
 """
 
-from sss_locus.pipeline import context  # noqa: F401
+from sss_locus.pipeline.run import context  # noqa: F401

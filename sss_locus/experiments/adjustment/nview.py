@@ -1,6 +1,6 @@
 """The N-view estimate with the beam-plane constraint, feature by feature (navigation held fixed),
 in the ``(n, k)`` layout of the reconstruction chapter's estimators
-(:mod:`sss_locus.experiments.reconstruction`): every view's slant range *and* its beam-plane
+(:mod:`sss_locus.experiments.reconstruction.estimators`): every view's slant range *and* its beam-plane
 angle (:mod:`sss_locus.geometry.beam_plane`), least squares on both.
 
 Two views then determine a feature (four measurements, three unknowns) where the ranges alone

@@ -14,7 +14,7 @@ one-line ``ValueError`` naming the key path, the value and the valid range
 finite number in [-90.0, 90.0]; got 120.0``.
 
 The merge of shipped data, users' files and ``--set`` overrides stays on plain dicts
-(:mod:`sss_locus.experiments.datadoc`); the merged document is validated once by
+(:mod:`sss_locus.experiments.datamodel.datadoc`); the merged document is validated once by
 :func:`validate_document`.
 """
 
@@ -26,7 +26,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, model_validator
 from pydantic_core import PydanticCustomError
 
-from ..inputs import suggestion
+from sss_locus.experiments.datamodel.inputs import suggestion
 from .sourced import Key, Sourced, Table, Text, number, validated
 
 Finite = number()

@@ -14,8 +14,8 @@ from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, StringConstr
                       field_validator, model_validator)
 from pydantic_core import PydanticCustomError
 
-from ..datadoc import KEY_PATTERN
-from ..inputs import suggestion
+from sss_locus.experiments.datamodel.datadoc import KEY_PATTERN
+from sss_locus.experiments.datamodel.inputs import suggestion
 
 
 #: A key of sonars, platforms, envelopes and noise models (``_`` becomes ``-`` in figure labels).

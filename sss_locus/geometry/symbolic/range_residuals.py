@@ -8,7 +8,7 @@ quoted formula) and checks that the result is the unit line of sight over ``sigm
 ``(p - o)^T / (sigma |p - o|)``; :func:`numeric_range_jacobian` lambdifies the derived
 gradient and :func:`kernel_jacobian_discrepancy` compares it with
 :func:`sss_locus.geometry.multiview.range_residuals` (shown in ``notebooks/derivation.ipynb``,
-tested in ``tests/test_multiview.py``).
+tested in ``tests/geometry/test_multiview.py``).
 """
 from __future__ import annotations
 

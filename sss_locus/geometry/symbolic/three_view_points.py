@@ -6,7 +6,7 @@ The planes of views 1–2 and 1–3 are ``u2 . p = c2`` and ``u3 . p = c3`` (``c
 :func:`derive_line_sphere` substitutes the line into ``|p|^2 = r1^2`` and solves the quadratic
 for ``s``. Every ``residual`` step simplifies to exactly 0 when the derivation holds; the
 lambdified results are compared with :func:`sss_locus.geometry.three_view_points.three_view_points` in
-``tests/test_three_view_symbolic.py``.
+``tests/geometry/test_three_view_symbolic.py``.
 """
 from __future__ import annotations
 

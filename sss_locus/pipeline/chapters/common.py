@@ -15,10 +15,10 @@ from typing import Any
 
 import pandas as pd
 
-from sss_locus.experiments import userdata
-from sss_locus.experiments.datadoc import label_key
-from sss_locus.pipeline.publish import publish_table
-from sss_locus.report.tables import files_note, readable_table
+from sss_locus.experiments.datamodel import userdata
+from sss_locus.experiments.datamodel.datadoc import label_key
+from sss_locus.pipeline.publish.publish import publish_table
+from sss_locus.report.common.tables import files_note, readable_table
 
 _KEY_SEPARATORS = set(" \t\n`")  # a filled key holds no whitespace and no backtick (MyST roles)
 
@@ -26,7 +26,7 @@ _KEY_SEPARATORS = set(" \t\n`")  # a filled key holds no whitespace and no backt
 def use_data(data_files: Sequence[str] = (), data_set: Sequence[str] = ()) -> userdata.DataInputs:
     """Validate the user's data files and ``KEY.PATH=VALUE`` overrides (the notebook's
     ``data_files`` and ``data_set`` parameters) and make them the data this kernel reads
-    (:func:`sss_locus.experiments.userdata.use`); returns them.
+    (:func:`sss_locus.experiments.datamodel.userdata.use`); returns them.
 
     The activation is process-wide (every loader of ``experiments`` reads the active data):
     call it once, in the import cell, before anything is loaded.
@@ -46,18 +46,18 @@ def show_table(frame: pd.DataFrame, label: str, *, caption: str, shown: pd.DataF
     label : str
         ``tab-`` plus lower-case words joined by hyphens.
     caption : str
-        The caption without its files sentence: :func:`sss_locus.report.tables.files_note` of
+        The caption without its files sentence: :func:`sss_locus.report.common.tables.files_note` of
         ``label`` is appended, in the published and in the shown caption alike (when published).
     shown : pandas.DataFrame, optional
         The part of ``frame`` shown in the chapter (e.g. only the rows that changed), when not
         all of it; it is still ``frame`` that is published.
     platforms, input_files
-        As for :func:`sss_locus.pipeline.publish.publish_table`.
+        As for :func:`sss_locus.pipeline.publish.publish.publish_table`.
     publish : bool
         False: only show ``frame`` (a table with no rows in this run is not published, and its
         caption then names no files).
     **readable
-        Passed to :func:`sss_locus.report.tables.readable_table` (``digits``, ``headers``,
+        Passed to :func:`sss_locus.report.common.tables.readable_table` (``digits``, ``headers``,
         ``row_labels``).
     """
     from IPython.display import display
@@ -80,7 +80,7 @@ def key(template: str, **fields: Any) -> str:
     **fields
         A value for every field of the template and no other. A ``platform`` field takes a
         data key (``my_auv``) and is written as in figure labels (``my-auv``,
-        :func:`sss_locus.experiments.datadoc.label_key`); other values are written with
+        :func:`sss_locus.experiments.datamodel.datadoc.label_key`); other values are written with
         ``str``.
 
     Returns

@@ -11,10 +11,10 @@ import numpy as np
 import pandas as pd
 
 from sss_locus import Aperture, two_view_locus, elevation_misalignment
-from sss_locus.experiments.platforms import load_platforms
+from sss_locus.experiments.datamodel.platforms import load_platforms
 from sss_locus.pipeline.chapters.common import show_table, use_data
-from sss_locus.pipeline.publish import publish
-from sss_locus.report.concept import concept_data, plot_locus_concept, interactive_locus_concept, offline_html
+from sss_locus.pipeline.publish.publish import publish
+from sss_locus.report.concept.figures import concept_data, plot_locus_concept, interactive_locus_concept, offline_html
 
 __all__ = ["Aperture", "concept_data", "elevation_misalignment", "glue", "HTML",
            "interactive_locus_concept", "load_platforms", "np", "offline_html", "pd", "plot_locus_concept",

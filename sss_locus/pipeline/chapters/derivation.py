@@ -14,8 +14,8 @@ from sss_locus.geometry.symbolic import (derive_plane, symbols, quaternion_rotat
                                          kernel_discrepancy, derive_range_jacobian,
                                          kernel_jacobian_discrepancy)
 from sss_locus.pipeline.chapters.common import key
-from sss_locus.report.derivation import show
-from sss_locus.report.tables import readable_table
+from sss_locus.report.derivation.figures import show
+from sss_locus.report.common.tables import readable_table
 
 
 class KEYS:

@@ -11,24 +11,24 @@ import numpy as np
 import pandas as pd
 
 from sss_locus import Aperture
-from sss_locus.experiments.envelopes import load_envelope, OffsetModel
-from sss_locus.experiments.noise import (load_noise_model, survey_noise_table, monte_carlo,
-                                         gaussian_norm_quantile, first_order)
-from sss_locus.experiments.planning import crossing_angle_grid, curve_summary, peak_angle, planning_bands
-from sss_locus.experiments.platforms import load_platform
-from sss_locus.experiments.replicates import median_with_interval
-from sss_locus.experiments.survey_passes import simulate_passes
-from sss_locus.experiments.three_view_patterns import PATTERNS
-from sss_locus.experiments.verdicts import advice_verdict
-from sss_locus.experiments.view_sets import views_from_survey, draw_pattern
-from sss_locus.pipeline.cache import cached
+from sss_locus.experiments.datamodel.envelopes import load_envelope, OffsetModel
+from sss_locus.experiments.noise.study import (load_noise_model, survey_noise_table, monte_carlo,
+                                               gaussian_norm_quantile, first_order)
+from sss_locus.experiments.survey_passes.planning import crossing_angle_grid, curve_summary, peak_angle, planning_bands
+from sss_locus.experiments.datamodel.platforms import load_platform
+from sss_locus.experiments.stats.replicates import median_with_interval
+from sss_locus.experiments.survey_passes.study import simulate_passes
+from sss_locus.experiments.three_views.patterns import PATTERNS
+from sss_locus.experiments.survey_passes.verdicts import advice_verdict
+from sss_locus.experiments.passes.view_sets import views_from_survey, draw_pattern
+from sss_locus.pipeline.run.cache import cached
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish
-from sss_locus.report.findings import noise_advice_findings
-from sss_locus.report.noise import (level_label, plot_noise_curves, curve_frames, advice_texts, scale_text,
-                                    plot_breakdown, plot_check)
-from sss_locus.report.tables import readable_table
-from sss_locus.report.text import fmt_interval, fmt_bands, fmt_sig
+from sss_locus.pipeline.publish.publish import publish
+from sss_locus.report.survey_passes.findings import noise_advice_findings
+from sss_locus.report.noise.figures import (level_label, plot_noise_curves, curve_frames, advice_texts, scale_text,
+                                            plot_breakdown, plot_check)
+from sss_locus.report.common.tables import readable_table
+from sss_locus.report.common.text import fmt_interval, fmt_bands, fmt_sig
 
 
 class KEYS:

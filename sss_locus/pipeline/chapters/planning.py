@@ -8,19 +8,19 @@ from IPython.display import Markdown
 from myst_nb import glue
 import pandas as pd
 
-from sss_locus.experiments.envelopes import load_envelope, OffsetModel
-from sss_locus.experiments.planning import crossing_angle_grid, crossing_angle_curve, planning_bands
-from sss_locus.experiments.platforms import load_platform
-from sss_locus.experiments.survey_passes import simulate_passes
-from sss_locus.experiments.verdicts import near_end_check
-from sss_locus.pipeline.cache import cached
+from sss_locus.experiments.datamodel.envelopes import load_envelope, OffsetModel
+from sss_locus.experiments.survey_passes.planning import crossing_angle_grid, crossing_angle_curve, planning_bands
+from sss_locus.experiments.datamodel.platforms import load_platform
+from sss_locus.experiments.survey_passes.study import simulate_passes
+from sss_locus.experiments.survey_passes.verdicts import near_end_check
+from sss_locus.pipeline.run.cache import cached
 from sss_locus.pipeline.chapters.common import show_table, use_data
-from sss_locus.pipeline.publish import publish
-from sss_locus.report.findings import near_end_findings
-from sss_locus.report.planning import (band_texts, plot_planning_bands, PAPER_AVOID_DEG, bands_table,
-                                       bands_markdown)
-from sss_locus.report.survey_passes import near_end_caption
-from sss_locus.report.tables import readable_table, key_caption
+from sss_locus.pipeline.publish.publish import publish
+from sss_locus.report.survey_passes.findings import near_end_findings
+from sss_locus.report.survey_passes.planning import (band_texts, plot_planning_bands, PAPER_AVOID_DEG, bands_table,
+                                                     bands_markdown)
+from sss_locus.report.survey_passes.figures import near_end_caption
+from sss_locus.report.common.tables import readable_table, key_caption
 
 __all__ = ["band_texts", "bands_markdown", "bands_table", "cached", "crossing_angle_curve",
            "crossing_angle_grid", "glue", "key_caption", "load_envelope", "load_platform", "Markdown",

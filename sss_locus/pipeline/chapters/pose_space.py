@@ -12,21 +12,21 @@ import numpy as np
 import pandas as pd
 
 from sss_locus import two_view_locus
-from sss_locus.experiments.choices import reading_effect, fan_share_removed, bin_window, hotspot_check
-from sss_locus.experiments.platforms import load_platform
-from sss_locus.experiments.pose_claims import map_intervals, claim_metrics, batch_medians, batches
-from sss_locus.experiments.pose_space import PoseSpaceSpec, sample_pose_space, sample_geometry
-from sss_locus.experiments.pose_stats import with_derived, spearman_table, heatmaps
-from sss_locus.pipeline.cache import cached
+from sss_locus.experiments.pose_space.choices import reading_effect, fan_share_removed, bin_window, hotspot_check
+from sss_locus.experiments.datamodel.platforms import load_platform
+from sss_locus.experiments.pose_space.claims import map_intervals, claim_metrics, batch_medians, batches
+from sss_locus.experiments.pose_space.study import PoseSpaceSpec, sample_pose_space, sample_geometry
+from sss_locus.experiments.pose_space.stats import with_derived, spearman_table, heatmaps
+from sss_locus.pipeline.run.cache import cached
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish, place
-from sss_locus.report.pose_findings import (findings_markdown, platform_title, drivers_finding,
-                                            panels_finding, choices_finding, reading_finding, fan_finding,
-                                            hotspot_finding, pose_summary)
-from sss_locus.report.pose_space import (scatter_subset, plot_sensitivity, plot_heatmaps,
-                                         seed_stability_table, check_row, reading_texts, fan_texts,
-                                         hotspot_texts, metric_texts)
-from sss_locus.report.text import plain_label, fmt_ci, fmt_span
+from sss_locus.pipeline.publish.publish import publish, place
+from sss_locus.report.pose_space.findings import (findings_markdown, platform_title, drivers_finding,
+                                                  panels_finding, choices_finding, reading_finding, fan_finding,
+                                                  hotspot_finding, pose_summary)
+from sss_locus.report.pose_space.figures import (scatter_subset, plot_sensitivity, plot_heatmaps,
+                                                 seed_stability_table, check_row, reading_texts, fan_texts,
+                                                 hotspot_texts, metric_texts)
+from sss_locus.report.common.text import plain_label, fmt_ci, fmt_span
 
 
 class KEYS:
@@ -35,8 +35,8 @@ class KEYS:
 
     fig_sensitivity = "fig-sensitivity-{platform}"  # figure label
     fig_heatmaps = "fig-heatmaps-{platform}"  # figure label
-    prefix = "ps-{platform}"  # prefix of the keys report.pose_space's *_texts functions return
-    text = "ps-{platform}-{text}"  # a text of report.pose_space.metric_texts (its name)
+    prefix = "ps-{platform}"  # prefix of the keys report.pose_space.figures's *_texts functions return
+    text = "ps-{platform}-{text}"  # a text of report.pose_space.figures.metric_texts (its name)
     unc_top_norm = "ps-unc-{platform}-top-norm"  # unconstrained sweep: top quantity for the normalised length
     unc_rho_mis = "ps-unc-{platform}-rho-mis"  # unconstrained sweep: rho of misalignment (norm.)
     unc_yaw0 = "ps-unc-{platform}-yaw0"  # unconstrained sweep: yaw 0 / peak with its interval

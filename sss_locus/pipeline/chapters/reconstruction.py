@@ -11,21 +11,21 @@ from myst_nb import glue
 import numpy as np
 import pandas as pd
 
-from sss_locus.experiments.envelopes import load_envelope
-from sss_locus.experiments.noise import load_noise_model, load_pass_noise
-from sss_locus.experiments.platforms import load_platform
-from sss_locus.experiments.reconstruction_joint import adjustment_estimators
-from sss_locus.experiments.reconstruction_surveys import (survey_cases, layout_with_spacing, survey_errors,
+from sss_locus.experiments.datamodel.envelopes import load_envelope
+from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+from sss_locus.experiments.datamodel.platforms import load_platform
+from sss_locus.experiments.reconstruction.joint import adjustment_estimators
+from sss_locus.experiments.reconstruction.surveys import (survey_cases, layout_with_spacing, survey_errors,
                                                           over_surveys, paired_over_surveys)
-from sss_locus.experiments.slope_error import slope_views
-from sss_locus.experiments.survey_plans import load_settings
-from sss_locus.experiments.terrain import load_terrain_config
+from sss_locus.experiments.reconstruction.slope_error import slope_views
+from sss_locus.experiments.survey_design.plans import load_settings
+from sss_locus.experiments.datamodel.terrain import load_terrain_config
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish
-from sss_locus.report.reconstruction import (spacing_label, plot_sweep, METRIC_LABELS, plot_slope,
-                                             plot_views, verdict_sentence, ESTIMATORS, comparison_word,
-                                             with_intervals, height_sentence)
-from sss_locus.report.text import fmt_ci, fmt_percent, fmt_sig
+from sss_locus.pipeline.publish.publish import publish
+from sss_locus.report.reconstruction.figures import (spacing_label, plot_sweep, METRIC_LABELS, plot_slope,
+                                                     plot_views, verdict_sentence, ESTIMATORS, comparison_word,
+                                                     with_intervals, height_sentence)
+from sss_locus.report.common.text import fmt_ci, fmt_percent, fmt_sig
 
 
 class KEYS:
@@ -36,7 +36,7 @@ class KEYS:
     coverage = "rc-{platform}-{estimator}-coverage{relief}"  # share of features estimated; relief as for error
     spacing = "rc-{platform}-spacing"  # the routine line spacing (m)
     slope = "rc-{platform}-slope-{method}-{error}"  # one view on the steepest slope: method closed or simulated, error 3d, across or vertical
-    comparison_word = "rc-{platform}-{estimator}-{metric}-word"  # estimator against the mosaic at the routine spacing (report.reconstruction.comparison_word)
+    comparison_word = "rc-{platform}-{estimator}-{metric}-word"  # estimator against the mosaic at the routine spacing (report.reconstruction.figures.comparison_word)
     terrain = "rc-{setting}"  # a terrain or survey setting: corr-len, area, cross-spacing
 
 

@@ -8,12 +8,12 @@ from IPython.display import Markdown
 from myst_nb import glue
 import pandas as pd
 
-from sss_locus.experiments.platforms import load_platforms, provenance_table
+from sss_locus.experiments.datamodel.platforms import load_platforms, provenance_table
 from sss_locus.pipeline.chapters.common import key, use_data
-from sss_locus.pipeline.publish import publish
-from sss_locus.report import rigs
-from sss_locus.report.rigs import coverage_text, plot_rigs, rig_outlines, data_sources
-from sss_locus.report.tables import readable_table
+from sss_locus.pipeline.publish.publish import publish
+from sss_locus.report.rigs import figures as rigs
+from sss_locus.report.rigs.figures import coverage_text, plot_rigs, rig_outlines, data_sources
+from sss_locus.report.common.tables import readable_table
 
 
 class KEYS:

@@ -11,26 +11,26 @@ from myst_nb import glue
 import numpy as np
 import pandas as pd
 
-from sss_locus.experiments.envelopes import load_envelope
-from sss_locus.experiments.noise import NoiseModel, load_noise_model
-from sss_locus.experiments.platforms import load_platform
-from sss_locus.experiments.three_view_patterns import (PATTERNS, three_view_table, heading_sweep,
-                                                       median_intervals)
-from sss_locus.experiments.view_sets import draw_pattern
+from sss_locus.experiments.datamodel.envelopes import load_envelope
+from sss_locus.experiments.noise.study import NoiseModel, load_noise_model
+from sss_locus.experiments.datamodel.platforms import load_platform
+from sss_locus.experiments.three_views.patterns import (PATTERNS, three_view_table, heading_sweep,
+                                                        median_intervals)
+from sss_locus.experiments.passes.view_sets import draw_pattern
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish
-from sss_locus.report.pass_findings import closure_finding, pattern_ranking, tilt_markdown, sweep_finding
-from sss_locus.report.pose_findings import findings_markdown, platform_title
-from sss_locus.report.text import fmt_interval
-from sss_locus.report.three_views import (plot_patterns, PATTERN_TAGS, share_text, plot_heading_sweep,
-                                          sweep_texts)
+from sss_locus.pipeline.publish.publish import publish
+from sss_locus.report.three_views.findings import closure_finding, pattern_ranking, tilt_markdown, sweep_finding
+from sss_locus.report.pose_space.findings import findings_markdown, platform_title
+from sss_locus.report.common.text import fmt_interval
+from sss_locus.report.three_views.figures import (plot_patterns, PATTERN_TAGS, share_text, plot_heading_sweep,
+                                                  sweep_texts)
 
 
 class KEYS:
     """The glue keys (and figure labels) this chapter fills by :func:`~sss_locus.pipeline.chapters.common.key`;
     ``{platform}`` takes a data key."""
 
-    resolved = "tv-{platform}-{pattern}-resolved"  # share resolved to one candidate (pattern: report.three_views.PATTERN_TAGS)
+    resolved = "tv-{platform}-{pattern}-resolved"  # share resolved to one candidate (pattern: report.three_views.figures.PATTERN_TAGS)
     ambiguous = "tv-{platform}-{pattern}-ambiguous"  # share left two-fold ambiguous
     amb_no_el = "tv-{platform}-{pattern}-amb-no-el"  # share ambiguous without the elevation test
     amb_no_az = "tv-{platform}-{pattern}-amb-no-az"  # share ambiguous without the azimuth test
@@ -38,7 +38,7 @@ class KEYS:
     generated = "tv-{finding}-generated"  # a generated finding (pass_findings)
     tilt_resolved = "tv-{platform}-tilt{tilt}-{pattern}-resolved"  # tilted transducers (tilt: deg, '.' written 'p')
     tilt_ambiguous = "tv-{platform}-tilt{tilt}-{pattern}-ambiguous"  # tilted transducers, ambiguous share
-    sweep = "tv-{platform}-{text}"  # a text of report.three_views.sweep_texts (its name)
+    sweep = "tv-{platform}-{text}"  # a text of report.three_views.figures.sweep_texts (its name)
 
 
 __all__ = ["key", "KEYS", "closure_finding", "draw_pattern", "findings_markdown", "fmt_interval", "glue", "heading_sweep",

@@ -9,23 +9,23 @@ import time
 from myst_nb import glue
 import numpy as np
 
-from sss_locus.experiments.envelopes import load_envelope, OffsetModel
-from sss_locus.experiments.platforms import load_platform
-from sss_locus.experiments.pose_space import sample_pose_space
-from sss_locus.experiments.survey_passes import simulate_passes
-from sss_locus.experiments.water import deepest_feature_m
-from sss_locus.experiments.water_study import default_conditions, crop_effects, pass2_above_surface_share
-from sss_locus.pipeline.cache import cached
+from sss_locus.experiments.datamodel.envelopes import load_envelope, OffsetModel
+from sss_locus.experiments.datamodel.platforms import load_platform
+from sss_locus.experiments.pose_space.study import sample_pose_space
+from sss_locus.experiments.survey_passes.study import simulate_passes
+from sss_locus.experiments.datamodel.water_column import deepest_feature_m
+from sss_locus.experiments.water.study import default_conditions, crop_effects, pass2_above_surface_share
+from sss_locus.pipeline.run.cache import cached
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
-from sss_locus.pipeline.publish import publish
-from sss_locus.report.water import crop_caption, effect_table, effect_texts, effects_caption, plot_crop_effects, seafloor_caption
+from sss_locus.pipeline.publish.publish import publish
+from sss_locus.report.water.figures import crop_caption, effect_table, effect_texts, effects_caption, plot_crop_effects, seafloor_caption
 
 
 class KEYS:
     """The glue keys (and figure labels) this chapter fills by :func:`~sss_locus.pipeline.chapters.common.key`;
     ``{platform}`` takes a data key."""
 
-    effect = "wa-{effect}"  # a sentence of report.water.effect_texts (its name)
+    effect = "wa-{effect}"  # a sentence of report.water.figures.effect_texts (its name)
     pass2_above = "wa-{condition}-pass2-above"  # share of survey pass pairs whose pass 2 flies above the surface (condition: WaterCondition.slug)
     deepest = "wa-{platform}-deepest-m"  # deepest feature the platform's geometry reaches (m)
 

@@ -9,23 +9,23 @@ from myst_nb import glue
 from pathlib import Path
 import pandas as pd
 
-from sss_locus.experiments.noise import load_pass_noise
-from sss_locus.experiments.observations import LocalFrame
-from sss_locus.experiments.observations_xtf import observation_files
-from sss_locus.experiments.platforms import load_platform
-from sss_locus.experiments.xtf_summary import summary as xtf_summary, waterfall_data
-from sss_locus.experiments.your_pings import run
-from sss_locus.experiments.your_pings_files import read_truth, against_truth, geojson_text
-from sss_locus.experiments.your_pings_joint import joint_estimate, with_joint
+from sss_locus.experiments.noise.study import load_pass_noise
+from sss_locus.experiments.sonar_files.observations import LocalFrame
+from sss_locus.experiments.sonar_files.observations_xtf import observation_files
+from sss_locus.experiments.datamodel.platforms import load_platform
+from sss_locus.experiments.sonar_files.xtf_summary import summary as xtf_summary, waterfall_data
+from sss_locus.experiments.your_pings.study import run
+from sss_locus.experiments.your_pings.files import read_truth, against_truth, geojson_text
+from sss_locus.experiments.your_pings.joint import joint_estimate, with_joint
 from sss_locus.paths import REPO_ROOT
 from sss_locus.pipeline.chapters.common import show_table, use_data
-from sss_locus.pipeline.publish import publish
-from sss_locus.report.concept import offline_html
-from sss_locus.report.waterfall import waterfall
-from sss_locus.report.your_pings import (summary_sentence, page_data_words, plan_view, map_caption,
-                                         feature_panels, view_3d)
-from sss_locus.report.your_pings_joint import passes_caption, joint_sentence, passes_shown
-from sss_locus.report.your_pings_real import (marks, read_hits, waterfall_caption, positions_table,
+from sss_locus.pipeline.publish.publish import publish
+from sss_locus.report.concept.figures import offline_html
+from sss_locus.report.your_pings.waterfall import waterfall
+from sss_locus.report.your_pings.figures import (summary_sentence, page_data_words, plan_view, map_caption,
+                                                 feature_panels, view_3d)
+from sss_locus.report.your_pings.joint import passes_caption, joint_sentence, passes_shown
+from sss_locus.report.your_pings.real import (marks, read_hits, waterfall_caption, positions_table,
                                               one_pass_text)
 
 __all__ = ["against_truth", "feature_panels", "geojson_text", "glue", "HTML", "joint_estimate",

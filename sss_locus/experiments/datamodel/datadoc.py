@@ -1,0 +1,220 @@
+"""Merging the shipped ``data/*.toml`` with a user's files and ``--set`` overrides (the
+low-level half of :mod:`sss_locus.experiments.datamodel.userdata`, which documents the rules; the loaders
+of platforms, envelopes, noise and terrain read :func:`document`)."""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+import re
+import tomllib
+from collections.abc import Iterable, Iterator, Mapping
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from sss_locus.paths import DATA_DIR
+from sss_locus.experiments.datamodel.inputs import read_toml, suggestion
+
+#: Platform, sonar, envelope and noise keys (``_`` becomes ``-`` in figure labels and glue keys).
+KEY_PATTERN = re.compile(r"[a-z][a-z0-9_]*")
+#: Shipped files, in merge order, and the top-level tables a user file may hold.
+SHIPPED_FILES: tuple[str, ...] = ("platforms.toml", "survey.toml", "noise.toml", "terrain.toml", "survey_design.toml")
+USER_TABLES: tuple[str, ...] = ("sonars", "platforms", "envelopes", "offset_models", "noise", "terrain", "survey",
+                                 "survey_design")
+#: Tables whose numbers sit one level down (``survey.area_m``), not two (``noise.auv.range_m``).
+FLAT_TABLES: tuple[str, ...] = ("survey", "survey_design")
+SET_NOTE = "user override: --set "
+
+
+@dataclass(frozen=True)
+class DataInputs:
+    """User data files (absolute paths) and ``KEY.PATH=VALUE`` overrides, in order."""
+
+    files: tuple[str, ...] = ()
+    sets: tuple[str, ...] = ()
+
+    @property
+    def is_default(self) -> bool:
+        return not self.files and not self.sets
+
+
+_ACTIVE = DataInputs()
+
+
+def label_key(key: str) -> str:
+    """A data key as it appears in figure labels and glue keys: ``my_auv`` -> ``my-auv``
+    (injective on keys matching :data:`KEY_PATTERN`, which never contain ``-``)."""
+    if not isinstance(key, str) or not KEY_PATTERN.fullmatch(key):
+        raise ValueError(f"key must match {KEY_PATTERN.pattern} (lower-case letter, then lower-case "
+                         f"letters, digits or '_'); got {key!r}")
+    return key.replace("_", "-")
+
+
+def _is_number_entry(value: Any) -> bool:
+    return isinstance(value, Mapping) and "value" in value
+
+
+def merge(base: Mapping[str, Any], over: Mapping[str, Any]) -> dict[str, Any]:
+    """``base`` with ``over`` merged in by key (tables recursively; numbers replaced whole)."""
+    out = copy.deepcopy(dict(base))
+    for key, value in over.items():
+        if isinstance(value, Mapping) and not _is_number_entry(value) and isinstance(out.get(key), Mapping) \
+                and not _is_number_entry(out.get(key)):
+            out[key] = merge(out[key], value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
+
+
+def check_user_document(doc: Mapping[str, Any], where: str) -> None:
+    """Only the known top-level tables, and keys of the form :data:`KEY_PATTERN`."""
+    unknown = set(doc) - set(USER_TABLES) - {"schema_version"}
+    if unknown:
+        first = sorted(unknown)[0]
+        raise ValueError(f"{where}: unknown top-level keys {sorted(unknown)}{suggestion(first, USER_TABLES)} "
+                         f"(allowed: {list(USER_TABLES)})")
+    for name in USER_TABLES:
+        tables = doc.get(name, {})
+        if not isinstance(tables, Mapping):
+            raise ValueError(f"{where}: {name} must be a table; got {type(tables).__name__}")
+        for key in tables:
+            if not KEY_PATTERN.fullmatch(key):
+                raise ValueError(f"{where}: {name}.{key}: keys must match {KEY_PATTERN.pattern} "
+                                 "(lower-case letter, then lower-case letters, digits or '_')")
+
+
+def parse_set(text: str, base: Mapping[str, Any]) -> dict[str, Any]:
+    """The override document of one ``KEY.PATH=VALUE`` (VALUE read as TOML, else a string)."""
+    if not isinstance(text, str) or "=" not in text:
+        raise ValueError(f"--set expects KEY.PATH=VALUE (e.g. platforms.auv.transducers.port.tilt_deg=15); "
+                         f"got {text!r}")
+    path, _, raw = (s.strip() for s in text.partition("="))
+    parts = path.split(".")
+    if len(parts) < (2 if parts[0] in FLAT_TABLES else 3) or parts[0] not in USER_TABLES or not all(parts):
+        raise ValueError(f"--set {text!r}: KEY.PATH must start with one of {list(USER_TABLES)}, then a key "
+                         "and a field (e.g. platforms.auv.transducers.port.tilt_deg, "
+                         "terrain.random.rms_relief_m; survey.area_m)"
+                         + suggestion(parts[0], USER_TABLES))
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw
+    target: Any = base
+    for part in parts:
+        target = target.get(part) if isinstance(target, Mapping) else None
+    if parts[-1] == "value":
+        raise ValueError(f"--set {text!r}: name the field, not its .value (drop the trailing '.value')")
+    if _is_number_entry(target) or (target is None and isinstance(value, (int, float))
+                                    and not isinstance(value, bool)):
+        value = {"value": value, "assumption": f"{SET_NOTE}{path}={raw}"}
+    doc: dict[str, Any] = {}
+    node = doc
+    for part in parts[:-1]:
+        node = node.setdefault(part, {})
+    node[parts[-1]] = value
+    return doc
+
+
+def shipped_document() -> dict[str, Any]:
+    doc: dict[str, Any] = {}
+    for name in SHIPPED_FILES:
+        doc = merge(doc, read_toml(DATA_DIR / name))
+    return doc
+
+
+def document(inputs: DataInputs | None = None) -> dict[str, Any]:
+    """The merged data document of ``inputs`` (default: the active inputs, :func:`use`)."""
+    inputs = _ACTIVE if inputs is None else inputs
+    doc = shipped_document()
+    for path in inputs.files:
+        user = read_toml(path)
+        check_user_document(user, str(path))
+        doc = merge(doc, user)
+    for text in inputs.sets:
+        doc = merge(doc, parse_set(text, doc))
+    return doc
+
+
+def make_inputs(files: Iterable[str | Path] = (), sets: Iterable[str] = ()) -> DataInputs:
+    """Absolute paths of ``files`` and the overrides, as :class:`DataInputs` (not validated)."""
+    files, sets = list(files or ()), list(sets or ())
+    for name, items, kind in (("data_files", files, (str, Path)), ("data_set", sets, str)):
+        for item in items:
+            if not isinstance(item, kind):
+                raise ValueError(f"{name} must be a list of strings; got {item!r}")
+    return DataInputs(tuple(str(Path(f).expanduser().resolve()) for f in files), tuple(sets))
+
+
+def activate(inputs: DataInputs) -> None:
+    """Make ``inputs`` the active inputs (validate them first: :func:`sss_locus.experiments.datamodel.userdata.use`)."""
+    global _ACTIVE
+    _ACTIVE = inputs
+
+
+def active() -> DataInputs:
+    return _ACTIVE
+
+
+def file_sha256(path: str | Path) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def files_read(inputs: DataInputs | None = None) -> list[dict[str, str]]:
+    """Every data file a load reads, shipped then the user's: ``{"path", "sha256", "role"}``."""
+    inputs = _ACTIVE if inputs is None else inputs
+    rows = [{"path": f"data/{name}", "sha256": file_sha256(DATA_DIR / name), "role": "shipped"}
+            for name in SHIPPED_FILES]
+    rows += [{"path": path, "sha256": file_sha256(path), "role": "user"} for path in inputs.files]
+    return rows
+
+
+#: The open recordings of data entries read (:func:`recording`), innermost last; none: not recorded.
+_RECORDINGS: list[set[str]] = []
+
+
+def note_read(*entries: str) -> None:
+    """Report that the data entries ``entries`` (dotted key paths such as ``platforms.auv`` or a
+    whole table ``platforms``) were read: kept in memory by the open :func:`recording`, if any.
+
+    Who records is the caller's business (the pipeline records a run's reads and hashes exactly
+    these entries of the run's merged data into its executed copy, so an edit to a user file makes
+    stale the runs that read the edited entries, and no others); this module writes nothing.
+    """
+    if _RECORDINGS:
+        _RECORDINGS[-1].update(entries)
+
+
+def reads_so_far() -> set[str] | None:
+    """The data entries read since the outermost open :func:`recording` began, ``None`` when
+    nothing records them."""
+    return set().union(*_RECORDINGS) if _RECORDINGS else None
+
+
+@contextmanager
+def recording() -> Iterator[set[str]]:
+    """Within the block, record the data entries read (:func:`note_read`) into the set it gives;
+    on leaving, an enclosing recording gets them too (a computation inside a run)."""
+    reads: set[str] = set()
+    depth = len(_RECORDINGS)
+    _RECORDINGS.append(reads)
+    try:
+        yield reads
+    finally:
+        del _RECORDINGS[depth:]
+        if _RECORDINGS:
+            _RECORDINGS[-1].update(reads)
+
+
+def entries_sha256(entries: Iterable[str], inputs: DataInputs | None = None) -> dict[str, str]:
+    """SHA-256 of each dotted entry of the merged document of ``inputs`` (``null`` if absent)."""
+    doc = document(inputs)
+    out = {}
+    for entry in sorted(set(entries)):
+        node: Any = doc
+        for part in entry.split("."):
+            node = node.get(part) if isinstance(node, Mapping) else None
+        out[entry] = hashlib.sha256(json.dumps(node, sort_keys=True, default=str).encode()).hexdigest()
+    return out

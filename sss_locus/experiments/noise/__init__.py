@@ -1,0 +1,2 @@
+"""The noise chapter: the noise model and how range and navigation errors spread the loci.
+"""

@@ -1,0 +1,499 @@
+"""The survey area of the survey-design chapter: a polygon in local metres, with an optional
+geographic origin.
+
+Frames
+------
+Local frame: ``x`` east, ``y`` north, metres (the frame of :mod:`sss_locus.experiments.datamodel.terrain`
+and :mod:`sss_locus.experiments.reconstruction.terrain_survey`). An area given in longitude/latitude (WGS 84,
+degrees) is projected to it with ``pyproj`` by an azimuthal equidistant projection centred on
+the area's ``origin`` (distances from the origin exact; a few-kilometre area is distorted by
+well under a millimetre per metre). An area given in metres may carry an origin too; without
+one, the formats that need longitude/latitude are refused (:meth:`SurveyArea.to_lonlat`).
+
+Files (:func:`load_area`)
+-------------------------
+TOML::
+
+    [area]
+    name = "Harbour approach"
+    vertices_m = [[0, 0], [800, 0], [800, 500], [0, 500]]    # or:
+    # vertices_lonlat = [[-111.80, 40.25], ...]              # WGS 84 degrees, lon first
+    origin_lonlat = [-111.80, 40.25]                         # optional with vertices_m
+    water_depth_m = 12.0                                     # mean water depth over the area, m
+    water_beyond_m = 50.0                                    # optional: navigable water past the edge, m
+    # optional: where the vehicle may go (a walled harbour's water; default: the area, grown by
+    # water_beyond_m when given, else open water) and how far it keeps off walls and holes, m:
+    # navigable_m = [[-20, -20], [820, -20], [820, 520], [-20, 520]]   # or navigable_lonlat
+    # wall_clearance_m = 5.0
+    # or, instead of water_depth_m, a bathymetry grid (a raster in any CRS; relative to this file):
+    # bathymetry = "harbour.tif"
+    # bathymetry_values = "depth"                            # "depth" (positive down) or "elevation"
+
+``water_depth_m`` (optional; also a GeoJSON feature's property) is the mean depth of the
+seafloor below the sea surface over the area, which sets the altitudes a vehicle can fly; a run
+may give it instead (:func:`with_water_depth`). An area without one is refused by the survey
+design (no hidden default). Instead of ``water_depth_m``, ``bathymetry`` names a raster
+file of the depths (a path relative to the area file; also a GeoJSON feature's property) with
+``bathymetry_values`` its sign convention (``"depth"``, positive down, or ``"elevation"``, positive
+up): read and checked by :mod:`sss_locus.experiments.survey_design.bathymetry` when the area is
+loaded; the area's ``water_depth_m`` is then the grid's mean over the area and its
+``water_depth_source`` names the file, its SHA-256 and the depths' range. **Navigable water** (:meth:`SurveyArea.water`): the area is where to survey; ``navigable_m``
+(a ring in the local frame) or ``navigable_lonlat`` (WGS 84 degrees, also a GeoJSON feature's
+property) is the water the vehicle may use, e.g. a walled harbour's basin (it must contain the
+area; the area's holes, a pier or an island, are land within it). Lines, run-ins, turns and
+transits keep ``wall_clearance_m`` off its edge and off every hole, and the mission's geofence
+never reaches past it (:mod:`sss_locus.experiments.survey_design.route`). Without a
+``wall_clearance_m`` in the file, :func:`load_area` takes ``survey_design.wall_clearance_m`` of
+the run's data (an assumption, stated there). ``water_beyond_m`` (optional) is how far past the area's outer edge
+the water is navigable: survey lines, run-ins and turns stay within it (0: the edge is a shore);
+without it the water around the area is open and lines run as far as their swath reaches.
+
+GeoJSON (RFC 7946: longitude/latitude, WGS 84): a ``Polygon``, or a ``Feature`` /
+``FeatureCollection`` whose first polygon is the area; its origin is the polygon's first vertex
+unless the feature's properties give ``origin_lonlat``. Holes (inner rings) are kept.
+
+``holes_m`` (rings in metres of the local frame) may go with either kind of vertices; with
+``vertices_lonlat`` they are in the frame around the origin; ``holes_lonlat`` (rings of WGS 84
+degrees) goes with ``vertices_lonlat``.
+
+Validation: every ring closed or not, at least three distinct vertices of numbers (not booleans
+or strings), a valid polygon (:func:`shapely.is_valid`: no self-intersection), an area of at
+least :data:`MIN_AREA_M2`, at most :data:`MAX_VERTICES` vertices in a file of at most
+:data:`MAX_FILE_BYTES`, every vertex within :data:`MAX_ORIGIN_DISTANCE_M` of the origin when
+there is one, GeoJSON members of their RFC 7946 types; each refused in one line naming the file
+and the rule.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from sss_locus.experiments.datamodel.inputs import missing_file, read_toml
+
+MIN_AREA_M2 = 100.0
+"""Smallest area accepted, m^2 (10 m x 10 m): smaller is taken for a unit mistake."""
+MAX_VERTICES = 100_000
+"""Most vertices (all rings) an area may have: a survey boundary needs far fewer; more (a
+coastline traced at centimetres) would make every coverage test slow."""
+MIN_CLEARANCE_M = 0.5
+"""Least clearance off the navigable water's edge, m, whatever ``wall_clearance_m`` says: a track
+on the fence itself would leave it by the mission files' coordinate rounding (1e-7 degrees)."""
+MAX_FILE_BYTES = 16_000_000
+"""Largest area file read, bytes (a file of :data:`MAX_VERTICES` vertices is about 4 MB)."""
+MAX_ORIGIN_DISTANCE_M = 100_000.0
+"""Farthest a vertex may lie from ``origin_lonlat``, metres: the azimuthal equidistant projection
+keeps distances from the origin exact and distorts others by about (d / 6371 km)^2 / 6, under
+4e-5 (4 cm per km) within 100 km; thousands of km away a 900 m line would come out 676 m."""
+
+
+@functools.lru_cache(maxsize=32)
+def _projection(origin_lonlat):
+    """Forward and inverse transformers of the area's local frame (cached: making one costs ~25 ms)."""
+    from pyproj import Transformer
+
+    lon, lat = origin_lonlat
+    local = f"+proj=aeqd +lat_0={lat} +lon_0={lon} +datum=WGS84 +units=m +no_defs"
+    fwd = Transformer.from_crs("EPSG:4326", local, always_xy=True)
+    inv = Transformer.from_crs(local, "EPSG:4326", always_xy=True)
+    return fwd, inv
+
+
+def _check_origin(origin, where: str):
+    if origin is None:
+        return None
+    o = np.asarray(origin, float) if _numeric(origin) else None
+    if o is None or o.shape != (2,) or not np.all(np.isfinite(o)) or abs(o[0]) > 180 or abs(o[1]) > 90:
+        raise ValueError(f"{where}: origin_lonlat must be [longitude, latitude] in degrees "
+                         f"(|lon| <= 180, |lat| <= 90); got {origin!r}")
+    return (float(o[0]), float(o[1]))
+
+
+def _numeric(value) -> bool:
+    """Whether ``value`` is a number or (nested) list of numbers: ``true`` and ``"380"`` are not."""
+    if isinstance(value, (bool, np.bool_, str, bytes)):
+        return False
+    if isinstance(value, (int, float, np.integer, np.floating)):
+        return True
+    if isinstance(value, (list, tuple, np.ndarray)):
+        if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
+            return True
+        return len(value) > 0 and all(_numeric(v) for v in value)
+    return False
+
+
+def _check_vertex_count(rings, where: str) -> None:
+    count = sum(len(r) if isinstance(r, (list, tuple, np.ndarray)) else 0 for r in rings)
+    if count > MAX_VERTICES:
+        raise ValueError(f"{where}: the area has {count:,} vertices, more than {MAX_VERTICES:,}; "
+                         "simplify its boundary (e.g. shapely's simplify or QGIS's Simplify)")
+
+
+@dataclass(frozen=True)
+class SurveyArea:
+    """A survey area (see the module docstring).
+
+    Attributes
+    ----------
+    polygon : shapely.Polygon
+        In the local frame, metres.
+    origin_lonlat : tuple of float or None
+        Longitude, latitude (degrees, WGS 84) of the local origin; ``None``: metres only.
+    name : str
+    source : str
+        Where it was read from (a file path, or ``"vertices"``).
+    sha256 : str
+        SHA-256 of the file it was read from (``""`` if none).
+    path : str
+        That file, found (:func:`load_area`; ``""`` if none).
+    water_depth_m : float or None
+        Mean water depth over the area, m (``None``: not given).
+    water_depth_source : str
+        Where the depth comes from (the area file, a run parameter).
+    water_beyond_m : float or None
+        Navigable water past the outer edge, m (``None``: open water).
+    navigable_wkt : str
+        The navigable water's outline (WKT, local metres), ``""``: see :meth:`water`.
+    wall_clearance_m : float or None
+        How far the vehicle keeps off the navigable water's edge and the holes, m (``None``: not
+        given; :func:`load_area` then takes the run's ``survey_design.wall_clearance_m``).
+    bathymetry : tuple
+        ``()``, or the bathymetry grid's ``(path found, file as published, SHA-256, values)``.
+    """
+
+    polygon: object
+    origin_lonlat: tuple[float, float] | None = None
+    name: str = "survey area"
+    source: str = "vertices"
+    sha256: str = ""
+    path: str = ""
+    water_depth_m: float | None = None
+    water_depth_source: str = ""
+    water_beyond_m: float | None = None
+    bathymetry: tuple = ()
+    navigable_wkt: str = ""
+    wall_clearance_m: float | None = None
+
+    @property
+    def clearance_m(self) -> float:
+        """The clearance the track keeps in navigable water, m: ``wall_clearance_m``, at least
+        :data:`MIN_CLEARANCE_M`."""
+        return max(self.wall_clearance_m or 0.0, MIN_CLEARANCE_M)
+
+    def water(self):
+        """The navigable water (a shapely Polygon, local metres, the area's holes cut out): the
+        ``navigable`` outline, else the area's outer ring grown by ``water_beyond_m``; ``None``
+        when neither is given (open water)."""
+        import shapely
+
+        if self.navigable_wkt:
+            outline = shapely.from_wkt(self.navigable_wkt)
+        elif self.water_beyond_m is not None:
+            outline = shapely.Polygon(self.polygon.exterior).buffer(self.water_beyond_m, quad_segs=4)
+        else:
+            return None
+        holes = [shapely.Polygon(r) for r in self.polygon.interiors]
+        return outline.difference(shapely.union_all(holes)) if holes else outline
+
+    @property
+    def area_m2(self) -> float:
+        return float(self.polygon.area)
+
+    def to_lonlat(self, x, y) -> tuple[np.ndarray, np.ndarray]:
+        """Local east/north metres to longitude/latitude degrees; refused without an origin."""
+        if self.origin_lonlat is None:
+            raise ValueError(f"area {self.name!r} has no origin: longitude/latitude outputs need "
+                             "origin_lonlat = [lon, lat] in the area file")
+        _, inv = _projection(tuple(self.origin_lonlat))
+        lon, lat = inv.transform(np.asarray(x, float), np.asarray(y, float))
+        return np.asarray(lon), np.asarray(lat)
+
+    def to_local(self, lon, lat) -> tuple[np.ndarray, np.ndarray]:
+        """Longitude/latitude degrees to local east/north metres; refused without an origin."""
+        if self.origin_lonlat is None:
+            raise ValueError(f"area {self.name!r} has no origin: longitude/latitude need origin_lonlat = [lon, lat]")
+        fwd, _ = _projection(tuple(self.origin_lonlat))
+        x, y = fwd.transform(np.asarray(lon, float), np.asarray(lat, float))
+        return np.asarray(x), np.asarray(y)
+
+    def key(self) -> dict:
+        """A JSON-able description (for caches and manifests)."""
+        return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
+                "source": self.source, "sha256": self.sha256, "water_depth_m": self.water_depth_m,
+                "water_depth_source": self.water_depth_source, "water_beyond_m": self.water_beyond_m,
+                "bathymetry": list(self.bathymetry), "navigable_wkt": self.navigable_wkt,
+                "wall_clearance_m": self.wall_clearance_m}
+
+
+def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str = "survey area",
+                       source: str = "vertices") -> SurveyArea:
+    """A :class:`SurveyArea` from local vertices (metres, ``(k, 2)``), validated."""
+    import shapely
+
+    where = source if source != "vertices" else "area"
+    if not isinstance(holes_m, (list, tuple)) or not all(isinstance(h, (list, tuple, np.ndarray)) for h in holes_m):
+        raise ValueError(f"{where}: holes_m must be a list of rings, each a list of [x, y] pairs; got {holes_m!r:.80}")
+    rings = [vertices_m, *holes_m]
+    _check_vertex_count(rings, where)
+    clean = []
+    for ring in rings:
+        v = np.asarray(ring, float) if _numeric(ring) else None
+        if v is None or v.ndim != 2 or v.shape[1] != 2 or not np.all(np.isfinite(v)):
+            raise ValueError(f"{where}: vertices must be a list of [x, y] pairs of finite numbers; got {ring!r:.80}")
+        if len(v) > 1 and np.array_equal(v[0], v[-1]):
+            v = v[:-1]
+        if len(np.unique(v, axis=0)) < 3:
+            raise ValueError(f"{where}: a polygon needs at least 3 distinct vertices; got {len(np.unique(v, axis=0))}")
+        clean.append(v)
+    poly = shapely.Polygon(clean[0], holes=clean[1:])
+    if not poly.is_valid:
+        raise ValueError(f"{where}: the polygon is not valid ({shapely.is_valid_reason(poly)}); "
+                         "vertices must go round the boundary once without crossing it")
+    if poly.area < MIN_AREA_M2:
+        raise ValueError(f"{where}: the polygon's area is {poly.area:.3g} m^2, below {MIN_AREA_M2:g} m^2 "
+                         "(are the vertices in metres?)")
+    origin = _check_origin(origin_lonlat, where)
+    reach = float(np.max(np.hypot(*np.vstack(clean).T)))
+    if origin is not None and reach > MAX_ORIGIN_DISTANCE_M * (1 + 1e-9):
+        raise ValueError(f"{where}: a vertex lies {reach / 1000:,.0f} km from the local origin (origin_lonlat "
+                         f"{list(origin)}); with an origin every vertex must be within {MAX_ORIGIN_DISTANCE_M / 1000:g} km "
+                         "of it (the local frame's distortion grows with the distance)")
+    return SurveyArea(poly, origin, str(name), source)
+
+
+def area_from_lonlat(vertices_lonlat, origin_lonlat=None, *, holes_lonlat=(), holes_m=(),
+                     name: str = "survey area", source: str = "vertices") -> SurveyArea:
+    """A :class:`SurveyArea` from longitude/latitude vertices (degrees); the origin defaults to
+    the first vertex. Holes may be given in longitude/latitude (``holes_lonlat``) or in metres
+    of the local frame around the origin (``holes_m``). Every vertex must lie within
+    :data:`MAX_ORIGIN_DISTANCE_M` of the origin."""
+    import pyproj
+
+    if not isinstance(holes_lonlat, (list, tuple)) or not all(isinstance(h, (list, tuple)) for h in holes_lonlat):
+        raise ValueError(f"{source}: holes must be a list of rings of [longitude, latitude] pairs; got {holes_lonlat!r:.80}")
+    _check_vertex_count([vertices_lonlat, *holes_lonlat, *(holes_m if isinstance(holes_m, (list, tuple)) else ())], source)
+    rings = []
+    for ring in (vertices_lonlat, *holes_lonlat):
+        v = np.asarray(ring, float) if _numeric(ring) else None
+        if v is None or v.ndim != 2 or v.shape[1] != 2 or not np.all(np.isfinite(v)) or np.any(np.abs(v) > [180, 90]):
+            raise ValueError(f"{source}: vertices_lonlat must be [longitude, latitude] pairs of finite numbers in "
+                             f"degrees (|lon| <= 180, |lat| <= 90); got {ring!r:.80}")
+        rings.append(v)
+    origin = _check_origin(rings[0][0] if origin_lonlat is None else origin_lonlat, source)
+    every = np.vstack(rings)
+    _, _, dist = pyproj.Geod(ellps="WGS84").inv(np.full(len(every), origin[0]), np.full(len(every), origin[1]),
+                                                 every[:, 0], every[:, 1])
+    far = int(np.argmax(dist))
+    if dist[far] > MAX_ORIGIN_DISTANCE_M:
+        raise ValueError(f"{source}: vertex {every[far].tolist()} lies {dist[far] / 1000:,.0f} km from origin_lonlat "
+                         f"{list(origin)}; every vertex must be within {MAX_ORIGIN_DISTANCE_M / 1000:g} km of it "
+                         "(the local frame's distortion grows with the distance); put the origin in the area")
+    fwd, _ = _projection(origin)
+    local = [np.stack(fwd.transform(r[:, 0], r[:, 1]), -1) for r in rings]
+    return area_from_vertices(local[0], origin_lonlat=origin, holes_m=[*local[1:], *holes_m], name=name,
+                              source=source)
+
+
+def _member(doc: dict, key: str, kind: type, source: str, where: str):
+    """``doc[key]`` if it is absent/None (returned as None) or of type ``kind``, else a one-line
+    refusal naming the member and the type found."""
+    value = doc.get(key)
+    if value is not None and not isinstance(value, kind):
+        raise ValueError(f"{source}: GeoJSON {where}{key!r} must be {_KIND_NAMES[kind]}; got "
+                         f"{type(value).__name__} {value!r:.60}")
+    return value
+
+
+_KIND_NAMES = {dict: "an object", list: "an array", str: "a string"}
+
+
+def _from_geojson(doc, source: str) -> SurveyArea:
+    geom, props = doc, {}
+    if doc.get("type") == "FeatureCollection":
+        features = _member(doc, "features", list, source, "") or []
+        for i, f in enumerate(features):
+            if not isinstance(f, dict):
+                raise ValueError(f"{source}: GeoJSON features[{i}] must be an object (a Feature); got "
+                                 f"{type(f).__name__} {f!r:.60}")
+            _member(f, "geometry", dict, source, f"features[{i}].")
+        polys = [f for f in features if (f.get("geometry") or {}).get("type") == "Polygon"]
+        if not polys:
+            raise ValueError(f"{source}: the FeatureCollection holds no Polygon feature")
+        doc = polys[0]
+    if doc.get("type") == "Feature":
+        geom = _member(doc, "geometry", dict, source, "Feature.") or {}
+        props = _member(doc, "properties", dict, source, "Feature.") or {}
+    if geom.get("type") != "Polygon" or not geom.get("coordinates"):
+        raise ValueError(f"{source}: expected a GeoJSON Polygon (or a Feature of one); got type {geom.get('type')!r}")
+    rings = geom["coordinates"]
+    if not isinstance(rings, list) or not all(isinstance(r, list) for r in rings):
+        raise ValueError(f"{source}: GeoJSON Polygon 'coordinates' must be an array of rings (arrays of "
+                         f"[longitude, latitude] positions); got {rings!r:.60}")
+    area = area_from_lonlat(rings[0], props.get("origin_lonlat"), holes_lonlat=rings[1:],
+                            name=str(props.get("name", Path(source).stem)), source=source)
+    return _depth_from(area, props, source)
+
+
+def _navigable_from(area: SurveyArea, doc, source: str) -> SurveyArea:
+    """``area`` with the navigable water and the wall clearance of ``doc`` (module docstring)."""
+    import shapely
+
+    if "wall_clearance_m" in doc:
+        v = doc["wall_clearance_m"]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (0 <= v <= 1000):
+            raise ValueError(f"{source}: wall_clearance_m must be a number of metres in [0, 1000]; got {v!r}")
+        area = replace(area, wall_clearance_m=float(v))
+    keys = [k for k in ("navigable_m", "navigable_lonlat") if k in doc]
+    if not keys:
+        return area
+    if len(keys) > 1 or "water_beyond_m" in doc:
+        raise ValueError(f"{source}: give one of navigable_m, navigable_lonlat or water_beyond_m")
+    ring = doc[keys[0]]
+    if keys[0] == "navigable_lonlat":
+        if area.origin_lonlat is None or not _numeric(ring) or np.asarray(ring, float).ndim != 2:
+            raise ValueError(f"{source}: navigable_lonlat must be [longitude, latitude] pairs of an area with an origin")
+        ring = np.column_stack(area.to_local(*np.asarray(ring, float).T))
+    water = area_from_vertices(ring, source=f"{source}: {keys[0]}").polygon
+    outside = area.polygon.difference(water.buffer(1e-6))
+    if not outside.is_empty:
+        far = max(shapely.Point(q).distance(water) for q in shapely.get_coordinates(outside))
+        raise ValueError(f"{source}: the navigable water must contain the area; {outside.area:.0f} m^2 of the area lie "
+                         f"outside it, up to {far:.1f} m")
+    return replace(area, navigable_wkt=water.wkt)
+
+
+def _depth_from(area: SurveyArea, doc, source: str) -> SurveyArea:
+    area = _navigable_from(area, doc, source)
+    if "bathymetry" in doc or "bathymetry_values" in doc:
+        grid, values = doc.get("bathymetry"), doc.get("bathymetry_values")
+        if not isinstance(grid, str) or not grid.strip() or "water_depth_m" in doc:
+            raise ValueError(f"{source}: a bathymetry grid needs bathymetry = \"FILE\" (a raster, path relative to "
+                             "the area file) with bathymetry_values = \"depth\" or \"elevation\", and no water_depth_m")
+        area = replace(area, bathymetry=(grid, grid, "", values))  # found and read by load_area
+    if "water_beyond_m" in doc:
+        v = doc["water_beyond_m"]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (0 <= v <= 1e5):
+            raise ValueError(f"{source}: water_beyond_m must be a number of metres in [0, 100000]; got {v!r}")
+        area = replace(area, water_beyond_m=float(v))
+    if "water_depth_m" not in doc:
+        return area
+    return with_water_depth(area, doc["water_depth_m"], f"{source}: water_depth_m")
+
+
+def with_water_depth(area: SurveyArea, depth_m, source: str) -> SurveyArea:
+    """``area`` with its mean water depth ``depth_m`` (m, in (0, 12000]) from ``source``; a bad
+    value is refused in one line naming ``source``."""
+    if area.bathymetry:
+        raise ValueError(f"{source}: the area {area.name!r} gives a bathymetry grid ({area.bathymetry[1]}), whose depths "
+                         "are used; drop this water depth")
+    if isinstance(depth_m, bool) or not isinstance(depth_m, (int, float)) or not (0 < depth_m <= 12000):
+        raise ValueError(f"{source} must be a number of metres in (0, 12000]; got {depth_m!r}")
+    return replace(area, water_depth_m=float(depth_m), water_depth_source=source)
+
+
+def load_area(path: str | Path) -> SurveyArea:
+    """Read a survey area from a TOML or GeoJSON file (see the module docstring). A relative path
+    is looked up from the working directory, then from the repository's root (so the
+    shipped ``data/examples/survey_area.toml`` is found from any run). The area records the
+    file's SHA-256 (``sha256``), where it was found (``path``) and, in ``source`` and
+    ``water_depth_source``, the file as published (:func:`sss_locus.paths.public_path`: its
+    repository path, else its name only)."""
+    import hashlib
+
+    from sss_locus.paths import REPO_ROOT, public_path
+
+    p = Path(path).expanduser()
+    if not p.is_absolute():
+        tries = [Path.cwd(), REPO_ROOT]  # a run's kernel gets it resolved (pipeline.run.userfiles)
+        p = next((d / p for d in tries if (d / p).is_file()), p)
+    if not p.is_file():
+        raise ValueError(missing_file(path if str(path).strip() else "", "area file"))
+    if p.stat().st_size > MAX_FILE_BYTES:
+        raise ValueError(f"area file {path} has {p.stat().st_size:,} bytes, more than {MAX_FILE_BYTES:,}; "
+                         f"an area needs at most {MAX_VERTICES:,} vertices: simplify its boundary")
+    area = _load_area(p, str(path))  # its errors name the file as given
+    shown = public_path(p.resolve())  # what captions, pages and manifests name: never a local absolute path
+    depth_source = f"{shown}: water_depth_m" if area.water_depth_source else ""
+    if area.water() is not None and area.wall_clearance_m is None:  # walls: the run's clearance
+        from sss_locus.experiments.datamodel import datadoc
+        from sss_locus.experiments.datamodel import models
+
+        datadoc.note_read("survey_design")  # the table survey_plans.load_settings validates too
+        settings = models.values(models.validate_document(datadoc.document(), ("survey_design",)).survey_design)
+        area = replace(area, wall_clearance_m=float(settings["wall_clearance_m"]))
+    if area.bathymetry:  # the grid beside the area file, read and checked now
+        from sss_locus.experiments.survey_design.bathymetry import load_bathymetry
+
+        grid = (p.parent / Path(area.bathymetry[0]).expanduser()).resolve()
+        grid_shown = public_path(grid)
+        b = load_bathymetry(grid, area.bathymetry[3], area, shown=grid_shown)
+        area = replace(area, bathymetry=(str(grid), grid_shown, b.sha256, b.values), water_depth_m=b.mean_m)
+        depth_source = b.describe()
+    return replace(area, source=shown, water_depth_source=depth_source,
+                   sha256=hashlib.sha256(p.read_bytes()).hexdigest(), path=str(p.resolve()))
+
+
+def _load_area(p: Path, source: str) -> SurveyArea:
+    if p.suffix.lower() in (".geojson", ".json"):
+        try:
+            doc = json.loads(p.read_text(encoding="utf-8-sig"))
+        except ValueError as exc:
+            raise ValueError(f"{source} is not valid JSON: {exc}") from None
+        except RecursionError:
+            raise ValueError(f"{source}: the JSON is nested too deeply to be a GeoJSON area (a Polygon "
+                             "nests three arrays)") from None
+        if not isinstance(doc, dict):
+            raise ValueError(f"{source}: a GeoJSON object is expected")
+        return _from_geojson(doc, source)
+    doc = read_toml(p)
+    area = doc.get("area")
+    if not isinstance(area, dict):
+        raise ValueError(f"{source}: missing table [area] (with vertices_m or vertices_lonlat)")
+    unknown = set(area) - {"name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "source",
+                           "assumption", "water_depth_m", "water_beyond_m",
+                           "bathymetry", "bathymetry_values", "navigable_m", "navigable_lonlat", "wall_clearance_m",
+                           "holes_lonlat"}
+    if unknown:
+        raise ValueError(f"{source}: unknown keys in [area]: {sorted(unknown)} (allowed: name, vertices_m, "
+                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m, water_beyond_m, "
+                         "bathymetry, bathymetry_values, navigable_m, navigable_lonlat, wall_clearance_m, holes_lonlat)")
+    if ("vertices_m" in area) == ("vertices_lonlat" in area):
+        raise ValueError(f"{source}: [area] needs exactly one of vertices_m or vertices_lonlat")
+    if "holes_lonlat" in area and "vertices_lonlat" not in area:
+        raise ValueError(f"{source}: holes_lonlat goes with vertices_lonlat (with vertices_m, give holes_m)")
+    name = str(area.get("name", p.stem))
+    if "vertices_m" in area:
+        out = area_from_vertices(area["vertices_m"], origin_lonlat=area.get("origin_lonlat"),
+                                 holes_m=area.get("holes_m", ()), name=name, source=source)
+    else:
+        out = area_from_lonlat(area["vertices_lonlat"], area.get("origin_lonlat"), holes_m=area.get("holes_m", []),
+                               holes_lonlat=area.get("holes_lonlat", []), name=name, source=source)
+    return _depth_from(out, area, source)
+
+
+def area_from_key(key: dict) -> SurveyArea:
+    """The area of :meth:`SurveyArea.key` (its polygon from the WKT), validated again."""
+    import shapely
+
+    poly = shapely.from_wkt(key["wkt"])
+    area = area_from_vertices(np.asarray(poly.exterior.coords), origin_lonlat=key.get("origin_lonlat"),
+                              holes_m=[np.asarray(r.coords) for r in poly.interiors],
+                              name=key.get("name", "survey area"), source=key.get("source", "vertices"))
+    return replace(area, sha256=key.get("sha256", ""), water_depth_m=key.get("water_depth_m"),
+                   water_depth_source=key.get("water_depth_source", ""), water_beyond_m=key.get("water_beyond_m"),
+                   bathymetry=tuple(key.get("bathymetry", ())), navigable_wkt=key.get("navigable_wkt", ""),
+                   wall_clearance_m=key.get("wall_clearance_m"))
+
+
+def principal_heading_deg(area: SurveyArea) -> float:
+    """Heading (degrees from east, counter-clockwise, in [0, 180)) of the long side of the area's
+    minimum rotated rectangle: the direction of the fewest, longest lines."""
+    rect = np.asarray(area.polygon.minimum_rotated_rectangle.exterior.coords)[:4]
+    sides = np.diff(np.vstack([rect, rect[:1]]), axis=0)
+    long = sides[np.argmax(np.hypot(sides[:, 0], sides[:, 1]))]
+    return float(math.degrees(math.atan2(long[1], long[0])) % 180.0)

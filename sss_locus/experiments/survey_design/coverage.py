@@ -1,0 +1,134 @@
+"""Which survey lines see which seafloor points: features for the objectives, a grid for coverage.
+
+Observation (:func:`observe_lines`): every (point, segment) pair is observed as in
+:func:`sss_locus.experiments.reconstruction.terrain_survey.observe_features` (the exact in-beam ping of
+:func:`~sss_locus.experiments.passes.straight_pass.observe_pass`, the side the point lies on, the
+vehicle at ``altitude_m`` above the seafloor below it, or, for a platform of fixed depth, above
+the mean seafloor ``z = 0``; the in-beam elevation uniform in the beam, seeded), with one more
+condition: the transducer at the ping must lie on the segment (its along-track position within
+``[0, length]`` of the segment's start). A segment therefore sees a point only when the vehicle
+actually passes abeam of it inside the area.
+
+Coverage (:func:`coverage`) is **measured** on a square grid of points inside the area (the
+cell centres of spacing ``grid_m``): the share of the area seen by at least one line, by two or
+more, and the share seen by none (holes, counted as connected groups of unseen cells, 4-connected).
+Each segment is observed against the cells within the sonar's maximum range of it only (no ping
+reaches farther; the in-beam elevations seeded per segment), so the cost grows with the area, not
+with the area times the number of lines.
+Where the lines' swaths overlap the nadir gap is filled; where they do not, it shows as holes.
+The nadir gap of a line is the band ``|offset| < near`` under the vehicle that neither side's
+fan reaches, ``near`` from :func:`~sss_locus.experiments.passes.straight_pass.swath_m` on a flat
+seafloor at the plan's altitude.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from sss_locus.experiments.passes.straight_pass import swath_m
+from sss_locus.experiments.survey_design.area import SurveyArea
+from sss_locus.experiments.datamodel.terrain import Terrain
+from sss_locus.experiments.reconstruction.terrain_survey import observe_features
+from sss_locus.experiments.passes.view_sets import Views
+
+
+class _Segments:
+    """The segments of a line table as :func:`observe_features` reads a layout (``lines()``)."""
+
+    def __init__(self, lines: pd.DataFrame):
+        self.heading = lines["heading_deg"].to_numpy(float)
+        self.start = lines[["x0_m", "y0_m"]].to_numpy(float)
+        self.length = lines["length_m"].to_numpy(float)
+        self.start_offset_m = 0.0  # lines() gives each segment's start itself
+
+    def lines(self):
+        return self.heading, self.start
+
+
+def observe_lines(platform, terrain: Terrain, xy, lines: pd.DataFrame, altitude_m: float,
+                  pitch_deg: float, same_altitude: bool, seed: int, centre=(0.0, 0.0)) -> tuple[Views, np.ndarray, dict]:
+    """Every segment of ``lines`` (:func:`~sss_locus.experiments.survey_design.lines.line_set` rows)
+    against every seafloor point below ``xy`` (``(n, 2)``, area frame, m); see the module docstring.
+
+    ``centre`` (area frame, m) is where the terrain's origin lies: the terrain, the views and the
+    returned features are in the frame centred there (area frame minus ``centre``).
+
+    Returns the :class:`~sss_locus.experiments.passes.view_sets.Views` (``(n, L)``), ``seen`` (n, L) and
+    the info of :func:`observe_features` with ``on_segment`` (n, L) added.
+    """
+    c = np.asarray(centre, float)
+    xy = np.asarray(xy, float) - c
+    seg = _Segments(lines)
+    seg.start = seg.start - c
+    points = terrain.point_on_seafloor(xy[:, 0], xy[:, 1])
+    views, seen, info = observe_features(platform, terrain, points, seg, altitude_m, same_altitude,
+                                         seed, pitch_deg=pitch_deg)
+    h = np.radians(seg.heading)
+    e = np.stack([np.cos(h), np.sin(h)], -1)
+    along = np.einsum("nlj,lj->nl", views.origin[..., :2] - seg.start[None], e)
+    on = (along >= 0.0) & (along <= seg.length[None])
+    info["on_segment"] = on
+    return views, seen & on, info
+
+
+def grid_points(area: SurveyArea, grid_m: float) -> tuple[np.ndarray, np.ndarray, tuple[int, int]]:
+    """Cell centres of a square grid of spacing ``grid_m`` over the area's bounding box: the
+    centres ``(m, 2)`` inside the polygon, their flat indices in the box grid, and its shape."""
+    import shapely
+
+    if not (isinstance(grid_m, (int, float)) and math.isfinite(grid_m) and grid_m > 0):
+        raise ValueError(f"grid_m must be a finite number > 0; got {grid_m!r}")
+    x0, y0, x1, y1 = area.polygon.bounds
+    nx, ny = max(1, int(math.ceil((x1 - x0) / grid_m))), max(1, int(math.ceil((y1 - y0) / grid_m)))
+    if nx * ny > 4_000_000:
+        raise ValueError(f"grid_m = {grid_m:g} m gives {nx * ny} cells over the area; use a coarser grid")
+    xs, ys = x0 + (np.arange(nx) + 0.5) * grid_m, y0 + (np.arange(ny) + 0.5) * grid_m
+    X, Y = np.meshgrid(xs, ys)
+    inside = shapely.contains_xy(area.polygon, X.ravel(), Y.ravel())
+    return np.stack([X.ravel()[inside], Y.ravel()[inside]], -1), np.flatnonzero(inside), (ny, nx)
+
+
+def nadir_gap_m(platform, altitude_m: float) -> float:
+    """Half-width of the nadir gap, m: the smaller near edge of the two sides' swaths on a flat
+    seafloor (0 when a fan reaches past nadir)."""
+    near = [float(swath_m(platform, [port], [altitude_m])[0][0]) for port in (True, False)]
+    return max(0.0, min(near))
+
+
+def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, altitude_m: float,
+             pitch_deg: float, same_altitude: bool, *, grid_m: float, seed: int = 0,
+             centre=(0.0, 0.0)) -> dict:
+    """Measured coverage of ``lines`` over ``area`` (module docstring).
+
+    Returns
+    -------
+    dict
+        ``once``, ``twice`` (shares of the area seen by >= 1, >= 2 lines), ``holes`` (share seen
+        by none), ``n_holes`` (connected unseen groups), ``nadir_gap_m`` (half-width), ``grid_m``,
+        ``grid``: a DataFrame ``x_m, y_m, n_lines`` of the grid cells inside the area.
+    """
+    from scipy import ndimage
+
+    xy, flat, shape = grid_points(area, grid_m)
+    count = np.zeros(len(xy), np.int64)
+    reach = float(platform.sonar.max_range_m)  # no ping reaches farther from the vehicle
+    for j, (h, x0, y0, length) in enumerate(lines[["heading_deg", "x0_m", "y0_m", "length_m"]].to_numpy(float)):
+        e = np.array([math.cos(math.radians(h)), math.sin(math.radians(h))])
+        d = xy - [x0, y0]
+        along, across = d @ e, d @ np.array([-e[1], e[0]])
+        near = np.flatnonzero((along >= -reach) & (along <= length + reach) & (np.abs(across) <= reach))
+        if near.size:
+            sd = int(np.random.SeedSequence([seed, j]).generate_state(1)[0])
+            _, seen, _ = observe_lines(platform, terrain, xy[near], lines.iloc[[j]], altitude_m, pitch_deg,
+                                       same_altitude, sd, centre)
+            count[near] += seen[:, 0]
+    unseen = np.zeros(shape[0] * shape[1], bool)
+    unseen[flat[count == 0]] = True
+    _, n_holes = ndimage.label(unseen.reshape(shape))
+    return {"once": float(np.mean(count >= 1)), "twice": float(np.mean(count >= 2)),
+            "holes": float(np.mean(count == 0)), "n_holes": int(n_holes),
+            "nadir_gap_m": nadir_gap_m(platform, altitude_m), "grid_m": float(grid_m),
+            "grid": pd.DataFrame({"x_m": xy[:, 0], "y_m": xy[:, 1], "n_lines": count})}

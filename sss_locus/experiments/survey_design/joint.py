@@ -1,0 +1,98 @@
+"""A survey plan flown with navigation error and adjusted jointly: the errors of the joint
+estimate of features and navigation for one plan on one seed.
+
+The plan's segments are flown as **passes** (a line cut by a hole or the area's edge is two
+passes: the vehicle leaves it and comes back, so its navigation error is drawn anew). The
+features of the setting (:func:`~sss_locus.experiments.survey_design.front.make_setting`: uniform over
+the area, on its seafloor model) are observed by every segment that sees them, with the same
+visibility as the coverage (:func:`~sss_locus.experiments.survey_design.coverage.observe_lines`: the
+exact in-beam ping, both apertures, the range, the transducer abeam the feature on the segment).
+Every view is perturbed by the platform's noise model under the **per-pass** navigation model
+of ``data/noise.toml`` (:mod:`~sss_locus.experiments.passes.pass_noise`: one offset, heading bias and
+drift per pass, shared by its pings, the drift growing from the segment's start; a per-ping
+jitter; the sonar's range and the attitude errors per ping), and the reconstruction chapter's
+joint adjustment (:func:`~sss_locus.experiments.reconstruction.joint.adjustment_estimators`,
+``"joint"``: every feature seen on two or more passes and every pass's correction together,
+with the navigation priors of the same model) estimates the features. Data association is known
+(every view is attributed to its feature), so the solve uses the quadratic loss without a gate
+(``known_association``). This is the
+reconstruction chapter's machinery (:func:`~sss_locus.experiments.reconstruction.estimators.reconstruct`)
+run on the plan's lines instead of the chapter's layout: no second simulator.
+
+Errors (:data:`JOINT_METRICS`, each the median over the features the joint estimate estimated,
+as in :func:`~sss_locus.experiments.reconstruction.surveys.survey_errors`):
+
+``horizontal``
+    the horizontal distance to the truth (absolute position: what a target's coordinates are
+    off by; the common shift of the whole survey is held by the navigation priors only);
+``vertical``
+    the absolute vertical error;
+``shape``
+    the *map-shape* error, the 3-D distance after removing the median error vector of the
+    plan's estimated features (:func:`~sss_locus.experiments.adjustment.map_errors`): what the
+    geometry of the lines determines, the absolute shift removed.
+
+Seeds: ``seed`` draws the features and seafloor (through the setting), the in-beam elevations
+(``10 seed + 2``) and the noise (``10 seed + 3``), so different seeds are independent surveys
+and every plan of one seed meets the same features (common random numbers).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from sss_locus.experiments.adjustment import map_errors
+from sss_locus.experiments.reconstruction.estimators import reconstruct
+from sss_locus.experiments.reconstruction.joint import adjustment_estimators
+from sss_locus.experiments.survey_design.coverage import observe_lines
+
+JOINT_METRICS = ("horizontal", "vertical", "shape")
+"""The errors of :func:`plan_joint_errors` (module docstring); columns ``<name>_median_m``."""
+
+
+def plan_joint_errors(setting, plan, noise, pass_noise, *, seed: int) -> dict:
+    """The joint estimate's errors of one plan on one seed (module docstring).
+
+    Parameters
+    ----------
+    setting : sss_locus.experiments.survey_design.front.Setting
+        Platform, area, seafloor and the features (drawn with ``setting.seed``).
+    plan : sss_locus.experiments.survey_design.plans.Plan
+        The plan; its segments over ``setting.area`` are the passes.
+    noise : sss_locus.experiments.noise.study.NoiseModel
+        The platform's per-ping noise (range, vertical, roll, pitch).
+    pass_noise : sss_locus.experiments.passes.pass_noise.PassNoise
+        The platform's per-pass navigation errors (offset, heading bias, drift, jitter).
+    seed : int
+        Seed of the in-beam elevations and the noise (module docstring), >= 0.
+
+    Returns
+    -------
+    dict
+        ``n_passes`` (segments), ``n_seen_twice`` (features seen on two or more passes),
+        ``n_joint`` (features the joint estimate estimated: the solver converged and the feature
+        was seen on two or more passes), and ``<metric>_median_m`` for each of
+        :data:`JOINT_METRICS` (m; NaN when ``n_joint`` is 0).
+    """
+    p = setting.platform
+    lines = plan.lines(setting.area)
+    if lines.empty:
+        raise ValueError(f"plan {plan} leaves no line inside the area")
+    views, seen, info = observe_lines(p, setting.terrain, setting.xy, lines, plan.altitude_m, plan.pitch_deg,
+                                      p.fixed_depth, 10 * int(seed) + 2, setting.centre)
+    table = reconstruct(views, seen, info["sensor_height_m"], noise, p.sonar.aperture(), n_views=(3,),
+                        seed=10 * int(seed) + 3, navigation="per_pass", pass_noise=pass_noise,
+                        along_m=info["along_m"], extra=adjustment_estimators(p.sonar.elevation_deg, ("joint",), known_association=True))
+    joint = table[table.estimator == "joint"]
+    ok = joint.estimated.to_numpy(bool)
+    out = {"n_passes": int(seen.shape[1]), "n_seen_twice": int((seen.sum(axis=1) >= 2).sum()),
+           "n_joint": int(ok.sum())}
+    if not ok.any():
+        return {**out, **{f"{m}_median_m": math.nan for m in JOINT_METRICS}}
+    d = joint[["error_x_m", "error_y_m", "error_v_m"]].to_numpy(float)[ok]
+    e = map_errors(d, np.zeros_like(d))
+    return {**out, "horizontal_median_m": float(np.median(e["horizontal_m"])),
+            "vertical_median_m": float(np.median(np.abs(e["vertical_m"]))),
+            "shape_median_m": float(np.median(e["shape_m"]))}

@@ -1,0 +1,2 @@
+"""The three-view chapter: three passes over one feature, patterns and heading sweeps.
+"""

@@ -1,0 +1,2 @@
+"""The water chapter: the crop to the water column, compared in pairs.
+"""

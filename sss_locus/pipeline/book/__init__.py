@@ -1,0 +1,2 @@
+"""Building the book: staging, indexes, the claims page, build areas, the PDF.
+"""

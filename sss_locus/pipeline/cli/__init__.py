@@ -1,0 +1,2 @@
+"""The ``sss-locus`` command line: ``run``, ``book``, ``answer``, ``xtf``.
+"""

@@ -1,0 +1,3 @@
+"""Publishing: citable figures and tables, provenance, citation metadata, readability, mission
+files.
+"""

@@ -1,0 +1,169 @@
+"""Prose formatting of computed numbers, for glued text and tables (never computation).
+
+Every number the book states in prose goes through one of these functions, so the same kind of
+number reads the same way on every page: significant figures (:func:`fmt_sig`), a median with its
+interval (:func:`fmt_interval`), fractions as percentages (:func:`fmt_percent`), ratios as
+changes (:func:`fmt_change`), crossing-angle bands (:func:`fmt_bands`) and quantity names
+(:func:`plain_label`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import pandas as pd
+
+from sss_locus.experiments.pose_space.stats import round_sig
+from sss_locus.report.common.style import QUANTITY_LABELS
+
+
+def fmt_sig(x: float, digits: int = 2) -> str:
+    """``x`` to ``digits`` significant figures, e.g. ``fmt_sig(0.012345) == "0.012"``.
+
+    Non-finite values read ``"n/a"``.
+
+    >>> fmt_sig(123.4), fmt_sig(2.0), fmt_sig(float("nan"))
+    ('120', '2.0', 'n/a')
+    """
+    if not math.isfinite(x):
+        return "n/a"
+    decimals = max(0, digits - 1 - int(math.floor(math.log10(abs(x))))) if x else 0
+    return f"{float(round_sig(x, digits)):.{decimals}f}"
+
+
+def interval_digits(low: float, high: float, digits: int = 2, most: int = 4) -> int:
+    """The significant figures to print an interval with: ``digits``, or more (up to ``most``)
+    while its two ends would print the same, so a printed interval always shows its width.
+
+    >>> interval_digits(2.9, 3.41), interval_digits(2.10, 2.14), interval_digits(0.1799, 0.1801, most=4)
+    (2, 3, 4)
+    """
+    d = digits
+    while d < most and math.isfinite(low) and math.isfinite(high) and fmt_sig(low, d) == fmt_sig(high, d):
+        d += 1
+    return d
+
+
+def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> str:
+    """A median and its 95 % interval: ``"3.1 m (95 % CI 2.9–3.4 m)"``, with more significant
+    figures where ``digits`` would print both ends alike (:func:`interval_digits`).
+
+    ``estimate`` holds ``median``, ``ci_low`` and ``ci_high``; a degree sign is written without a
+    space (``"20° (95 % CI 18°–22°)"``).
+
+    >>> fmt_interval({"median": 3.14, "ci_low": 2.9, "ci_high": 3.41}, "m")
+    '3.1 m (95 % CI 2.9–3.4 m)'
+    >>> fmt_interval({"median": 0.1812, "ci_low": 0.1794, "ci_high": 0.1833}, "m")
+    '0.181 m (95 % CI 0.179–0.183 m)'
+    """
+    sep = "" if unit == "°" else " "
+    digits = interval_digits(estimate["ci_low"], estimate["ci_high"], digits)
+    lo, hi = fmt_sig(estimate["ci_low"], digits), fmt_sig(estimate["ci_high"], digits)
+    return f"{fmt_sig(estimate['median'], digits)}{sep}{unit} (95 % CI {lo}–{hi}{sep}{unit})"
+
+
+def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool = False) -> str:
+    """A ratio or share with its 95 % interval, each to ``digits`` significant figures, or more
+    where the ends would print alike (:func:`interval_digits`); with ``percent`` the numbers are
+    percentages (a share of 0 with an interval of 0 reads ``"0 %"``).
+
+    >>> fmt_ci(4.1514, 4.110, 4.1927), fmt_ci(2.1245, 2.1012, 2.1439), fmt_ci(0.0088, 0.00853, 0.00908, percent=True)
+    ('4.2 (95 % CI 4.1–4.2)', '2.12 (95 % CI 2.10–2.14)', '0.88 % (95 % CI 0.85–0.91 %)')
+    >>> fmt_ci(0.0, 0.0, 0.0, percent=True)
+    '0 %'
+    """
+    scale, unit = (100.0, " %") if percent else (1.0, "")
+    if percent and value == low == high == 0:
+        return "0 %"
+    digits = interval_digits(scale * low, scale * high, digits)
+    v, lo, hi = (fmt_sig(scale * x, digits) for x in (value, low, high))
+    return f"{v}{unit} (95 % CI {lo}–{hi}{unit})"
+
+
+def fmt_ci_cells(values, lows, highs, digits: int = 2, missing: str = "—") -> list[str]:
+    """:func:`fmt_ci` of each value with its interval, for a table column; ``missing`` where any
+    of the three is not finite.
+
+    Parameters
+    ----------
+    values, lows, highs : array_like of float, shape (n,)
+        The estimates and the ends of their 95 % intervals.
+    digits : int
+        Significant figures (:func:`fmt_ci`).
+    missing : str
+        The cell of a row without a finite estimate or interval.
+
+    Returns
+    -------
+    list of str, length n
+
+    >>> fmt_ci_cells([3.9, float("nan")], [3.6, 1.0], [4.2, 2.0])
+    ['3.9 (95 % CI 3.6–4.2)', '—']
+    """
+    return [fmt_ci(v, lo, hi, digits) if all(map(math.isfinite, (v, lo, hi))) else missing
+            for v, lo, hi in zip(*(map(float, a) for a in (values, lows, highs)))]
+
+
+def fmt_span(low: float, high: float) -> str:
+    """A span of bin centres in whole degrees, one angle if it is one bin.
+
+    >>> fmt_span(-85.0, -75.0), fmt_span(78.75, 78.75)
+    ('-85° to -75°', '79°')
+    """
+    def deg(x: float) -> str:
+        return f"{x:.0f}°"
+
+    return deg(low) if round(low) == round(high) else f"{deg(low)} to {deg(high)}"
+
+
+def fmt_percent(fraction: float) -> str:
+    """A fraction as a percentage with enough digits to tell it from 0 % and 100 %.
+
+    >>> fmt_percent(0.5), fmt_percent(0.0004), fmt_percent(0.9996), fmt_percent(1.0)
+    ('50.0 %', '0.04 %', '99.96 %', '100.0 %')
+    """
+    x = float(fraction)
+    if x in (0.0, 1.0) or 0.001 <= x <= 0.999:
+        return f"{100 * x:.1f} %"
+    return f"{100 * x:.2f} %" if x > 0.999 else f"{100 * x:.2g} %"
+
+
+def fmt_change(ratio: float, ci_low: float, ci_high: float) -> str:
+    """A ratio of medians as a signed change in whole percent with its interval.
+
+    >>> fmt_change(0.52, 0.47, 0.58)
+    '-48 % (95 % CI -53 % to -42 %)'
+    """
+    def one(x: float) -> str:
+        v = int(round(100 * (x - 1)))
+        return f"{v:+d} %" if v else "0 %"
+
+    return f"{one(ratio)} (95 % CI {one(ci_low)} to {one(ci_high)})"
+
+
+def fmt_bands(bands: pd.DataFrame, kind: str) -> str:
+    """The ``kind`` ("prefer" or "avoid") bands of
+    :func:`~sss_locus.experiments.survey_passes.planning.planning_bands` as text, ``"none"`` if there are none.
+
+    >>> b = pd.DataFrame({"kind": ["prefer", "prefer", "avoid"], "lo_deg": [0.0, 170.0, 60.0],
+    ...                   "hi_deg": [0.0, 180.0, 110.0]})
+    >>> fmt_bands(b, "prefer"), fmt_bands(b, "avoid")
+    ('0°, 170–180°', '60–110°')
+    """
+    rows = bands[bands["kind"] == kind]
+    parts = [f"{r.lo_deg:.0f}°" if r.lo_deg == r.hi_deg else f"{r.lo_deg:.0f}–{r.hi_deg:.0f}°"
+             for r in rows.itertuples()]
+    return ", ".join(parts) if parts else "none"
+
+
+def plain_label(quantity: str) -> str:
+    """A quantity's display name as plain text (no LaTeX), e.g. ``"|ψ₂|"``.
+
+    >>> plain_label("abs_psi2_deg"), plain_label("unknown_q")
+    ('|ψ₂|', 'unknown_q')
+    """
+    text = QUANTITY_LABELS.get(quantity, quantity).replace("$", "")
+    for tex, uni in (("\\psi", "ψ"), ("\\phi", "φ"), ("\\theta", "θ"), ("_1", "₁"), ("_2", "₂")):
+        text = text.replace(tex, uni)
+    return text

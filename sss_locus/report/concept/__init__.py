@@ -1,0 +1,2 @@
+"""The concept chapter's figures.
+"""

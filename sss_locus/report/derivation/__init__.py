@@ -1,0 +1,2 @@
+"""The derivation chapter's display of the algebra.
+"""

@@ -1,0 +1,2 @@
+"""The noise chapter's figures.
+"""

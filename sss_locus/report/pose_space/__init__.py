@@ -1,0 +1,2 @@
+"""The pose-space chapter's figures and findings.
+"""

@@ -1,0 +1,199 @@
+"""Findings of the pose-space chapter generated from a run's own numbers, for any platform.
+
+The chapter's comparison passages are written for the paper's platforms (cells tagged
+``paper-inputs``, :mod:`sss_locus.pipeline.book.paperinputs`). For any other platform, the functions
+here turn the same computed tables into sentences: one paragraph per platform, which the notebook
+glues (as Markdown, :func:`findings_markdown`) into cells tagged ``generated-findings``. Every
+number in them comes from the arguments; nothing is typed for a particular platform.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import pandas as pd
+
+from sss_locus.report.common.text import fmt_ci, fmt_sig, fmt_span, plain_label
+
+RAW, NORM = "locus_length_m", "locus_length_normalized"
+"""The two targets of :func:`~sss_locus.experiments.pose_space.stats.spearman_table`."""
+
+
+def platform_title(name: str, key: str) -> str:
+    """How a generated paragraph names its platform: ``"Example AUV (`my_auv`)"``."""
+    return f"{name} (`{key}`)"
+
+
+def findings_markdown(paragraphs: Mapping[str, str]) -> str:
+    """Paragraphs keyed by platform title as one Markdown list, one item per platform.
+
+    >>> findings_markdown({"A (`a`)": "It is long.", "B (`b`)": "It is short."})
+    '- **A (`a`)**: It is long.\\n- **B (`b`)**: It is short.\\n'
+    """
+    if not paragraphs:
+        raise ValueError("findings_markdown needs at least one paragraph")
+    return "".join(f"- **{title}**: {text}\n" for title, text in paragraphs.items())
+
+
+def fmt_rho(rho: float) -> str:
+    """A rank correlation to two decimals, without a negative zero.
+
+    >>> fmt_rho(0.456), fmt_rho(-0.001), fmt_rho(-0.3)
+    ('0.46', '0.00', '-0.30')
+    """
+    text = f"{rho:.2f}"
+    return "0.00" if text == "-0.00" else text
+
+
+def _direction(rho: float) -> str:
+    return "longer loci where it is larger" if rho > 0 else "shorter loci where it is larger"
+
+
+def ranked(rho: pd.DataFrame, target: str, top: int) -> list[tuple[str, float]]:
+    """The ``top`` quantities with the largest ``|rho|`` for ``target``, largest first."""
+    tab = rho[rho["target"] == target].copy()
+    tab = tab.assign(size=tab["rho"].abs()).sort_values("size", ascending=False, kind="stable")
+    return [(q, float(r)) for q, r in zip(tab["quantity"].head(top), tab["rho"].head(top))]
+
+
+def _listing(pairs: list[tuple[str, float]]) -> str:
+    parts = [f"{plain_label(q)} (ρ = {fmt_rho(r)})" for q, r in pairs]
+    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
+
+
+def drivers_finding(rho: pd.DataFrame, top: int = 3) -> str:
+    """What drives locus length for one platform, from its Spearman table.
+
+    ``rho``: :func:`~sss_locus.experiments.pose_space.stats.spearman_table` (columns ``target``,
+    ``quantity``, ``rho``, ``ci_low``, ``ci_high``). Names the ``top`` quantities by ``|rho|``
+    for the raw and the range-normalised length, the direction of the first, whether its
+    interval is clear of the second's, and the weakest quantity.
+    """
+    if top < 1:
+        raise ValueError(f"top must be >= 1; got {top}")
+    out = []
+    for target, what in ((RAW, "The raw locus length"), (NORM, "Divided by the mean of the two ranges, the length")):
+        pairs = ranked(rho, target, top)
+        if not pairs:
+            raise ValueError(f"rho has no rows for target {target!r}")
+        tab = rho[rho["target"] == target].set_index("quantity")
+        first, r1 = pairs[0]
+        text = f"{what} is ranked first by {plain_label(first)} (ρ = {fmt_rho(r1)}, {_direction(r1)}"
+        if len(pairs) > 1:
+            a, b = tab.loc[first], tab.loc[pairs[1][0]]
+            clear = (min(abs(a.ci_low), abs(a.ci_high)) > max(abs(b.ci_low), abs(b.ci_high))
+                     and a.ci_low * a.ci_high > 0)
+            text += ("; its 95 % interval is clear of the runner-up's" if clear
+                     else "; its 95 % interval overlaps the runner-up's, so the order of the first two is not settled")
+            text += f"), then by {_listing(pairs[1:])}"
+        else:
+            text += ")"
+        weakest = tab["rho"].abs().idxmin()
+        out.append(text + f"; the weakest is {plain_label(weakest)} (ρ = {fmt_rho(tab.loc[weakest, 'rho'])}).")
+    return " ".join(out)
+
+
+def _ci(m: Mapping[str, float], name: str, percent: bool = False) -> str:
+    return fmt_ci(m[name], m[f"{name}_ci_low"], m[f"{name}_ci_high"], percent=percent)
+
+
+def _span(m: Mapping[str, float], name: str) -> str:
+    return fmt_span(m[f"{name}_lo_deg"], m[f"{name}_hi_deg"])
+
+
+def panels_finding(metrics: Mapping[str, float]) -> str:
+    """Where long loci occur for one platform: the heatmap panels read with their numbers.
+
+    ``metrics``: :func:`~sss_locus.experiments.pose_space.claims.claim_metrics` of the platform (ratios
+    and shares with their intervals, the yaw peaks as the spans of their peak regions).
+    """
+    m = metrics
+    far = m["range_far_over_near_ratio"]
+    el = m["elevation_centre_over_corner_ratio"]
+    return (
+        f"with both ranges above half the maximum the median length is {_ci(m, 'range_far_over_near_ratio')} times "
+        f"that with both below ({'longer far out' if far > 1 else 'shorter far out'}); the largest median over the "
+        f"two azimuths sits at θ₁, θ₂ ≈ {m['azimuth_peak_theta1_deg']:.0f}°, {m['azimuth_peak_theta2_deg']:.0f}° (bin "
+        f"centres, {m['azimuth_peak_count']:,.0f} samples in that bin); at the centre of the elevation square the "
+        f"median is {_ci(m, 'elevation_centre_over_corner_ratio')} times the corners' "
+        f"({'longer' if el > 1 else 'shorter'} with the feature near the centre of both beams); over vehicle 2's "
+        f"yaw the median peaks at {_span(m, 'yaw_peak_neg')} and {_span(m, 'yaw_peak_pos')} (the bins whose 95 % "
+        f"interval reaches that of each half's largest median), and is {_ci(m, 'yaw_near0_over_peak_ratio')} of the peak near "
+        f"yaw 0 (parallel headings) and {_ci(m, 'yaw_near180_over_peak_ratio')} near ±180° (reciprocal). "
+        f"{_ci(m, 'multi_arc_fraction', percent=True)} of its port–port loci are fragmented (more than one arc).")
+
+
+def choices_finding(main: Mapping[str, float], checks: pd.DataFrame, key: str) -> str:
+    """How the open modelling choices change one platform's headline numbers.
+
+    ``main``: :func:`~sss_locus.experiments.pose_space.claims.claim_metrics` of the main run;
+    ``checks``: the modelling-choice table (rows of
+    :func:`~sss_locus.report.pose_space.figures.check_row`, ``run`` labels starting with ``key + ", "``).
+    """
+    rows = checks[checks["run"].str.startswith(f"{key}, ")]
+    if rows.empty:
+        raise ValueError(f"checks has no run of platform {key!r}")
+    parts = []
+    for row in rows.to_dict("records"):
+        a, b = row["hotspot theta1, theta2 (deg)"]
+        parts.append(f"{row['run'][len(key) + 2:]}: {plain_label(row['top normalised'])} first "
+                     f"(misalignment ρ {fmt_rho(row['rho misalignment (norm.)'])}, hotspot ({a:.0f}°, {b:.0f}°))")
+    return (f"main run: {plain_label(str(main['top_norm']))} first (misalignment ρ "
+            f"{fmt_rho(main['norm_elevation_misalignment_deg_rho'])}, hotspot "
+            f"({main['azimuth_peak_theta1_deg']:.0f}°, {main['azimuth_peak_theta2_deg']:.0f}°)); "
+            + "; ".join(parts) + ".")
+
+
+def reading_finding(effect: pd.DataFrame) -> str:
+    """How the reading of max(ψ₁, ψ₂) changes one platform's ranking of elevation misalignment.
+
+    ``effect``: :func:`~sss_locus.experiments.pose_space.choices.reading_effect` (columns ``reading``,
+    ``target``, ``rho``, ``rank``, ``top``).
+    """
+    norm = effect[effect["target"] == "norm"].set_index("reading")
+    if not {"magnitude", "signed"} <= set(norm.index):
+        raise ValueError("effect needs the 'magnitude' and 'signed' readings of the normalised length")
+    mag, sig = norm.loc["magnitude"], norm.loc["signed"]
+    same = int(mag["rank"]) == int(sig["rank"])
+    return (f"the normalised ρ of elevation misalignment is {fmt_rho(mag['rho'])} (rank {int(mag['rank'])}) "
+            f"read as magnitudes and {fmt_rho(sig['rho'])} (rank {int(sig['rank'])}; "
+            f"{plain_label(str(sig['top']))} first) read as signed angles: "
+            + ("the reading does not change its rank." if same else "the reading changes its rank."))
+
+
+def fan_finding(level: Mapping[str, float], pitched: list[Mapping[str, float]]) -> str:
+    """The part of one platform's fan the feature-below rule removes
+    (:func:`~sss_locus.experiments.pose_space.choices.fan_share_removed`, level and pitched)."""
+    worst = max([level["share"]] + [p["share"] for p in pitched])
+    text = f"the rule removes {100 * level['share']:.0f} % of the fan of a level sensor"
+    if level["share"] > 0:
+        text += f" (azimuths below {level['theta_min_deg']:.0f}° at zero elevation, the part above the horizontal)"
+    else:
+        text += " (the fan does not reach above the horizontal)"
+    if pitched:
+        text += f", at most {100 * worst:.0f} % for a pitched vehicle 2"
+    return text + "."
+
+
+def hotspot_finding(check: Mapping[str, float]) -> str:
+    """The azimuth hotspot of one platform re-sampled
+    (:func:`~sss_locus.experiments.pose_space.choices.hotspot_check`)."""
+    c = check
+    verdict = ("its targeted interval lies above the runner-up, so the bin is still the peak" if c["still_peak"]
+               else "its targeted interval does not lie above the runner-up, so the peak bin is not settled")
+    runner = (fmt_ci(c["runner_up_median"], c["runner_up_ci_low"], c["runner_up_ci_high"]).replace(" (", " m (", 1)
+              .replace(")", " m)") if "runner_up_ci_low" in c else f"{fmt_sig(c['runner_up_median'], 2)} m")
+    return (f"the peak bin ({c['x_mid']:.0f}°, {c['y_mid']:.0f}°) holds {c['count']:,.0f} samples of the main run "
+            f"(median {fmt_sig(c['median'], 2)} m); {c['target_count']:,.0f} targeted samples give "
+            f"{fmt_sig(c['target_median'], 2)} m (95 % CI {fmt_sig(c['target_ci_low'], 3)}–"
+            f"{fmt_sig(c['target_ci_high'], 3)} m) against the runner-up's {runner} "
+            f"at ({c['runner_up_x_mid']:.0f}°, {c['runner_up_y_mid']:.0f}°): {verdict}.")
+
+
+def pose_summary(rho: pd.DataFrame, metrics: Mapping[str, float]) -> str:
+    """One sentence per platform for the chapter's summary."""
+    (raw, _), (norm, _) = ranked(rho, RAW, 1)[0], ranked(rho, NORM, 1)[0]
+    return (f"the raw locus length ranks {plain_label(raw)} first and the range-normalised length "
+            f"{plain_label(norm)}; the longest loci sit at azimuths θ₁, θ₂ ≈ {metrics['azimuth_peak_theta1_deg']:.0f}°, "
+            f"{metrics['azimuth_peak_theta2_deg']:.0f}° and at vehicle-2 yaws of {_span(metrics, 'yaw_peak_neg')} "
+            f"and {_span(metrics, 'yaw_peak_pos')}.")

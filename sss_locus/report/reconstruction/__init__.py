@@ -1,0 +1,2 @@
+"""The reconstruction chapter's figures.
+"""

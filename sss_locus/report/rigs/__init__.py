@@ -1,0 +1,2 @@
+"""The rigs chapter's figures.
+"""

@@ -1,0 +1,2 @@
+"""The survey-design chapter's figures and plan maps.
+"""

@@ -1,0 +1,323 @@
+"""Figures and sentences of the survey-design chapter (``notebooks/survey_design.ipynb``).
+
+Inputs are the tables of :mod:`sss_locus.experiments.survey_design.front` (the plans table of
+``search_plans``, its noise re-evaluation, the seed-stability table) and, for the plan drawing,
+the area, the plan's segments and the coverage grid of
+:func:`sss_locus.experiments.survey_design.coverage.coverage`.
+
+The Pareto front (:func:`plot_front`) is drawn in the book's seaborn theme
+(:func:`~sss_locus.report.common.style.theme`) with ``ax.scatter`` per kind of plan: each kind has its own
+marker, size and fill (hollow: not eligible; the recommended plan circled over its point), which
+one ``seaborn.scatterplot`` hue does not give. The plan (:func:`plot_plan`) is a map, drawn in
+plain matplotlib: a grid over the coverage cells would hide them.
+"""
+
+from __future__ import annotations
+
+import math
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.colors import BoundaryNorm, ListedColormap
+from matplotlib.patches import Polygon as PolygonPatch
+
+from sss_locus.experiments.survey_design.front import OBJECTIVES
+from sss_locus.report.common.style import PAGE_WIDTH_IN, platform_title, themed
+from sss_locus.report.survey_design.map import add_graticule, add_scale_bar
+from sss_locus.report.common.text import fmt_ci, fmt_ci_cells, fmt_percent, fmt_sig
+
+OBJECTIVE_LABELS = {"locus": "median best-pair locus length (m)",
+                    "three_view": "share of features not resolved by three views",
+                    "reconstruction": "median 3-D error, two views + prior, with noise (m)"}
+BASELINES = {"standard": ("standard plan (NOAA-style, 200 %, as flown)", "*", "tab:red", 190),
+             "lawnmower": ("lawn-mower, same track length", "s", "tab:purple", 80)}
+
+
+def plan_label(row) -> str:
+    """A plan in words, with the lines' compass heading (degrees clockwise from grid north of
+    the area's local frame): ``"090°/270° lines 120 m apart + cross lines at 90°, 240 m;
+    altitude 21 m"``."""
+    a = round((90.0 - row["heading_deg"]) % 180.0, 1)
+    text = f"{a:03.0f}°/{a + 180:03.0f}° lines {row['spacing_m']:.0f} m apart"
+    if not math.isnan(row["crossing_deg"]):
+        what = "offset repeat" if row["crossing_deg"] % 180 == 0 else f"cross lines at {row['crossing_deg']:g}°"
+        text += f" + {what}, {row['cross_spacing_m']:.0f} m"
+    text += f"; altitude {row['altitude_m']:.3g} m"  # a boat's altitude is the water depth: 8.5 m, not "8 m"
+    return text + (f", pitch {row['pitch_deg']:g}°" if row["pitch_deg"] else "")
+
+
+def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water_depth_m: float,
+                 depth_source: str, ardupilot: bool = True, turn_notes=()) -> str:
+    """The caption of a recommended plan's figure: the plan, the water depth it used and where
+    that came from, its cost and coverage (``cov`` of
+    :func:`sss_locus.experiments.survey_design.front.plan_coverage`), the area file with its SHA-256
+    and the mission ``files`` beside the figure (without an origin only the CSV, and why; for a
+    vehicle that does not run ArduPilot no ArduPilot mission, and why); the cost is the track the
+    mission flies (``row.total_m``: lines, U-turns, transits and the return to the start); in
+    navigable water (a walled harbour) its clearance, and ``turn_notes`` the turns that did not fit
+    (:func:`sss_locus.experiments.survey_design.route.turn_misfits`)."""
+    names = ", ".join(f"`{n}`" for n in files)
+    why = ("" if area.origin_lonlat is not None else
+           " (the others need longitude/latitude: give the area file an `origin_lonlat`)")
+    if area.origin_lonlat is not None and not ardupilot:
+        why = (" (no `.plan` or `.waypoints`: this vehicle does not run ArduPilot; convert the CSV or GeoJSON "
+               "into its own planner's mission format)")
+    return (f"Recommended plan for the {platform.name} over {area.name}: {plan_label(row)}; water depth "
+            f"{water_depth_m:.3g} m ({depth_source}); " + (
+                f"lines run past the area by their swath's reach and a run-in of {row.run_m:.0f} m; "
+                if area.water() is None else
+                f"lines, run-ins, turns and transits stay in the navigable water ("
+                + ("its navigable outline" if area.navigable_wkt else f"{area.water_beyond_m:g} m past the area's edge")
+                + f"), {area.clearance_m:g} m off its edge and holes, line ends pulled back where a turn needs room; "
+                "the inclusion fence (red dashed) never reaches past it; ")
+            + (f"turns that do not fit: {'; '.join(turn_notes)}; " if turn_notes else "")
+            + f"{row.total_m / 1e3:.2f} km flown (the mission's track: lines, turns of radius "
+            f"{platform.turn_radius_m:g} m, transits and the return to the start), "
+            + f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "
+            f"{fmt_percent(cov['twice'])} of the area, holes: {cov['n_holes']}. Grey dotted: WGS 84 meridians and "
+            f"parallels. Area file `{area_file}` "
+            f"(SHA-256 `{area.sha256[:12]}`); mission files beside the figure: {names}{why}.")
+
+
+@themed
+def plot_front(fronts: dict, objective: str, platforms: dict):
+    """Track length against the objective for every plan of each platform (one panel each):
+    searched plans grey (hollow: not eligible), the Pareto front joined, the baselines marked,
+    the recommended plan circled."""
+    col = OBJECTIVES[objective]
+    keys = list(fronts)
+    fig, axes = plt.subplots(1, len(keys), figsize=(PAGE_WIDTH_IN, 3.6), squeeze=False, constrained_layout=True)
+    for ax, key in zip(axes[0], keys):
+        t = fronts[key]
+        s = t[t.kind == "search"]
+        ax.scatter(s.total_m[s.eligible] / 1e3, s[col][s.eligible], s=16, color="0.55", label="searched plan")
+        ax.scatter(s.total_m[~s.eligible] / 1e3, s[col][~s.eligible], s=16, facecolors="none",
+                   edgecolors="0.65", label="less seen twice than standard")
+        f = t[t.front].sort_values("total_m")
+        ax.plot(f.total_m / 1e3, f[col], "-", color="black", lw=1.2, label="Pareto front", zorder=3)
+        for kind, (name, marker, colour, size) in BASELINES.items():
+            b = t[t.kind == kind]
+            ax.scatter(b.total_m / 1e3, b[col], marker=marker, s=size, color=colour, label=name, zorder=4)
+        rec = t[t.recommended] if "recommended" in t else t.iloc[:0]
+        ax.scatter(rec.total_m / 1e3, rec[col], s=220, facecolors="none", edgecolors="tab:green", lw=2.2,
+                   label="recommended", zorder=5)
+        ax.set_xlabel("track flown: lines, turns, transits (km)")
+        ax.set_title(platform_title(platforms[key], width=90 // len(keys)), fontsize=9)  # a panel's width
+    axes[0][0].set_ylabel(OBJECTIVE_LABELS[objective])
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=8.5, frameon=False)
+    return fig
+
+
+#: The survey area's outline in the plan figures (dashed, so it is not read as a line to run).
+AREA_EDGE = "0.3"
+
+
+def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadir_gap_m: float, platform,
+              title: str, ax=None, track: pd.DataFrame | None = None, fence=None, bathymetry=None):
+    """The plan over the area: coverage cells by the number of lines that see them (holes red),
+    cut at the area's edge (dashed), the lines as arrows in run order, the nadir gap of each line
+    hatched; with ``track`` (the waypoints of :func:`sss_locus.pipeline.publish.missions.waypoints`) the
+    turns and transits, with ``fence`` the inclusion fence, with ``bathymetry`` (a
+    :class:`~sss_locus.experiments.survey_design.bathymetry.Bathymetry`) its depth contours inside
+    the area, labelled in metres; on the area's WGS 84 graticule with a scale bar
+    (:mod:`sss_locus.report.survey_design.map`)."""
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(PAGE_WIDTH_IN, 5.2), constrained_layout=True)
+    cmap = ListedColormap(["tab:red", "#c6dbef", "#6baed6", "#2171b5"])
+    norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5, 1e9], cmap.N)
+    x0, y0 = grid.x_m.min(), grid.y_m.min()
+    i = np.rint((grid.x_m - x0) / grid_m).astype(int)
+    j = np.rint((grid.y_m - y0) / grid_m).astype(int)
+    counts = np.full((j.max() + 1, i.max() + 1), np.nan)
+    counts[j, i] = grid.n_lines
+    mesh = ax.pcolormesh(x0 + (np.arange(i.max() + 2) - 0.5) * grid_m, y0 + (np.arange(j.max() + 2) - 0.5) * grid_m,
+                         np.ma.masked_invalid(counts), cmap=cmap, norm=norm, rasterized=True)
+    xy = np.asarray(area.polygon.exterior.coords)
+    mesh.set_clip_path(PolygonPatch(xy, closed=True, transform=ax.transData))  # cells cut at the area's edge
+    ax.add_patch(PolygonPatch(xy, closed=True, fill=False, edgecolor=AREA_EDGE, lw=1.3, ls=(0, (5, 2))))
+    for ring in area.polygon.interiors:  # holes of the area: islands, exclusion zones
+        ax.add_patch(PolygonPatch(np.asarray(ring.coords), closed=True, facecolor="0.85", edgecolor=AREA_EDGE,
+                                  lw=1.0, hatch="xx"))
+    if bathymetry is not None:
+        b = bathymetry
+        gx, gy = b.x0_m + b.spacing_m * np.arange(b.depth_m.shape[1]), b.y0_m + b.spacing_m * np.arange(b.depth_m.shape[0])
+        bx0, by0, bx1, by1 = area.polygon.bounds  # the grid over the area only (it spans more)
+        ix = (gx >= bx0 - b.spacing_m) & (gx <= bx1 + b.spacing_m)
+        iy = (gy >= by0 - b.spacing_m) & (gy <= by1 + b.spacing_m)
+        cs = ax.contour(gx[ix], gy[iy], b.depth_m[np.ix_(iy, ix)], levels=_depth_levels(b.area_depths_m),
+                        colors="saddlebrown", linewidths=0.6, alpha=0.8, zorder=2)
+        inside = PolygonPatch(xy, closed=True, transform=ax.transData)
+        cs.set_clip_path(inside)
+        for label in ax.clabel(cs, fmt=lambda v: f"{v:g} m", fontsize=7, inline=True):
+            label.set_clip_path(inside)
+    if track is not None:
+        ax.plot(track.east_m, track.north_m, color="0.35", lw=0.6, zorder=2)
+    if fence is not None:
+        ax.plot(*fence.exterior.xy, color="tab:red", lw=0.8, ls="--", zorder=2)
+    for _, r in lines.iterrows():
+        p0, p1 = np.array([r.x0_m, r.y0_m]), np.array([r.x1_m, r.y1_m])
+        d = (p1 - p0) / max(r.length_m, 1e-9)
+        n = np.array([-d[1], d[0]])
+        if nadir_gap_m > 0:
+            band = [p0 + n * nadir_gap_m, p1 + n * nadir_gap_m, p1 - n * nadir_gap_m, p0 - n * nadir_gap_m]
+            ax.add_patch(PolygonPatch(band, closed=True, fill=False, hatch="////", edgecolor="0.3", lw=0.3))
+        colour = "black" if r["set"] == "main" else "tab:orange"
+        ax.annotate("", p1, p0, arrowprops=dict(arrowstyle="-|>", color=colour, lw=1.1, mutation_scale=9))
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    pad = 0.04 * max(np.ptp(ax.get_xlim()), np.ptp(ax.get_ylim()))
+    ax.set_xlim(ax.get_xlim()[0] - pad, ax.get_xlim()[1] + pad)
+    ax.set_ylim(ax.get_ylim()[0] - pad, ax.get_ylim()[1] + pad)
+    add_graticule(ax, area)
+    add_scale_bar(ax)
+    origin = "" if area.origin_lonlat is None else f" of {area.origin_lonlat[0]:.4f}°, {area.origin_lonlat[1]:.4f}°"
+    ax.set_xlabel(f"east of the origin{origin} (m)")
+    ax.set_ylabel("north (m)")
+    ax.set_title(title, fontsize=9)
+    handles = [plt.Line2D([], [], marker="s", ls="", color=c, markersize=8) for c in cmap.colors]
+    labels = ["hole (no line)", "seen by 1 line", "2 lines", "3 or more"]
+    handles += [plt.Line2D([], [], color=AREA_EDGE, lw=1.3, ls=(0, (5, 2))), plt.Line2D([], [], color="black")]
+    labels += ["survey area", "main line"]
+    if track is not None:
+        handles.append(plt.Line2D([], [], color="0.35", lw=0.6))
+        labels.append("turns and transits")
+    if fence is not None:
+        handles.append(plt.Line2D([], [], color="tab:red", lw=0.8, ls="--"))
+        labels.append("inclusion fence")
+    if (lines["set"] != "main").any():
+        handles.append(plt.Line2D([], [], color="tab:orange"))
+        labels.append("cross / repeat line")
+    if bathymetry is not None:
+        handles.append(plt.Line2D([], [], color="saddlebrown", lw=0.6))
+        labels.append(f"depth contour ({bathymetry.file})")
+    if nadir_gap_m > 0:
+        handles.append(PolygonPatch([[0, 0], [1, 0], [1, 1]], fill=False, hatch="////", edgecolor="0.3"))
+        labels.append(f"nadir gap (±{nadir_gap_m:.0f} m)")
+    ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9, frameon=False)
+    return ax.figure
+
+
+def _depth_levels(depths_m) -> list[float]:
+    """About six round depth contours spanning ``depths_m`` (m)."""
+    lo, hi = float(np.min(depths_m)), float(np.max(depths_m))
+    if hi - lo <= 0:
+        return [lo]
+    step = 10 ** math.floor(math.log10((hi - lo) / 6))
+    step *= next(k for k in (1, 2, 5, 10) if (hi - lo) / (k * step) <= 7)
+    return [float(v) for v in np.arange(math.ceil(lo / step) * step, hi + 1e-9, step)]
+
+
+#: The joint estimate's errors (:data:`~sss_locus.experiments.survey_design.scoring.ERRORS`) in words.
+ERROR_LABELS = {"horizontal": "horizontal", "vertical": "vertical", "shape": "map-shape"}
+
+
+def error_text(row, name: str = "horizontal") -> str:
+    """A plan's mean error ``name`` (of :data:`ERROR_LABELS`) over the seeds with its 95 %
+    interval (a row of :func:`~sss_locus.experiments.survey_design.scoring.summarise`), e.g.
+    ``"2.6 (95 % CI 2.4–2.8) m"``; ``"too few features"`` without an interval."""
+    if not math.isfinite(row[f"error_{name}_lo_m"]):
+        return "too few features"
+    return fmt_ci(row[f"error_{name}_m"], row[f"error_{name}_lo_m"], row[f"error_{name}_hi_m"]) + " m"
+
+
+def _counts(row) -> str:
+    return f"{int(row.n_seeds)} seeds, at least {int(row.min_features):,} features each"
+
+
+def _beside(row, decided: str) -> str:
+    others = [e for e in ERROR_LABELS if e != decided]
+    return "; ".join(f"{ERROR_LABELS[e]} {error_text(row, e)}" for e in others)
+
+
+def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataFrame, platform) -> str:
+    """The recommendation with the joint adjustment under the noise model in one or two sentences
+    (:func:`sss_locus.experiments.survey_design.scoring.recommend_under_noise`): the deciding
+    error of the standard plan and of the best plan with their intervals over the seeds and the
+    counts behind them, the other two errors beside, and whether the interval excludes the
+    standard plan's."""
+    name, std = platform.name, summary.loc[verdict["standard"]]
+    e = verdict["error"]
+    what = f"{ERROR_LABELS[e]} error of the joint estimate"
+    if verdict["reason"] == "too few features":
+        return (f"For the {name}, some seed gave the standard plan's joint estimate fewer than 30 features (fewest "
+                f"{int(std.min_features)}): its errors are not findings and the standard plan is kept.")
+    if verdict["reason"] == "the standard plan is the best":
+        return (f"For the {name}, no plan as short as the standard plan has a smaller mean {what}: the standard plan "
+                f"({error_text(std, e)}; {_beside(std, e)}; {_counts(std)}) is kept.")
+    b = summary.loc[verdict["best"]]
+    label = plan_label(plans.loc[verdict["best"]])
+    longer = b.total_m / std.total_m - 1.0
+    length = f"a track {fmt_percent(abs(longer))} {'shorter' if longer < 0 else 'longer'}"
+    head = (f"For the {name}, the {'plan' if verdict['holds'] else 'best plan as short as the standard plan'} of "
+            f"{label} has a {what} of {error_text(b, e)} ({_beside(b, e)}; {_counts(b)}) against the standard plan's "
+            f"{error_text(std, e)} ({_beside(std, e)}; {_counts(std)}), on {length}: ")
+    return head + ("its interval lies below the standard plan's, so it is recommended." if verdict["holds"]
+                   else "the intervals overlap, so the standard plan is kept.")
+
+
+def verdict_words(verdicts: dict, platforms: dict) -> str:
+    """The claims-page verdict: per platform, whether a plan beat the standard plan on the
+    deciding error of the joint estimate, the platforms by their keys (``"a plan beats the
+    standard plan on the horizontal error (auv); standard plan kept (boat)"``)."""
+    parts = [(f"a plan beats the standard plan on the {ERROR_LABELS[v['error']]} error" if v["holds"]
+              else "standard plan kept") + f" ({k})" for k, v in verdicts.items() if k in platforms]
+    text = "; ".join(parts)
+    return text[0].upper() + text[1:]
+
+
+def with_compass(frame: pd.DataFrame) -> pd.DataFrame:
+    """``frame`` with its ``heading_deg`` (degrees counter-clockwise from east, the computation's
+    convention) replaced by ``heading_compass_deg``: degrees clockwise from north of the area's
+    local frame (true north at its origin), as written in every published table."""
+    if "heading_deg" not in frame:
+        return frame
+    at = list(frame.columns).index("heading_deg")
+    out = frame.drop(columns="heading_deg")
+    out.insert(at, "heading_compass_deg", (90.0 - frame["heading_deg"].to_numpy(float)) % 360.0)
+    return out
+
+
+def noise_table_shown(frame: pd.DataFrame) -> pd.DataFrame:
+    """The plans scored with the joint adjustment as a reader reads them: one row a plan, each
+    error with its interval.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        Indexed by ``(platform, kind, plan_index)``, with ``total_m``, ``covered_twice``,
+        ``n_seeds``, ``min_features`` (the fewest features a seed's medians used) and, for each
+        error of :data:`ERROR_LABELS`, ``error_<e>_m`` with its 95 % interval
+        ``error_<e>_lo_m``/``error_<e>_hi_m`` (NaN where a seed had under 30 features).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by ``(platform, plan)``: ``plan`` is the kind, searched plans named by their
+        number (``"search, plan 4"``: several searched plans of one platform are told apart);
+        columns ``track_km``, ``covered_twice``, ``horizontal_error_m``, ``vertical_error_m``,
+        ``map_shape_error_m`` (text: the mean over the seeds of the median error and its 95 %
+        interval, or ``"—"`` under 30 features), ``seeds`` and ``fewest_features``.
+
+    >>> f = pd.DataFrame({"total_m": [8000.0, 7000.0], "covered_twice": [1.0, 1.0], "n_seeds": [5, 5],
+    ...     "min_features": [120, 12], "error_horizontal_m": [0.9, float("nan")],
+    ...     "error_horizontal_lo_m": [0.6, float("nan")], "error_horizontal_hi_m": [1.2, float("nan")],
+    ...     "error_vertical_m": [0.2, float("nan")], "error_vertical_lo_m": [0.1, float("nan")],
+    ...     "error_vertical_hi_m": [0.3, float("nan")], "error_shape_m": [0.5, float("nan")],
+    ...     "error_shape_lo_m": [0.4, float("nan")], "error_shape_hi_m": [0.6, float("nan")]},
+    ...     index=pd.MultiIndex.from_tuples([("boat", "standard", 0), ("boat", "search", 4)],
+    ...                                     names=["platform", "kind", "plan_index"]))
+    >>> noise_table_shown(f).reset_index()[["plan", "horizontal_error_m", "fewest_features"]].values.tolist()
+    [['standard', '0.90 (95 % CI 0.60–1.2)', 120], ['search, plan 4', '—', 12]]
+    """
+    rows = frame.reset_index()
+    plan = rows["kind"].where(rows["kind"] != "search", "search, plan " + rows["plan_index"].astype(str))
+    out = pd.DataFrame({"platform": rows["platform"], "plan": plan, "track_km": rows["total_m"] / 1e3,
+                        "covered_twice": rows["covered_twice"]})
+    for e, label in ERROR_LABELS.items():
+        v, lo, hi = (rows[f"error_{e}{s}_m"].to_numpy(float) for s in ("", "_lo", "_hi"))
+        out[f"{label.replace('-', '_')}_error_m"] = fmt_ci_cells(v, lo, hi)
+    out["seeds"] = rows["n_seeds"]
+    out["fewest_features"] = rows["min_features"]
+    return out.set_index(["platform", "plan"])

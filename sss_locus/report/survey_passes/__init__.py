@@ -1,0 +1,2 @@
+"""The survey-pass and planning chapters' figures, findings and verdict words.
+"""

@@ -1,0 +1,2 @@
+"""The water chapter's figures.
+"""
