@@ -38,8 +38,12 @@ DEFAULT_IGNORE = (r"runtime", r"-time-s$", r"elapsed", r"cpu-s$")
 
 
 def _cli_module(tree: Path) -> str:
-    """The CLI module of a tree (it moved into ``sss_locus/pipeline/`` with the four layers)."""
-    return "sss_locus.pipeline.cli" if (tree / "sss_locus" / "pipeline" / "cli.py").exists() else "sss_locus.cli"
+    """The CLI module of a tree (it moved into ``sss_locus/pipeline/`` with the four layers, then
+    into the pipeline's ``cli/`` room, issue 41)."""
+    for module in ("sss_locus.pipeline.cli.command", "sss_locus.pipeline.cli"):
+        if (tree / (module.replace(".", "/") + ".py")).exists():
+            return module
+    return "sss_locus.cli"
 
 
 def build_quick(tree: Path, work: Path) -> Path:
