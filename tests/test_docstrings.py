@@ -18,7 +18,7 @@ import pytest
 MODULES = (
     "pose_space.study", "pose_space.draw", "pose_space.stats", "pose_space.claims", "pose_space.reduce", "survey_passes.study", "survey_passes.planning",
     "datamodel.envelopes", "datamodel.platforms", "passes.straight_pass", "passes.view_sets", "noise.study", "three_views.patterns", "datamodel.water_column",
-    "water.study", "stats.replicates", "stats.rowstats", "stats.scale", "stats.gaussian_norm", "survey_passes.verdicts", "pose_space.choices",
+    "water.study", "stats.replicates", "stats.rowstats", "stats.significant", "stats.scale", "stats.gaussian_norm", "survey_passes.verdicts", "pose_space.choices",
     "datamodel.models", "datamodel.sourced",
 )
 """The ``sss_locus.experiments`` modules held to the rule (the chapters being rewritten join

@@ -82,12 +82,9 @@ CHAPTERS = _chapters()
 #: Imports that cross the rooms' order today, each a module that mixes two jobs and went whole to
 #: the room most of it belongs to (CONTRIBUTING.md, "Follow-ups"). Remove an entry when it is fixed.
 KNOWN_CROSSINGS = {
-    # NoiseModel and its loader live in the noise chapter's study; the data model and the
-    # three-view chapter (before noise in the book) load it
-    ("sss_locus.experiments.datamodel.userdata", "sss_locus.experiments.noise.study"),
+    # the first-order noise propagation lives in the noise chapter's study; the three-view
+    # chapter (before noise in the book) uses it for its error ellipses
     ("sss_locus.experiments.three_views.patterns", "sss_locus.experiments.noise.study"),
-    # round_sig (numbers in prose) is in the pose-space statistics
-    ("sss_locus.report.common.text", "sss_locus.experiments.pose_space.stats"),
 }
 
 

@@ -13,8 +13,9 @@ Rooms (shared rooms, then one per chapter of the book in ``_toc.yml`` order; CON
     ``platforms``, ``schema``, ``sourced``, ``terrain``, ``userdata``, ``water_column``.
 ``stats/``
     Statistics shared by the chapters: replicate-batch intervals, row statistics, the Gaussian
-    norm quantile, and where the Monte Carlo chunks run (``scale``: this process or Dask).
-    Modules: ``gaussian_norm``, ``replicates``, ``rowstats``, ``scale``.
+    norm quantile, numbers to significant figures, and where the Monte Carlo chunks run
+    (``scale``: this process or Dask). Modules: ``gaussian_norm``, ``replicates``, ``rowstats``,
+    ``scale``, ``significant``.
 ``passes/``
     Straight passes and their views, shared by the survey-pass, three-view, noise and
     reconstruction chapters: one pass and its exact ping, passes as world-frame views,

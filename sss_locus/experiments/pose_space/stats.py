@@ -484,46 +484,6 @@ def binned_profile(df: pd.DataFrame, x: str, value: str = "locus_length_m", *, e
     return out
 
 
-def round_sig(x, digits: int = 2):
-    """Round to ``digits`` significant figures (array-friendly; 0 and NaN pass through).
-
-    Parameters
-    ----------
-    x : float or array_like
-        Values.
-    digits : int
-        Significant figures.
-
-    Returns
-    -------
-    numpy.ndarray
-        The rounded values (0-d for a scalar).
-    """
-    x = np.asarray(x, float)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        mag = np.where((x == 0) | ~np.isfinite(x), 0, np.floor(np.log10(np.abs(x))))
-    scale = 10.0 ** (digits - 1 - mag)
-    return np.where(np.isfinite(x), np.round(x * scale) / scale, x)
-
-
-def agree_sig(a, b, digits: int = 2) -> np.ndarray:
-    """Whether ``a`` and ``b`` are equal after rounding each to ``digits`` significant figures.
-
-    Parameters
-    ----------
-    a, b : float or array_like
-        Values compared (broadcast).
-    digits : int
-        Significant figures.
-
-    Returns
-    -------
-    numpy.ndarray of bool
-        Whether they agree at ``digits``.
-    """
-    return np.asarray(round_sig(a, digits) == round_sig(b, digits))
-
-
 # --------------------------------------------------------------------------------------------
 # The paper's Fig. 4 panels and the numbers its claims are checked against
 # --------------------------------------------------------------------------------------------

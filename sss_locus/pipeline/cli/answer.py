@@ -19,7 +19,7 @@ from typing import Any
 
 import pandas as pd
 
-from sss_locus.experiments.pose_space.stats import round_sig
+from sss_locus.experiments.stats.significant import round_sig
 from sss_locus.pipeline.run import budgets
 from sss_locus.pipeline.run.registry import ParameterError, get_entry
 

@@ -14,7 +14,7 @@ from collections.abc import Mapping
 
 import pandas as pd
 
-from sss_locus.experiments.pose_space.stats import round_sig
+from sss_locus.experiments.stats.significant import round_sig
 from sss_locus.report.common.style import QUANTITY_LABELS
 
 

@@ -9,12 +9,11 @@ import pandas as pd
 import pytest
 from scipy import stats
 
+from sss_locus.experiments.stats.significant import agree_sig, round_sig
 from sss_locus.experiments.pose_space.stats import (
-    agree_sig,
     binned_median,
     binned_profile,
     median_grid,
-    round_sig,
     spearman_table,
     with_derived,
 )
