@@ -139,7 +139,7 @@ def crossing_caption(objective: str, note: str) -> str:
 
 
 def standard_twice_text(plans: pd.DataFrame) -> str:
-    """The share of the area the standard plan sees twice, as glued (``"100 %"``).
+    """The share of the area the standard plan sees twice, as glued (``"100.0 %"``).
 
     Parameters
     ----------
@@ -157,7 +157,7 @@ def standard_twice_text(plans: pd.DataFrame) -> str:
 
 def standard_twice_sentence(plans: dict[str, pd.DataFrame], platforms: dict) -> str:
     """The check of the standard plan's 200 % on the area, one clause per platform (``"the
-    AUV's standard plan sees 98 % of the area twice; ..."``).
+    AUV's standard plan sees 98.0 % of the area twice; ..."``).
 
     Parameters
     ----------
@@ -177,8 +177,8 @@ def standard_twice_sentence(plans: dict[str, pd.DataFrame], platforms: dict) -> 
 
 def best_pairs_sentence(plans: dict[str, pd.DataFrame], platforms: dict) -> str:
     """The median crossing angle of the features' best pairs of lines on the recommended and on
-    the standard plan, one clause per platform (``"for the AUV, 12° apart on the recommended
-    plan and 0.5° on the standard plan; ..."``).
+    the standard plan, one clause per platform (``"for the AUV, 12.0° apart on the recommended
+    plan and 0.500° on the standard plan; ..."``, three significant figures).
 
     Parameters
     ----------
