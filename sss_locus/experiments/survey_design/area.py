@@ -221,6 +221,20 @@ class SurveyArea:
         x, y = fwd.transform(np.asarray(lon, float), np.asarray(lat, float))
         return np.asarray(x), np.asarray(y)
 
+    def input_files(self) -> list[tuple[str, str]]:
+        """The files this area was read from, as a figure's manifest records them.
+
+        Returns
+        -------
+        list of (str, str)
+            ``(path, role)``: the area file (role ``"area"``) and, when it names one, its
+            bathymetry grid (role ``"bathymetry"``); empty for an area made from vertices.
+        """
+        files = [(self.path, "area")] if self.path else []
+        if self.bathymetry and self.bathymetry[0]:
+            files.append((self.bathymetry[0], "bathymetry"))
+        return files
+
     def key(self) -> dict:
         """A JSON-able description (for caches and manifests)."""
         return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
