@@ -551,3 +551,28 @@ def test_headings_deg_are_compass_headings_on_input():
     assert [heading_from_compass_deg(h) for h in quick] == [0.0]
     with pytest.raises(ValueError, match="compass heading"):
         heading_from_compass_deg(float("nan"))
+
+
+def test_a_boat_over_water_its_sonar_cannot_see_through_is_refused_naming_the_depths():
+    """A surface boat's altitude is the water depth: a depth where its fan sees no seafloor
+    (deeper than the range times the sine of the fan's steepest look-down, plus the draft), or
+    shallower than the draft, is refused in one line naming the platform, the depth's source and
+    the depths it can survey (the bound from data/platforms.toml itself; just inside it the pass
+    model of the other chapters finds a swath), not as an ``altitude_m`` of the pass model."""
+    import tomllib
+
+    from sss_locus.paths import REPO_ROOT
+
+    doc = tomllib.loads((REPO_ROOT / "data" / "platforms.toml").read_text(encoding="utf-8"))
+    sonar, port = doc["sonars"]["omniscan_450_ss"], doc["platforms"]["boat"]["transducers"]["port"]
+    draft, tilt = port["depth_m"]["value"], port["tilt_deg"]["value"]
+    deepest = draft + sonar["max_range_m"]["value"] * math.sin(math.radians(tilt + sonar["azimuth_deg"]["value"] / 2))
+    boat = load_platform("boat")
+    area = area_from_vertices([[0, 0], [400, 0], [400, 300], [0, 300]])
+    for depth in (deepest * 1.001, draft / 2):
+        settings = sd.depth_settings(with_water_depth(area, depth, "-p water_depth_m"), load_settings())
+        with pytest.raises(ValueError, match=rf"^platforms\.boat: the water depth {depth:g} m \(-p water_depth_m\) "
+                                             rf"is outside \({draft:g}, {deepest:.4g}\) m"):
+            standard_plan(boat, area, flat_terrain(), settings, np.zeros(1))
+    settings = sd.depth_settings(with_water_depth(area, deepest * 0.999, "-p water_depth_m"), load_settings())
+    assert standard_plan(boat, area, flat_terrain(), settings, np.zeros(1)).altitude_m == deepest * 0.999
