@@ -231,6 +231,11 @@ def _beside(row, decided: str) -> str:
     return "; ".join(f"{ERROR_LABELS[e]} {error_text(row, e)}" for e in others)
 
 
+SAME_LENGTH = 5e-4
+"""Tracks whose lengths differ by less than this fraction are "of the same length" in the verdict
+(the lawn-mower is spaced by bisection to the standard plan's track length)."""
+
+
 def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataFrame, platform) -> str:
     """The recommendation with the joint adjustment under the noise model in one or two sentences
     (:func:`sss_locus.experiments.survey_design.scoring.recommend_under_noise`): the deciding
@@ -249,7 +254,8 @@ def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataF
     b = summary.loc[verdict["best"]]
     label = plan_label(plans.loc[verdict["best"]])
     longer = b.total_m / std.total_m - 1.0
-    length = f"a track {fmt_percent(abs(longer))} {'shorter' if longer < 0 else 'longer'}"
+    length = (f"a track {fmt_percent(abs(longer))} {'shorter' if longer < 0 else 'longer'}"
+              if abs(longer) >= SAME_LENGTH else "a track of the same length (within 0.05 %)")
     head = (f"For the {name}, the {'plan' if verdict['holds'] else 'best plan as short as the standard plan'} of "
             f"{label} has a {what} of {error_text(b, e)} ({_beside(b, e)}; {_counts(b)}) against the standard plan's "
             f"{error_text(std, e)} ({_beside(std, e)}; {_counts(std)}), on {length}: ")

@@ -358,6 +358,9 @@ def test_the_verdict_sentence_says_whether_the_interval_excludes_the_standard_pl
     few.loc[0, "min_features"] = 29
     text = noise_verdict_sentence(few, recommend_under_noise(few), plans, pf)
     assert "fewer than 30 features (fewest 29)" in text and "not findings" in text
+    same = _summary([std, (1, "lawnmower", 1000.0 * (1 - 7.1e-8), True, 2.9, 2.6, 3.0)])
+    text = noise_verdict_sentence(same, recommend_under_noise(same), plans, pf)
+    assert "on a track of the same length (within 0.05 %)" in text and "e-0" not in text  # not "7.1e-06 % shorter"
 
 
 def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
