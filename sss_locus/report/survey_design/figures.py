@@ -75,7 +75,7 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water
             + f"{row.total_m / 1e3:.2f} km flown (the mission's track: lines, turns of radius "
             f"{platform.turn_radius_m:g} m, transits and the return to the start), "
             + f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "
-            f"{fmt_percent(cov['twice'])} of the area, holes: {cov['n_holes']}. Grey dotted: WGS 84 meridians and "
+            f"{fmt_percent(cov['twice'])} of the area, gaps (groups of cells seen by no line): {cov['n_holes']}. Grey dotted: WGS 84 meridians and "
             f"parallels. Area file `{area_file}` "
             f"(SHA-256 `{area.sha256[:12]}`); mission files beside the figure: {names}{why}.")
 
@@ -177,7 +177,7 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     ax.set_ylabel("north (m)")
     ax.set_title(title, fontsize=9)
     handles = [plt.Line2D([], [], marker="s", ls="", color=c, markersize=8) for c in cmap.colors]
-    labels = ["hole (no line)", "seen by 1 line", "2 lines", "3 or more"]
+    labels = ["gap (seen by no line)", "seen by 1 line", "2 lines", "3 or more"]
     handles += [plt.Line2D([], [], color=AREA_EDGE, lw=1.3, ls=(0, (5, 2))), plt.Line2D([], [], color="black")]
     labels += ["survey area", "main line"]
     if track is not None:

@@ -239,6 +239,8 @@ def test_the_plan_map_draws_the_grids_depth_contours(grid_area):
     levels = [float(t.get_text().removesuffix(" m")) for t in ax.texts if t.get_text().endswith(" m")]
     assert levels and min(levels) >= 12.0 and max(levels) <= 24.0  # labelled contours within the area's depths
     assert any("depth contour (" in t.get_text() for t in ax.get_legend().get_texts())
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]  # red cells: unseen, not the area's holes (a pier)
+    assert "gap (seen by no line)" in legend and not any(t.startswith("hole") for t in legend)
     assert ax.get_xlim()[1] < 800  # the grid's margin does not widen the map
     plt.close(fig)
 

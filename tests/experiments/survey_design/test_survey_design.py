@@ -325,6 +325,7 @@ def test_the_plan_caption_names_the_mission_files_the_depth_and_why_some_are_mis
     local = plan_caption(pf, area, "my_area.toml", row, cov, ["mission.csv"], **depth)
     assert "`mission.csv`" in local and "origin_lonlat" in local and "`mission.plan`" not in local
     assert "water depth 12.5 m (my_area.toml: water_depth_m)" in local
+    assert "gaps (groups of cells seen by no line): 0" in local and "holes: " not in local  # holes: piers, islands
     assert "090°/270° lines" in local  # a line heading east is a compass heading of 090°
     placed = area_from_vertices(RECT, origin_lonlat=(-111.8, 40.2))
     everything = plan_caption(pf, placed, "my_area.toml", row, cov,
