@@ -180,6 +180,22 @@ def test_pareto_front_and_rule_on_a_constructed_table():
     assert sd.recommend(t, "locus", 0.5) == 0       # none that short: the shortest on the front
 
 
+def test_the_eligibility_rule_is_the_one_the_chapter_states():
+    """Eligible: seen twice on at least the standard plan's share OR at least
+    ``min_two_view_share`` (the setting caps what is asked). The chapter said "and at least"
+    (100 % by default), a bar no plan with a gap meets, while the code asks for the standard
+    plan's 90 %: the rule checked on a constructed table, and the chapter's sentence with it."""
+    t = pd.DataFrame({"kind": ["standard", "search", "search", "search"], "covered_twice": [0.90, 0.95, 0.89, 0.80]})
+    assert list(sd.eligible(t, {"min_two_view_share": 1.0})) == [True, True, False, False]
+    assert list(sd.eligible(t, {"min_two_view_share": 0.85})) == [True, True, True, False]
+    from sss_locus.paths import REPO_ROOT
+
+    cells = json.loads((REPO_ROOT / "notebooks" / "survey_design.ipynb").read_text(encoding="utf-8"))["cells"]
+    prose = " ".join(" ".join("".join(c["source"]).split()) for c in cells if c["cell_type"] == "markdown")
+    assert "twice as the standard plan, or at least {glue:text}`sd-min-two` of it" in prose
+    assert "(and at least {glue:text}`sd-min-two`" not in prose
+
+
 def test_geojson_area_matches_the_geodesic_area(tmp_path):
     from pyproj import Geod
 
