@@ -6,30 +6,30 @@ caches or knows about notebooks.
 Rooms (shared rooms, then one per chapter of the book in ``_toc.yml`` order; CONTRIBUTING.md,
 "Architecture"):
 
-``datamodel/``
-    The data model: the TOML inputs read and validated (each value sourced or marked as an
-    assumption), platforms, survey envelopes, seafloor models, the water column, a user's data
-    (``--data``/``--set``). Modules: ``datadoc``, ``envelopes``, ``inputs``, ``models``,
-    ``platforms``, ``schema``, ``sourced``, ``terrain``, ``userdata``, ``water_column``.
 ``stats/``
     Statistics shared by the chapters: replicate-batch intervals, row statistics, the Gaussian
     norm quantile, numbers to significant figures, and where the Monte Carlo chunks run
     (``scale``: this process or Dask). Modules: ``gaussian_norm``, ``replicates``, ``rowstats``,
     ``scale``, ``significant``.
-``passes/``
-    Straight passes and their views, shared by the survey-pass, three-view, noise and
-    reconstruction chapters: one pass and its exact ping, passes as world-frame views,
-    navigation errors shared per pass. Modules: ``pass_noise``, ``straight_pass``,
-    ``view_sets``.
+``datamodel/``
+    The data model: the TOML inputs read and validated (each value sourced or marked as an
+    assumption), platforms, survey envelopes, seafloor models, the water column, a user's data
+    (``--data``/``--set``). Modules: ``datadoc``, ``envelopes``, ``inputs``, ``models``,
+    ``platforms``, ``schema``, ``sourced``, ``terrain``, ``userdata``, ``water_column``.
 ``sonar_files/``
     A user's recorded sonar files and the sightings picked on them: XTF bytes read strictly,
     which end of a channel is near, layback, an XTF file's summary, sightings CSVs and XTF
     matches. Modules: ``observations``, ``observations_xtf``, ``sample_order``, ``towfish``,
     ``xtf_packets``, ``xtf_summary``.
+``passes/``
+    Straight passes and their views, shared by the survey-pass, three-view, noise and
+    reconstruction chapters: one pass and its exact ping, passes as world-frame views,
+    navigation errors shared per pass. Modules: ``pass_noise``, ``straight_pass``,
+    ``view_sets``.
 ``adjustment/``
     The joint adjustment (acoustic bundle adjustment) of every feature and every pass's
-    navigation, used by the reconstruction and your-pings chapters. Modules: ``covariance``,
-    ``metrics``, ``model``, ``nview``, ``residuals``, ``solver``.
+    navigation, used by the reconstruction, your-pings and survey-design chapters. Modules:
+    ``covariance``, ``metrics``, ``model``, ``nview``, ``residuals``, ``solver``.
 ``pose_space/``
     The pose-space chapter: candidate draws, the Monte Carlo, its statistics, claims and
     choices. Modules: ``choices``, ``claims``, ``draw``, ``reduce``, ``stats``, ``study``.

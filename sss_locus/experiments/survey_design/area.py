@@ -74,7 +74,7 @@ from pathlib import Path
 
 import numpy as np
 
-from sss_locus.experiments.datamodel.inputs import missing_file, read_toml
+from sss_locus.experiments.datamodel.inputs import missing_file, read_toml, suggestion
 
 MIN_AREA_M2 = 100.0
 """Smallest area accepted, m^2 (10 m x 10 m): smaller is taken for a unit mistake."""
@@ -221,6 +221,20 @@ class SurveyArea:
         x, y = fwd.transform(np.asarray(lon, float), np.asarray(lat, float))
         return np.asarray(x), np.asarray(y)
 
+    def input_files(self) -> list[tuple[str, str]]:
+        """The files this area was read from, as a figure's manifest records them.
+
+        Returns
+        -------
+        list of (str, str)
+            ``(path, role)``: the area file (role ``"area"``) and, when it names one, its
+            bathymetry grid (role ``"bathymetry"``); empty for an area made from vertices.
+        """
+        files = [(self.path, "area")] if self.path else []
+        if self.bathymetry and self.bathymetry[0]:
+            files.append((self.bathymetry[0], "bathymetry"))
+        return files
+
     def key(self) -> dict:
         """A JSON-able description (for caches and manifests)."""
         return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
@@ -228,6 +242,30 @@ class SurveyArea:
                 "water_depth_source": self.water_depth_source, "water_beyond_m": self.water_beyond_m,
                 "bathymetry": list(self.bathymetry), "navigable_wkt": self.navigable_wkt,
                 "wall_clearance_m": self.wall_clearance_m}
+
+
+def _check_holes(rings, where: str) -> None:
+    """Refuse, naming the ring, an outline that crosses itself, a hole that crosses itself, one
+    not inside the outline, or one that shares a stretch of the outline (a pier from the wall:
+    a notch of the outline, not a hole). Holes are counted from 1 in the order given."""
+    import shapely
+
+    shell = shapely.Polygon(rings[0])
+    if not shell.is_valid:
+        raise ValueError(f"{where}: the polygon is not valid ({shapely.is_valid_reason(shell)}); "
+                         "vertices must go round the boundary once without crossing it")
+    for k, ring in enumerate(rings[1:], 1):
+        hole = shapely.Polygon(ring)
+        if not hole.is_valid:
+            raise ValueError(f"{where}: hole {k} is not valid ({shapely.is_valid_reason(hole)}); its vertices "
+                             "must go round it once without crossing it")
+        if not shell.contains(hole):
+            out = hole.difference(shell).area / hole.area
+            raise ValueError(f"{where}: hole {k} is not inside the area's outline ({out:.0%} of it lies outside); "
+                             "a hole (a pier, an island) must lie within the area")
+        if hole.boundary.intersection(shell.boundary).length > 0:
+            raise ValueError(f"{where}: hole {k} runs along the area's outline; a pier or a wall that reaches the "
+                             "edge is a notch of the outline (draw the outline round it), not a hole")
 
 
 def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str = "survey area",
@@ -250,6 +288,7 @@ def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str 
         if len(np.unique(v, axis=0)) < 3:
             raise ValueError(f"{where}: a polygon needs at least 3 distinct vertices; got {len(np.unique(v, axis=0))}")
         clean.append(v)
+    _check_holes(clean, where)
     poly = shapely.Polygon(clean[0], holes=clean[1:])
     if not poly.is_valid:
         raise ValueError(f"{where}: the polygon is not valid ({shapely.is_valid_reason(poly)}); "
@@ -454,14 +493,13 @@ def _load_area(p: Path, source: str) -> SurveyArea:
     area = doc.get("area")
     if not isinstance(area, dict):
         raise ValueError(f"{source}: missing table [area] (with vertices_m or vertices_lonlat)")
-    unknown = set(area) - {"name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "source",
-                           "assumption", "water_depth_m", "water_beyond_m",
-                           "bathymetry", "bathymetry_values", "navigable_m", "navigable_lonlat", "wall_clearance_m",
-                           "holes_lonlat"}
+    allowed = ("name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "holes_lonlat", "source",
+               "assumption", "water_depth_m", "water_beyond_m", "bathymetry", "bathymetry_values", "navigable_m",
+               "navigable_lonlat", "wall_clearance_m")
+    unknown = sorted(set(area) - set(allowed))
     if unknown:
-        raise ValueError(f"{source}: unknown keys in [area]: {sorted(unknown)} (allowed: name, vertices_m, "
-                         "vertices_lonlat, origin_lonlat, holes_m, source, assumption, water_depth_m, water_beyond_m, "
-                         "bathymetry, bathymetry_values, navigable_m, navigable_lonlat, wall_clearance_m, holes_lonlat)")
+        raise ValueError(f"{source}: unknown keys in [area]: {unknown}{suggestion(unknown[0], allowed)} "
+                         f"(allowed: {', '.join(allowed)})")
     if ("vertices_m" in area) == ("vertices_lonlat" in area):
         raise ValueError(f"{source}: [area] needs exactly one of vertices_m or vertices_lonlat")
     if "holes_lonlat" in area and "vertices_lonlat" not in area:

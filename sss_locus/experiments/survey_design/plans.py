@@ -156,8 +156,26 @@ def altitude_limits(platform, settings, heights_m) -> tuple[float, float]:
 
 
 def fixed_altitude_m(platform, settings) -> float | None:
-    """A platform of fixed depth flies at ``water depth - its depth`` above the mean seafloor."""
-    return water_depth(settings) - platform.depth_min_m if platform.fixed_depth else None
+    """A platform of fixed depth flies at ``water depth - its depth`` above the mean seafloor;
+    a water depth that puts the seafloor above its transducers or where its fan sees none of it
+    (deeper than ``max_range_m`` times the sine of the fan's steepest look-down, below 90°) is
+    refused in one line naming the platform, the depth's source and the depths it can survey."""
+    if not platform.fixed_depth:
+        return None
+    depth = water_depth(settings)
+    son = platform.sonar
+    sides = platform.transducers.values()
+    lo = platform.depth_min_m + max(t.depth_m for t in sides)
+    steepest = {t.tilt_deg + son.azimuth_deg / 2 for t in sides}
+    hi = platform.depth_min_m + min(t.depth_m + son.max_range_m * math.sin(math.radians(min(d, 90.0)))
+                                    for t, d in zip(sides, (t.tilt_deg + son.azimuth_deg / 2 for t in sides)))
+    if not lo < depth < hi:
+        raise ValueError(f"platforms.{platform.key}: the water depth {depth:g} m "
+                         f"({settings.get('water_depth_source') or 'survey_design.water_depth_m'}) is outside "
+                         f"({lo:g}, {hi:.4g}) m, the depths its sonar sees the seafloor in (transducers "
+                         f"{lo - platform.depth_min_m:g} m deep, fan down to {min(steepest):g}° below the horizontal, "
+                         f"sonars.{son.key}.max_range_m = {son.max_range_m:g} m)")
+    return depth - platform.depth_min_m
 
 
 def water_depth(settings) -> float:

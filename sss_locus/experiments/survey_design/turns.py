@@ -46,7 +46,10 @@ def _lsl(P, e, Q, n, R: float, step_deg: float):
     sweep2 = (sigma * (ang(-e) - ang(u))) % (2 * math.pi)
     t1 = c1 - R * left(u)
     pts = list(_arc(c1, P, sigma, sweep1, step_deg)) if sweep1 > 1e-9 else []
-    pts.append(t1)
+    if pts:
+        pts[-1] = t1  # the first arc ends at the tangent point: once, not a zero-length leg after it
+    else:
+        pts.append(t1)
     pts += list(_arc(c2, c2 - R * left(u), sigma, sweep2, step_deg)) if sweep2 > 1e-9 else [Q]
     return np.asarray(pts), R * (sweep1 + sweep2) + dist
 

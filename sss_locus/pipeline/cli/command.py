@@ -1,4 +1,4 @@
-"""Command line: ``sss-locus run``, ``book``, ``params``, ``list`` and ``cache``.
+"""Command line: ``sss-locus run``, ``book``, ``answer``, ``xtf``, ``params``, ``list`` and ``cache``.
 
 Examples::
 

@@ -75,7 +75,7 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water
             + f"{row.total_m / 1e3:.2f} km flown (the mission's track: lines, turns of radius "
             f"{platform.turn_radius_m:g} m, transits and the return to the start), "
             + f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "
-            f"{fmt_percent(cov['twice'])} of the area, holes: {cov['n_holes']}. Grey dotted: WGS 84 meridians and "
+            f"{fmt_percent(cov['twice'])} of the area, gaps (groups of cells seen by no line): {cov['n_holes']}. Grey dotted: WGS 84 meridians and "
             f"parallels. Area file `{area_file}` "
             f"(SHA-256 `{area.sha256[:12]}`); mission files beside the figure: {names}{why}.")
 
@@ -177,7 +177,7 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     ax.set_ylabel("north (m)")
     ax.set_title(title, fontsize=9)
     handles = [plt.Line2D([], [], marker="s", ls="", color=c, markersize=8) for c in cmap.colors]
-    labels = ["hole (no line)", "seen by 1 line", "2 lines", "3 or more"]
+    labels = ["gap (seen by no line)", "seen by 1 line", "2 lines", "3 or more"]
     handles += [plt.Line2D([], [], color=AREA_EDGE, lw=1.3, ls=(0, (5, 2))), plt.Line2D([], [], color="black")]
     labels += ["survey area", "main line"]
     if track is not None:
@@ -231,6 +231,11 @@ def _beside(row, decided: str) -> str:
     return "; ".join(f"{ERROR_LABELS[e]} {error_text(row, e)}" for e in others)
 
 
+SAME_LENGTH = 5e-4
+"""Tracks whose lengths differ by less than this fraction are "of the same length" in the verdict
+(the lawn-mower is spaced by bisection to the standard plan's track length)."""
+
+
 def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataFrame, platform) -> str:
     """The recommendation with the joint adjustment under the noise model in one or two sentences
     (:func:`sss_locus.experiments.survey_design.scoring.recommend_under_noise`): the deciding
@@ -249,7 +254,8 @@ def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataF
     b = summary.loc[verdict["best"]]
     label = plan_label(plans.loc[verdict["best"]])
     longer = b.total_m / std.total_m - 1.0
-    length = f"a track {fmt_percent(abs(longer))} {'shorter' if longer < 0 else 'longer'}"
+    length = (f"a track {fmt_percent(abs(longer))} {'shorter' if longer < 0 else 'longer'}"
+              if abs(longer) >= SAME_LENGTH else "a track of the same length (within 0.05 %)")
     head = (f"For the {name}, the {'plan' if verdict['holds'] else 'best plan as short as the standard plan'} of "
             f"{label} has a {what} of {error_text(b, e)} ({_beside(b, e)}; {_counts(b)}) against the standard plan's "
             f"{error_text(std, e)} ({_beside(std, e)}; {_counts(std)}), on {length}: ")

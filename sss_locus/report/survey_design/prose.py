@@ -58,7 +58,7 @@ def plans_caption(area_name: str, note: str) -> str:
     """
     return (f"The baselines and the recommended plan of each platform over {area_name}: main-line compass heading (degrees "
             f"clockwise from north) and spacing, crossing angle and spacing of the second set, altitude, track length and time, the shares of "
-            f"the area covered once and twice, holes, the shares of features seen by two lines and resolved by "
+            f"the area covered once and twice, the gaps seen by no line, the shares of features seen by two lines and resolved by "
             f"three, and the median locus length. {note}")
 
 

@@ -131,3 +131,31 @@ def test_paths_that_are_not_files_say_what_they_are(tmp_path):
     link = tmp_path / "broken.toml"
     link.symlink_to(tmp_path / "gone.toml")
     _one_line_refusal(link, "broken link")
+
+
+def _area_toml(tmp_path, body):
+    p = tmp_path / "a.toml"
+    p.write_text('[area]\nvertices_m = [[0, 0], [400, 0], [400, 300], [0, 300]]\nwater_depth_m = 9.0\n' + body)
+    return str(p)
+
+
+def test_a_misspelt_area_key_gets_the_nearest_known_key(tmp_path):
+    """As in the data files (``--data``), a misspelt key of the area file is refused naming it
+    and the key it was probably meant to be."""
+    with pytest.raises(ValueError, match=r"unknown keys in \[area\]: \['hole_m'\]; did you mean `holes_m`\?"):
+        load_area(_area_toml(tmp_path, "hole_m = [[[10, 10], [20, 10], [20, 20]]]\n"))
+
+
+@pytest.mark.parametrize("hole, message", [
+    ([[350, 100], [450, 100], [450, 150], [350, 150]], r"hole 1 is not inside the area's outline \(50% of it lies outside\)"),
+    ([[100, 100], [150, 150], [150, 100], [100, 150]], r"hole 1 is not valid \(Self-intersection"),
+    ([[380, 100], [400, 100], [400, 200], [380, 200]], r"hole 1 runs along the area's outline; .* notch"),
+])
+def test_a_bad_hole_is_named_with_what_is_wrong(tmp_path, hole, message):
+    """A pier drawn half outside the outline, a hole whose vertices cross, a pier drawn against
+    the wall: each refused naming the hole and what is wrong (the polygon's own validity reason,
+    from shapely, named the outline before)."""
+    with pytest.raises(ValueError, match=message):
+        load_area(_area_toml(tmp_path, f"holes_m = [{hole}]\n"))
+    fine = [[100, 100], [150, 100], [150, 200], [100, 200]]
+    assert len(load_area(_area_toml(tmp_path, f"holes_m = [{fine}]\n")).polygon.interiors) == 1

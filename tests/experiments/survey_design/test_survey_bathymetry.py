@@ -239,5 +239,34 @@ def test_the_plan_map_draws_the_grids_depth_contours(grid_area):
     levels = [float(t.get_text().removesuffix(" m")) for t in ax.texts if t.get_text().endswith(" m")]
     assert levels and min(levels) >= 12.0 and max(levels) <= 24.0  # labelled contours within the area's depths
     assert any("depth contour (" in t.get_text() for t in ax.get_legend().get_texts())
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]  # red cells: unseen, not the area's holes (a pier)
+    assert "gap (seen by no line)" in legend and not any(t.startswith("hole") for t in legend)
     assert ax.get_xlim()[1] < 800  # the grid's margin does not widen the map
     plt.close(fig)
+
+
+def test_every_manifest_of_the_chapter_records_the_grid_with_its_sha256(grid_area, tmp_path):
+    """A plan computed over a bathymetry grid depends on the grid's bytes: each figure and table
+    the chapter publishes lists the grid (role ``bathymetry``, SHA-256 of its bytes, computed here
+    with hashlib) beside the area file, not only in the caption's prose."""
+    import hashlib
+    import json
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sss_locus.paths import REPO_ROOT
+    from sss_locus.pipeline.publish.export import export_figure
+
+    fig = plt.figure()
+    manifest = export_figure(fig, "fig-grid-test", pd.DataFrame({"a": [1]}), caption="C.", parameters={},
+                             input_files=grid_area.input_files(), out_dir=tmp_path / "out")
+    plt.close(fig)
+    roles = {f["role"]: f["sha256"] for f in manifest["data_inputs"]["files"]}
+    assert roles["bathymetry"] == hashlib.sha256((tmp_path / "harbour.tif").read_bytes()).hexdigest()
+    assert roles["area"] == hashlib.sha256((tmp_path / "harbour.toml").read_bytes()).hexdigest()
+    cells = json.loads((REPO_ROOT / "notebooks" / "survey_design.ipynb").read_text())["cells"]
+    code = "\n".join("".join(c["source"]) for c in cells if c["cell_type"] == "code")
+    calls = code.count("publish(") + code.count("publish_table(")
+    assert calls and code.count("input_files=survey_area.input_files()") == calls

@@ -180,6 +180,22 @@ def test_pareto_front_and_rule_on_a_constructed_table():
     assert sd.recommend(t, "locus", 0.5) == 0       # none that short: the shortest on the front
 
 
+def test_the_eligibility_rule_is_the_one_the_chapter_states():
+    """Eligible: seen twice on at least the standard plan's share OR at least
+    ``min_two_view_share`` (the setting caps what is asked). The chapter said "and at least"
+    (100 % by default), a bar no plan with a gap meets, while the code asks for the standard
+    plan's 90 %: the rule checked on a constructed table, and the chapter's sentence with it."""
+    t = pd.DataFrame({"kind": ["standard", "search", "search", "search"], "covered_twice": [0.90, 0.95, 0.89, 0.80]})
+    assert list(sd.eligible(t, {"min_two_view_share": 1.0})) == [True, True, False, False]
+    assert list(sd.eligible(t, {"min_two_view_share": 0.85})) == [True, True, True, False]
+    from sss_locus.paths import REPO_ROOT
+
+    cells = json.loads((REPO_ROOT / "notebooks" / "survey_design.ipynb").read_text(encoding="utf-8"))["cells"]
+    prose = " ".join(" ".join("".join(c["source"]).split()) for c in cells if c["cell_type"] == "markdown")
+    assert "twice as the standard plan, or at least {glue:text}`sd-min-two` of it" in prose
+    assert "(and at least {glue:text}`sd-min-two`" not in prose
+
+
 def test_geojson_area_matches_the_geodesic_area(tmp_path):
     from pyproj import Geod
 
@@ -325,6 +341,7 @@ def test_the_plan_caption_names_the_mission_files_the_depth_and_why_some_are_mis
     local = plan_caption(pf, area, "my_area.toml", row, cov, ["mission.csv"], **depth)
     assert "`mission.csv`" in local and "origin_lonlat" in local and "`mission.plan`" not in local
     assert "water depth 12.5 m (my_area.toml: water_depth_m)" in local
+    assert "gaps (groups of cells seen by no line): 0" in local and "holes: " not in local  # holes: piers, islands
     assert "090°/270° lines" in local  # a line heading east is a compass heading of 090°
     placed = area_from_vertices(RECT, origin_lonlat=(-111.8, 40.2))
     everything = plan_caption(pf, placed, "my_area.toml", row, cov,
@@ -358,6 +375,9 @@ def test_the_verdict_sentence_says_whether_the_interval_excludes_the_standard_pl
     few.loc[0, "min_features"] = 29
     text = noise_verdict_sentence(few, recommend_under_noise(few), plans, pf)
     assert "fewer than 30 features (fewest 29)" in text and "not findings" in text
+    same = _summary([std, (1, "lawnmower", 1000.0 * (1 - 7.1e-8), True, 2.9, 2.6, 3.0)])
+    text = noise_verdict_sentence(same, recommend_under_noise(same), plans, pf)
+    assert "on a track of the same length (within 0.05 %)" in text and "e-0" not in text  # not "7.1e-06 % shorter"
 
 
 def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
@@ -551,3 +571,28 @@ def test_headings_deg_are_compass_headings_on_input():
     assert [heading_from_compass_deg(h) for h in quick] == [0.0]
     with pytest.raises(ValueError, match="compass heading"):
         heading_from_compass_deg(float("nan"))
+
+
+def test_a_boat_over_water_its_sonar_cannot_see_through_is_refused_naming_the_depths():
+    """A surface boat's altitude is the water depth: a depth where its fan sees no seafloor
+    (deeper than the range times the sine of the fan's steepest look-down, plus the draft), or
+    shallower than the draft, is refused in one line naming the platform, the depth's source and
+    the depths it can survey (the bound from data/platforms.toml itself; just inside it the pass
+    model of the other chapters finds a swath), not as an ``altitude_m`` of the pass model."""
+    import tomllib
+
+    from sss_locus.paths import REPO_ROOT
+
+    doc = tomllib.loads((REPO_ROOT / "data" / "platforms.toml").read_text(encoding="utf-8"))
+    sonar, port = doc["sonars"]["omniscan_450_ss"], doc["platforms"]["boat"]["transducers"]["port"]
+    draft, tilt = port["depth_m"]["value"], port["tilt_deg"]["value"]
+    deepest = draft + sonar["max_range_m"]["value"] * math.sin(math.radians(tilt + sonar["azimuth_deg"]["value"] / 2))
+    boat = load_platform("boat")
+    area = area_from_vertices([[0, 0], [400, 0], [400, 300], [0, 300]])
+    for depth in (deepest * 1.001, draft / 2):
+        settings = sd.depth_settings(with_water_depth(area, depth, "-p water_depth_m"), load_settings())
+        with pytest.raises(ValueError, match=rf"^platforms\.boat: the water depth {depth:g} m \(-p water_depth_m\) "
+                                             rf"is outside \({draft:g}, {deepest:.4g}\) m"):
+            standard_plan(boat, area, flat_terrain(), settings, np.zeros(1))
+    settings = sd.depth_settings(with_water_depth(area, deepest * 0.999, "-p water_depth_m"), load_settings())
+    assert standard_plan(boat, area, flat_terrain(), settings, np.zeros(1)).altitude_m == deepest * 0.999

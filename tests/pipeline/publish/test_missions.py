@@ -402,3 +402,20 @@ def test_a_plans_cost_is_the_length_the_mission_flies(name, tmp_path):
     assert row["lines_m"] + row["turns_m"] + row["transits_m"] == pytest.approx(row["total_m"])
     assert row["lines_m"] == pytest.approx(lines.length_m.sum())
     assert track_length(lines, boat.turn_radius_m)["total_m"] < flown - 100.0
+
+
+@pytest.mark.parametrize("name", AREAS)
+def test_no_waypoint_repeats_the_one_before_it(name, tmp_path):
+    """Every leg of the mission, as pymavlink loads it, has a length: a U-turn's first arc ends at
+    its tangent point once, not twice (a zero-length leg the autopilot reaches on the spot)."""
+    mavwp = pytest.importorskip("pymavlink.mavwp")
+    verts, holes, origin = AREAS[name]
+    area = area_from_vertices(verts, holes_m=holes, origin_lonlat=origin, name=name)
+    files = mission_files(area, _plan(area), ardupilot=True, **BOAT)
+    (tmp_path / "m.waypoints").write_text(files["mission.waypoints"])
+    loader = mavwp.MAVWPLoader()
+    loader.load(str(tmp_path / "m.waypoints"))
+    wps = [loader.wp(i) for i in range(2, loader.count() - 1)]  # after home and the speed item, before RTL
+    leg = np.hypot(np.diff([w.x for w in wps]) * 111e3,
+                   np.diff([w.y for w in wps]) * 111e3 * math.cos(math.radians(origin[1])))
+    assert len(wps) > 20 and leg.min() > 0.01, np.flatnonzero(leg <= 0.01)
