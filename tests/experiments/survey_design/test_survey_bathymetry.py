@@ -268,5 +268,5 @@ def test_every_manifest_of_the_chapter_records_the_grid_with_its_sha256(grid_are
     assert roles["area"] == hashlib.sha256((tmp_path / "harbour.toml").read_bytes()).hexdigest()
     cells = json.loads((REPO_ROOT / "notebooks" / "survey_design.ipynb").read_text())["cells"]
     code = "\n".join("".join(c["source"]) for c in cells if c["cell_type"] == "code")
-    calls = code.count("publish(") + code.count("publish_table(")
+    calls = code.count("publish(") + code.count("show_table(")
     assert calls and code.count("input_files=survey_area.input_files()") == calls
