@@ -280,19 +280,51 @@ def test_tilt_finding_is_the_papers_paragraph_for_the_shipped_boat():
     assert "rests on" not in same and same.rstrip().endswith(".")
 
 
+def test_drivers_say_what_normalising_moves_the_azimuths_and_a_constant_pitch():
+    raw = [0.7, 0.3, 0.2, 0.05, 0.0]  # mean range first raw
+    norm = [0.1, 0.2, 0.6, 0.05, 0.0]  # misalignment first normalised
+    rho = _rho_table(raw, norm)
+    text = ps.drivers_finding(rho)
+    assert "Normalising moves mean range from ρ = 0.70 to 0.10" in text
+    assert f"The azimuths' normalised ρ: {plain_label('azimuth1_deg')} 0.05." in text and "pitch" not in text
+    rho.attrs["dropped"] = ["pitch2_deg", "abs_pitch2_deg"]
+    assert "Vehicle 2's pitch is constant here" in ps.drivers_finding(rho)
+    assert "Normalising" not in ps.drivers_finding(_rho_table(raw, raw))  # the same first
+
+
+def test_fan_finding_says_the_heatmap_edge_only_when_the_rule_removes_part():
+    level = {"share": 0.2, "theta_min_deg": -11.6}
+    text = ps.fan_finding(level, [{"share": 0.3}])
+    assert "removes 20 % of the fan" in text and "at most 30 % for a pitched" in text
+    assert "no samples left of θ₁ ≈ -12°" in text
+    flat = ps.fan_finding({"share": 0.0, "theta_min_deg": float("nan")}, [])
+    assert "does not reach above the horizontal" in flat and "no samples left" not in flat
+
+
 def test_panels_hotspot_and_choices_follow_their_numbers():
     m = {"range_far_over_near_ratio": 0.5, "azimuth_peak_theta1_deg": 12.4, "azimuth_peak_theta2_deg": -7.6,
          "azimuth_peak_count": 1234.0, "elevation_centre_over_corner_ratio": 2.0, "yaw_peak_neg_deg": -65.0,
          "yaw_peak_pos_deg": 55.0, "yaw_near0_over_peak_ratio": 0.39, "yaw_near180_over_peak_ratio": 0.28,
          "multi_arc_fraction": 0.017, "top_norm": "elevation_misalignment_deg",
          "norm_elevation_misalignment_deg_rho": 0.54, "yaw_peak_neg_lo_deg": -75.0, "yaw_peak_neg_hi_deg": -65.0,
-         "yaw_peak_pos_lo_deg": 55.0, "yaw_peak_pos_hi_deg": 55.0}
+         "yaw_peak_pos_lo_deg": 55.0, "yaw_peak_pos_hi_deg": 55.0,
+         **{f"azimuth2_yaw_peak_{h}_{a}_{e}_deg": v for h, a, e, v in (
+             ("neg", "yaw", "lo", -90.0), ("neg", "yaw", "hi", -80.0), ("pos", "yaw", "lo", 70.0), ("pos", "yaw", "hi", 70.0),
+             ("neg", "theta2", "lo", 5.0), ("neg", "theta2", "hi", 5.0), ("pos", "theta2", "lo", -5.0),
+             ("pos", "theta2", "hi", 0.0))}}
     for name in ("range_far_over_near_ratio", "elevation_centre_over_corner_ratio", "yaw_near0_over_peak_ratio",
                  "yaw_near180_over_peak_ratio", "multi_arc_fraction"):
         m[f"{name}_ci_low"], m[f"{name}_ci_high"] = 0.9 * m[name], 1.1 * m[name]
     text = ps.panels_finding(m)
     assert "0.50 (95 % CI 0.45–0.55) times" in text and "shorter far out" in text and "≈ 12°, -8°" in text
     assert "1,234 samples" in text and "peaks at -75° to -65° and 55°" in text and "1.7 % (95 % CI 1.5–1.9 %)" in text
+    assert "at yaw -90° to -80° with θ₂ 5° and at yaw 70° with θ₂ -5° to 0°" in text  # panel (e)
+    assert "upper edge" not in text  # no heatmap given
+    b = pd.DataFrame({"x_mid": [12.4, 12.4, 20.0, 5.0], "y_mid": [-7.6, 3.0, -7.6, -7.6],
+                      "masked": [False, False, False, True]})  # the peak at the smallest shown azimuths
+    assert "at the upper edge of both fans" in ps.panels_finding(m, b)
+    b.loc[3, "masked"] = False  # a shown bin at a smaller azimuth 1
+    assert "upper edge" not in ps.panels_finding(m, b)
     check = {"x_mid": 10.0, "y_mid": 20.0, "count": 50, "median": 2.0, "target_count": 2000, "target_median": 1.9,
              "target_ci_low": 1.8, "target_ci_high": 2.0, "runner_up_median": 1.95, "runner_up_x_mid": 5.0,
              "runner_up_y_mid": 20.0, "still_peak": False}
