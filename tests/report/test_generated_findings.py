@@ -14,6 +14,7 @@ import pytest
 from sss_locus.report.three_views import findings as pf
 from sss_locus.report.pose_space import findings as ps
 from sss_locus.report.common.text import fmt_percent, plain_label
+from sss_locus.report.three_views.figures import share_text
 
 QUANTITIES = ["mean_range_m", "baseline_m", "elevation_misalignment_deg", "azimuth1_deg", "abs_yaw2_deg"]
 
@@ -192,23 +193,40 @@ def test_survey_summary_names_the_shape_the_models_and_the_study():
 
 
 def _summary():
-    return pd.DataFrame({"pattern": ["repeat + reciprocal", "two lines + cross line", "60° apart"],
+    return pd.DataFrame({"pattern": ["repeat + reciprocal", "two lines + cross line", "60° apart"], "n": 1000,
                          "resolved": [0.97, 0.999, 1.0], "ambiguous": [0.03, 0.001, 0.0], "none": [0.0, 0.0, 0.0],
+                         "ambiguous_no_elevation": [0.5, 0.4, 0.3], "ambiguous_no_azimuth": [0.03, 0.001, 0.0],
                          "plane_angle_median_deg": [1.5, 60.0, 40.0], "error_per_cm_median_m": [3.0, 0.05, 0.08],
                          "error_full_median_m": [9.0, 2.0, 2.5]})
 
 
+def _intervals(s):
+    return {r.pattern: {"plane_angle_deg": {"median": r.plane_angle_median_deg, "ci_low": 0.9 * r.plane_angle_median_deg,
+                                            "ci_high": 1.1 * r.plane_angle_median_deg},
+                        "point_error_q95_m": {"median": r.error_per_cm_median_m, "ci_low": 0.9 * r.error_per_cm_median_m,
+                                              "ci_high": 1.1 * r.error_per_cm_median_m},
+                        "r1_m": {"median": 20.0, "ci_low": 19.0, "ci_high": 21.0}} for r in s.itertuples()}
+
+
 def test_closure_finding_names_best_and_worst_pattern_by_error():
     s = _summary()
-    text = pf.closure_finding(s)
+    text = pf.closure_finding(s, _intervals(s))
     best, worst = s.loc[s.error_per_cm_median_m.idxmin()], s.loc[s.error_per_cm_median_m.idxmax()]
-    assert f"best-conditioned pattern is {best.pattern}" in text and f"the worst {worst.pattern}" in text
-    for r in s.itertuples():
-        assert f"{r.pattern}: {fmt_percent(r.resolved)} resolved, {fmt_percent(r.ambiguous)} ambiguous" in text
+    assert f"best-conditioned pattern is {best.pattern}, the worst {worst.pattern}" in text
+    assert "(median point error 60 times the best's)" in text  # 3.0 / 0.05
+    assert text.startswith(f"resolved to one point in {share_text(0.97, 1000)} (repeat + reciprocal), "
+                           f"{share_text(0.999, 1000)} (two lines + cross line) and {share_text(1.0, 1000)} (60° apart)")
+    assert f"would be left ambiguous; with the azimuth and range bounds lifted instead, {share_text(0.03, 1000)}" in text
+    assert ": the elevation bound rejects the mirror candidate" in text  # lifting it leaves far more ambiguous
+    assert "1.5° (95 % CI 1.4–1.6°)" in text and "none left" not in text
+    s2 = s.assign(ambiguous_no_azimuth=[0.6, 0.5, 0.4], none=[0.0, 0.01, 0.0])
+    text = pf.closure_finding(s2, _intervals(s2))
+    assert ": the azimuth and range bounds reject the mirror candidate" in text and "none left in" in text
     ranking = pf.pattern_ranking(s)
     order = [s.pattern[i] for i in np.argsort(s.error_full_median_m.to_numpy())]
     assert [ranking.index(p) for p in order] == sorted(ranking.index(p) for p in order)
-    assert fmt_percent(s.resolved.min()) in ranking
+    assert f": {order[0]} is the best-conditioned choice and {order[-1]} the worst" in ranking
+    assert f"at least {share_text(0.97, 1000)} of the configurations" in ranking
 
 
 def test_sweep_finding_finds_the_extreme_cells():

@@ -15,7 +15,7 @@ import pandas as pd
 from sss_locus.experiments.survey_passes.planning import planning_bands
 from sss_locus.experiments.datamodel.platforms import provenance_table
 from sss_locus.experiments.three_views.patterns import cells_within, share_interval
-from sss_locus.report.common.text import fmt_bands, fmt_change, fmt_percent, fmt_sig
+from sss_locus.report.common.text import fmt_bands, fmt_change, fmt_interval, fmt_percent, fmt_sig
 from sss_locus.report.survey_passes.figures import curve_texts
 from sss_locus.report.three_views.figures import share_text, sweep_texts
 
@@ -299,25 +299,58 @@ def survey_summary(cur, models: Mapping[str, object], prefer_below: float, avoid
                    f"above the feature {way} the locus ({_effect(hi)[0]}).")
 
 
-def closure_finding(summary: pd.DataFrame) -> str:
-    """Three-view closure of one platform: per pattern the share resolved to one point and left
-    two-fold ambiguous, the median plane angle and 95 % point error, and the best pattern.
+def closure_finding(summary: pd.DataFrame, intervals: Mapping[str, Mapping[str, Mapping[str, float]]]) -> str:
+    """Three-view closure of one platform in words: the one source of this paragraph
+    (CONTRIBUTING.md, "One source per sentence").
 
-    ``summary``: the chapter's table restricted to one platform (columns ``pattern``,
-    ``resolved``, ``ambiguous``, ``none``, ``plane_angle_median_deg``, ``error_per_cm_median_m``,
-    ``error_full_median_m``)."""
+    Parameters
+    ----------
+    summary : pandas.DataFrame
+        The chapter's table restricted to one platform: ``pattern``, ``n``, the shares
+        ``resolved``, ``ambiguous``, ``none``, ``ambiguous_no_elevation`` and
+        ``ambiguous_no_azimuth`` (left ambiguous with the elevation bound, or the azimuth and
+        range bounds, lifted), ``error_per_cm_median_m`` and ``error_full_median_m``.
+    intervals : mapping pattern -> mapping column -> estimate
+        :func:`~sss_locus.experiments.three_views.patterns.median_intervals` of each pattern's
+        ``plane_angle_deg``, ``point_error_q95_m`` and ``r1_m``.
+
+    Returns
+    -------
+    str
+        Per pattern the shares resolved and left ambiguous (as
+        :func:`~sss_locus.report.three_views.figures.share_text`, the chapter's glued values), the
+        shares with each bound lifted and which bound rejects the mirror candidate (the one whose
+        lifting leaves more configurations ambiguous), the median plane angles, point errors and
+        ranges with their intervals, and the best- and worst-conditioned patterns by the median
+        point error.
+    """
     if summary.empty:
         raise ValueError("closure_finding needs the rows of one platform")
-    shares = "; ".join(f"{r.pattern}: {fmt_percent(r.resolved)} resolved, {fmt_percent(r.ambiguous)} ambiguous"
-                       + (f", {fmt_percent(r.none)} with no candidate" if r.none > 0 else "")
-                       for r in summary.itertuples())
+    rows = list(summary.itertuples())
+
+    def each(col: str, fmt=None) -> str:
+        return _and([(fmt or (lambda r: share_text(getattr(r, col), r.n)))(r) for r in rows])
+
+    def med(col: str, unit: str) -> str:
+        return _and([fmt_interval(intervals[r.pattern][col], unit) for r in rows])
+    el, az = summary["ambiguous_no_elevation"].sum(), summary["ambiguous_no_azimuth"].sum()
+    bound = ("the elevation bound" if el > az else "the azimuth and range bounds" if az > el else
+             "either bound alike")
     best = summary.loc[summary["error_per_cm_median_m"].idxmin()]
     worst = summary.loc[summary["error_per_cm_median_m"].idxmax()]
-    return (f"{shares}. The best-conditioned pattern is {best.pattern} (median plane angle "
-            f"{fmt_sig(best.plane_angle_median_deg, 2)}°, median 95 % point error {fmt_sig(best.error_per_cm_median_m, 2)} m "
-            f"with the range error alone), the worst {worst.pattern} ({fmt_sig(worst.plane_angle_median_deg, 2)}°, "
-            f"{fmt_sig(worst.error_per_cm_median_m, 2)} m); with the platform's full noise model the medians are "
-            f"{fmt_sig(best.error_full_median_m, 2)} m and {fmt_sig(worst.error_full_median_m, 2)} m.")
+    text = ("resolved to one point in " + _and([f"{share_text(r.resolved, r.n)} ({r.pattern})" for r in rows])
+            + " of the configurations, a two-fold ambiguity remaining in " + each("ambiguous")
+            + ("" if not (summary["none"] > 0).any() else ", none left in " + each("none"))
+            + ". With the elevation bound of every aperture lifted, " + each("ambiguous_no_elevation")
+            + " would be left ambiguous; with the azimuth and range bounds lifted instead, " + each("ambiguous_no_azimuth")
+            + f": {bound} reject{'s' if bound == 'the elevation bound' else ''} the mirror candidate. "
+            + "The median angle between the two planes is " + med("plane_angle_deg", "°")
+            + "; the range error gives a median 95 % point error of " + med("point_error_q95_m", "m")
+            + " (median ranges " + med("r1_m", "m") + "). ")
+    return (text + f"The best-conditioned pattern is {best.pattern}, the worst {worst.pattern} (median point error "
+            f"{fmt_sig(worst.error_per_cm_median_m / best.error_per_cm_median_m, 2)} times the best's); with the "
+            f"platform's full noise model the medians are {fmt_sig(best.error_full_median_m, 2)} m and "
+            f"{fmt_sig(worst.error_full_median_m, 2)} m.")
 
 
 def fan_top_clause(fan_deg: float, tilt_deg: float) -> str:
@@ -447,11 +480,16 @@ def tilt_markdown(rows: pd.DataFrame, platforms: Mapping[str, object], titles: M
 
 def pattern_ranking(summary: pd.DataFrame) -> str:
     """One platform's patterns from the smallest to the largest median 95 % point error with its
-    full noise model (``pattern``, ``error_full_median_m``), and the share resolved of each."""
+    full noise model (``pattern``, ``error_full_median_m``), and the smallest share resolved
+    (``resolved`` of ``n``, as :func:`~sss_locus.report.three_views.figures.share_text`): the one
+    source of the chapter's planning advice (CONTRIBUTING.md, "One source per sentence")."""
     s = summary.sort_values("error_full_median_m", kind="stable")
+    low = summary.loc[summary["resolved"].idxmin()]
     return ("with the platform's full noise model the median 95 % point error is "
             + ", then ".join(f"{fmt_sig(r.error_full_median_m, 2)} m for {r.pattern}" for r in s.itertuples())
-            + f"; the smallest share resolved is {fmt_percent(summary['resolved'].min())}.")
+            + f": {s.iloc[0].pattern} is the best-conditioned choice and {s.iloc[-1].pattern} the worst. Whatever the "
+            f"pattern, the third pass resolves the feature in at least {share_text(low.resolved, low.n)} of the "
+            "configurations.")
 
 
 def skipped_study_note(study: str, capability: str, limits_deg: Mapping[str, float], need_deg: float) -> str:

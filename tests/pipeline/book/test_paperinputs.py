@@ -103,7 +103,7 @@ def test_tagged_prose_gives_way_to_generated_findings_with_one_note_a_chapter(tm
     assert "generated from this run's numbers" in note
 
 
-@pytest.mark.parametrize("name", ["pose_space", "three_views"])
+@pytest.mark.parametrize("name", ["pose_space"])
 def test_each_block_of_paper_prose_is_followed_by_generated_findings(name):
     """With other platforms, no passage written for the paper's is left without a finding from the
     run's own numbers: the cell after each block of tagged prose is a generated one."""
