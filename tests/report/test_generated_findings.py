@@ -347,12 +347,24 @@ def test_panels_hotspot_and_choices_follow_their_numbers():
              "target_ci_low": 1.8, "target_ci_high": 2.0, "runner_up_median": 1.95, "runner_up_x_mid": 5.0,
              "runner_up_y_mid": 20.0, "still_peak": False}
     assert "not settled" in ps.hotspot_finding(check) and "(10°, 20°)" in ps.hotspot_finding(check)
-    checks = pd.DataFrame({"run": ["mine, unconstrained sweep", "mine2, unconstrained sweep"],
-                           "top normalised": ["baseline", "range r₁"], "rho misalignment (norm.)": [0.41, 0.9],
-                           "hotspot theta1, theta2 (deg)": [(4, -26), (0, 0)]})
+    checks = pd.DataFrame({"run": ["mine, unconstrained sweep", "mine, vehicle 2 may be above the surface",
+                                   "mine2, unconstrained sweep"],
+                           "top normalised": ["baseline", plain_label("elevation_misalignment_deg"), "range r₁"],
+                           "rho misalignment (norm.)": [0.41, 0.5, 0.9],
+                           "hotspot region theta1 (deg)": [(4, 10), (0, 0), (0, 0)],
+                           "hotspot region theta2 (deg)": [(-26, -26), (0, 0), (0, 0)],
+                           "hotspot region at equal azimuths": [False, True, True],
+                           "yaw 0 / peak": [0.5, 0.6, 0.7], "yaw 0 / peak CI": [(0.4, 0.6), (0.5, 0.7), (0.6, 0.8)]})
     text = ps.choices_finding(m, checks, "mine")
-    assert "unconstrained sweep: baseline first (misalignment ρ 0.41, hotspot (4°, -26°))" in text
-    assert "0.90" not in text  # another platform's row is not quoted
+    assert ("unconstrained sweep: baseline first (misalignment ρ 0.41; hotspot region θ₁ 4° to 10°, θ₂ -26°, without "
+            "equal azimuths; median near yaw 0 0.50 (95 % CI 0.40–0.60) of the peak)") in text
+    assert "above the surface: " in text and "with equal azimuths" in text
+    assert "0.90" not in text and "sea surface" not in text  # another platform's row; no depth share given
+    text = ps.choices_finding(m, checks, "mine", (0.23, 5.0))
+    assert "above the sea surface in 23 % of the samples with vehicle 1 at its shallowest 5 m" in text
+    assert "the top normalised quantity is the same" in text  # elevation misalignment in both
+    checks.loc[1, "top normalised"] = "baseline"
+    assert "the top normalised quantity differs" in ps.choices_finding(m, checks, "mine", (0.23, 5.0))
     md = ps.findings_markdown({"A (`a`)": text})
     assert re.match(r"- \*\*A \(`a`\)\*\*: main run: ", md)
 

@@ -163,25 +163,54 @@ def panels_finding(metrics: Mapping[str, float], azimuth_map: pd.DataFrame | Non
         f"{_ci(m, 'multi_arc_fraction', percent=True)} of its port–port loci are fragmented (more than one arc).")
 
 
-def choices_finding(main: Mapping[str, float], checks: pd.DataFrame, key: str) -> str:
-    """How the open modelling choices change one platform's headline numbers.
+def choices_finding(main: Mapping[str, float], checks: pd.DataFrame, key: str,
+                    above: tuple[float, float] | None = None) -> str:
+    """How the open modelling choices change one platform's headline numbers: the one source of
+    this paragraph (CONTRIBUTING.md, "One source per sentence").
 
-    ``main``: :func:`~sss_locus.experiments.pose_space.claims.claim_metrics` of the main run;
-    ``checks``: the modelling-choice table (rows of
-    :func:`~sss_locus.report.pose_space.figures.check_row`, ``run`` labels starting with ``key + ", "``).
+    Parameters
+    ----------
+    main : mapping
+        :func:`~sss_locus.experiments.pose_space.claims.claim_metrics` of the main run.
+    checks : pandas.DataFrame
+        The modelling-choice table (rows of :func:`~sss_locus.report.pose_space.figures.check_row`,
+        ``run`` labels starting with ``key + ", "``).
+    key : str
+        The platform's data key.
+    above : (float, float), optional
+        For a platform whose depth varies: the share of samples of the earlier depth rule with
+        vehicle 2 above the sea surface, and vehicle 1's shallowest depth (m).
+
+    Returns
+    -------
+    str
+        Per check run the top normalised quantity, misalignment's ρ, the hotspot's peak region
+        (and whether it holds equal azimuths) and the yaw-0 dip with its interval; with ``above``,
+        how often the earlier rule put vehicle 2 above the surface and whether the top normalised
+        quantity "is the same" or "differs" without those poses.
     """
     rows = checks[checks["run"].str.startswith(f"{key}, ")]
     if rows.empty:
         raise ValueError(f"checks has no run of platform {key!r}")
     parts = []
     for row in rows.to_dict("records"):
-        a, b = row["hotspot theta1, theta2 (deg)"]
+        (a1, b1), (a2, b2) = row["hotspot region theta1 (deg)"], row["hotspot region theta2 (deg)"]
         parts.append(f"{row['run'][len(key) + 2:]}: {plain_label(row['top normalised'])} first "
-                     f"(misalignment ρ {fmt_rho(row['rho misalignment (norm.)'])}, hotspot ({a:.0f}°, {b:.0f}°))")
-    return (f"main run: {plain_label(str(main['top_norm']))} first (misalignment ρ "
+                     f"(misalignment ρ {fmt_rho(row['rho misalignment (norm.)'])}; hotspot region θ₁ {fmt_span(a1, b1)}, "
+                     f"θ₂ {fmt_span(a2, b2)}, {'with' if row['hotspot region at equal azimuths'] else 'without'} equal "
+                     f"azimuths; median near yaw 0 {fmt_ci(row['yaw 0 / peak'], *row['yaw 0 / peak CI'])} of the peak)")
+    text = (f"main run: {plain_label(str(main['top_norm']))} first (misalignment ρ "
             f"{fmt_rho(main['norm_elevation_misalignment_deg_rho'])}, hotspot "
             f"({main['azimuth_peak_theta1_deg']:.0f}°, {main['azimuth_peak_theta2_deg']:.0f}°)); "
             + "; ".join(parts) + ".")
+    if above is None:
+        return text
+    earlier = rows[rows["run"].str.endswith("vehicle 2 may be above the surface")]
+    same = len(earlier) and earlier["top normalised"].iloc[0] == plain_label(str(main["top_norm"]))
+    return (text + f" The earlier depth rule (the two depths' difference alone) puts vehicle 2 above the sea surface "
+            f"in {100 * above[0]:.0f} % of the samples with vehicle 1 at its shallowest {above[1]:g} m, a physically "
+            "impossible pose; the top normalised quantity " + ("is the same" if same else "differs")
+            + " with and without those poses.")
 
 
 def reading_finding(effect: pd.DataFrame) -> str:
