@@ -1,4 +1,4 @@
-"""Findings generated for any platform (sss_locus.report.pose_space.findings, pass_findings) say what
+"""Findings generated for any platform (sss_locus.report.pose_space.findings, three_views.findings) say what
 the numbers they come from say: orders, extremes and flags are recomputed here by hand from
 tables built for the test, not copied from the functions' output."""
 

@@ -1,9 +1,8 @@
-"""Findings of the pose-space chapter generated from a run's own numbers, for any platform.
+"""Verdicts of the pose-space chapter, generated from a run's own numbers, for any platform.
 
-The chapter's comparison passages are written for the paper's platforms (cells tagged
-``paper-inputs``, :mod:`sss_locus.pipeline.book.paperinputs`). For any other platform, the functions
-here turn the same computed tables into sentences: one paragraph per platform, which the notebook
-glues (as Markdown, :func:`findings_markdown`) into cells tagged ``generated-findings``. Every
+One function per verdict (CONTRIBUTING.md, "One source per sentence"): it turns the chapter's
+computed tables into one paragraph per platform, the paper's AUV and boat included, which the
+notebook glues (as Markdown, :func:`findings_markdown`) into one untagged markdown cell. Every
 number in them comes from the arguments; nothing is typed for a particular platform.
 """
 

@@ -1,8 +1,9 @@
-"""Findings of the survey-pass and three-view chapters generated from a run's own numbers.
+"""Verdicts of the survey-pass and three-view chapters, generated from a run's own numbers.
 
-The counterpart of :mod:`sss_locus.report.pose_space.findings` for the chapters on passes: one
-paragraph per platform (or per study platform), computed from the curves and tables the chapter
-draws, for the cells tagged ``generated-findings``. Nothing here is typed for a particular platform.
+One function per verdict (CONTRIBUTING.md, "One source per sentence"): it takes the curves and
+tables the chapter draws and returns the paragraph for one platform (or for all platforms of the
+run), the paper's platforms included; the chapter glues it into one untagged markdown cell.
+Every qualitative word is computed from the numbers; nothing is typed for a particular platform.
 """
 
 from __future__ import annotations
