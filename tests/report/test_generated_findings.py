@@ -386,3 +386,31 @@ def test_a_table_a_cell_shows_is_its_last_statement():
             shown = [i for i, node in enumerate(body) if isinstance(node, ast.Expr)
                      and "readable_table(" in ast.get_source_segment(source, node).split("\n")[0][:20]]
             assert all(i == len(body) - 1 for i in shown), (path.name, source[:120])
+
+
+def _bands(rows):
+    return pd.DataFrame(rows, columns=["kind", "lo_deg", "hi_deg"])
+
+
+def test_paper_band_finding_counts_the_paper_band_and_flips_with_the_bands():
+    from sss_locus.report.survey_passes.planning import paper_band_finding
+    curve = pd.DataFrame({"crossing_angle_deg": np.arange(0.0, 181.0, 5.0)})  # 10..40: 7 grid angles
+    bands = _bands([("prefer", 0, 5), ("avoid", 10, 35), ("prefer", 80, 100), ("prefer", 175, 180)])
+    text = paper_band_finding(curve, bands)
+    assert text.startswith("the first avoided band is 10–35°, ending by the paper's 40°")
+    assert "86 % are avoided and 0 % preferred" in text and 'a cross-line (90°) is "prefer"' in text  # 6 of 7
+    wide = _bands([("prefer", 0, 15), ("avoid", 40, 120)])
+    text = paper_band_finding(curve, wide)
+    assert "40–120°, reaching past the paper's 40°" in text and "14 % are avoided and 29 % preferred" in text
+    assert 'is "avoid"' in text and "no angle is to be avoided" in paper_band_finding(curve, _bands([]))
+
+
+def test_cross_line_finding_says_whether_the_offset_model_decides():
+    from sss_locus.report.survey_passes.planning import cross_line_finding
+    curves = {("b", s): SimpleNamespace(offset_model=SimpleNamespace(label=s)) for s in ("independent", "matched")}
+    bands = {("b", "independent"): _bands([("avoid", 60, 120)]), ("b", "matched"): _bands([("prefer", 80, 100)])}
+    text = cross_line_finding(curves, bands, "b")
+    assert text == ('a cross-line (90°) is "avoid" with independent offsets and "prefer" with matched offsets: '
+                    "the offset model decides whether it is a fallback.")
+    bands[("b", "matched")] = _bands([("avoid", 80, 100)])
+    assert "the same under every offset model shown" in cross_line_finding(curves, bands, "b")
