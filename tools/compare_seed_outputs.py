@@ -61,12 +61,10 @@ SPAN = re.compile(rf"^({NUMBER})° to ({NUMBER})°$|^({NUMBER})°$")  # a peak r
 
 
 def quoted_keys() -> set[tuple[str, str]]:
-    """(notebook, glue key) of every glued value a chapter's Markdown or a book page quotes (the
-    findings generated for other platforms, dropped from the reproduction, left out)."""
+    """(notebook, glue key) of every glued value a chapter's Markdown or a book page quotes."""
     out = set()
     pages = [(p.stem, "".join("".join(c["source"]) for c in json.loads(p.read_text())["cells"]
-                              if c["cell_type"] == "markdown"
-                              and "generated-findings" not in c["metadata"].get("tags", [])))
+                              if c["cell_type"] == "markdown"))
              for p in (REPO / "notebooks").glob("*.ipynb")]
     pages += [(None, p.read_text()) for p in (REPO / "book").glob("*.md")]
     for nb, text in pages:

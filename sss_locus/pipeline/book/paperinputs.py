@@ -3,8 +3,9 @@
 The chapters' figures, captions, tables and glued numbers follow the run for any platform. Their
 prose cannot always: a paragraph that compares the AUV with the boat is written for the paper's
 platforms (each notebook's default ``platforms`` parameter) with the shipped ``data/``. Such a
-markdown cell carries the cell tag :data:`PROSE_TAG`. When a run's inputs differ from the paper's
-for that notebook — a default platform not selected, or a value one of them reads changed by
+markdown cell carries the cell tag :data:`PROSE_TAG` (chapters whose verdicts are generated for
+any platform by their findings functions have none: CONTRIBUTING.md, "One source per
+sentence"). When a run's inputs differ from the paper's for that notebook — a default platform not selected, or a value one of them reads changed by
 ``--data``/``--set`` — the runner replaces the tagged cells of the executed copy by one note per
 block of consecutive tagged cells saying why (:func:`adapt_prose`), and records the comparison in
 the copy's metadata (``sss_locus.paper_inputs``, :func:`compare`).
@@ -24,10 +25,6 @@ from typing import Any
 
 #: Cell tag of a markdown cell written for the paper's platforms with the shipped data.
 PROSE_TAG = "paper-inputs"
-#: Cell tag of a markdown cell of findings generated from the run's own numbers for every platform
-#: of the run (``sss_locus.report.pose_space.findings``, ``pass_findings``): shown when the run is not
-#: the paper's inputs alone, dropped from the reproduction (where the paper's prose says it).
-GENERATED_TAG = "generated-findings"
 #: Data tables not keyed by platform that only some chapters read (their changes count for those).
 SHARED_TABLES = ("terrain", "survey")
 
@@ -78,18 +75,12 @@ def _reasons(record: Mapping[str, Any]) -> str:
     return " and ".join(out)
 
 
-def shows_generated(record: Mapping[str, Any] | None) -> bool:
-    """True when a run's chapter shows its :data:`GENERATED_TAG` cells: its inputs are not the
-    paper's, or it adds platforms beside the paper's (whose prose says nothing of them)."""
-    return bool(record) and (not is_paper(record) or bool(record.get("added")))
-
-
 def prose_note(record: Mapping[str, Any]) -> str:
     """The note that stands in for prose written for the paper's inputs (MyST), once a chapter."""
     return ("```{note}\nThe passages written for the paper's platforms with the shipped data — "
             f"{_names(record['paper'])} — are left out here: this run {_reasons(record)}. The figures, "
-            "captions and tables of this chapter show the values this run used, and the findings in "
-            "this chapter are generated from this run's numbers.\n```\n")
+            "captions and tables of this chapter show the values this run used, and its findings outside "
+            "those passages are generated from this run's numbers.\n```\n")
 
 
 def _tags(cell: Mapping[str, Any]) -> list[str]:
@@ -99,22 +90,17 @@ def _tags(cell: Mapping[str, Any]) -> list[str]:
 def adapt_prose(notebook: Path, record: Mapping[str, Any] | None) -> int:
     """Fit an executed ``notebook``'s prose to its run's inputs (``record`` from :func:`compare`).
 
-    On the paper's inputs alone the :data:`GENERATED_TAG` cells are dropped. Otherwise they stay,
-    and when the inputs are not the paper's the :data:`PROSE_TAG` cells go: each block of
+    When the inputs are not the paper's the :data:`PROSE_TAG` cells go: each block of
     consecutive tagged cells keeps only the leading headings of its first cell, and the first
     block of the chapter is followed by :func:`prose_note` (one note a chapter). Returns the
     number of cells replaced or dropped."""
-    if record is None:
+    if is_paper(record):
         return 0
-    generated, paper = shows_generated(record), is_paper(record)
     nb = json.loads(notebook.read_text(encoding="utf-8"))
     cells, changed, previous_tagged, noted = [], 0, False, False
     for cell in nb["cells"]:
-        tags = _tags(cell)
-        tagged = PROSE_TAG in tags and not paper
-        if GENERATED_TAG in tags and not generated:
-            changed += 1
-        elif tagged:
+        tagged = PROSE_TAG in _tags(cell)
+        if tagged:
             changed += 1
             if not previous_tagged:  # keep the block's leading headings; the note once a chapter
                 lines = "".join(cell["source"]).splitlines(keepends=True)

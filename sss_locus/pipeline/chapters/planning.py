@@ -18,11 +18,14 @@ from sss_locus.pipeline.chapters.common import show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
 from sss_locus.report.survey_passes.findings import near_end_findings
 from sss_locus.report.survey_passes.planning import (band_texts, plot_planning_bands, PAPER_AVOID_DEG, bands_table,
-                                                     bands_markdown)
+                                                     bands_markdown, cross_line_finding, offset_model_words,
+                                                     paper_band_finding)
+from sss_locus.report.pose_space.findings import findings_markdown, platform_title
 from sss_locus.report.survey_passes.figures import near_end_caption
 from sss_locus.report.common.tables import readable_table, key_caption
 
-__all__ = ["band_texts", "bands_markdown", "bands_table", "cached", "crossing_angle_curve",
+__all__ = ["band_texts", "bands_markdown", "bands_table", "cross_line_finding", "findings_markdown", "offset_model_words",
+           "paper_band_finding", "platform_title", "cached", "crossing_angle_curve",
            "crossing_angle_grid", "glue", "key_caption", "load_envelope", "load_platform", "Markdown",
            "near_end_caption", "near_end_check", "near_end_findings", "OffsetModel", "PAPER_AVOID_DEG",
            "pd", "planning_bands", "plot_planning_bands", "publish", "readable_table", "show_table",

@@ -21,7 +21,7 @@ from sss_locus.pipeline.run.cache import cached
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
 from sss_locus.report.three_views.findings import (curve_finding, offset_models_finding, skipped_study_note,
-                                                   pitch_depth_finding, survey_summary)
+                                                   pitch_depth_finding, shorter_finding, survey_summary)
 from sss_locus.report.pose_space.findings import findings_markdown, platform_title
 from sss_locus.report.survey_passes.figures import (plot_fig5, describe_setup, describe_offset_model, curve_texts,
                                                     peak_table, plot_offset_models, offset_models_bimodal_note,
@@ -50,4 +50,4 @@ __all__ = ["key", "KEYS", "band_samples", "cached", "crossing_angle_curve", "cro
            "pd", "peak_agreement", "peak_agreement_texts", "peak_table", "pitch_depth_finding",
            "pitch_depth_texts", "pitch_study_platform", "platform_title", "plot_fig5",
            "plot_offset_models", "plot_pitch_depth", "publish", "replace", "show_table", "simulate_passes",
-           "skipped_study_note", "survey_summary", "time", "use_data", "worst_band"]
+           "shorter_finding", "skipped_study_note", "survey_summary", "time", "use_data", "worst_band"]

@@ -35,7 +35,7 @@ class KEYS:
     amb_no_el = "tv-{platform}-{pattern}-amb-no-el"  # share ambiguous without the elevation test
     amb_no_az = "tv-{platform}-{pattern}-amb-no-az"  # share ambiguous without the azimuth test
     interval = "tv-{platform}-{pattern}-{quantity}"  # a median with its interval; quantity: angle, per-cm, full or range
-    generated = "tv-{finding}-generated"  # a generated finding (pass_findings)
+    generated = "tv-{finding}-generated"  # a generated finding (report.three_views.findings)
     tilt_resolved = "tv-{platform}-tilt{tilt}-{pattern}-resolved"  # tilted transducers (tilt: deg, '.' written 'p')
     tilt_ambiguous = "tv-{platform}-tilt{tilt}-{pattern}-ambiguous"  # tilted transducers, ambiguous share
     sweep = "tv-{platform}-{text}"  # a text of report.three_views.figures.sweep_texts (its name)

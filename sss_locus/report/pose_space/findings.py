@@ -1,9 +1,8 @@
-"""Findings of the pose-space chapter generated from a run's own numbers, for any platform.
+"""Verdicts of the pose-space chapter, generated from a run's own numbers, for any platform.
 
-The chapter's comparison passages are written for the paper's platforms (cells tagged
-``paper-inputs``, :mod:`sss_locus.pipeline.book.paperinputs`). For any other platform, the functions
-here turn the same computed tables into sentences: one paragraph per platform, which the notebook
-glues (as Markdown, :func:`findings_markdown`) into cells tagged ``generated-findings``. Every
+One function per verdict (CONTRIBUTING.md, "One source per sentence"): it turns the chapter's
+computed tables into one paragraph per platform, the paper's AUV and boat included, which the
+notebook glues (as Markdown, :func:`findings_markdown`) into one untagged markdown cell. Every
 number in them comes from the arguments; nothing is typed for a particular platform.
 """
 
@@ -11,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
+import numpy as np
 import pandas as pd
 
 from sss_locus.report.common.text import fmt_ci, fmt_sig, fmt_span, plain_label
@@ -65,9 +65,12 @@ def drivers_finding(rho: pd.DataFrame, top: int = 3) -> str:
     """What drives locus length for one platform, from its Spearman table.
 
     ``rho``: :func:`~sss_locus.experiments.pose_space.stats.spearman_table` (columns ``target``,
-    ``quantity``, ``rho``, ``ci_low``, ``ci_high``). Names the ``top`` quantities by ``|rho|``
-    for the raw and the range-normalised length, the direction of the first, whether its
-    interval is clear of the second's, and the weakest quantity.
+    ``quantity``, ``rho``, ``ci_low``, ``ci_high``; ``attrs["dropped"]`` the constant columns left
+    out). Names the ``top`` quantities by ``|rho|`` for the raw and the range-normalised length,
+    the direction of the first, whether its interval is clear of the second's, and the weakest
+    quantity; when normalising changes the first, the raw first's two ρ; the azimuths'
+    normalised ρ; and that pitch is out of the ranking when its column was constant. The one
+    source of this paragraph (CONTRIBUTING.md, "One source per sentence").
     """
     if top < 1:
         raise ValueError(f"top must be >= 1; got {top}")
@@ -90,6 +93,18 @@ def drivers_finding(rho: pd.DataFrame, top: int = 3) -> str:
             text += ")"
         weakest = tab["rho"].abs().idxmin()
         out.append(text + f"; the weakest is {plain_label(weakest)} (ρ = {fmt_rho(tab.loc[weakest, 'rho'])}).")
+    raw, norm = rho[rho["target"] == RAW].set_index("quantity"), rho[rho["target"] == NORM].set_index("quantity")
+    first = ranked(rho, RAW, 1)[0][0]
+    if first != ranked(rho, NORM, 1)[0][0] and first in norm.index:
+        out.append(f"Normalising moves {plain_label(first)} from ρ = {fmt_rho(raw.loc[first, 'rho'])} to "
+                   f"{fmt_rho(norm.loc[first, 'rho'])}.")
+    azimuths = [q for q in ("azimuth1_deg", "azimuth2_deg") if q in norm.index]
+    if azimuths:
+        out.append("The azimuths' normalised ρ: " + ", ".join(f"{plain_label(q)} {fmt_rho(norm.loc[q, 'rho'])}"
+                                                               for q in azimuths) + ".")
+    dropped = [q for q in rho.attrs.get("dropped", ()) if "pitch" in q]
+    if dropped:
+        out.append("Vehicle 2's pitch is constant here (the platform does not pitch), so it has no place in the ranking.")
     return " ".join(out)
 
 
@@ -101,47 +116,100 @@ def _span(m: Mapping[str, float], name: str) -> str:
     return fmt_span(m[f"{name}_lo_deg"], m[f"{name}_hi_deg"])
 
 
-def panels_finding(metrics: Mapping[str, float]) -> str:
-    """Where long loci occur for one platform: the heatmap panels read with their numbers.
+def panels_finding(metrics: Mapping[str, float], azimuth_map: pd.DataFrame | None = None) -> str:
+    """Where long loci occur for one platform: the heatmap panels read with their numbers; the
+    one source of this paragraph (CONTRIBUTING.md, "One source per sentence").
 
-    ``metrics``: :func:`~sss_locus.experiments.pose_space.claims.claim_metrics` of the platform (ratios
-    and shares with their intervals, the yaw peaks as the spans of their peak regions).
+    Parameters
+    ----------
+    metrics : mapping
+        :func:`~sss_locus.experiments.pose_space.claims.claim_metrics` of the platform (ratios and
+        shares with their intervals, the yaw peaks and panel (e)'s peaks as the spans of their
+        peak regions).
+    azimuth_map : pandas.DataFrame, optional
+        The azimuth heatmap (panel b: ``x_mid``, ``y_mid``, ``masked``): when the peak bin is the
+        shown bin of smallest azimuth on both axes, the sentence says it sits at the upper edge of
+        both fans (positive azimuth points down).
+
+    Returns
+    -------
+    str
+        One paragraph, "longer far out", "longer with the feature near the centre of both beams"
+        and "at the upper edge of both fans" computed from the numbers.
     """
     m = metrics
+    edge = ""
+    if azimuth_map is not None:
+        shown = azimuth_map[~azimuth_map["masked"]]
+        if (np.isclose(m["azimuth_peak_theta1_deg"], shown["x_mid"].min())
+                and np.isclose(m["azimuth_peak_theta2_deg"], shown["y_mid"].min())):
+            edge = ", at the upper edge of both fans, the look direction closest to horizontal"
     far = m["range_far_over_near_ratio"]
     el = m["elevation_centre_over_corner_ratio"]
     return (
         f"with both ranges above half the maximum the median length is {_ci(m, 'range_far_over_near_ratio')} times "
         f"that with both below ({'longer far out' if far > 1 else 'shorter far out'}); the largest median over the "
         f"two azimuths sits at θ₁, θ₂ ≈ {m['azimuth_peak_theta1_deg']:.0f}°, {m['azimuth_peak_theta2_deg']:.0f}° (bin "
-        f"centres, {m['azimuth_peak_count']:,.0f} samples in that bin); at the centre of the elevation square the "
+        f"centres, {m['azimuth_peak_count']:,.0f} samples in that bin{edge}); at the centre of the elevation square the "
         f"median is {_ci(m, 'elevation_centre_over_corner_ratio')} times the corners' "
         f"({'longer' if el > 1 else 'shorter'} with the feature near the centre of both beams); over vehicle 2's "
         f"yaw the median peaks at {_span(m, 'yaw_peak_neg')} and {_span(m, 'yaw_peak_pos')} (the bins whose 95 % "
         f"interval reaches that of each half's largest median), and is {_ci(m, 'yaw_near0_over_peak_ratio')} of the peak near "
-        f"yaw 0 (parallel headings) and {_ci(m, 'yaw_near180_over_peak_ratio')} near ±180° (reciprocal). "
+        f"yaw 0 (parallel headings) and {_ci(m, 'yaw_near180_over_peak_ratio')} near ±180° (reciprocal); over "
+        f"vehicle 2's yaw and azimuth (panel e) the largest medians sit at yaw {_span(m, 'azimuth2_yaw_peak_neg_yaw')} "
+        f"with θ₂ {_span(m, 'azimuth2_yaw_peak_neg_theta2')} and at yaw {_span(m, 'azimuth2_yaw_peak_pos_yaw')} with "
+        f"θ₂ {_span(m, 'azimuth2_yaw_peak_pos_theta2')}. "
         f"{_ci(m, 'multi_arc_fraction', percent=True)} of its port–port loci are fragmented (more than one arc).")
 
 
-def choices_finding(main: Mapping[str, float], checks: pd.DataFrame, key: str) -> str:
-    """How the open modelling choices change one platform's headline numbers.
+def choices_finding(main: Mapping[str, float], checks: pd.DataFrame, key: str,
+                    above: tuple[float, float] | None = None) -> str:
+    """How the open modelling choices change one platform's headline numbers: the one source of
+    this paragraph (CONTRIBUTING.md, "One source per sentence").
 
-    ``main``: :func:`~sss_locus.experiments.pose_space.claims.claim_metrics` of the main run;
-    ``checks``: the modelling-choice table (rows of
-    :func:`~sss_locus.report.pose_space.figures.check_row`, ``run`` labels starting with ``key + ", "``).
+    Parameters
+    ----------
+    main : mapping
+        :func:`~sss_locus.experiments.pose_space.claims.claim_metrics` of the main run.
+    checks : pandas.DataFrame
+        The modelling-choice table (rows of :func:`~sss_locus.report.pose_space.figures.check_row`,
+        ``run`` labels starting with ``key + ", "``).
+    key : str
+        The platform's data key.
+    above : (float, float), optional
+        For a platform whose depth varies: the share of samples of the earlier depth rule with
+        vehicle 2 above the sea surface, and vehicle 1's shallowest depth (m).
+
+    Returns
+    -------
+    str
+        Per check run the top normalised quantity, misalignment's ρ, the hotspot's peak region
+        (and whether it holds equal azimuths) and the yaw-0 dip with its interval; with ``above``,
+        how often the earlier rule put vehicle 2 above the surface and whether the top normalised
+        quantity "is the same" or "differs" without those poses.
     """
     rows = checks[checks["run"].str.startswith(f"{key}, ")]
     if rows.empty:
         raise ValueError(f"checks has no run of platform {key!r}")
     parts = []
     for row in rows.to_dict("records"):
-        a, b = row["hotspot theta1, theta2 (deg)"]
+        (a1, b1), (a2, b2) = row["hotspot region theta1 (deg)"], row["hotspot region theta2 (deg)"]
         parts.append(f"{row['run'][len(key) + 2:]}: {plain_label(row['top normalised'])} first "
-                     f"(misalignment ρ {fmt_rho(row['rho misalignment (norm.)'])}, hotspot ({a:.0f}°, {b:.0f}°))")
-    return (f"main run: {plain_label(str(main['top_norm']))} first (misalignment ρ "
+                     f"(misalignment ρ {fmt_rho(row['rho misalignment (norm.)'])}; hotspot region θ₁ {fmt_span(a1, b1)}, "
+                     f"θ₂ {fmt_span(a2, b2)}, {'with' if row['hotspot region at equal azimuths'] else 'without'} equal "
+                     f"azimuths; median near yaw 0 {fmt_ci(row['yaw 0 / peak'], *row['yaw 0 / peak CI'])} of the peak)")
+    text = (f"main run: {plain_label(str(main['top_norm']))} first (misalignment ρ "
             f"{fmt_rho(main['norm_elevation_misalignment_deg_rho'])}, hotspot "
             f"({main['azimuth_peak_theta1_deg']:.0f}°, {main['azimuth_peak_theta2_deg']:.0f}°)); "
             + "; ".join(parts) + ".")
+    if above is None:
+        return text
+    earlier = rows[rows["run"].str.endswith("vehicle 2 may be above the surface")]
+    same = len(earlier) and earlier["top normalised"].iloc[0] == plain_label(str(main["top_norm"]))
+    return (text + f" The earlier depth rule (the two depths' difference alone) puts vehicle 2 above the sea surface "
+            f"in {100 * above[0]:.0f} % of the samples with vehicle 1 at its shallowest {above[1]:g} m, a physically "
+            "impossible pose; the top normalised quantity " + ("is the same" if same else "differs")
+            + " with and without those poses.")
 
 
 def reading_finding(effect: pd.DataFrame) -> str:
@@ -172,6 +240,9 @@ def fan_finding(level: Mapping[str, float], pitched: list[Mapping[str, float]]) 
         text += " (the fan does not reach above the horizontal)"
     if pitched:
         text += f", at most {100 * worst:.0f} % for a pitched vehicle 2"
+    if level["share"] > 0:
+        text += (f". Its azimuth heatmap therefore has no samples left of θ₁ ≈ {level['theta_min_deg']:.0f}°, and its "
+                 "bins at that edge are partly empty")
     return text + "."
 
 

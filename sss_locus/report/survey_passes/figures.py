@@ -134,11 +134,12 @@ def plot_fig5(curves: Mapping[str, CrossingAngleCurve]):
     return fig
 
 
-def curve_texts(prefix: str, cur: CrossingAngleCurve) -> dict[str, str]:
+def curve_texts(prefix: str, cur: CrossingAngleCurve, over: bool = True) -> dict[str, str]:
     """Glue texts of one main curve, keyed ``<prefix>-<len|mis>-...``: peak angle and its
-    interval, medians at 0/90/180°, the peak median and the medians there over the peak; plus
-    ``<prefix>-rejected`` (share of drawn pairs rejected), ``-rejected-max`` (largest share at
-    one angle) and ``-shape-rho`` (rank correlation of the two median curves over the grid)."""
+    interval, medians at 0/90/180°, the peak median and (``over``: needs the curve's samples)
+    the medians there over the peak; plus ``<prefix>-rejected`` (share of drawn pairs rejected),
+    ``-rejected-max`` (largest share at one angle) and ``-shape-rho`` (rank correlation of the two
+    median curves over the grid)."""
     out = {}
     c = cur.curve
     for v in VALUES:
@@ -149,7 +150,7 @@ def curve_texts(prefix: str, cur: CrossingAngleCurve) -> dict[str, str]:
             out[f"{prefix}-{tag}-{g}"] = fmt_interval(cur.at(g, v), unit)
         peak_med = c[f"{v}_median"].max()
         out[f"{prefix}-{tag}-peak-value"] = f"{fmt_sig(peak_med, 2)} {unit}"
-        for g in GAMMAS:  # with its replicate interval
+        for g in GAMMAS if over else ():  # with its replicate interval
             r = over_peak(cur, g, v)
             out[f"{prefix}-{tag}-{g}-over-peak"] = fmt_ci(r["median"], r["ci_low"], r["ci_high"])
     rejected, rejected_max = rejected_share(cur.acceptance)

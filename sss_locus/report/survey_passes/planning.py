@@ -139,3 +139,54 @@ def offset_model_words(model) -> str:
     side = {"same": "on the same side", "opposite": "on opposite sides",
             "random": "on either side"}.get(model.side_rule, model.side_rule)
     return f"both passes aimed at the feature, ±{model.jitter_m:g} m, {side} (matched offsets)"
+
+
+def paper_band_finding(curve: pd.DataFrame, bands: pd.DataFrame,
+                       paper_avoid_deg: tuple[float, float] = PAPER_AVOID_DEG) -> str:
+    """One curve's bands against the paper's advice to avoid ``paper_avoid_deg``: the one source
+    of this paragraph (CONTRIBUTING.md, "One source per sentence").
+
+    Parameters
+    ----------
+    curve : pandas.DataFrame
+        The median curve (``crossing_angle_deg``), whose grid angles are counted.
+    bands : pandas.DataFrame
+        Its bands (:func:`~sss_locus.experiments.survey_passes.planning.planning_bands`).
+    paper_avoid_deg : (float, float)
+        The paper's band to avoid (Sec. IV-D), degrees.
+
+    Returns
+    -------
+    str
+        The first avoid band after a repeat pass and whether it ends before or past the paper's
+        upper edge, the shares of the grid angles inside the paper's band that the computed bands
+        avoid and prefer, and what a cross-line (90°) is.
+    """
+    lo, hi = paper_avoid_deg
+    avoid = bands[bands["kind"] == "avoid"].sort_values("lo_deg")
+    if avoid.empty:
+        first = "no angle is to be avoided"
+    else:
+        a = avoid.iloc[0]
+        first = (f"the first avoided band is {a.lo_deg:.0f}–{a.hi_deg:.0f}°, "
+                 + (f"ending by the paper's {hi:g}°" if a.hi_deg <= hi else f"reaching past the paper's {hi:g}°"))
+    inside = [g for g in curve["crossing_angle_deg"] if lo <= g <= hi]
+    kinds = [band_at(bands, g) for g in inside]
+    share = {k: 100 * kinds.count(k) / len(kinds) for k in ("avoid", "prefer")} if kinds else {"avoid": 0, "prefer": 0}
+    return (f"{first}; of the grid angles in the paper's {lo:g}°–{hi:g}°, {share['avoid']:.0f} % are avoided and "
+            f"{share['prefer']:.0f} % preferred; a cross-line (90°) is \"{band_at(bands, 90.0)}\".")
+
+
+def cross_line_finding(curves: Mapping[tuple[str, str], CrossingAngleCurve],
+                       bands: Mapping[tuple[str, str], pd.DataFrame], key: str) -> str:
+    """What a cross-line (90°) is for platform ``key`` under each offset model of ``curves``
+    (keyed ``(platform key, spec)``), and whether the offset model changes it."""
+    said = {spec: band_at(b, 90.0) for (k, spec), b in bands.items() if k == key}
+    if not said:
+        raise ValueError(f"no curve of platform {key!r}")
+    parts = [f"\"{kind}\" with {curves[(key, spec)].offset_model.label} offsets" for spec, kind in said.items()]
+    text = "a cross-line (90°) is " + (parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1])
+    if len(said) > 1:
+        text += (": the offset model decides whether it is a fallback" if len(set(said.values())) > 1 else
+                 ": the same under every offset model shown")
+    return text + "."
