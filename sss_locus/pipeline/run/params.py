@@ -18,7 +18,8 @@ description with the unit. Two markers add what a type cannot say:
 
 The model is strict (no ``"7"`` for an int, no ``1`` for a bool; an int is widened to a float),
 forbids unknown names and refuses infinite or NaN numbers. The notebook's ``parameters`` cell is
-the model rendered as plain assignments (:func:`parameters_cell`; papermill injects after it),
+the model rendered as plain assignments
+(:func:`sss_locus.pipeline.run.paramcell.parameters_cell`; papermill injects after it),
 and a test checks every notebook's cell against its model. :func:`error_line` turns a
 :class:`pydantic.ValidationError` into one line naming the parameter, the value and what is
 allowed (:func:`allowed`).
@@ -26,6 +27,7 @@ allowed (:func:`allowed`).
 
 from __future__ import annotations
 
+import json
 import typing
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
@@ -99,7 +101,7 @@ Platforms = Annotated[list[Annotated[str, DataKeys("platforms")]], Field(min_len
 #: A random seed (numpy's ``SeedSequence`` accepts any, the runs use 32 bits).
 Seed = Annotated[int, Field(ge=0, le=4_294_967_295)]
 DATA_FILES_DOC = "user data files (TOML, schema of data/*.toml) merged into data/; set by --data"
-DATA_SET_DOC = "KEY.PATH=VALUE overrides of single data values; set by --set"
+DATA_SET_DOC = "overrides of single data values, each KEY.PATH set to a value; set by --set"
 
 
 def _bytes(n: float) -> str:
@@ -185,9 +187,8 @@ def allowed(field: FieldInfo, static: bool = False) -> str:
         parts.append(f"{lo[1] if lo else '['}{number(lo[0]) if lo else ''}, "
                      f"{number(hi[0]) if hi else ''}{hi[1] if hi else ']'}")
     if typing.get_origin(bare) is Literal and static:
-        from sss_locus.pipeline.run.paramcell import literal
-
-        parts.append("{" + ", ".join(map(literal, typing.get_args(bare))) + "}")
+        parts.append("{" + ", ".join(json.dumps(v, ensure_ascii=False) if isinstance(v, str) else repr(v)
+                                     for v in typing.get_args(bare)) + "}")
     elif typing.get_origin(bare) is Literal:
         parts.append("one of " + ", ".join(map(repr, typing.get_args(bare))))
     if static:
@@ -195,21 +196,6 @@ def allowed(field: FieldInfo, static: bool = False) -> str:
     else:
         parts += [m.describe() for m in meta if isinstance(m, (DataKeys, MemoryPerUnit))]
     return "; ".join(parts)
-
-
-def parameters_cell(model: type[NotebookParams]) -> str:
-    """The notebook's ``parameters`` cell: one ``name = default  # description rule`` line per
-    field, in the model's order (what papermill inspects and injects after; defaults written by
-    :func:`sss_locus.pipeline.run.paramcell.literal`)."""
-    from sss_locus.pipeline.run.paramcell import literal
-
-    heads = [f"{name} = {literal(field.default)}" for name, field in model.model_fields.items()]
-    column = max((len(h) for h in heads if len(h) <= 40), default=0) + 2
-    lines = []
-    for head, field in zip(heads, model.model_fields.values()):
-        comment = " ".join(x for x in (field.description or "", allowed(field, static=True)) if x)
-        lines.append(f"{head.ljust(column) if len(head) + 2 <= column else head + '  '}# {comment}" if comment else head)
-    return "\n".join(lines)
 
 
 def error_line(exc: ValidationError, model: type[BaseModel]) -> str:
@@ -237,39 +223,3 @@ def error_line(exc: ValidationError, model: type[BaseModel]) -> str:
         return f"{head}: must be {element_type_name(field)}{also}"
     return f"{head} ({type(value).__name__}): expected a value of type {type_name(field)}{also}"
 
-
-def write_cells(check: bool = False) -> list[str]:
-    """Rewrite (or with ``check`` only list) every registered notebook whose ``parameters`` cell
-    differs from :func:`parameters_cell` of its model; returns the notebooks' names. Only that
-    cell changes; the file keeps its JSON style (indent 1, and ``ensure_ascii`` where it is set)."""
-    import json
-
-    from sss_locus.pipeline.run.registry import load_registry, params_model
-
-    changed = []
-    for name, entry in load_registry().items():
-        model = params_model(name)
-        if model is None:
-            continue
-        text = entry.source.read_text(encoding="utf-8")
-        nb = json.loads(text)
-        cell = next(c for c in nb["cells"] if "parameters" in c.get("metadata", {}).get("tags", []))
-        source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
-        wanted = parameters_cell(model)
-        if source == wanted:
-            continue
-        changed.append(name)
-        if not check:
-            cell["source"] = wanted.splitlines(keepends=True)
-            ascii_only = text.isascii()
-            entry.source.write_text(json.dumps(nb, indent=1, ensure_ascii=ascii_only) + "\n", encoding="utf-8")
-    return changed
-
-
-if __name__ == "__main__":
-    import sys
-
-    from sss_locus.pipeline.run import params  # the module the models use, not this __main__ copy
-
-    stale = params.write_cells(check="--write" not in sys.argv)
-    print(("rewrote " if "--write" in sys.argv else "differ from their model: ") + (", ".join(stale) or "none"))

@@ -242,13 +242,14 @@ RENAMED = {"sonar_platform": "platforms"}
 
 def validate_parameters(
     spec: dict[str, Parameter], values: dict[str, Any], *, notebook: str, from_text: bool = False,
-    model: type[NotebookParams] | None = None,
+    model: type[NotebookParams] | None = None, base: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     """Check parameter values against a notebook's parameters; return the converted values.
 
     ``from_text=True`` converts command-line strings to the declared types first; the values,
-    with the defaults of the others, then go through ``model.model_validate`` (``model``: the
-    notebook's ``Params``, or :func:`model_from_cell` of ``spec``). Raises
+    with the others' values (``base``, else the defaults), then go through
+    ``model.model_validate`` (``model``: the notebook's ``Params``, or :func:`model_from_cell`
+    of ``spec``). Raises
     :class:`ParameterError` (a ``ValueError``): an unknown name lists every valid parameter with
     its type and default (and the closest name); a bad value is one line naming the parameter,
     the value and what is allowed.
@@ -271,7 +272,7 @@ def validate_parameters(
             raise ParameterError(f"notebook {notebook!r}: {exc}") from None
     model = model_from_cell(spec) if model is None else model
     try:
-        checked = model.model_validate({**{n: p.default for n, p in spec.items()}, **converted})
+        checked = model.model_validate({**{n: p.default for n, p in spec.items()}, **(base or {}), **converted})
     except ValidationError as exc:
         raise ParameterError(f"notebook {notebook!r}: {error_line(exc, model)}") from None
     return {name: getattr(checked, name) for name in converted}
@@ -319,7 +320,7 @@ class NotebookEntry:
         values = {name: p.default for name, p in spec.items()}
         values.update(validate_parameters(spec, self.profiles[profile], notebook=self.name, model=model))
         values.update(validate_parameters(spec, overrides or {}, notebook=self.name, from_text=from_text,
-                                          model=model))
+                                          model=model, base=values))
         return values
 
 

@@ -1,6 +1,6 @@
 """Parameters of the chapter ``notebooks/derivation.ipynb`` (The locus, derived symbolically).
 
-Its ``parameters`` cell is :func:`sss_locus.pipeline.run.params.parameters_cell` of :class:`Params`.
+Its ``parameters`` cell is :func:`sss_locus.pipeline.run.paramcell.parameters_cell` of :class:`Params`.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Parameters of the chapter ``notebooks/pose_space.ipynb`` (What drives locus length: the pose-space Monte Carlo).
 
-Its ``parameters`` cell is :func:`sss_locus.pipeline.run.params.parameters_cell` of :class:`Params`.
+Its ``parameters`` cell is :func:`sss_locus.pipeline.run.paramcell.parameters_cell` of :class:`Params`.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Parameters of the chapter ``notebooks/survey_design.ipynb`` (Survey design: which lines to run).
 
-Its ``parameters`` cell is :func:`sss_locus.pipeline.run.params.parameters_cell` of :class:`Params`.
+Its ``parameters`` cell is :func:`sss_locus.pipeline.run.paramcell.parameters_cell` of :class:`Params`.
 """
 
 from __future__ import annotations
@@ -32,7 +32,7 @@ class Params(NotebookParams):
     spacing_fractions: list[Annotated[float, Field(gt=0.0, le=10.0)]] = Field(
         [0.8, 1.2, 1.6], min_length=1, description='main-line spacings searched, x the range scale')
     crossing_angles_deg: list[Annotated[float, Field(ge=0.0, le=180.0)]] = Field(
-        [0.0, 20.0, 45.0, 90.0], min_length=1, description='second line set: 0 = offset repeat, else cross lines, deg')
+        [0.0, 20.0, 45.0, 90.0], min_length=1, description='second line set: 0 is an offset repeat, else cross lines, deg')
     no_cross_lines: bool = Field(True, description='also search plans of main lines only')
     cross_spacing_factors: list[Annotated[float, Field(gt=0.0, le=10.0)]] = Field(
         [1.0, 2.0], min_length=1, description='cross-line spacing searched, x the main spacing')

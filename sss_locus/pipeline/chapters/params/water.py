@@ -1,6 +1,6 @@
 """Parameters of the chapter ``notebooks/water.ipynb`` (The sea surface as a constraint).
 
-Its ``parameters`` cell is :func:`sss_locus.pipeline.run.params.parameters_cell` of :class:`Params`.
+Its ``parameters`` cell is :func:`sss_locus.pipeline.run.paramcell.parameters_cell` of :class:`Params`.
 """
 
 from __future__ import annotations

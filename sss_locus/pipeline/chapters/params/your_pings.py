@@ -1,6 +1,6 @@
 """Parameters of the chapter ``notebooks/your_pings.ipynb`` (Your own pings).
 
-Its ``parameters`` cell is :func:`sss_locus.pipeline.run.params.parameters_cell` of :class:`Params`.
+Its ``parameters`` cell is :func:`sss_locus.pipeline.run.paramcell.parameters_cell` of :class:`Params`.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ class Params(NotebookParams):
     truth: str = Field(
         "data/examples/your_pings/example_truth.csv", description='known positions to compare with ("" for none)')
     origin: list[float] = Field(
-        [], description='[lon_deg, lat_deg] of the local frame ([] = mean of lon/lat sightings; local metres: none)')
+        [], description='[lon_deg, lat_deg] of the local frame (empty: the mean of the lon/lat sightings; none for local metres)')
     missing_attitude: Literal["refuse", "level"] = Field(
         "refuse", description='sightings without pitch/roll: refuse them, or take the vehicle as level')
     sample_order: Literal["detect", "near_first", "port_far_first"] = Field(
