@@ -21,7 +21,7 @@ class Params(NotebookParams):
         "", description='set by the runner: SHA-256 of the observations (and XTF, truth) files')
     truth: str = Field(
         "data/examples/your_pings/example_truth.csv", description='known positions to compare with ("" for none)')
-    origin: list[float] = Field(
+    origin: list = Field(  # checked with the observations: empty or [lon_deg, lat_deg] (frame_from_origin)
         [], description='[lon_deg, lat_deg] of the local frame (empty: the mean of the lon/lat sightings; none for local metres)')
     missing_attitude: Literal["refuse", "level"] = Field(
         "refuse", description='sightings without pitch/roll: refuse them, or take the vehicle as level')
