@@ -1,7 +1,7 @@
 """Memory and time budgets of a run, estimated from its inputs before any kernel starts.
 
-A parameter's own cost is declared in its comment (``~2.8 kB`` per sample,
-:mod:`sss_locus.pipeline.run.params`); what grows with a *product* of parameters and input
+A parameter's own cost is declared in its chapter's model (``MemoryPerUnit(2800)`` bytes per
+sample, :mod:`sss_locus.pipeline.run.params`); what grows with a *product* of parameters and input
 files is estimated here, per chapter, and a run that would not fit is refused in one line naming
 the parameter to change:
 
