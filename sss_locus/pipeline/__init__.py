@@ -6,8 +6,8 @@ Rooms (grouped by job; CONTRIBUTING.md, "Architecture"):
 ``run/``
     Running notebooks: registry, runner, kernels, cache, atomic commits, preflight checks,
     budgets, progress, a user's files as parameters. Modules: ``atomic``, ``budgets``,
-    ``cache``, ``constraints``, ``context``, ``faults``, ``kernels``, ``orphans``, ``outputs``,
-    ``paramcell``, ``preflight``, ``progress``, ``registry``, ``runner``, ``scaleout``,
+    ``cache``, ``context``, ``faults``, ``kernels``, ``orphans``, ``outputs``,
+    ``paramcell``, ``params``, ``preflight``, ``progress``, ``registry``, ``runner``, ``scaleout``,
     ``transaction``, ``userfiles``.
 ``publish/``
     Publishing: citable figures and tables, provenance, citation metadata, readability, mission
@@ -20,7 +20,8 @@ Rooms (grouped by job; CONTRIBUTING.md, "Architecture"):
 ``chapters/``
     One facade per chapter: everything its notebook calls, in one import. Modules: ``common``,
     ``concept``, ``derivation``, ``noise``, ``planning``, ``pose_space``, ``reconstruction``,
-    ``rigs``, ``survey_passes``, ``three_views``, ``water``, ``your_pings``.
+    ``rigs``, ``survey_passes``, ``three_views``, ``water``, ``your_pings``; ``params/``: every
+    chapter's parameters model (``params/<notebook>.py``).
 ``cli/``
     The ``sss-locus`` command line: ``run``, ``book``, ``answer``, ``xtf``. Modules: ``answer``,
     ``command``, ``xtfinfo``.

@@ -47,7 +47,8 @@ def _data_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _data_inputs(args: argparse.Namespace):
     """Validate --data/--set before anything runs; activate them in this process (the
-    ``{keys of ...}`` constraints then see the user's keys)."""
+    parameters that are data keys (:class:`~sss_locus.pipeline.run.params.DataKeys`) then
+    see the user's keys)."""
     from sss_locus.experiments.datamodel import userdata
 
     inputs = userdata.use(args.data, args.set_values)

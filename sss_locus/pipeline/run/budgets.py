@@ -1,7 +1,7 @@
 """Memory and time budgets of a run, estimated from its inputs before any kernel starts.
 
-A parameter's own cost is declared in its comment (``~2.8 kB`` per sample,
-:mod:`sss_locus.pipeline.run.constraints`); what grows with a *product* of parameters and input
+A parameter's own cost is declared in its chapter's model (``MemoryPerUnit(2800)`` bytes per
+sample, :mod:`sss_locus.pipeline.run.params`); what grows with a *product* of parameters and input
 files is estimated here, per chapter, and a run that would not fit is refused in one line naming
 the parameter to change:
 
@@ -16,7 +16,7 @@ the parameter to change:
   draws from the area's bounding box (a thin area far from its box would need unbounded draws).
 
 The costs per unit were measured on this project's code (``BYTES_*``, ``SECONDS_*``, with the
-command in each constant's note); the memory budget is :func:`constraints.memory_budget` (half
+command in each constant's note); the memory budget is :func:`params.memory_budget` (half
 the RAM, ``$SSS_LOCUS_MEMORY_BUDGET``), the time budget :func:`time_budget_s`.
 """
 
@@ -26,7 +26,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from sss_locus.pipeline.run.constraints import memory_budget
+from sss_locus.pipeline.run.params import memory_budget
 from sss_locus.pipeline.run.context import TIME_BUDGET_ENV, current  # the time budget's setting (seconds)
 
 #: Default time budget of one run, seconds (a day).

@@ -7,6 +7,10 @@ would show values the run did not use. :func:`show_run_values` rewrites each ass
 original cell whose name the run set, keeping its comment (meaning and allowed range) and
 column, and heads the cell with a line saying so; the injected cell stays in the notebook, as
 the record papermill made.
+
+:func:`parameters_cell` renders a chapter's ``Params`` model as that cell, and
+``python -m sss_locus.pipeline.run.paramcell --write`` rewrites every notebook's cell from its
+model (without ``--write``: lists the notebooks whose cell differs).
 """
 
 from __future__ import annotations
@@ -15,6 +19,8 @@ import ast
 import json
 from collections.abc import Mapping
 from typing import Any
+
+from sss_locus.pipeline.run.params import NotebookParams, allowed
 
 PARAMETERS_TAG = "parameters"
 
@@ -75,3 +81,51 @@ def show_run_values(cells: list[dict], values: Mapping[str, Any], header: str) -
             cell["source"] = header.rstrip("\n") + "\n" + with_values(source, values)
             return True
     return False
+
+
+def parameters_cell(model: type[NotebookParams]) -> str:
+    """The notebook's ``parameters`` cell: one ``name = default  # description rule`` line per
+    field, in the model's order (what papermill inspects and injects after; defaults written by
+    :func:`sss_locus.pipeline.run.paramcell.literal`)."""
+    heads = [f"{name} = {literal(field.default)}" for name, field in model.model_fields.items()]
+    column = max((len(h) for h in heads if len(h) <= 40), default=0) + 2
+    lines = []
+    for head, field in zip(heads, model.model_fields.values()):
+        comment = " ".join(x for x in (field.description or "", allowed(field, static=True)) if x)
+        lines.append(f"{head.ljust(column) if len(head) + 2 <= column else head + '  '}# {comment}" if comment else head)
+    return "\n".join(lines)
+
+
+def write_cells(check: bool = False) -> list[str]:
+    """Rewrite (or with ``check`` only list) every registered notebook whose ``parameters`` cell
+    differs from :func:`parameters_cell` of its model; returns the notebooks' names. Only that
+    cell changes; the file keeps its JSON style (indent 1, and ``ensure_ascii`` where it is set)."""
+    from sss_locus.pipeline.run.registry import load_registry, params_model
+
+    changed = []
+    for name, entry in load_registry().items():
+        model = params_model(name)
+        if model is None:
+            continue
+        text = entry.source.read_text(encoding="utf-8")
+        nb = json.loads(text)
+        cell = next(c for c in nb["cells"] if "parameters" in c.get("metadata", {}).get("tags", []))
+        source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
+        wanted = parameters_cell(model)
+        if source == wanted:
+            continue
+        changed.append(name)
+        if not check:
+            cell["source"] = wanted.splitlines(keepends=True)
+            ascii_only = text.isascii()
+            entry.source.write_text(json.dumps(nb, indent=1, ensure_ascii=ascii_only) + "\n", encoding="utf-8")
+    return changed
+
+
+if __name__ == "__main__":
+    import sys
+
+    from sss_locus.pipeline.run import paramcell  # the module itself, not this __main__ copy
+
+    stale = paramcell.write_cells(check="--write" not in sys.argv)
+    print(("rewrote " if "--write" in sys.argv else "differ from their model: ") + (", ".join(stale) or "none"))

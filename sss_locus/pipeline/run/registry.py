@@ -15,25 +15,30 @@ One table per notebook, in book order; append a block to add a notebook::
 Profiles ``book`` and ``quick`` are required; more are allowed. Every profile value must name a
 parameter of the notebook's ``parameters``-tagged cell with a value of the right type.
 
-Parameters cell
----------------
-The cell tagged ``parameters`` holds one assignment per line, of a literal, optionally annotated
-and commented; the comment is shown in error messages and ``sss-locus params``, and may end with
-the parameter's constraints (range, allowed values, memory per unit; see
-:mod:`sss_locus.pipeline.run.constraints`), checked before any kernel starts::
+Parameters
+----------
+A chapter declares its parameters once, as the pydantic model ``Params`` of
+``sss_locus/pipeline/chapters/params/<name>.py`` (types, bounds, choices, descriptions; see
+:mod:`sss_locus.pipeline.run.params`); its notebook's cell tagged ``parameters`` is that model
+rendered as plain assignments (papermill inspects it and injects after it), and every value of a
+profile, ``-p`` or the runner goes through ``Params.model_validate`` before any kernel starts.
 
-    n_points = 2000        # Monte Carlo samples per platform [1, 5_000_000] ~200 B
-    seed: int = 1          # random seed [0, ]
-    platform = "auv"       # key of data/platforms.toml {"auv", "boat"}
+A notebook without such a module (a user's own, a test's) has its parameters read from the cell:
+one assignment per line, of a literal, optionally annotated and commented (the comment is the
+description); the type is the annotation if present, otherwise the type of the default (``int``,
+``float``, ``bool``, ``str``, ``list``, ``tuple``, ``dict``; a default of ``None`` accepts any
+literal), turned into a model of the same kind (:func:`model_from_cell`)::
 
-The type of a parameter is its annotation if present, otherwise the type of its default value
-(``int``, ``float``, ``bool``, ``str``, ``list``, ``tuple``, ``dict``); a default of ``None``
-accepts any literal.
+    n_points = 2000        # Monte Carlo samples per platform
+    seed: int = 1          # random seed
 """
 
 from __future__ import annotations
 
 import ast
+import difflib
+import importlib
+import importlib.util
 import re
 import io
 import json
@@ -43,8 +48,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from pydantic import Field, ValidationError, create_model
+from pydantic.fields import FieldInfo
+
 from sss_locus import paths
-from sss_locus.pipeline.run.constraints import Constraint, ConstraintError, check, split_comment
+from sss_locus.pipeline.run.params import NotebookParams, allowed, error_line, type_name
+
+#: The package holding one module of parameters per registered notebook, named after it.
+PARAMS_PACKAGE = "sss_locus.pipeline.chapters.params"
 
 REQUIRED_PROFILES = ("book", "quick")
 #: Registry names: lower-case words joined by underscores (used with fullmatch).
@@ -67,12 +78,16 @@ class Parameter:
     type: str
     default: Any
     doc: str = ""
-    constraint: Constraint = field(default_factory=Constraint)
+    field_info: FieldInfo | None = field(default=None, compare=False, repr=False)  # the model's field
+
+    def allowed(self) -> str:
+        """What the parameter allows (read now: a data table's keys include the user's)."""
+        return "" if self.field_info is None else allowed(self.field_info)
 
     def describe(self) -> str:
         line = f"{self.name}: {self.type} = {self.default!r}"
-        allowed = self.constraint.describe()
-        doc = "; ".join(x for x in (self.doc, f"allowed: {allowed}" if allowed else "") if x)
+        rule = self.allowed()
+        doc = "; ".join(x for x in (self.doc, f"allowed: {rule}" if rule else "") if x)
         return f"{line}  # {doc}" if doc else line
 
 
@@ -131,14 +146,30 @@ def parse_parameters_source(source: str, where: str = "parameters cell") -> dict
             type_name = "any" if default is None else type(default).__name__
             if type_name not in _TYPES and type_name != "any":
                 type_name = "any"
-        try:
-            doc, constraint = split_comment(comments.get(node.lineno, ""), name, default)
-            if default is not None:
-                check(name, default, constraint)
-        except ConstraintError as exc:
-            raise ParameterError(f"{where}, line {node.lineno}: {exc}") from None
-        params[name] = Parameter(name, type_name, default, doc, constraint)
+        params[name] = Parameter(name, type_name, default, comments.get(node.lineno, ""))
     return params
+
+
+def model_from_cell(spec: dict[str, Parameter]) -> type[NotebookParams]:
+    """A parameters model of a notebook without a ``Params`` module: its cell's names, types and
+    defaults (``any`` accepts any value), its comments as descriptions."""
+    fields = {p.name: (Any if p.type == "any" else _TYPES[p.type], Field(p.default, description=p.doc))
+              for p in spec.values()}
+    return create_model("Params", __base__=NotebookParams, **fields)
+
+
+def params_model(name: str) -> type[NotebookParams] | None:
+    """The ``Params`` model of the registered notebook ``name``, or None if it declares none."""
+    module = f"{PARAMS_PACKAGE}.{name}"
+    if importlib.util.find_spec(module) is None:
+        return None
+    return importlib.import_module(module).Params
+
+
+def parameters_of(model: type[NotebookParams]) -> dict[str, Parameter]:
+    """The model's fields as :class:`Parameter` objects, in order."""
+    return {name: Parameter(name, type_name(f), f.default, f.description or "", f)
+            for name, f in model.model_fields.items()}
 
 
 def parse_notebook_parameters(notebook: Path) -> dict[str, Parameter]:
@@ -154,25 +185,13 @@ def parse_notebook_parameters(notebook: Path) -> dict[str, Parameter]:
     return parse_parameters_source(source, where=f"{notebook} (parameters cell)")
 
 
-def _coerce(param: Parameter, value: Any, from_text: bool) -> Any:
-    """Check (and for command-line text, convert) one value; raise ParameterError if wrong."""
+def _convert(param: Parameter, value: Any, from_text: bool) -> Any:
+    """Command-line text converted to the parameter's type; a list for a tuple parameter made a
+    tuple (TOML and ``-p`` have only lists). The model checks the result."""
     if from_text:
         value = _from_text(param, str(value))
-    if param.type != "any":
-        expected = _TYPES[param.type]
-        if expected is float and isinstance(value, int) and not isinstance(value, bool):
-            value = float(value)
-        if expected is tuple and isinstance(value, list):
-            value = tuple(value)
-        if expected is not bool and isinstance(value, bool) or not isinstance(value, expected):
-            raise ParameterError(f"parameter {param.name!r} = {value!r} ({type(value).__name__}): expected a "
-                                 f"value of type {param.type}{_allowed(param)}")
-    if param.constraint.element_type == "float" and isinstance(value, (list, tuple)):
-        value = type(value)(float(v) if isinstance(v, int) and not isinstance(v, bool) else v for v in value)
-    try:
-        check(param.name, value, param.constraint)
-    except ConstraintError as exc:
-        raise ParameterError(str(exc)) from None
+    if param.type == "tuple" and isinstance(value, list):
+        value = tuple(value)
     return value
 
 
@@ -213,8 +232,8 @@ def _not_finite(word: str):
 
 
 def _allowed(param: Parameter) -> str:
-    allowed = param.constraint.describe()
-    return f" (allowed: {allowed})" if allowed else ""
+    rule = param.allowed()
+    return f" (allowed: {rule})" if rule else ""
 
 
 #: Former parameter names and the parameter that replaced them (named in the error for the old name).
@@ -222,29 +241,41 @@ RENAMED = {"sonar_platform": "platforms"}
 
 
 def validate_parameters(
-    spec: dict[str, Parameter], values: dict[str, Any], *, notebook: str, from_text: bool = False
+    spec: dict[str, Parameter], values: dict[str, Any], *, notebook: str, from_text: bool = False,
+    model: type[NotebookParams] | None = None, base: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     """Check parameter values against a notebook's parameters; return the converted values.
 
-    ``from_text=True`` converts command-line strings to the declared types first. Raises
-    :class:`ParameterError` (a ``ValueError``) naming the bad parameter and listing every valid
-    parameter with its type and default.
+    ``from_text=True`` converts command-line strings to the declared types first; the values,
+    with the others' values (``base``, else the defaults), then go through
+    ``model.model_validate`` (``model``: the notebook's ``Params``, or :func:`model_from_cell`
+    of ``spec``). Raises
+    :class:`ParameterError` (a ``ValueError``): an unknown name lists every valid parameter with
+    its type and default (and the closest name); a bad value is one line naming the parameter,
+    the value and what is allowed.
     """
-    checked: dict[str, Any] = {}
+    converted: dict[str, Any] = {}
     for name, value in values.items():
         if name not in spec:
             renamed = RENAMED.get(name)
             if renamed in spec:
                 raise ParameterError(f"notebook {notebook!r}: parameter {name!r} is now {renamed!r} "
                                      f"({spec[renamed].describe()})")
+            close = difflib.get_close_matches(name, list(spec), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
             listing = "\n".join("  " + p.describe() for p in spec.values()) or "  (none)"
-            raise ParameterError(f"notebook {notebook!r} has no parameter {name!r}\n"
+            raise ParameterError(f"notebook {notebook!r} has no parameter {name!r}{hint}\n"
                                  f"Valid parameters of {notebook!r}:\n{listing}")
         try:
-            checked[name] = _coerce(spec[name], value, from_text)
+            converted[name] = _convert(spec[name], value, from_text)
         except ParameterError as exc:
             raise ParameterError(f"notebook {notebook!r}: {exc}") from None
-    return checked
+    model = model_from_cell(spec) if model is None else model
+    try:
+        checked = model.model_validate({**{n: p.default for n, p in spec.items()}, **(base or {}), **converted})
+    except ValidationError as exc:
+        raise ParameterError(f"notebook {notebook!r}: {error_line(exc, model)}") from None
+    return {name: getattr(checked, name) for name in converted}
 
 
 @dataclass(frozen=True)
@@ -269,8 +300,14 @@ class NotebookEntry:
         """Absolute path of the executed copy in the current build area."""
         return paths.source_dir() / self.executed
 
+    def model(self) -> type[NotebookParams]:
+        """The notebook's parameters model: its ``Params`` module's, else one read from its cell."""
+        return params_model(self.name) or model_from_cell(parse_notebook_parameters(self.source))
+
     def parameters(self) -> dict[str, Parameter]:
-        return parse_notebook_parameters(self.source)
+        """The notebook's parameters, in order (from its ``Params`` model when it has one)."""
+        model = params_model(self.name)
+        return parse_notebook_parameters(self.source) if model is None else parameters_of(model)
 
     def resolve(self, profile: str = "book", overrides: dict[str, Any] | None = None,
                 from_text: bool = False) -> dict[str, Any]:
@@ -279,10 +316,11 @@ class NotebookEntry:
             raise ParameterError(
                 f"notebook {self.name!r} has no profile {profile!r}; profiles: {', '.join(self.profiles)}"
             )
-        spec = self.parameters()
+        spec, model = self.parameters(), self.model()
         values = {name: p.default for name, p in spec.items()}
-        values.update(validate_parameters(spec, self.profiles[profile], notebook=self.name))
-        values.update(validate_parameters(spec, overrides or {}, notebook=self.name, from_text=from_text))
+        values.update(validate_parameters(spec, self.profiles[profile], notebook=self.name, model=model))
+        values.update(validate_parameters(spec, overrides or {}, notebook=self.name, from_text=from_text,
+                                          model=model, base=values))
         return values
 
 

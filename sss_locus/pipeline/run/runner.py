@@ -207,7 +207,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     """Execute one registered notebook, atomically, into its executed copy; return that path.
 
     Parameters are the notebook defaults, then the profile's values, then ``overrides`` (command
-    line text when ``from_text``); all are validated (types and declared constraints) before
+    line text when ``from_text``); all are validated (the notebook's ``Params`` model) before
     anything runs. Raises :class:`sss_locus.pipeline.run.registry.ParameterError` for bad parameters
     and :class:`NotebookFailed` when a cell fails; the executed copy and figures of the last good
     run are then untouched. ``output`` makes a side run: the executed copy goes there and its
