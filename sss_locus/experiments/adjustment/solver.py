@@ -191,7 +191,8 @@ def default_gate_m(sightings: Sightings, priors: NavigationPriors) -> float:
                                                + np.radians(np.max(priors.heading_sigma_deg, initial=0.0)) * r))
 
 
-def _solve(sightings, priors, start, use, min_passes, estimate_passes, loss, f_scale, hp, hs, ftol, xtol, max_nfev):
+def _solve(sightings, priors, start, use, min_passes, estimate_passes, loss, f_scale, hp, hs, ftol, xtol, max_nfev,
+           lsmr_tol=LSMR_TOL):
     """One adjustment with the sightings ``use``: returns the problem, ``x``, the residuals, the
     status, message, evaluations and cost."""
     N, P = start.shape[0], priors.n_passes
@@ -206,7 +207,7 @@ def _solve(sightings, priors, start, use, min_passes, estimate_passes, loss, f_s
     # Gauss-Newton from the start first (quadratic loss: a few iterations), then the robust
     # loss from there (started at metres of navigation error, every residual would look like an
     # outlier); lsmr solved tightly, or the weak common-shift direction stops early
-    opts = dict(method="trf", tr_solver="lsmr", x_scale="jac", tr_options=dict(atol=LSMR_TOL, btol=LSMR_TOL),
+    opts = dict(method="trf", tr_solver="lsmr", x_scale="jac", tr_options=dict(atol=lsmr_tol, btol=lsmr_tol),
                 ftol=ftol, xtol=xtol, gtol=1e-10, max_nfev=max_nfev)
     sol = least_squares(prob.residuals, x0, jac=prob.jacobian, loss="linear", **opts)
     nfev = sol.nfev
@@ -219,7 +220,8 @@ def _solve(sightings, priors, start, use, min_passes, estimate_passes, loss, f_s
 def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passes: int = 2,
            estimate_passes: bool = True, loss: str = "soft_l1", f_scale: float = 3.0, gate_m: float | None = None,
            height_prior_m=None, height_sigma_m=None, covariance: bool = True,
-           max_nfev: int | None = None, ftol: float = 1e-10, xtol: float = 1e-10) -> JointAdjustment:
+           max_nfev: int | None = None, ftol: float = 1e-10, xtol: float = 1e-10,
+           lsmr_tol: float = LSMR_TOL) -> JointAdjustment:
     """Jointly adjust the features seen on ``min_passes`` or more passes and the passes'
     navigation corrections (module docstring).
 
@@ -257,6 +259,10 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
         Evaluation limit of ``least_squares`` (default: its own, 100 times the unknowns).
     ftol, xtol : float
         ``least_squares`` tolerances.
+    lsmr_tol : float, in (0, 1)
+        ``atol`` and ``btol`` of its LSMR inner solves (default :data:`LSMR_TOL`; the survey
+        design's scoring uses a looser one, measured:
+        :data:`~sss_locus.experiments.surveydesign.joint.SCORING_LSMR_TOL`).
 
     Returns
     -------
@@ -266,7 +272,7 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
     ------
     ValueError
         Naming the argument: shapes that do not match, a pass or feature index out of range,
-        an unknown loss, ``f_scale`` <= 0, ``min_passes`` < 2.
+        an unknown loss, ``f_scale`` <= 0, ``min_passes`` < 2, ``lsmr_tol`` outside (0, 1).
     """
     N = int(np.asarray(start_m).shape[0]) if np.ndim(start_m) == 2 else -1
     start = as_float_array(start_m, "start_m", tail=(3,))
@@ -284,6 +290,8 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
         raise ValueError(f"f_scale must be a finite number > 0; got {f_scale!r}")
     if isinstance(min_passes, bool) or int(min_passes) != min_passes or min_passes < 2:
         raise ValueError(f"min_passes must be an integer >= 2; got {min_passes!r}")
+    if not (isinstance(lsmr_tol, (int, float)) and 0 < lsmr_tol < 1):
+        raise ValueError(f"lsmr_tol must be a number in (0, 1); got {lsmr_tol!r}")
     if gate_m is not None and not (isinstance(gate_m, (int, float)) and gate_m > 0 and not np.isnan(gate_m)):
         raise ValueError(f"gate_m must be a number > 0 (inf: no gate) or None; got {gate_m!r}")
     hp = hs = None
@@ -297,7 +305,7 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
     gate = gate_m if gate_m is not None else default_gate_m(sightings, priors)
     use = misses_m(sightings, priors, start, np.zeros((P, 5))) <= gate
     prob, x, fun, status, msg, nfev, cost = _solve(sightings, priors, start, use, min_passes, estimate_passes, loss,
-                                                   f_scale, hp, hs, ftol, xtol, max_nfev)
+                                                   f_scale, hp, hs, ftol, xtol, max_nfev, lsmr_tol)
     if gate_m != np.inf:  # a sighting gated out at the start but within the gate at the solution comes back
         p_now, c_now = prob.split(x)
         s_now = start.copy()
@@ -306,7 +314,7 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
         if np.any(again & ~use):
             use = use | again
             prob, x, fun, status, msg, n2, cost = _solve(sightings, priors, s_now, use, min_passes, estimate_passes,
-                                                         loss, f_scale, hp, hs, ftol, xtol, max_nfev)
+                                                         loss, f_scale, hp, hs, ftol, xtol, max_nfev, lsmr_tol)
             nfev += n2
     seconds = time.perf_counter() - t0
     feats = prob.features

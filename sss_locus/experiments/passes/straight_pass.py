@@ -70,6 +70,30 @@ def vehicle_attitude(yaw_deg, pitch_deg, roll_deg) -> Rotation:
     return Rotation.from_euler("ZYX", angles, degrees=True)
 
 
+def level_attitude_matrices(yaw_deg, pitch_deg) -> np.ndarray:
+    """:func:`vehicle_attitude` with zero roll as matrices, one rotation computed per distinct
+    ``(yaw, pitch)`` when the rows repeat a few attitudes (a survey line's every ping, a layout's
+    few headings), so the result equals ``vehicle_attitude(yaw, pitch, 0).as_matrix()`` exactly.
+
+    Parameters
+    ----------
+    yaw_deg, pitch_deg : array_like, shape (n,)
+        Vehicle heading (toward port positive) and pitch (nose-up positive), degrees.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 3, 3)
+        ``R_world_vehicle`` per row.
+    """
+    yaw, pitch = (np.ravel(a).astype(float) for a in np.broadcast_arrays(yaw_deg, pitch_deg))
+    if yaw.size > 64 and np.all(pitch == pitch[0]):
+        u, inv = np.unique(yaw, return_inverse=True)
+        if 4 * u.size <= yaw.size:
+            one = vehicle_attitude(u, np.full(u.size, pitch[0]), np.zeros(u.size)).as_matrix().reshape(-1, 3, 3)
+            return one[inv.ravel()]
+    return vehicle_attitude(yaw, pitch, np.zeros(yaw.size)).as_matrix().reshape(-1, 3, 3)
+
+
 def attitude_angles(rot: Rotation) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Inverse of :func:`vehicle_attitude`: (yaw, pitch, roll) in degrees.
 
@@ -251,7 +275,7 @@ def observe_pass(platform: Platform, is_port, heading_deg, ground_offset_m, alti
         heading_deg, ground_offset_m, altitude_m, pitch_deg, elevation_rad)))
     port, head, g, alt, pitch, phi = (np.atleast_1d(x) for x in arrays)
     M, m = transducer_stack(platform, port)
-    Rv = vehicle_attitude(head, pitch, np.zeros_like(head)).as_matrix().reshape(-1, 3, 3)
+    Rv = level_attitude_matrices(head, pitch)
     W = Rv @ M
     h = np.radians(head)
     e = np.stack([np.cos(h), np.sin(h), np.zeros_like(h)], -1)

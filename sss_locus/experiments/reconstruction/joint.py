@@ -35,6 +35,7 @@ import numpy as np
 
 from sss_locus.geometry.beam_plane import beam_plane_sigma_rad
 from sss_locus.experiments.adjustment import NavigationPriors, Sightings, adjust, beam_plane_points
+from sss_locus.experiments.adjustment.solver import LSMR_TOL
 
 JOINT_ESTIMATORS = ("beam", "joint")
 JOINT_MAX_EVALUATIONS = 400
@@ -73,11 +74,13 @@ def _start(inputs: dict) -> np.ndarray:
     return np.einsum("nli,nl->ni", inputs["flat"], seen) / np.maximum(seen.sum(axis=1), 1)[:, None]
 
 
-def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS, *, known_association: bool = False) -> dict:
+def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS, *, known_association: bool = False,
+                          lsmr_tol: float = LSMR_TOL) -> dict:
     """The estimators ``names`` (of :data:`JOINT_ESTIMATORS`, module docstring) as the ``extra``
     mapping of :func:`~sss_locus.experiments.reconstruction.estimators.reconstruct`, for a sonar of full
     elevation beam width ``elevation_deg``; ``known_association``: the joint solve without the
-    robust loss and the gate (module docstring)."""
+    robust loss and the gate (module docstring); ``lsmr_tol``: the joint solve's LSMR tolerance
+    (:func:`~sss_locus.experiments.adjustment.adjust`)."""
     unknown = set(names) - set(JOINT_ESTIMATORS)
     if unknown:
         raise ValueError(f"names must be among {list(JOINT_ESTIMATORS)}; got {sorted(unknown)}")
@@ -98,7 +101,8 @@ def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS, *, known
                                   heading_sigma_deg=pn.pass_heading_bias_sigma_deg,
                                   drift_sigma=pn.drift_sigma_fraction, reference_m=np.zeros((seen.shape[1], 2)))
         robust = {} if not known_association else {"loss": "linear", "gate_m": math.inf}
-        res = adjust(s, priors, _start(inputs), covariance=False, max_nfev=JOINT_MAX_EVALUATIONS, **robust)
+        res = adjust(s, priors, _start(inputs), covariance=False, max_nfev=JOINT_MAX_EVALUATIONS, lsmr_tol=lsmr_tol,
+                     **robust)
         return res.point_m, res.adjusted & res.success & np.all(np.isfinite(res.point_m), axis=1)
 
     table = {"beam": lambda inputs: run(inputs, False), "joint": lambda inputs: run(inputs, True)}

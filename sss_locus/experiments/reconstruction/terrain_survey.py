@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sss_locus.experiments.passes.straight_pass import observe_pass, vehicle_attitude
+from sss_locus.experiments.passes.straight_pass import level_attitude_matrices, observe_pass
 from sss_locus.experiments.datamodel.terrain import Terrain
 from sss_locus.experiments.passes.view_sets import Views
 
@@ -156,7 +156,7 @@ def observe_features(platform, terrain: Terrain, features, layout: SurveyLayout,
         shadowed[i, j] = ray_blocked(terrain, origin[i, j], f[i])
         reason = np.where(shadowed, np.int8(4), reason)
         seen &= ~shadowed
-    V = vehicle_attitude(head.ravel(), np.full(n * L, float(pitch_deg)), np.zeros(n * L)).as_matrix().reshape(n, L, 3, 3)
+    V = level_attitude_matrices(head.ravel(), np.full(n * L, float(pitch_deg))).reshape(n, L, 3, 3)
     height = origin[..., 2] - terrain.height_m(origin[..., 0], origin[..., 1])
     views = Views(W=W, origin=origin, vehicle=V, feature=f)
     start = layout.start_offset_m

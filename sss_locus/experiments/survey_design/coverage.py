@@ -38,11 +38,16 @@ from sss_locus.experiments.passes.view_sets import Views
 class _Segments:
     """The segments of a line table as :func:`observe_features` reads a layout (``lines()``)."""
 
-    def __init__(self, lines: pd.DataFrame):
-        self.heading = lines["heading_deg"].to_numpy(float)
-        self.start = lines[["x0_m", "y0_m"]].to_numpy(float)
-        self.length = lines["length_m"].to_numpy(float)
+    def __init__(self, heading_deg, start_m, length_m):
+        self.heading = np.atleast_1d(np.asarray(heading_deg, float))
+        self.start = np.asarray(start_m, float).reshape(-1, 2)
+        self.length = np.atleast_1d(np.asarray(length_m, float))
         self.start_offset_m = 0.0  # lines() gives each segment's start itself
+
+    @classmethod
+    def of(cls, lines: pd.DataFrame) -> "_Segments":
+        return cls(lines["heading_deg"].to_numpy(float), lines[["x0_m", "y0_m"]].to_numpy(float),
+                   lines["length_m"].to_numpy(float))
 
     def lines(self):
         return self.heading, self.start
@@ -59,10 +64,14 @@ def observe_lines(platform, terrain: Terrain, xy, lines: pd.DataFrame, altitude_
     Returns the :class:`~sss_locus.experiments.passes.view_sets.Views` (``(n, L)``), ``seen`` (n, L) and
     the info of :func:`observe_features` with ``on_segment`` (n, L) added.
     """
+    return _observe(platform, terrain, xy, _Segments.of(lines), altitude_m, pitch_deg, same_altitude, seed, centre)
+
+
+def _observe(platform, terrain, xy, seg: _Segments, altitude_m, pitch_deg, same_altitude, seed, centre):
+    """:func:`observe_lines` on segments given as arrays (no table lookups in the coverage's loop)."""
     c = np.asarray(centre, float)
     xy = np.asarray(xy, float) - c
-    seg = _Segments(lines)
-    seg.start = seg.start - c
+    seg = _Segments(seg.heading, seg.start - c, seg.length)
     points = terrain.point_on_seafloor(xy[:, 0], xy[:, 1])
     views, seen, info = observe_features(platform, terrain, points, seg, altitude_m, same_altitude,
                                          seed, pitch_deg=pitch_deg)
@@ -122,8 +131,8 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
         near = np.flatnonzero((along >= -reach) & (along <= length + reach) & (np.abs(across) <= reach))
         if near.size:
             sd = int(np.random.SeedSequence([seed, j]).generate_state(1)[0])
-            _, seen, _ = observe_lines(platform, terrain, xy[near], lines.iloc[[j]], altitude_m, pitch_deg,
-                                       same_altitude, sd, centre)
+            _, seen, _ = _observe(platform, terrain, xy[near], _Segments(h, [x0, y0], length), altitude_m,
+                                  pitch_deg, same_altitude, sd, centre)
             count[near] += seen[:, 0]
     unseen = np.zeros(shape[0] * shape[1], bool)
     unseen[flat[count == 0]] = True

@@ -215,11 +215,12 @@ def flown_cost(area: SurveyArea, lines: pd.DataFrame, turn_radius_m: float) -> d
     return dict(_FLOWN[key])
 
 
-def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0) -> dict:
+def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0, lines: pd.DataFrame | None = None) -> dict:
+
     """Cost, coverage and objectives of one plan (module docstring); with ``noise`` also the
-    reconstruction errors under it."""
+    reconstruction errors under it. ``lines``: ``plan.lines(s.area)`` when the caller has it."""
     p = s.platform
-    lines = plan.lines(s.area)
+    lines = plan.lines(s.area) if lines is None else lines
     if lines.empty:
         raise ValueError(f"plan {plan} leaves no line inside the area")
     cost = flown_cost(s.area, lines, p.turn_radius_m)  # the track the mission flies
@@ -319,9 +320,11 @@ def search(s: Setting, objective: str, grid: dict, *, noise=None, progress=None)
               if not any(same(p, q) for q, _ in plans)]
     rows = []
     for k, (plan, kind) in enumerate(plans):
-        if plan.lines(s.area).empty:
+        lines = plan.lines(s.area)
+        if lines.empty:
             continue
-        rows.append({**evaluate(s, plan, noise=noise if objective == "reconstruction" else None), "kind": kind})
+        rows.append({**evaluate(s, plan, noise=noise if objective == "reconstruction" else None, lines=lines),
+                     "kind": kind})
         if progress is not None:
             progress(k + 1, len(plans))
     table = pd.DataFrame(rows)

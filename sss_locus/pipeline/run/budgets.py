@@ -41,10 +41,11 @@ SECONDS_PER_PASS_PAIR = 20e-6
 #: by all the cells: measured 555-852 B per cell and line with tracemalloc around
 #: ``survey_design.evaluate``, example area, grid 10-20 m).
 BYTES_PER_CELL_LINE = 900.0
-#: Time per coverage cell and line reaching it, one plan, seconds (measured 6 us: the 5 km
-#: boat's standard plan, 20,000 cells, 2.5 lines reaching a cell, 0.31 s CPU of
-#: ``survey_design.evaluate``; the benchmark's 82 plans 36 s, 0.44 s a plan).
-SECONDS_PER_CELL_LINE = 6e-6
+#: Time per coverage cell and line reaching it, one plan, seconds (measured 6 us before one
+#: attitude per heading: the 5 km boat's standard plan, 20,000 cells, 2.5 lines reaching a cell,
+#: 0.31 s CPU of ``survey_design.evaluate``; the benchmark's 82 plans 36 s, 0.44 s a plan; since,
+#: 12.3 s boat and 24 s AUV, bench_survey_design.py).
+SECONDS_PER_CELL_LINE = 2e-6
 #: Time per feature and segment of one plan in the search (observation, best pairs, triples),
 #: seconds (measured 3.3 us: 200 and 4,000 features on the 5 km boat's 44 segments, 0.31 and
 #: 0.87 s CPU).
@@ -52,7 +53,8 @@ SECONDS_PER_FEATURE_LINE = 4e-6
 #: Time per feature and segment of one plan and seed of the joint scoring, seconds
 #: (``surveydesign.joint.plan_joint_errors``; measured 30-70 us with 1,000-2,000 features on a
 #: 5 km square, up to 0.5 ms where 200 features over 25 km^2 leave the passes weakly tied and the
-#: solver needs a hundred evaluations: the AUV's 43 segments, 3-6 s CPU; the larger is used).
+#: solver needs a hundred evaluations: the AUV's 43 segments, 3-6 s CPU at LSMR tolerance 1e-10,
+#: about 1.8 s at the scoring's 1e-8; the larger is used).
 SECONDS_PER_JOINT_FEATURE_LINE = 5e-4
 #: Fixed time per plan and seed of the joint scoring, seconds (measured 0.05-0.2 s on the
 #: example area's 6-9 segments with 200 features).

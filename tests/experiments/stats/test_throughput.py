@@ -206,3 +206,18 @@ def test_transducer_stack_rows_are_the_mountings(key):
         assert mats[i].tobytes() == tr.rotation.as_matrix().tobytes()
         assert pos[i].tobytes() == np.asarray(tr.position_m, float).tobytes()
     assert mats.shape == (50, 3, 3) and pos.shape == (50, 3) and mats.flags.writeable
+
+
+@pytest.mark.parametrize("repeats", [1, 3, 400])
+def test_level_attitude_matrices_equal_vehicle_attitude_bit_for_bit(repeats):
+    from sss_locus.experiments.straight_pass import level_attitude_matrices
+
+    rng = np.random.default_rng(repeats)
+    yaw = np.repeat(rng.uniform(-180, 180, 7), repeats)  # a few headings, each on many pings (a survey)
+    rng.shuffle(yaw)
+    for pitch in (np.full(yaw.size, 4.0), rng.uniform(-10, 10, yaw.size)):
+        ref = _elementary(2, yaw) @ _elementary(1, -pitch) @ _elementary(0, np.zeros(yaw.size))
+        ours = level_attitude_matrices(yaw, pitch)
+        assert ours.shape == (yaw.size, 3, 3)
+        np.testing.assert_allclose(ours, ref, atol=1e-14)
+        assert ours.tobytes() == vehicle_attitude(yaw, pitch, np.zeros(yaw.size)).as_matrix().tobytes()

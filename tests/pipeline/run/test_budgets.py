@@ -82,7 +82,7 @@ def test_a_run_over_the_time_budget_names_the_scoring_sizes(tmp_path, machine_24
                        {"area": area, "noise_seeds": "[1, 2, 3]", "n_scored": "2", "platforms": '["boat"]'}, from_text=True)
 
 
-@pytest.mark.parametrize("key, search_s, scoring_s", [("boat", 35.9, 5.3), ("auv", 70.1, 145.3)])
+@pytest.mark.parametrize("key, search_s, scoring_s", [("boat", 11.5, 4.1), ("auv", 22.3, 82.4)])
 def test_the_estimate_bounds_the_measured_5_km_benchmark(key, search_s, scoring_s):
     """The estimate against the measured benchmark (benchmarks/README.md, bench_survey_design.py,
     5 km square, book profile: search and joint scoring CPU seconds, peak RSS 204-207 MB): at or
