@@ -262,7 +262,7 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
     lsmr_tol : float, in (0, 1)
         ``atol`` and ``btol`` of its LSMR inner solves (default :data:`LSMR_TOL`; the survey
         design's scoring uses a looser one, measured:
-        :data:`~sss_locus.experiments.surveydesign.joint.SCORING_LSMR_TOL`).
+        :data:`~sss_locus.experiments.survey_design.joint.SCORING_LSMR_TOL`).
 
     Returns
     -------

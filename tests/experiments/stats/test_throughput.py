@@ -210,7 +210,7 @@ def test_transducer_stack_rows_are_the_mountings(key):
 
 @pytest.mark.parametrize("repeats", [1, 3, 400])
 def test_level_attitude_matrices_equal_vehicle_attitude_bit_for_bit(repeats):
-    from sss_locus.experiments.straight_pass import level_attitude_matrices
+    from sss_locus.experiments.passes.straight_pass import level_attitude_matrices
 
     rng = np.random.default_rng(repeats)
     yaw = np.repeat(rng.uniform(-180, 180, 7), repeats)  # a few headings, each on many pings (a survey)

@@ -152,10 +152,10 @@ def test_the_scorings_looser_lsmr_tolerance_finds_the_chapters_optimum():
     the median within a millimetre (measured on the 5 km AUV benchmark's solves: at most 5 cm, 99 %
     within 2.5 mm; at 1e-6 the solves stop on the evaluation limit tens of metres away)."""
     from sss_locus.experiments.adjustment.solver import LSMR_TOL
-    from sss_locus.experiments.reconstruction import reconstruct
-    from sss_locus.experiments.reconstruction_joint import adjustment_estimators
-    from sss_locus.experiments.survey_coverage import observe_lines
-    from sss_locus.experiments.surveydesign.joint import SCORING_LSMR_TOL
+    from sss_locus.experiments.reconstruction.estimators import reconstruct
+    from sss_locus.experiments.reconstruction.joint import adjustment_estimators
+    from sss_locus.experiments.survey_design.coverage import observe_lines
+    from sss_locus.experiments.survey_design.joint import SCORING_LSMR_TOL
 
     assert SCORING_LSMR_TOL > LSMR_TOL
     pf = load_platform("auv")
