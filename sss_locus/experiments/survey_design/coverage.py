@@ -19,6 +19,13 @@ Where the lines' swaths overlap the nadir gap is filled; where they do not, it s
 The nadir gap of a line is the band ``|offset| < near`` under the vehicle that neither side's
 fan reaches, ``near`` from :func:`~sss_locus.experiments.passes.straight_pass.swath_m` on a flat
 seafloor at the plan's altitude.
+
+Out of reach (:func:`out_of_reach`): a cell whose seafloor no line can see wherever it runs, because
+the vehicle's height above it (for a platform of fixed depth, ``altitude_m - h(x, y)``: a deeper
+seafloor is farther below) leaves neither side a swath on a flat seafloor there (the same
+:func:`~sss_locus.experiments.passes.straight_pass.swath_m` geometry: the transducer not above it, or
+no ground offset inside both the fan and ``min_range_m``..``max_range_m``). Such cells are gaps of
+every plan; :func:`coverage` reports their share apart.
 """
 
 from __future__ import annotations
@@ -98,6 +105,37 @@ def nadir_gap_m(platform, altitude_m: float) -> float:
     return max(0.0, min(near))
 
 
+def reach_limits_m(platform) -> tuple[float, float]:
+    """The heights (m) of the vehicle's reference point above a flat seafloor between which some
+    side's fan sees it: above the shallowest transducer, and below ``max(depth_m + max_range_m
+    sin(min(tilt + azimuth/2, 90°)))`` over the sides (beyond, even the steepest look-down ray
+    ends before the seafloor)."""
+    son = platform.sonar
+    sides = platform.transducers.values()
+    low = min(t.depth_m for t in sides)
+    high = max(t.depth_m + son.max_range_m * math.sin(math.radians(min(t.tilt_deg + son.azimuth_deg / 2, 90.0)))
+               if t.tilt_deg + son.azimuth_deg / 2 > 0 else -math.inf for t in sides)
+    return low, high
+
+
+def out_of_reach(platform, terrain: Terrain, xy, altitude_m: float, same_altitude: bool,
+                 centre=(0.0, 0.0)) -> np.ndarray:
+    """Whether no line of any plan can see the seafloor below each of ``xy`` (``(n, 2)``, area
+    frame, m): the module docstring's out-of-reach rule, per point (``(n,)`` bool)."""
+    xy = np.asarray(xy, float) - np.asarray(centre, float)
+    alt = np.full(len(xy), float(altitude_m))
+    if same_altitude:  # a fixed-depth vehicle: the deeper the seafloor, the farther below
+        alt = alt - terrain.height_m(xy[:, 0], xy[:, 1])
+    seen = np.zeros(len(xy), bool)
+    for port in (True, False):
+        t = platform.transducers["port" if port else "starboard"]
+        ok = (alt - t.depth_m > 0) & (alt - t.depth_m < platform.sonar.max_range_m)
+        if ok.any():
+            near, far = swath_m(platform, np.full(int(ok.sum()), port), alt[ok])
+            seen[np.flatnonzero(ok)[near < far]] = True
+    return ~seen
+
+
 def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, altitude_m: float,
              pitch_deg: float, same_altitude: bool, *, grid_m: float, seed: int = 0,
              centre=(0.0, 0.0)) -> dict:
@@ -108,7 +146,9 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
     dict
         ``once``, ``twice`` (shares of the area seen by >= 1, >= 2 lines), ``holes`` (share seen
         by none), ``n_holes`` (connected unseen groups), ``nadir_gap_m`` (half-width), ``grid_m``,
-        ``grid``: a DataFrame ``x_m, y_m, n_lines`` of the grid cells inside the area.
+        ``out_of_reach`` (share of the area no plan can see: :func:`out_of_reach`) and
+        ``out_of_reach_m2`` (that share of the area's area, m²),
+        ``grid``: a DataFrame ``x_m, y_m, n_lines, out_of_reach`` of the grid cells inside the area.
     """
     from scipy import ndimage
 
@@ -128,7 +168,9 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
     unseen = np.zeros(shape[0] * shape[1], bool)
     unseen[flat[count == 0]] = True
     _, n_holes = ndimage.label(unseen.reshape(shape))
-    return {"once": float(np.mean(count >= 1)), "twice": float(np.mean(count >= 2)),
+    beyond = out_of_reach(platform, terrain, xy, altitude_m, same_altitude, centre)
+    return {"out_of_reach": float(np.mean(beyond)), "out_of_reach_m2": float(np.mean(beyond) * area.polygon.area),
+            "once": float(np.mean(count >= 1)), "twice": float(np.mean(count >= 2)),
             "holes": float(np.mean(count == 0)), "n_holes": int(n_holes),
             "nadir_gap_m": nadir_gap_m(platform, altitude_m), "grid_m": float(grid_m),
-            "grid": pd.DataFrame({"x_m": xy[:, 0], "y_m": xy[:, 1], "n_lines": count})}
+            "grid": pd.DataFrame({"x_m": xy[:, 0], "y_m": xy[:, 1], "n_lines": count, "out_of_reach": beyond})}
