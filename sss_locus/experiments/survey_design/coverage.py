@@ -22,9 +22,9 @@ seafloor at the plan's altitude.
 
 Out of reach (:func:`out_of_reach`): a cell whose seafloor no line can see wherever it runs, because
 the vehicle's height above it (for a platform of fixed depth, ``altitude_m - h(x, y)``: a deeper
-seafloor is farther below) leaves neither side a swath on a flat seafloor there (the same
-:func:`~sss_locus.experiments.passes.straight_pass.swath_m` geometry: the transducer not above it, or
-no ground offset inside both the fan and ``min_range_m``..``max_range_m``). Such cells are gaps of
+seafloor is farther below) leaves neither side a swath on a flat seafloor there (:func:`side_reach_m`: the closed form of
+:func:`~sss_locus.experiments.passes.straight_pass.swath_m`, no ground offset inside both the fan and
+``min_range_m``..``max_range_m``, or the transducer not above it). Such cells are gaps of
 every plan; :func:`coverage` reports their share apart.
 """
 
@@ -105,17 +105,26 @@ def nadir_gap_m(platform, altitude_m: float) -> float:
     return max(0.0, min(near))
 
 
+def side_reach_m(platform, side: str) -> tuple[float, float]:
+    """The heights (m) of the vehicle's reference point above a flat seafloor between which the
+    ``side`` transducer's fan sees it (open interval): the closed form of
+    :func:`~sss_locus.experiments.passes.straight_pass.swath_m`'s ``near < far``. Above the
+    transducer (and, with a minimum range, above ``min_range_m sin(tilt - azimuth/2)``), and
+    below ``depth_m + max_range_m sin(min(tilt + azimuth/2, 90°))`` (deeper, even the steepest
+    look-down ray ends before the seafloor); an empty interval for a fan that never looks down."""
+    son, t = platform.sonar, platform.transducers[side]
+    steep, shallow = t.tilt_deg + son.azimuth_deg / 2, t.tilt_deg - son.azimuth_deg / 2
+    if steep <= 0:
+        return t.depth_m, t.depth_m
+    low = t.depth_m + (son.min_range_m * math.sin(math.radians(shallow)) if shallow > 0 else 0.0)
+    return low, t.depth_m + son.max_range_m * math.sin(math.radians(min(steep, 90.0)))
+
+
 def reach_limits_m(platform) -> tuple[float, float]:
-    """The heights (m) of the vehicle's reference point above a flat seafloor between which some
-    side's fan sees it: above the shallowest transducer, and below ``max(depth_m + max_range_m
-    sin(min(tilt + azimuth/2, 90°)))`` over the sides (beyond, even the steepest look-down ray
-    ends before the seafloor)."""
-    son = platform.sonar
-    sides = platform.transducers.values()
-    low = min(t.depth_m for t in sides)
-    high = max(t.depth_m + son.max_range_m * math.sin(math.radians(min(t.tilt_deg + son.azimuth_deg / 2, 90.0)))
-               if t.tilt_deg + son.azimuth_deg / 2 > 0 else -math.inf for t in sides)
-    return low, high
+    """The lowest and highest heights (m) of the reference point at which some side's fan sees
+    a flat seafloor (:func:`side_reach_m` over the sides)."""
+    windows = [side_reach_m(platform, side) for side in platform.transducers]
+    return min(w[0] for w in windows), max(w[1] for w in windows)
 
 
 def out_of_reach(platform, terrain: Terrain, xy, altitude_m: float, same_altitude: bool,
@@ -127,12 +136,9 @@ def out_of_reach(platform, terrain: Terrain, xy, altitude_m: float, same_altitud
     if same_altitude:  # a fixed-depth vehicle: the deeper the seafloor, the farther below
         alt = alt - terrain.height_m(xy[:, 0], xy[:, 1])
     seen = np.zeros(len(xy), bool)
-    for port in (True, False):
-        t = platform.transducers["port" if port else "starboard"]
-        ok = (alt - t.depth_m > 0) & (alt - t.depth_m < platform.sonar.max_range_m)
-        if ok.any():
-            near, far = swath_m(platform, np.full(int(ok.sum()), port), alt[ok])
-            seen[np.flatnonzero(ok)[near < far]] = True
+    for side in platform.transducers:
+        low, high = side_reach_m(platform, side)
+        seen |= (alt > low) & (alt < high)
     return ~seen
 
 
