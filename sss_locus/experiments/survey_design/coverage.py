@@ -129,8 +129,9 @@ def reach_limits_m(platform) -> tuple[float, float]:
 
 def out_of_reach(platform, terrain: Terrain, xy, altitude_m: float, same_altitude: bool,
                  centre=(0.0, 0.0)) -> np.ndarray:
-    """Whether no line of any plan can see the seafloor below each of ``xy`` (``(n, 2)``, area
-    frame, m): the module docstring's out-of-reach rule, per point (``(n,)`` bool)."""
+    """Whether and why no line of any plan can see the seafloor below each of ``xy`` (``(n, 2)``,
+    area frame, m), by the module docstring's rule: ``(n,)`` int, 0 in reach, -1 too shallow (the
+    vehicle at or below the lowest height of :func:`reach_limits_m` above it), +1 too deep."""
     xy = np.asarray(xy, float) - np.asarray(centre, float)
     alt = np.full(len(xy), float(altitude_m))
     if same_altitude:  # a fixed-depth vehicle: the deeper the seafloor, the farther below
@@ -139,7 +140,7 @@ def out_of_reach(platform, terrain: Terrain, xy, altitude_m: float, same_altitud
     for side in platform.transducers:
         low, high = side_reach_m(platform, side)
         seen |= (alt > low) & (alt < high)
-    return ~seen
+    return np.where(seen, 0, np.where(alt <= reach_limits_m(platform)[0], -1, 1))
 
 
 def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, altitude_m: float,
@@ -152,8 +153,9 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
     dict
         ``once``, ``twice`` (shares of the area seen by >= 1, >= 2 lines), ``holes`` (share seen
         by none), ``n_holes`` (connected unseen groups), ``nadir_gap_m`` (half-width), ``grid_m``,
-        ``out_of_reach`` (share of the area no plan can see: :func:`out_of_reach`) and
-        ``out_of_reach_m2`` (that share of the area's area, m²),
+        ``out_of_reach`` (share of the area no plan can see: :func:`out_of_reach`),
+        ``out_of_reach_m2`` (that share of the area's area, m²), ``too_shallow`` and ``too_deep``
+        (its two parts, shares of the area),
         ``grid``: a DataFrame ``x_m, y_m, n_lines, out_of_reach`` of the grid cells inside the area.
     """
     from scipy import ndimage
@@ -174,8 +176,10 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
     unseen = np.zeros(shape[0] * shape[1], bool)
     unseen[flat[count == 0]] = True
     _, n_holes = ndimage.label(unseen.reshape(shape))
-    beyond = out_of_reach(platform, terrain, xy, altitude_m, same_altitude, centre)
+    why = out_of_reach(platform, terrain, xy, altitude_m, same_altitude, centre)
+    beyond = why != 0
     return {"out_of_reach": float(np.mean(beyond)), "out_of_reach_m2": float(np.mean(beyond) * area.polygon.area),
+            "too_shallow": float(np.mean(why < 0)), "too_deep": float(np.mean(why > 0)),
             "once": float(np.mean(count >= 1)), "twice": float(np.mean(count >= 2)),
             "holes": float(np.mean(count == 0)), "n_holes": int(n_holes),
             "nadir_gap_m": nadir_gap_m(platform, altitude_m), "grid_m": float(grid_m),

@@ -84,17 +84,22 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water
 
 def reach_sentence(platform, cov: dict) -> str:
     """The part of the area no plan can see (``cov["out_of_reach"]``, its area
-    ``cov["out_of_reach_m2"]``, :func:`~sss_locus.experiments.survey_design.coverage.out_of_reach`) in
-    one sentence with the depths the sonar reaches, ``""`` when there is none."""
-    share = float(cov.get("out_of_reach", 0.0))
-    if share <= 0:
+    ``cov["out_of_reach_m2"]`` and its parts ``too_deep``, ``too_shallow``:
+    :func:`~sss_locus.experiments.survey_design.coverage.out_of_reach`) in one sentence with the
+    depths the sonar reaches, ``""`` when there is none."""
+    if float(cov.get("out_of_reach", 0.0)) <= 0:
         return ""
-    where = f"{fmt_percent(share)} of the area ({cov['out_of_reach_m2'] / 1e4:.2g} ha)"
+    area_m2 = cov["out_of_reach_m2"] / cov["out_of_reach"]
+    part = lambda share: f"{fmt_percent(share)} of the area ({share * area_m2 / 1e4:.2g} ha)"
     if not platform.fixed_depth:
-        return f"{where} lies where the sonar cannot see the seafloor at the plan's altitude; no plan can see it (dark grey). "
-    low, high = reach_limits_m(platform)
-    return (f"{where} lies deeper than the sonar reaches ({platform.depth_min_m + high:.3g} m below the surface) or "
-            f"shallower than its transducers ({platform.depth_min_m + low:.3g} m); no plan can see it (dark grey). ")
+        return (f"{part(cov['out_of_reach'])} lies where the sonar cannot see the seafloor at the plan's altitude; "
+                "no plan can see it (dark grey). ")
+    low, high = (platform.depth_min_m + v for v in reach_limits_m(platform))
+    parts = ([f"{part(cov['too_deep'])} lies deeper than the sonar reaches at {high:.3g} m below the surface"]
+             if cov["too_deep"] > 0 else [])
+    parts += ([f"{part(cov['too_shallow'])} is shallower than the {low:.3g} m the sonar needs"]
+              if cov["too_shallow"] > 0 else [])
+    return " and ".join(parts) + f"; no plan can see {'it' if len(parts) == 1 else 'them'} (dark grey). "
 
 
 @themed

@@ -43,13 +43,17 @@ def _utm(lon, lat):
 @pytest.fixture
 def trench(tmp_path):
     """A 600 m x 300 m area over a GeoTIFF (UTM, 5 m cells) 12 m deep with a 140 m trench."""
+    return _write(tmp_path, TRENCH_M)
+
+
+def _write(tmp_path, trench_m):
     from rasterio.transform import from_origin
 
     e0, n0 = _utm(*ORIGIN)
     west, north = e0 - 400.0, n0 + 700.0
     nx, ny = int(1400 / CELL_M), int(1100 / CELL_M)
     east = west + CELL_M * (np.arange(nx) + 0.5) - e0
-    row = np.where((east >= TRENCH_E[0]) & (east <= TRENCH_E[1]), TRENCH_M, SHALLOW_M)
+    row = np.where((east >= TRENCH_E[0]) & (east <= TRENCH_E[1]), trench_m, SHALLOW_M)
     depth = np.tile(row, (ny, 1)).astype("float32")
     with rasterio.open(tmp_path / "trench.tif", "w", driver="GTiff", width=nx, height=ny, count=1,
                        dtype="float32", crs=UTM, transform=from_origin(west, north, CELL_M, CELL_M)) as dst:
@@ -84,6 +88,7 @@ def test_the_share_beyond_the_sonars_reach_matches_the_raster_and_the_sonar(tren
     assert abs(expected - 0.25) < 0.03  # the trench is a quarter of the area
     assert abs(cov["out_of_reach"] - expected) <= 1.5 * 300 / 10 / len(g)  # a column of cells on its edges
     assert cov["out_of_reach_m2"] == pytest.approx(cov["out_of_reach"] * 600 * 300)
+    assert cov["too_deep"] == cov["out_of_reach"] and cov["too_shallow"] == 0.0
     assert np.all(g.n_lines[g.out_of_reach] == 0)  # the line runs across the trench and sees none of it
 
 
@@ -95,11 +100,22 @@ def test_the_caption_states_the_share_and_the_depth_the_sonar_reaches(trench):
     text = plan_caption(boat, area, "trench.toml", row, cov, ["plan.csv"], water_depth_m=44.0, depth_source="grid")
     import re
 
-    found = re.search(r"([\d.]+) % of the area \(([\d.]+) ha\) lies deeper than the sonar reaches \(115 m below", text)
+    found = re.search(r"([\d.]+) % of the area \(([\d.]+) ha\) lies deeper than the sonar reaches at 115 m below the surface; no plan", text)
     assert found, text
     assert float(found[1]) == pytest.approx(100 * cov["out_of_reach"], abs=0.051)
     assert float(found[2]) == pytest.approx(cov["out_of_reach_m2"] / 1e4, abs=0.051)
-    assert "no plan can see it" in text
+    assert "shallower" not in text  # no part of this area is too shallow
+
+
+def test_a_shoal_shallower_than_the_transducers_is_named_as_such(tmp_path):
+    """The same strip 5 cm deep: the boat's transducers (10 cm down) are below its seafloor."""
+    area, _ = _write(tmp_path, 0.05)
+    boat, cov = _boat_coverage(area)
+    assert cov["too_deep"] == 0.0 and abs(cov["too_shallow"] - 0.25) < 0.03
+    row = pd.Series({"heading_deg": 0.0, "spacing_m": 100.0, "crossing_deg": float("nan"), "altitude_m": 9.0,
+                     "pitch_deg": 0.0, "run_m": 20.0, "total_m": 4000.0, "time_h": 1.0})
+    text = plan_caption(boat, area, "trench.toml", row, cov, ["plan.csv"], water_depth_m=9.0, depth_source="grid")
+    assert "ha) is shallower than the 0.1 m the sonar needs; no plan can see it" in text and "deeper" not in text
 
 
 def test_the_map_draws_the_unreachable_cells_apart_from_the_gaps(trench):
