@@ -19,6 +19,13 @@ Where the lines' swaths overlap the nadir gap is filled; where they do not, it s
 The nadir gap of a line is the band ``|offset| < near`` under the vehicle that neither side's
 fan reaches, ``near`` from :func:`~sss_locus.experiments.passes.straight_pass.swath_m` on a flat
 seafloor at the plan's altitude.
+
+Out of reach (:func:`out_of_reach`): a cell whose seafloor no line can see wherever it runs, because
+the vehicle's height above it (for a platform of fixed depth, ``altitude_m - h(x, y)``: a deeper
+seafloor is farther below) leaves neither side a swath on a flat seafloor there (:func:`side_reach_m`: the closed form of
+:func:`~sss_locus.experiments.passes.straight_pass.swath_m`, no ground offset inside both the fan and
+``min_range_m``..``max_range_m``, or the transducer not above it). Such cells are gaps of
+every plan; :func:`coverage` reports their share apart.
 """
 
 from __future__ import annotations
@@ -107,6 +114,44 @@ def nadir_gap_m(platform, altitude_m: float) -> float:
     return max(0.0, min(near))
 
 
+def side_reach_m(platform, side: str) -> tuple[float, float]:
+    """The heights (m) of the vehicle's reference point above a flat seafloor between which the
+    ``side`` transducer's fan sees it (open interval): the closed form of
+    :func:`~sss_locus.experiments.passes.straight_pass.swath_m`'s ``near < far``. Above the
+    transducer (and, with a minimum range, above ``min_range_m sin(tilt - azimuth/2)``), and
+    below ``depth_m + max_range_m sin(min(tilt + azimuth/2, 90°))`` (deeper, even the steepest
+    look-down ray ends before the seafloor); an empty interval for a fan that never looks down."""
+    son, t = platform.sonar, platform.transducers[side]
+    steep, shallow = t.tilt_deg + son.azimuth_deg / 2, t.tilt_deg - son.azimuth_deg / 2
+    if steep <= 0:
+        return t.depth_m, t.depth_m
+    low = t.depth_m + (son.min_range_m * math.sin(math.radians(shallow)) if shallow > 0 else 0.0)
+    return low, t.depth_m + son.max_range_m * math.sin(math.radians(min(steep, 90.0)))
+
+
+def reach_limits_m(platform) -> tuple[float, float]:
+    """The lowest and highest heights (m) of the reference point at which some side's fan sees
+    a flat seafloor (:func:`side_reach_m` over the sides)."""
+    windows = [side_reach_m(platform, side) for side in platform.transducers]
+    return min(w[0] for w in windows), max(w[1] for w in windows)
+
+
+def out_of_reach(platform, terrain: Terrain, xy, altitude_m: float, same_altitude: bool,
+                 centre=(0.0, 0.0)) -> np.ndarray:
+    """Whether and why no line of any plan can see the seafloor below each of ``xy`` (``(n, 2)``,
+    area frame, m), by the module docstring's rule: ``(n,)`` int, 0 in reach, -1 too shallow (the
+    vehicle at or below the lowest height of :func:`reach_limits_m` above it), +1 too deep."""
+    xy = np.asarray(xy, float) - np.asarray(centre, float)
+    alt = np.full(len(xy), float(altitude_m))
+    if same_altitude:  # a fixed-depth vehicle: the deeper the seafloor, the farther below
+        alt = alt - terrain.height_m(xy[:, 0], xy[:, 1])
+    seen = np.zeros(len(xy), bool)
+    for side in platform.transducers:
+        low, high = side_reach_m(platform, side)
+        seen |= (alt > low) & (alt < high)
+    return np.where(seen, 0, np.where(alt <= reach_limits_m(platform)[0], -1, 1))
+
+
 def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, altitude_m: float,
              pitch_deg: float, same_altitude: bool, *, grid_m: float, seed: int = 0,
              centre=(0.0, 0.0)) -> dict:
@@ -117,7 +162,10 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
     dict
         ``once``, ``twice`` (shares of the area seen by >= 1, >= 2 lines), ``holes`` (share seen
         by none), ``n_holes`` (connected unseen groups), ``nadir_gap_m`` (half-width), ``grid_m``,
-        ``grid``: a DataFrame ``x_m, y_m, n_lines`` of the grid cells inside the area.
+        ``out_of_reach`` (share of the area no plan can see: :func:`out_of_reach`),
+        ``out_of_reach_m2`` (that share of the area's area, m²), ``too_shallow`` and ``too_deep``
+        (its two parts, shares of the area),
+        ``grid``: a DataFrame ``x_m, y_m, n_lines, out_of_reach`` of the grid cells inside the area.
     """
     from scipy import ndimage
 
@@ -137,7 +185,11 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
     unseen = np.zeros(shape[0] * shape[1], bool)
     unseen[flat[count == 0]] = True
     _, n_holes = ndimage.label(unseen.reshape(shape))
-    return {"once": float(np.mean(count >= 1)), "twice": float(np.mean(count >= 2)),
+    why = out_of_reach(platform, terrain, xy, altitude_m, same_altitude, centre)
+    beyond = why != 0
+    return {"out_of_reach": float(np.mean(beyond)), "out_of_reach_m2": float(np.mean(beyond) * area.polygon.area),
+            "too_shallow": float(np.mean(why < 0)), "too_deep": float(np.mean(why > 0)),
+            "once": float(np.mean(count >= 1)), "twice": float(np.mean(count >= 2)),
             "holes": float(np.mean(count == 0)), "n_holes": int(n_holes),
             "nadir_gap_m": nadir_gap_m(platform, altitude_m), "grid_m": float(grid_m),
-            "grid": pd.DataFrame({"x_m": xy[:, 0], "y_m": xy[:, 1], "n_lines": count})}
+            "grid": pd.DataFrame({"x_m": xy[:, 0], "y_m": xy[:, 1], "n_lines": count, "out_of_reach": beyond})}

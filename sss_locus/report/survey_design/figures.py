@@ -22,9 +22,10 @@ import pandas as pd
 from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.patches import Polygon as PolygonPatch
 
+from sss_locus.experiments.survey_design.coverage import reach_limits_m
 from sss_locus.experiments.survey_design.front import OBJECTIVES
 from sss_locus.report.common.style import PAGE_WIDTH_IN, platform_title, themed
-from sss_locus.report.survey_design.map import add_graticule, add_scale_bar
+from sss_locus.report.survey_design.map import LEGEND_X, add_graticule, add_scale_bar
 from sss_locus.report.common.text import fmt_ci, fmt_ci_cells, fmt_percent, fmt_sig
 
 OBJECTIVE_LABELS = {"locus": "median best-pair locus length (m)",
@@ -75,9 +76,30 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water
             + f"{row.total_m / 1e3:.2f} km flown (the mission's track: lines, turns of radius "
             f"{platform.turn_radius_m:g} m, transits and the return to the start), "
             + f"{row.time_h:.1f} h at {platform.speed_m_s:g} m/s; seen once {fmt_percent(cov['once'])}, twice "
-            f"{fmt_percent(cov['twice'])} of the area, gaps (groups of cells seen by no line): {cov['n_holes']}. Grey dotted: WGS 84 meridians and "
+            f"{fmt_percent(cov['twice'])} of the area, gaps (groups of cells seen by no line): {cov['n_holes']}. "
+            + reach_sentence(platform, cov) + "Grey dotted: WGS 84 meridians and "
             f"parallels. Area file `{area_file}` "
             f"(SHA-256 `{area.sha256[:12]}`); mission files beside the figure: {names}{why}.")
+
+
+def reach_sentence(platform, cov: dict) -> str:
+    """The part of the area no plan can see (``cov["out_of_reach"]``, its area
+    ``cov["out_of_reach_m2"]`` and its parts ``too_deep``, ``too_shallow``:
+    :func:`~sss_locus.experiments.survey_design.coverage.out_of_reach`) in one sentence with the
+    depths the sonar reaches, ``""`` when there is none."""
+    if float(cov.get("out_of_reach", 0.0)) <= 0:
+        return ""
+    area_m2 = cov["out_of_reach_m2"] / cov["out_of_reach"]
+    part = lambda share: f"{fmt_percent(share)} of the area ({share * area_m2 / 1e4:.2g} ha)"
+    if not platform.fixed_depth:
+        return (f"{part(cov['out_of_reach'])} lies where the sonar cannot see the seafloor at the plan's altitude; "
+                "no plan can see it (dark grey). ")
+    low, high = (platform.depth_min_m + v for v in reach_limits_m(platform))
+    parts = ([f"{part(cov['too_deep'])} lies deeper than the sonar reaches at {high:.3g} m below the surface"]
+             if cov["too_deep"] > 0 else [])
+    parts += ([f"{part(cov['too_shallow'])} is shallower than the {low:.3g} m the sonar needs"]
+              if cov["too_shallow"] > 0 else [])
+    return " and ".join(parts) + f"; no plan can see {'it' if len(parts) == 1 else 'them'} (dark grey). "
 
 
 @themed
@@ -105,13 +127,32 @@ def plot_front(fronts: dict, objective: str, platforms: dict):
         ax.set_xlabel("track flown: lines, turns, transits (km)")
         ax.set_title(platform_title(platforms[key], width=90 // len(keys)), fontsize=9)  # a panel's width
     axes[0][0].set_ylabel(OBJECTIVE_LABELS[objective])
-    handles, labels = axes[0][0].get_legend_handles_labels()
+    handles, labels = _drawn_legend(axes[0])
     fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=8.5, frameon=False)
     return fig
 
 
+def _drawn_legend(axes) -> tuple[list, list]:
+    """The legend entries of what ``axes`` draw, each label once: a line of under two points (a
+    Pareto front of one plan) or a scatter of no point draws nothing and gets no entry."""
+    from matplotlib.collections import Collection
+    from matplotlib.lines import Line2D
+
+    seen = {}
+    for ax in axes:
+        for h, label in zip(*ax.get_legend_handles_labels()):
+            if isinstance(h, Line2D) and len(h.get_xdata()) < 2 and h.get_marker() in (None, "None", "", " "):
+                continue
+            if isinstance(h, Collection) and len(h.get_offsets()) == 0:
+                continue
+            seen.setdefault(label, h)
+    return list(seen.values()), list(seen)
+
+
 #: The survey area's outline in the plan figures (dashed, so it is not read as a line to run).
 AREA_EDGE = "0.3"
+#: Cells no plan can see (the seafloor beyond the sonar's reach), apart from a plan's gaps.
+OUT_OF_REACH = "0.25"
 
 
 def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadir_gap_m: float, platform,
@@ -135,6 +176,14 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     mesh = ax.pcolormesh(x0 + (np.arange(i.max() + 2) - 0.5) * grid_m, y0 + (np.arange(j.max() + 2) - 0.5) * grid_m,
                          np.ma.masked_invalid(counts), cmap=cmap, norm=norm, rasterized=True)
     xy = np.asarray(area.polygon.exterior.coords)
+    beyond = None
+    if "out_of_reach" in grid and grid.out_of_reach.any():  # no plan sees these: drawn apart from the gaps
+        far = np.full(counts.shape, np.nan)
+        far[j[grid.out_of_reach], i[grid.out_of_reach]] = 1.0
+        beyond = ax.pcolormesh(x0 + (np.arange(i.max() + 2) - 0.5) * grid_m,
+                               y0 + (np.arange(j.max() + 2) - 0.5) * grid_m, np.ma.masked_invalid(far),
+                               cmap=ListedColormap([OUT_OF_REACH]), rasterized=True)
+        beyond.set_clip_path(PolygonPatch(xy, closed=True, transform=ax.transData))
     mesh.set_clip_path(PolygonPatch(xy, closed=True, transform=ax.transData))  # cells cut at the area's edge
     ax.add_patch(PolygonPatch(xy, closed=True, fill=False, edgecolor=AREA_EDGE, lw=1.3, ls=(0, (5, 2))))
     for ring in area.polygon.interiors:  # holes of the area: islands, exclusion zones
@@ -180,6 +229,9 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     labels = ["gap (seen by no line)", "seen by 1 line", "2 lines", "3 or more"]
     handles += [plt.Line2D([], [], color=AREA_EDGE, lw=1.3, ls=(0, (5, 2))), plt.Line2D([], [], color="black")]
     labels += ["survey area", "main line"]
+    if beyond is not None:
+        handles.insert(1, plt.Line2D([], [], marker="s", ls="", color=OUT_OF_REACH, markersize=8))
+        labels.insert(1, "beyond the sonar's reach")
     if track is not None:
         handles.append(plt.Line2D([], [], color="0.35", lw=0.6))
         labels.append("turns and transits")
@@ -195,7 +247,7 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     if nadir_gap_m > 0:
         handles.append(PolygonPatch([[0, 0], [1, 0], [1, 1]], fill=False, hatch="////", edgecolor="0.3"))
         labels.append(f"nadir gap (±{nadir_gap_m:.0f} m)")
-    ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9, frameon=False)
+    ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(LEGEND_X, 1.0), fontsize=9, frameon=False)
     return ax.figure
 
 

@@ -13,6 +13,14 @@ import math
 import numpy as np
 
 
+LABEL_BOX = dict(boxstyle="square,pad=0.15", facecolor="white", edgecolor="none", alpha=0.85)
+"""The background of a graticule label: the plan under it does not run through its text."""
+
+
+LEGEND_X = 1.05
+"""Where a legend right of a map's axes starts (axes fraction): past the parallels' labels."""
+
+
 def _nice_step(span: float, n: int = 5) -> float:
     """A 1-2-5 step that cuts ``span`` into about ``n`` parts."""
     raw = span / n
@@ -27,7 +35,8 @@ def _deg(value: float, pos: str, neg: str) -> str:
 
 def add_graticule(ax, area, *, colour: str = "0.45") -> None:
     """Meridians and parallels of the area's neighbourhood on ``ax`` (local metres), labelled
-    inside the axes (meridians at the top, parallels at the left); nothing without an origin."""
+    meridians inside the top edge on a white box (:data:`LABEL_BOX`), parallels outside the right
+    edge, upright (a legend beside the axes starts at :data:`LEGEND_X`); nothing without an origin."""
     if area.origin_lonlat is None:
         return
     x0, x1 = ax.get_xlim()
@@ -50,11 +59,13 @@ def add_graticule(ax, area, *, colour: str = "0.45") -> None:
                 if gx[k] > x0 + 0.85 * (x1 - x0):  # its label would run out of the axes
                     continue
                 ax.annotate(label, (gx[k], y1), xytext=(2, -2), textcoords="offset points", fontsize=9,
-                            color=colour, ha="left", va="top")
+                            color=colour, ha="left", va="top", zorder=6, bbox=LABEL_BOX)
             else:
-                k = int(np.argmin(gx))
-                ax.annotate(label, (x0, gy[k]), xytext=(2, 2), textcoords="offset points", fontsize=9,
-                            color=colour, ha="left", va="bottom")
+                k = int(np.argmax(gx))  # outside the right edge, upright along it: off the plan
+                if not y0 + 0.08 * (y1 - y0) < gy[k] < y1 - 0.08 * (y1 - y0):  # would run past a corner
+                    continue
+                ax.annotate(label, (x1, gy[k]), xytext=(2, 0), textcoords="offset points", fontsize=8,
+                            color=colour, ha="left", va="center", rotation=90, annotation_clip=False)
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
 
