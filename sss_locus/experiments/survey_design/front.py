@@ -100,7 +100,25 @@ GRID_KEYS = {"headings_deg": (-360.0, 360.0), "spacing_fractions": (1e-3, 10.0),
 
 
 def check_grid(grid) -> dict:
-    """Refuse a plan grid with a missing or unknown key or a value out of range, in one line."""
+    """Refuse a plan grid with a missing or unknown key or a value out of range, in one line.
+
+    Parameters
+    ----------
+    grid : dict
+        The plan grid: exactly the keys of :data:`GRID_KEYS`, each a number or a list of numbers
+        (degrees, fractions or factors as the key names).
+
+    Returns
+    -------
+    dict
+        Key -> list of float, every value checked against its range in :data:`GRID_KEYS`.
+
+    Raises
+    ------
+    ValueError
+        A key missing or unknown, an empty list, a value non-finite (NaN allowed only in
+        ``crossing_angles_deg``) or out of range.
+    """
     if not isinstance(grid, dict) or set(grid) != set(GRID_KEYS):
         got = sorted(grid) if isinstance(grid, dict) else type(grid).__name__
         raise ValueError(f"grid must be a dict with exactly the keys {sorted(GRID_KEYS)}; got {got}")
@@ -115,14 +133,45 @@ MAX_COVERAGE_CELLS = 20_000
 
 def coverage_grid_m(area: SurveyArea, grid_m: float) -> float:
     """The coverage grid's spacing over ``area``: ``grid_m``, or the spacing that puts
-    :data:`MAX_COVERAGE_CELLS` cells over it when ``grid_m`` would put more, m."""
+    :data:`MAX_COVERAGE_CELLS` cells over it when ``grid_m`` would put more, m.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The survey area (local metres; its ``area_m2``).
+    grid_m : float
+        The requested coverage grid spacing, m.
+
+    Returns
+    -------
+    float
+        The spacing used, m: never finer than ``grid_m``.
+    """
     return float(max(grid_m, math.sqrt(area.area_m2 / MAX_COVERAGE_CELLS)))
 
 
 def depth_settings(area: SurveyArea, settings: dict) -> dict:
     """``settings`` with the water depth of the area (given by its file or the run) or, failing
     that, of a user's ``survey_design.water_depth_m``; ``water_depth_source`` says which. No
-    depth at all is refused in one line."""
+    depth at all is refused in one line.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The survey area; its ``water_depth_m`` (m, positive down) wins when given.
+    settings : dict
+        The survey-design settings (``data/survey_design.toml`` keys).
+
+    Returns
+    -------
+    dict
+        A copy of ``settings`` with ``water_depth_m`` (m) and ``water_depth_source`` (str).
+
+    Raises
+    ------
+    ValueError
+        No water depth from the area nor the settings, or one out of range.
+    """
     out = dict(settings)
     if area.water_depth_m is not None:
         out["water_depth_m"], out["water_depth_source"] = area.water_depth_m, area.water_depth_source
@@ -135,7 +184,24 @@ def depth_settings(area: SurveyArea, settings: dict) -> dict:
 def load_area_bathymetry(area: SurveyArea):
     """The :class:`~sss_locus.experiments.survey_design.bathymetry.Bathymetry` of an area whose
     file gives a grid (``area.bathymetry``), read again (cached per file and area); ``None``
-    without one."""
+    without one.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The survey area; ``area.bathymetry`` is ``(path, shown name, SHA-256, values)`` or empty.
+
+    Returns
+    -------
+    Bathymetry or None
+        The grid over the area (local metres, depth positive down), or ``None`` when the area has
+        no grid.
+
+    Raises
+    ------
+    ValueError
+        The grid file's SHA-256 differs from the one read with the area.
+    """
     from sss_locus.experiments.survey_design.bathymetry import load_bathymetry
 
     if not area.bathymetry:
@@ -152,7 +218,25 @@ def vehicle_depth_m(platform, area: SurveyArea, settings: dict, altitude_m: floa
     platform of fixed depth (a surface vessel) ``water depth - altitude`` (its own depth); any
     other over the mean seafloor ``water depth - altitude``, or, over a bathymetry grid (it
     follows the terrain at ``altitude_m``), a function of local east/north metres: the depth there
-    minus ``altitude_m``."""
+    minus ``altitude_m``.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (its ``fixed_depth`` flag).
+    area : SurveyArea
+        The survey area (its bathymetry grid, if any).
+    settings : dict
+        Survey-design settings with ``water_depth_m`` (m, positive down).
+    altitude_m : float
+        The plan's altitude above the seafloor, m.
+
+    Returns
+    -------
+    float or callable
+        The depth, m below the surface; or, over a bathymetry grid, a function
+        ``(east_m, north_m) -> depth_m`` of local metres (arrays broadcast).
+    """
     grid = None if platform.fixed_depth else load_area_bathymetry(area)
     if grid is None:
         return float(settings["water_depth_m"]) - float(altitude_m)
@@ -161,7 +245,37 @@ def vehicle_depth_m(platform, area: SurveyArea, settings: dict, altitude_m: floa
 
 def make_setting(platform, area: SurveyArea, terrain_kind: str, *, n_features: int, seed: int,
                  grid_m: float, settings: dict | None = None) -> Setting:
-    """Validate the inputs and draw the features (module docstring)."""
+    """Validate the inputs and draw the features (module docstring).
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform (checked by :func:`~sss_locus.experiments.survey_design.plans.check_mission`).
+    area : SurveyArea
+        The survey area (local metres).
+    terrain_kind : str
+        One of :data:`~sss_locus.experiments.datamodel.terrain.KINDS`; ``"flat"`` when the area
+        has a bathymetry grid.
+    n_features : int
+        Number of features drawn uniformly inside the area, at least 10.
+    seed : int
+        Seed (>= 0) of the features and the terrain.
+    grid_m : float
+        Requested coverage grid spacing, m (made coarser by :func:`coverage_grid_m`).
+    settings : dict or None
+        Survey-design settings; ``None`` reads ``data/survey_design.toml``.
+
+    Returns
+    -------
+    Setting
+        Features ``xy`` (n_features, 2) in the area frame (local east/north metres), the terrain
+        centred on the area's centroid, the seafloor heights (m) over the area and the settings.
+
+    Raises
+    ------
+    ValueError
+        Any input out of range, in one line naming it.
+    """
     import shapely
 
     if not isinstance(area, SurveyArea):
@@ -203,7 +317,23 @@ _FLOWN: dict = {}
 def flown_cost(area: SurveyArea, lines: pd.DataFrame, turn_radius_m: float) -> dict:
     """:func:`~sss_locus.experiments.survey_design.route.track_cost` of the track the mission of
     ``lines`` flies over ``area`` (remembered for the last few hundred line tables: the scoring
-    evaluates a plan again on every seed, with the same track)."""
+    evaluates a plan again on every seed, with the same track).
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The survey area (local metres).
+    lines : pandas.DataFrame
+        The plan's line segments (one row per segment, area frame, ``heading_deg``).
+    turn_radius_m : float
+        The platform's turn radius, m.
+
+    Returns
+    -------
+    dict
+        :func:`~sss_locus.experiments.survey_design.route.track_cost`'s keys (``n_segments``,
+        ``lines_m``, ``turns_m``, ``transits_m``, ``total_m``; lengths in m), a fresh copy.
+    """
     import json
 
     key = (json.dumps(area.key(), sort_keys=True, default=str), pd.util.hash_pandas_object(lines, index=False).to_numpy().tobytes(),
@@ -218,7 +348,34 @@ def flown_cost(area: SurveyArea, lines: pd.DataFrame, turn_radius_m: float) -> d
 def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0, lines: pd.DataFrame | None = None) -> dict:
 
     """Cost, coverage and objectives of one plan (module docstring); with ``noise`` also the
-    reconstruction errors under it. ``lines``: ``plan.lines(s.area)`` when the caller has it."""
+    reconstruction errors under it. ``lines``: ``plan.lines(s.area)`` when the caller has it.
+
+    Parameters
+    ----------
+    s : Setting
+        The setting (:func:`make_setting`).
+    plan : Plan
+        The plan evaluated.
+    noise : NoiseModel or None
+        The noise model of the reconstruction errors; ``None`` skips them.
+    seed_offset : int
+        Added to ``s.seed`` for the coverage and observation draws (independent repetitions).
+    lines : pandas.DataFrame or None
+        ``plan.lines(s.area)`` when already computed.
+
+    Returns
+    -------
+    dict
+        The plan's row: :meth:`Plan.row` plus track cost (m), ``time_h`` (hours), coverage shares
+        (``covered_once``, ``covered_twice``, in [0, 1]), holes, ``nadir_gap_m``, view shares,
+        ``locus_median_m`` and ``best_pair_angle_median_deg`` (NaN when no feature is seen twice);
+        with ``noise`` also ``error_*_median_m`` and the estimated counts.
+
+    Raises
+    ------
+    ValueError
+        The plan leaves no line inside the area.
+    """
     p = s.platform
     lines = plan.lines(s.area) if lines is None else lines
     if lines.empty:
@@ -254,13 +411,41 @@ def evaluate(s: Setting, plan: Plan, *, noise=None, seed_offset: int = 0, lines:
 
 def eligible(table: pd.DataFrame, settings: dict) -> pd.Series:
     """The rule's eligibility (module docstring): the share of the area seen by two or more lines
-    at least the standard plan's (capped at ``min_two_view_share``)."""
+    at least the standard plan's (capped at ``min_two_view_share``).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The plans table (columns ``kind`` with one ``"standard"`` row, ``covered_twice``).
+    settings : dict
+        Survey-design settings with ``min_two_view_share`` (in [0, 1]).
+
+    Returns
+    -------
+    pandas.Series
+        Boolean, one per row of ``table``.
+    """
     need = min(settings["min_two_view_share"], float(table.loc[table.kind == "standard", "covered_twice"].iloc[0]))
     return table["covered_twice"] >= need
 
 
 def pareto_front(cost, value, eligible) -> np.ndarray:
-    """Boolean mask: eligible rows that no other eligible row beats (<= in both, < in one)."""
+    """Boolean mask: eligible rows that no other eligible row beats (<= in both, < in one).
+
+    Parameters
+    ----------
+    cost : array_like
+        Cost per row, shape (n,) (track length, m).
+    value : array_like
+        Objective per row, shape (n,) (minimised; NaN never on the front).
+    eligible : array_like
+        Boolean eligibility per row, shape (n,).
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean mask, shape (n,); all False when no row is eligible and finite.
+    """
     c, v, e = (np.asarray(a) for a in (cost, value, eligible))
     ok = e & np.isfinite(v)
     front = np.zeros(c.size, bool)
@@ -271,7 +456,22 @@ def pareto_front(cost, value, eligible) -> np.ndarray:
 
 
 def recommend(plans: pd.DataFrame, objective: str, standard_total_m: float) -> int | None:
-    """Index of the recommended plan (module docstring's rule), or ``None`` (no eligible plan)."""
+    """Index of the recommended plan (module docstring's rule), or ``None`` (no eligible plan).
+
+    Parameters
+    ----------
+    plans : pandas.DataFrame
+        The plans table with ``eligible``, ``front``, ``total_m`` and the objective's column.
+    objective : str
+        A key of :data:`OBJECTIVES`.
+    standard_total_m : float
+        The standard plan's total track length, m.
+
+    Returns
+    -------
+    int or None
+        The index label of the recommended row; ``None`` when no plan is eligible.
+    """
     col = OBJECTIVES[objective]
     cand = plans[plans["eligible"] & (plans["total_m"] <= standard_total_m) & plans[col].notna()]
     if cand.empty:
@@ -290,7 +490,23 @@ class DesignResult:
 
 def standard_for(s: Setting) -> Plan:
     """The standard plan of setting ``s``; refused in one line when no altitude of the platform
-    fits or no line of it is left (checked before any work by the runner)."""
+    fits or no line of it is left (checked before any work by the runner).
+
+    Parameters
+    ----------
+    s : Setting
+        The setting (:func:`make_setting`).
+
+    Returns
+    -------
+    Plan
+        The standard plan.
+
+    Raises
+    ------
+    ValueError
+        No altitude of the platform fits the water depth, or no line of the plan is left.
+    """
     std = standard_plan(s.platform, s.area, s.terrain, s.settings, s.heights_m)
     if not plan_ok(s.platform, s.settings, s.heights_m, std):
         raise ValueError(f"no altitude of platform {s.platform.key!r} fits water_depth_m = "
@@ -307,7 +523,32 @@ def standard_for(s: Setting) -> Plan:
 def search(s: Setting, objective: str, grid: dict, *, noise=None, progress=None) -> pd.DataFrame:
     """Every plan of ``grid`` (:func:`~sss_locus.experiments.survey_design.plans.plan_grid` keywords),
     the standard plan and the equal-length lawnmower, evaluated; columns of :func:`evaluate`
-    plus ``kind`` (``search``/``standard``/``lawnmower``), ``eligible`` and ``front``."""
+    plus ``kind`` (``search``/``standard``/``lawnmower``), ``eligible`` and ``front``.
+
+    Parameters
+    ----------
+    s : Setting
+        The setting (:func:`make_setting`).
+    objective : str
+        A key of :data:`OBJECTIVES`.
+    grid : dict
+        The plan grid (:func:`check_grid`).
+    noise : NoiseModel or None
+        The noise model; needed by ``objective="reconstruction"``.
+    progress : callable or None
+        Called as ``progress(done, total)`` after each plan.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per plan with at least one line (columns of :func:`evaluate`, ``kind``,
+        ``eligible``, ``front``).
+
+    Raises
+    ------
+    ValueError
+        Unknown objective, a bad grid, or ``"reconstruction"`` without ``noise``.
+    """
     if objective not in OBJECTIVES:
         raise ValueError(f"objective must be one of {list(OBJECTIVES)}; got {objective!r}")
     grid = check_grid(grid)
@@ -336,7 +577,35 @@ def search(s: Setting, objective: str, grid: dict, *, noise=None, progress=None)
 
 def design(platform, area: SurveyArea, terrain: str, *, objective: str = "locus", grid: dict,
            n_features: int = 300, seed: int = 0, grid_m: float = 10.0, noise=None) -> DesignResult:
-    """The whole design (module docstring): search, front, recommended plan."""
+    """The whole design (module docstring): search, front, recommended plan.
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    area : SurveyArea
+        The survey area (local metres).
+    terrain : str
+        One of :data:`~sss_locus.experiments.datamodel.terrain.KINDS`.
+    objective : str
+        A key of :data:`OBJECTIVES`.
+    grid : dict
+        The plan grid (:func:`check_grid`).
+    n_features : int
+        Number of features drawn over the area.
+    seed : int
+        Seed of the features and the terrain.
+    grid_m : float
+        Requested coverage grid spacing, m.
+    noise : NoiseModel or None
+        The noise model (needed by ``"reconstruction"``).
+
+    Returns
+    -------
+    DesignResult
+        The plans table, the recommended index (``None`` when no plan is eligible), the objective
+        and the setting.
+    """
     if objective not in OBJECTIVES:
         raise ValueError(f"objective must be one of {list(OBJECTIVES)}; got {objective!r}")
     check_grid(grid)
@@ -350,20 +619,82 @@ def search_plans(platform, area_key: dict, terrain: str, objective: str, grid: d
                  seed: int, grid_m: float, noise=None) -> pd.DataFrame:
     """:func:`design`'s plans table, with the area given by :meth:`SurveyArea.key` (plain data, so
     the call can be cached: ``cached(search_plans)(...)``); the recommended plan is the row with
-    ``recommended`` True."""
+    ``recommended`` True.
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    area_key : dict
+        The area as :meth:`SurveyArea.key` gives it.
+    terrain : str
+        One of :data:`~sss_locus.experiments.datamodel.terrain.KINDS`.
+    objective : str
+        A key of :data:`OBJECTIVES`.
+    grid : dict
+        The plan grid (:func:`check_grid`).
+    n_features : int
+        Number of features drawn over the area.
+    seed : int
+        Seed of the features and the terrain.
+    grid_m : float
+        Requested coverage grid spacing, m.
+    noise : NoiseModel or None
+        The noise model (needed by ``"reconstruction"``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        :func:`design`'s plans table plus a boolean ``recommended`` column (all False when no
+        plan is eligible).
+    """
     res = design(platform, area_from_key(area_key), terrain, objective=objective, grid=grid,
                  n_features=n_features, seed=seed, grid_m=grid_m, noise=noise)
     return res.plans.assign(recommended=res.plans.index == res.recommended)
 
 
 def plan_from_row(row) -> Plan:
-    """The :class:`~sss_locus.experiments.survey_design.plans.Plan` of a row of the plans table."""
+    """The :class:`~sss_locus.experiments.survey_design.plans.Plan` of a row of the plans table.
+
+    Parameters
+    ----------
+    row : Mapping
+        A row of the plans table (a pandas Series or dict holding every field of ``Plan``).
+
+    Returns
+    -------
+    Plan
+        The plan.
+    """
     return Plan(**{k: row[k] for k in Plan.__dataclass_fields__})
 
 
 def plan_coverage(platform, area: SurveyArea, terrain: str, row, *, grid_m: float, seed: int):
     """A plan's segments (from its row of the plans table) and its measured coverage
-    (:func:`~sss_locus.experiments.survey_design.coverage.coverage`) on the design's terrain."""
+    (:func:`~sss_locus.experiments.survey_design.coverage.coverage`) on the design's terrain.
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    area : SurveyArea
+        The survey area (local metres).
+    terrain : str
+        One of :data:`~sss_locus.experiments.datamodel.terrain.KINDS`.
+    row : Mapping
+        The plan's row of the plans table.
+    grid_m : float
+        Requested coverage grid spacing, m.
+    seed : int
+        The design's seed (same terrain).
+
+    Returns
+    -------
+    lines : pandas.DataFrame
+        The plan's line segments in the area frame.
+    cov : dict
+        :func:`~sss_locus.experiments.survey_design.coverage.coverage`'s result.
+    """
     s = make_setting(platform, area, terrain, n_features=10, seed=seed, grid_m=grid_m)
     plan = plan_from_row(row)
     lines = plan.lines(area)
@@ -376,7 +707,22 @@ def by_crossing_angle(plans: pd.DataFrame, objective: str) -> pd.DataFrame:
     """The searched eligible plans grouped by their second line set: ``second_set`` (``"none"``,
     ``"repeat"`` for an offset repeat at 0°, else ``"cross <angle>°"``), ``crossing_deg`` (NaN
     for none), the number of plans, the best and the median objective, and the median crossing
-    angle of the features' best pairs."""
+    angle of the features' best pairs.
+
+    Parameters
+    ----------
+    plans : pandas.DataFrame
+        The plans table (:func:`search`).
+    objective : str
+        A key of :data:`OBJECTIVES`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per second line set, columns ``second_set``, ``crossing_deg``, ``n_plans``,
+        ``best``, ``median``, ``best_pair_angle_median_deg``; sorted by ``crossing_deg`` (none
+        first); empty when no searched plan is eligible.
+    """
     col = OBJECTIVES[objective]
     t = plans[(plans.kind == "search") & plans.eligible].copy()
     t["second_set"] = [("none" if math.isnan(g) else "repeat" if g % 180 == 0 else f"cross {g:g}°")
