@@ -50,7 +50,25 @@ from sss_locus.experiments.survey_design.route import flight_path, track_cost
 
 def load_settings(doc=None) -> dict:
     """The ``survey_design`` table (``data/survey_design.toml`` merged with the active user data,
-    or of ``doc``), validated: values by key plus ``provenance`` (key -> source/assumption)."""
+    or of ``doc``), validated: values by key plus ``provenance`` (key -> source/assumption).
+
+    Parameters
+    ----------
+    doc : dict or None
+        A data document (parsed TOML tables); ``None`` reads ``data/survey_design.toml`` merged
+        with the active user data.
+
+    Returns
+    -------
+    dict
+        Setting name -> value (units in the names: ``_m``, ``_deg``, fractions) plus
+        ``provenance`` (key -> source or assumption).
+
+    Raises
+    ------
+    ValueError
+        The table fails validation (named key and valid range).
+    """
     if doc is None:
         datadoc.note_read("survey_design")
         doc = datadoc.document()
@@ -78,7 +96,19 @@ class Plan:
     def lines(self, area: SurveyArea) -> pd.DataFrame:
         """The plan's segments in run order: main lines, then the second set (``set`` ``"cross"``
         for cross lines, ``"repeat"`` for an offset repeat at the main lines' heading; as flown
-        when ``reach_m`` > 0: :func:`~sss_locus.experiments.survey_design.lines.line_set`)."""
+        when ``reach_m`` > 0: :func:`~sss_locus.experiments.survey_design.lines.line_set`).
+
+        Parameters
+        ----------
+        area : SurveyArea
+            The survey area (local east/north metres).
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per segment in run order, area frame (local metres), with ``heading_deg`` and
+            ``set`` (``"main"``, ``"cross"`` or ``"repeat"``); empty when no line falls inside the area.
+        """
         fly = dict(reach_m=self.reach_m, run_m=self.run_m, near_m=self.near_m)
         repeat = not math.isnan(self.crossing_deg) and self.crossing_deg % 180.0 == 0.0
         at = [None, None]
@@ -105,16 +135,53 @@ class Plan:
         return fit_turns(lines, water.buffer(-area.clearance_m), self.turn_radius_m)[0]
 
     def row(self) -> dict:
+        """The plan as a plain dict (field -> value), a row of the plans table.
+
+        Returns
+        -------
+        dict
+            Every field of the plan (angles in degrees, lengths in metres).
+        """
         return asdict(self)
 
 
 def range_scale_m(platform, settings) -> float:
+    """The sonar's range scale: ``max_range_m`` times the setting ``range_scale_fraction``, m.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (its ``sonar.max_range_m``, m).
+    settings : dict
+        Survey-design settings (:func:`load_settings`).
+
+    Returns
+    -------
+    float
+        The range scale, m.
+    """
     return platform.sonar.max_range_m * settings["range_scale_fraction"]
 
 
 def swath_reach_m(platform, settings, altitude_m: float) -> float:
     """Horizontal reach of the swath (its far edge from the track, the wider side) at
-    ``altitude_m`` over a flat seafloor, within the range scale, m."""
+    ``altitude_m`` over a flat seafloor, within the range scale, m.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (sonar fan and transducers).
+    settings : dict
+        Survey-design settings (:func:`load_settings`).
+    altitude_m : float
+        Altitude above the seafloor, m.
+
+    Returns
+    -------
+    float
+        Horizontal distance from the track to the swath's far edge, m (the lateral offset of the
+        transducers when the altitude exceeds the range scale).
+    """
     from sss_locus.experiments.passes.straight_pass import swath_m
 
     far = max(float(swath_m(platform, [port], [altitude_m])[1][0]) for port in (True, False))
@@ -126,7 +193,23 @@ def swath_reach_m(platform, settings, altitude_m: float) -> float:
 def flown(platform, settings, plan: Plan) -> Plan:
     """``plan`` as flown: every line whose swath reaches the area, run-in and run-out of
     ``run_in_turn_radii`` x the turn radius (module docstring of
-    :mod:`~sss_locus.experiments.survey_design.lines`)."""
+    :mod:`~sss_locus.experiments.survey_design.lines`).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (sonar fan, turn radius).
+    settings : dict
+        Survey-design settings with ``run_in_turn_radii``.
+    plan : Plan
+        The plan as designed.
+
+    Returns
+    -------
+    Plan
+        A copy with ``reach_m``, ``near_m`` (nadir-gap half width, m), ``run_m`` and
+        ``turn_radius_m`` set.
+    """
     from dataclasses import replace
 
     from sss_locus.experiments.passes.straight_pass import swath_m
@@ -137,7 +220,18 @@ def flown(platform, settings, plan: Plan) -> Plan:
 
 
 def check_mission(platform) -> None:
-    """Refuse a platform without the ``mission`` values the design needs, in one line."""
+    """Refuse a platform without the ``mission`` values the design needs, in one line.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform; its ``turn_radius_m`` (m) and ``speed_m_s`` (m/s) must be given.
+
+    Raises
+    ------
+    ValueError
+        A mission value missing, naming the TOML key to add.
+    """
     for name in ("turn_radius_m", "speed_m_s"):
         if getattr(platform, name, None) is None:
             raise ValueError(f"platforms.{platform.key}.mission.{name} is needed by the survey design: add "
@@ -146,7 +240,22 @@ def check_mission(platform) -> None:
 
 def altitude_limits(platform, settings, heights_m) -> tuple[float, float]:
     """The altitudes (above the local seafloor, m) the platform may fly over seafloor heights
-    ``heights_m`` (module docstring); ``lo > hi`` when none."""
+    ``heights_m`` (module docstring); ``lo > hi`` when none.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (depth rating, transducer depths, sonar range).
+    settings : dict
+        Survey-design settings with ``water_depth_m`` (m).
+    heights_m : array_like
+        Seafloor heights over the area, m (up, relative to the mean seafloor), any shape.
+
+    Returns
+    -------
+    lo, hi : float
+        The lowest and highest allowed altitude, m; ``lo > hi`` when no altitude fits.
+    """
     water = water_depth(settings)
     hmin, hmax = float(np.min(heights_m)), float(np.max(heights_m))
     t_depth = max(t.depth_m for t in platform.transducers.values())
@@ -159,7 +268,25 @@ def fixed_altitude_m(platform, settings) -> float | None:
     """A platform of fixed depth flies at ``water depth - its depth`` above the mean seafloor;
     a water depth that puts the seafloor above its transducers or where its fan sees none of it
     (deeper than ``max_range_m`` times the sine of the fan's steepest look-down, below 90°) is
-    refused in one line naming the platform, the depth's source and the depths it can survey."""
+    refused in one line naming the platform, the depth's source and the depths it can survey.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (``fixed_depth``, depth rating, transducers, sonar).
+    settings : dict
+        Survey-design settings with ``water_depth_m`` (m) and optionally ``water_depth_source``.
+
+    Returns
+    -------
+    float or None
+        The altitude above the mean seafloor, m; ``None`` for a platform that is not of fixed depth.
+
+    Raises
+    ------
+    ValueError
+        The water depth is outside the depths the platform's sonar sees the seafloor in.
+    """
     if not platform.fixed_depth:
         return None
     depth = water_depth(settings)
@@ -180,7 +307,23 @@ def fixed_altitude_m(platform, settings) -> float | None:
 
 def water_depth(settings) -> float:
     """The mean water depth of ``settings`` (set from the area or the run by the design), refused
-    in one line when nobody gave one."""
+    in one line when nobody gave one.
+
+    Parameters
+    ----------
+    settings : dict
+        Survey-design settings.
+
+    Returns
+    -------
+    float
+        ``settings["water_depth_m"]``, m (positive down).
+
+    Raises
+    ------
+    ValueError
+        No ``water_depth_m`` given.
+    """
     if settings.get("water_depth_m") is None:
         raise ValueError("no water depth: give the area file a water_depth_m (mean water depth over the area, m), "
                          "or the run -p water_depth_m VALUE (or --set survey_design.water_depth_m=VALUE)")
@@ -188,7 +331,24 @@ def water_depth(settings) -> float:
 
 
 def plan_ok(platform, settings, heights_m, plan: Plan) -> bool:
-    """Whether ``plan`` is within the platform's limits (module docstring)."""
+    """Whether ``plan`` is within the platform's limits (module docstring).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (pitch limit, depth rating).
+    settings : dict
+        Survey-design settings with ``water_depth_m`` (m).
+    heights_m : array_like
+        Seafloor heights over the area, m.
+    plan : Plan
+        The plan checked.
+
+    Returns
+    -------
+    bool
+        True when pitch and altitude are within the limits.
+    """
     if abs(plan.pitch_deg) > platform.pitch_max_deg:
         return False
     fixed = fixed_altitude_m(platform, settings)
@@ -199,13 +359,47 @@ def plan_ok(platform, settings, heights_m, plan: Plan) -> bool:
 
 
 def standard_heading_deg(area: SurveyArea, terrain) -> float:
+    """The standard plan's line heading: along the slope's azimuth on a slope, else along the area's long axis.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The survey area (local metres).
+    terrain : Terrain
+        The terrain (its ``kind`` and ``params``).
+
+    Returns
+    -------
+    float
+        Heading, degrees clockwise from north, in [0, 180).
+    """
     if terrain.kind == "slope" and terrain.params.get("slope_deg", 0.0) > 0:
         return float(terrain.params["azimuth_deg"] % 180.0)
     return principal_heading_deg(area)
 
 
 def standard_plan(platform, area: SurveyArea, terrain, settings, heights_m) -> Plan:
-    """The standard sidescan plan (module docstring)."""
+    """The standard sidescan plan (module docstring).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform.
+    area : SurveyArea
+        The survey area (local metres).
+    terrain : Terrain
+        The terrain (sets the heading on a slope).
+    settings : dict
+        Survey-design settings (:func:`load_settings`, with ``water_depth_m``).
+    heights_m : array_like
+        Seafloor heights over the area, m.
+
+    Returns
+    -------
+    Plan
+        The standard plan, as flown (:func:`flown`); its altitude is clipped to the limits, so
+        check it with :func:`plan_ok`.
+    """
     R = range_scale_m(platform, settings)
     fixed = fixed_altitude_m(platform, settings)
     if fixed is not None:
@@ -220,7 +414,22 @@ def standard_plan(platform, area: SurveyArea, terrain, settings, heights_m) -> P
 
 
 def lawnmower_plan(platform, area: SurveyArea, standard: Plan) -> Plan:
-    """Parallel lines only, spaced so the track is as long as the standard plan's (bisection)."""
+    """Parallel lines only, spaced so the track is as long as the standard plan's (bisection).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (turn radius).
+    area : SurveyArea
+        The survey area (local metres).
+    standard : Plan
+        The standard plan (heading, altitude, flight values).
+
+    Returns
+    -------
+    Plan
+        The lawnmower plan (``crossing_deg`` NaN), spacing in [1, 4 x the standard's spacing] m.
+    """
     flown_m = lambda lines: track_cost(flight_path(area, lines, platform.turn_radius_m)[0])["total_m"]  # noqa: E731
     target = flown_m(standard.lines(area))
     mk = lambda s: Plan(standard.heading_deg, s, math.nan, s, standard.altitude_m, 0.0, "lawnmower",  # noqa: E731
@@ -238,7 +447,38 @@ def plan_grid(platform, area: SurveyArea, terrain, settings, heights_m, *, headi
               crossing_angles_deg, cross_spacing_factors, altitude_fractions, pitches_deg) -> list[Plan]:
     """Every plan of the grid within the platform's limits. ``crossing_angles_deg`` may hold NaN
     (no cross lines); spacings are fractions of the range scale, cross spacings factors of the
-    main spacing, altitudes fractions of the range scale (a fixed-depth platform: its one)."""
+    main spacing, altitudes fractions of the range scale (a fixed-depth platform: its one).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform.
+    area : SurveyArea
+        The survey area (local metres).
+    terrain : Terrain
+        The terrain.
+    settings : dict
+        Survey-design settings (:func:`load_settings`, with ``water_depth_m``).
+    heights_m : array_like
+        Seafloor heights over the area, m.
+    headings_deg : sequence of float
+        Main-line headings, degrees clockwise from north.
+    spacing_fractions : sequence of float
+        Main-line spacings as fractions of the range scale.
+    crossing_angles_deg : sequence of float
+        Angles of the second set to the main lines, degrees (NaN: none, 0: offset repeat).
+    cross_spacing_factors : sequence of float
+        Second-set spacings as factors of the main spacing.
+    altitude_fractions : sequence of float
+        Altitudes as fractions of the range scale (ignored for a fixed-depth platform).
+    pitches_deg : sequence of float
+        Vehicle pitches, degrees.
+
+    Returns
+    -------
+    list of Plan
+        The plans within the limits, as flown; empty when none is.
+    """
     R = range_scale_m(platform, settings)
     fixed = fixed_altitude_m(platform, settings)
     alts = [fixed] if fixed is not None else [float(a) * R for a in altitude_fractions]
