@@ -89,7 +89,22 @@ def slant_range_from_sample(sample, range_setting_m, n_samples) -> np.ndarray:
     """Slant range (m) of a sample index counted from the near end (sample 0 the first after
     transmission): ``(sample + 1/2) range_setting_m / n_samples``, the centre of the sample's
     range cell (recording assumed to start at transmission). An XTF channel stored far-to-near
-    is turned round first (:mod:`~sss_locus.experiments.sonar_files.sample_order`)."""
+    is turned round first (:mod:`~sss_locus.experiments.sonar_files.sample_order`).
+
+    Parameters
+    ----------
+    sample : array_like
+        Sample index from the near end (0 first), any shape.
+    range_setting_m : array_like
+        The channel's range setting, m (broadcast with ``sample``).
+    n_samples : array_like
+        Samples per channel (broadcast with ``sample``).
+
+    Returns
+    -------
+    numpy.ndarray
+        Slant range, m, the broadcast shape of the inputs.
+    """
     return (np.asarray(sample, float) + 0.5) * np.asarray(range_setting_m, float) / np.asarray(n_samples, float)
 
 
@@ -118,34 +133,109 @@ class LocalFrame:
         return Proj(self.proj4)
 
     def to_local(self, lon_deg, lat_deg) -> tuple[np.ndarray, np.ndarray]:
-        """Longitude/latitude (deg) to grid east/north (m)."""
+        """Longitude/latitude (deg) to grid east/north (m).
+
+        Parameters
+        ----------
+        lon_deg : array_like
+            Longitude, degrees.
+        lat_deg : array_like
+            Latitude, degrees (same shape).
+
+        Returns
+        -------
+        east_m, north_m : numpy.ndarray
+            Grid east and north from the origin, m, the input shape.
+        """
         e, n = self._proj()(np.asarray(lon_deg, float), np.asarray(lat_deg, float))
         return np.asarray(e, float), np.asarray(n, float)
 
     def to_lonlat(self, east_m, north_m) -> tuple[np.ndarray, np.ndarray]:
-        """Grid east/north (m) to longitude/latitude (deg)."""
+        """Grid east/north (m) to longitude/latitude (deg).
+
+        Parameters
+        ----------
+        east_m : array_like
+            Grid east from the origin, m.
+        north_m : array_like
+            Grid north from the origin, m (same shape).
+
+        Returns
+        -------
+        lon_deg, lat_deg : numpy.ndarray
+            Longitude and latitude, degrees, the input shape.
+        """
         lon, lat = self._proj()(np.asarray(east_m, float), np.asarray(north_m, float), inverse=True)
         return np.asarray(lon, float), np.asarray(lat, float)
 
     def convergence_deg(self, lon_deg, lat_deg) -> np.ndarray:
         """Meridian convergence (deg, ``pyproj``'s ``meridian_convergence``): grid north is this
-        far clockwise from true north, so a grid azimuth is a true azimuth minus it."""
+        far clockwise from true north, so a grid azimuth is a true azimuth minus it.
+
+        Parameters
+        ----------
+        lon_deg : array_like
+            Longitude, degrees.
+        lat_deg : array_like
+            Latitude, degrees (same shape).
+
+        Returns
+        -------
+        numpy.ndarray
+            Convergence, degrees (0 on the origin's meridian), the input shape.
+        """
         f = self._proj().get_factors(np.asarray(lon_deg, float), np.asarray(lat_deg, float))
         return np.asarray(f.meridian_convergence, float)
 
     def grid_heading_deg(self, heading_deg, lon_deg, lat_deg) -> np.ndarray:
         """True heading (deg clockwise from true north) to grid azimuth (deg clockwise from grid
-        north): ``heading - convergence`` (checked against ``pyproj`` geodesics in the tests)."""
+        north): ``heading - convergence`` (checked against ``pyproj`` geodesics in the tests).
+
+        Parameters
+        ----------
+        heading_deg : array_like
+            True heading, degrees clockwise from true north.
+        lon_deg : array_like
+            Longitude, degrees.
+        lat_deg : array_like
+            Latitude, degrees.
+
+        Returns
+        -------
+        numpy.ndarray
+            Grid azimuth, degrees (not wrapped), the broadcast shape.
+        """
         return np.asarray(heading_deg, float) - self.convergence_deg(lon_deg, lat_deg)
 
     def key(self) -> dict:
+        """The frame as plain data (its origin), for cache keys and records.
+
+        Returns
+        -------
+        dict
+            ``{"lon0_deg": ..., "lat0_deg": ...}``, degrees.
+        """
         return {"lon0_deg": self.lon0_deg, "lat0_deg": self.lat0_deg}
 
 
 def survey_frame(lon_deg, lat_deg) -> LocalFrame:
     """The default frame: the mean position of the sightings rounded to 0.001 deg, longitudes
     averaged as directions (the circular mean), so a survey across the antimeridian (+-180 deg)
-    gets its origin among its sightings, not half the globe away."""
+    gets its origin among its sightings, not half the globe away.
+
+    Parameters
+    ----------
+    lon_deg : array_like
+        Longitudes of the sightings, degrees, shape (n,), n >= 1.
+    lat_deg : array_like
+        Latitudes of the sightings, degrees, shape (n,).
+
+    Returns
+    -------
+    LocalFrame
+        Transverse Mercator frame (local east/north metres) at the rounded mean position;
+        longitude 180 is given as -180.
+    """
     lam = np.radians(np.asarray(lon_deg, float))
     lon = math.degrees(math.atan2(float(np.mean(np.sin(lam))), float(np.mean(np.cos(lam)))))
     lon = round(lon, 3)
@@ -160,7 +250,23 @@ MAX_FRAME_DISTANCE_M = 100_000.0
 
 def frame_from_origin(origin) -> LocalFrame | None:
     """The frame of a run's ``origin`` parameter (``[lon_deg, lat_deg]``; ``[]``: ``None``),
-    refused in one line unless it is two finite numbers in range."""
+    refused in one line unless it is two finite numbers in range.
+
+    Parameters
+    ----------
+    origin : list or tuple or None
+        ``[lon_deg, lat_deg]``, degrees; ``[]`` or ``None`` for none.
+
+    Returns
+    -------
+    LocalFrame or None
+        The frame with that origin, or ``None``.
+
+    Raises
+    ------
+    ValueError
+        Not two numbers.
+    """
     if origin is None or (isinstance(origin, (list, tuple)) and len(origin) == 0):
         return None
     ok = (isinstance(origin, (list, tuple)) and len(origin) == 2
@@ -186,7 +292,20 @@ def _fail(source, line, column, message):
 
 
 def line_of(raw: pd.DataFrame, i: int) -> int:
-    """The file line of data row ``i`` (``raw.attrs["lines"]`` when comments were skipped)."""
+    """The file line of data row ``i`` (``raw.attrs["lines"]`` when comments were skipped).
+
+    Parameters
+    ----------
+    raw : pandas.DataFrame
+        The table of text cells (:func:`read_table`).
+    i : int
+        Data row index, 0-based.
+
+    Returns
+    -------
+    int
+        1-based line in the file (header at line 1 when ``attrs["lines"]`` is absent).
+    """
     lines = raw.attrs.get("lines")
     return int(lines[i]) if lines is not None else i + 2
 
@@ -215,6 +334,31 @@ def parse_sightings(raw: pd.DataFrame, source: str, *, missing_attitude: str = "
 
     Returns the columns :data:`COLUMNS` (``east_m``/``north_m`` as given; ``lon_deg``/``lat_deg``
     NaN for local files, and the reverse; the frame is applied by :func:`to_local_frame`).
+
+    Parameters
+    ----------
+    raw : pandas.DataFrame
+        Text cells with the file's header as columns (:func:`read_table`).
+    source : str
+        The file's name, for the error messages.
+    missing_attitude : str
+        ``"refuse"`` (roll/pitch must be given) or ``"level"`` (missing attitude taken as 0 deg,
+        flagged in ``attitude_assumed``).
+    range_sigma_m : float
+        Slant-range standard deviation, m (> 0), for rows without ``range_sigma_m``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per sighting, columns :data:`COLUMNS` (slant range in m, angles in degrees).
+
+    Raises
+    ------
+    ObservationError
+        A missing column, a wrong unit, an empty or out-of-range cell, in one line naming the
+        file, line and column.
+    ValueError
+        ``missing_attitude`` or ``range_sigma_m`` invalid.
     """
     if missing_attitude not in MISSING_ATTITUDE:
         raise ValueError(f"missing_attitude must be one of {list(MISSING_ATTITUDE)}; got {missing_attitude!r}")
@@ -302,7 +446,28 @@ def parse_sightings(raw: pd.DataFrame, source: str, *, missing_attitude: str = "
 def to_local_frame(table: pd.DataFrame, origin: LocalFrame | None = None) -> tuple[pd.DataFrame, LocalFrame | None]:
     """Fill ``east_m``/``north_m``/``grid_heading_deg`` (and ``lon_deg``/``lat_deg`` when an
     ``origin`` is given for a local file) through ``pyproj``; return the table and its frame
-    (``None``: a local file without an origin has no longitude/latitude)."""
+    (``None``: a local file without an origin has no longitude/latitude).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The sightings table (:func:`parse_sightings`).
+    origin : LocalFrame or None
+        The frame to use; ``None``: :func:`survey_frame` of geographic sightings, none for local ones.
+
+    Returns
+    -------
+    table : pandas.DataFrame
+        A copy with ``east_m``/``north_m`` (local metres), ``grid_heading_deg`` (degrees from
+        grid north) and, for a local file with an origin, ``lon_deg``/``lat_deg``.
+    frame : LocalFrame or None
+        The frame used.
+
+    Raises
+    ------
+    ObservationError
+        Geographic and local positions mixed, or sightings too far from the origin.
+    """
     t = table.copy()
     geo = np.isfinite(t["lon_deg"].to_numpy(float))
     if geo.all():
@@ -360,7 +525,23 @@ def _check_fields(kept: list[tuple[int, str]], source: str) -> None:
 
 def read_table(path: Path) -> pd.DataFrame:
     """A CSV file as text cells; comment lines (``# ...``, e.g. the synthetic example's notice)
-    and blank lines are skipped, ``attrs["lines"]`` keeps each row's line in the file."""
+    and blank lines are skipped, ``attrs["lines"]`` keeps each row's line in the file.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The CSV file (UTF-8, optional BOM).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Every cell as a string; ``attrs["lines"]`` (file line per row) and ``attrs["header_line"]``.
+
+    Raises
+    ------
+    ObservationError
+        Not UTF-8, no header, a bad row, or not readable as CSV.
+    """
     try:
         text = path.read_bytes().decode("utf-8-sig")
     except UnicodeDecodeError as exc:
@@ -381,7 +562,28 @@ def read_table(path: Path) -> pd.DataFrame:
 
 def read_sightings(path, *, missing_attitude: str = "refuse", range_sigma_m: float = 0.1) -> pd.DataFrame:
     """Read and validate a sightings CSV file (module docstring); an :class:`ObservationError`
-    in one line naming the file, line, column and valid range otherwise."""
+    in one line naming the file, line, column and valid range otherwise.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The sightings CSV file.
+    missing_attitude : str
+        ``"refuse"`` or ``"level"`` (:func:`parse_sightings`).
+    range_sigma_m : float
+        Default slant-range standard deviation, m.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The sightings table, columns :data:`COLUMNS`, positions not yet in a local frame
+        (:func:`to_local_frame`).
+
+    Raises
+    ------
+    ObservationError
+        A missing file or bad content, in one line.
+    """
     path = Path(path)
     if not path.is_file():
         raise ObservationError(missing_file(path, "observations file"))
