@@ -188,7 +188,13 @@ class SurveyArea:
     def water(self):
         """The navigable water (a shapely Polygon, local metres, the area's holes cut out): the
         ``navigable`` outline, else the area's outer ring grown by ``water_beyond_m``; ``None``
-        when neither is given (open water)."""
+        when neither is given (open water).
+
+        Returns
+        -------
+        shapely.Polygon or shapely.MultiPolygon or None
+            The navigable water in local metres, or ``None`` (open water).
+        """
         import shapely
 
         if self.navigable_wkt:
@@ -205,7 +211,25 @@ class SurveyArea:
         return float(self.polygon.area)
 
     def to_lonlat(self, x, y) -> tuple[np.ndarray, np.ndarray]:
-        """Local east/north metres to longitude/latitude degrees; refused without an origin."""
+        """Local east/north metres to longitude/latitude degrees; refused without an origin.
+
+        Parameters
+        ----------
+        x : array_like
+            Local east, m.
+        y : array_like
+            Local north, m (same shape).
+
+        Returns
+        -------
+        lon, lat : numpy.ndarray
+            Longitude and latitude, degrees, the input shape.
+
+        Raises
+        ------
+        ValueError
+            The area has no ``origin_lonlat``.
+        """
         if self.origin_lonlat is None:
             raise ValueError(f"area {self.name!r} has no origin: longitude/latitude outputs need "
                              "origin_lonlat = [lon, lat] in the area file")
@@ -214,7 +238,25 @@ class SurveyArea:
         return np.asarray(lon), np.asarray(lat)
 
     def to_local(self, lon, lat) -> tuple[np.ndarray, np.ndarray]:
-        """Longitude/latitude degrees to local east/north metres; refused without an origin."""
+        """Longitude/latitude degrees to local east/north metres; refused without an origin.
+
+        Parameters
+        ----------
+        lon : array_like
+            Longitude, degrees.
+        lat : array_like
+            Latitude, degrees (same shape).
+
+        Returns
+        -------
+        x, y : numpy.ndarray
+            Local east and north, m, the input shape.
+
+        Raises
+        ------
+        ValueError
+            The area has no ``origin_lonlat``.
+        """
         if self.origin_lonlat is None:
             raise ValueError(f"area {self.name!r} has no origin: longitude/latitude need origin_lonlat = [lon, lat]")
         fwd, _ = _projection(tuple(self.origin_lonlat))
@@ -236,7 +278,15 @@ class SurveyArea:
         return files
 
     def key(self) -> dict:
-        """A JSON-able description (for caches and manifests)."""
+        """A JSON-able description (for caches and manifests).
+
+        Returns
+        -------
+        dict
+            Name, polygon WKT (local metres), origin (degrees), source, SHA-256, water depth (m) and
+            its source, ``water_beyond_m``, bathymetry, navigable WKT and ``wall_clearance_m``;
+            :func:`area_from_key` inverts it.
+        """
         return {"name": self.name, "wkt": self.polygon.wkt, "origin_lonlat": self.origin_lonlat,
                 "source": self.source, "sha256": self.sha256, "water_depth_m": self.water_depth_m,
                 "water_depth_source": self.water_depth_source, "water_beyond_m": self.water_beyond_m,
@@ -270,7 +320,33 @@ def _check_holes(rings, where: str) -> None:
 
 def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str = "survey area",
                        source: str = "vertices") -> SurveyArea:
-    """A :class:`SurveyArea` from local vertices (metres, ``(k, 2)``), validated."""
+    """A :class:`SurveyArea` from local vertices (metres, ``(k, 2)``), validated.
+
+    Parameters
+    ----------
+    vertices_m : array_like
+        The outer ring, shape (k, 2), local east/north metres, k >= 3 distinct vertices (a closing
+        repeat of the first vertex is dropped).
+    origin_lonlat : sequence of float or None
+        ``[lon, lat]`` (degrees) of the local origin; ``None`` for a purely local area.
+    holes_m : sequence of array_like
+        Inner rings (islands, exclusions), each (k_i, 2), local metres.
+    name : str
+        The area's name.
+    source : str
+        Where the vertices came from (named in the errors).
+
+    Returns
+    -------
+    SurveyArea
+        The validated area (polygon in local metres).
+
+    Raises
+    ------
+    ValueError
+        Too few or non-finite vertices, an invalid polygon, an area below :data:`MIN_AREA_M2`, or a
+        vertex farther than :data:`MAX_ORIGIN_DISTANCE_M` from a given origin.
+    """
     import shapely
 
     where = source if source != "vertices" else "area"
@@ -310,7 +386,33 @@ def area_from_lonlat(vertices_lonlat, origin_lonlat=None, *, holes_lonlat=(), ho
     """A :class:`SurveyArea` from longitude/latitude vertices (degrees); the origin defaults to
     the first vertex. Holes may be given in longitude/latitude (``holes_lonlat``) or in metres
     of the local frame around the origin (``holes_m``). Every vertex must lie within
-    :data:`MAX_ORIGIN_DISTANCE_M` of the origin."""
+    :data:`MAX_ORIGIN_DISTANCE_M` of the origin.
+
+    Parameters
+    ----------
+    vertices_lonlat : array_like
+        The outer ring, shape (k, 2), ``[lon, lat]`` degrees.
+    origin_lonlat : sequence of float or None
+        ``[lon, lat]`` (degrees) of the local origin; ``None``: the first vertex.
+    holes_lonlat : sequence of array_like
+        Inner rings in degrees, each (k_i, 2).
+    holes_m : sequence of array_like
+        Inner rings in local metres around the origin, each (k_i, 2).
+    name : str
+        The area's name.
+    source : str
+        Where the vertices came from (named in the errors).
+
+    Returns
+    -------
+    SurveyArea
+        The area, polygon projected to local east/north metres (transverse Mercator at the origin).
+
+    Raises
+    ------
+    ValueError
+        Bad coordinates, or a vertex farther than :data:`MAX_ORIGIN_DISTANCE_M` from the origin.
+    """
     import pyproj
 
     if not isinstance(holes_lonlat, (list, tuple)) or not all(isinstance(h, (list, tuple)) for h in holes_lonlat):
@@ -426,7 +528,27 @@ def _depth_from(area: SurveyArea, doc, source: str) -> SurveyArea:
 
 def with_water_depth(area: SurveyArea, depth_m, source: str) -> SurveyArea:
     """``area`` with its mean water depth ``depth_m`` (m, in (0, 12000]) from ``source``; a bad
-    value is refused in one line naming ``source``."""
+    value is refused in one line naming ``source``.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The area (without a bathymetry grid).
+    depth_m : float
+        Mean water depth, m, in (0, 12000].
+    source : str
+        Where the depth came from (recorded in ``water_depth_source``).
+
+    Returns
+    -------
+    SurveyArea
+        A copy with ``water_depth_m`` and ``water_depth_source``.
+
+    Raises
+    ------
+    ValueError
+        A bad depth, or an area with a bathymetry grid.
+    """
     if area.bathymetry:
         raise ValueError(f"{source}: the area {area.name!r} gives a bathymetry grid ({area.bathymetry[1]}), whose depths "
                          "are used; drop this water depth")
@@ -441,7 +563,24 @@ def load_area(path: str | Path) -> SurveyArea:
     shipped ``data/examples/survey_area.toml`` is found from any run). The area records the
     file's SHA-256 (``sha256``), where it was found (``path``) and, in ``source`` and
     ``water_depth_source``, the file as published (:func:`sss_locus.paths.public_path`: its
-    repository path, else its name only)."""
+    repository path, else its name only).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A ``.toml`` or ``.geojson`` area file.
+
+    Returns
+    -------
+    SurveyArea
+        The area (local metres), with ``source``, ``sha256``, ``path`` and, when given, its water
+        depth or bathymetry grid and wall clearance.
+
+    Raises
+    ------
+    ValueError
+        A missing, too large or invalid file, in one line naming it.
+    """
     import hashlib
 
     from sss_locus.paths import REPO_ROOT, public_path
@@ -515,7 +654,18 @@ def _load_area(p: Path, source: str) -> SurveyArea:
 
 
 def area_from_key(key: dict) -> SurveyArea:
-    """The area of :meth:`SurveyArea.key` (its polygon from the WKT), validated again."""
+    """The area of :meth:`SurveyArea.key` (its polygon from the WKT), validated again.
+
+    Parameters
+    ----------
+    key : dict
+        The output of :meth:`SurveyArea.key`.
+
+    Returns
+    -------
+    SurveyArea
+        The same area (``path`` not kept).
+    """
     import shapely
 
     poly = shapely.from_wkt(key["wkt"])
@@ -530,7 +680,18 @@ def area_from_key(key: dict) -> SurveyArea:
 
 def principal_heading_deg(area: SurveyArea) -> float:
     """Heading (degrees from east, counter-clockwise, in [0, 180)) of the long side of the area's
-    minimum rotated rectangle: the direction of the fewest, longest lines."""
+    minimum rotated rectangle: the direction of the fewest, longest lines.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The area (local metres).
+
+    Returns
+    -------
+    float
+        Heading, degrees counter-clockwise from east, in [0, 180).
+    """
     rect = np.asarray(area.polygon.minimum_rotated_rectangle.exterior.coords)[:4]
     sides = np.diff(np.vstack([rect, rect[:1]]), axis=0)
     long = sides[np.argmax(np.hypot(sides[:, 0], sides[:, 1]))]

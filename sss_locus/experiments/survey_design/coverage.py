@@ -70,6 +70,36 @@ def observe_lines(platform, terrain: Terrain, xy, lines: pd.DataFrame, altitude_
 
     Returns the :class:`~sss_locus.experiments.passes.view_sets.Views` (``(n, L)``), ``seen`` (n, L) and
     the info of :func:`observe_features` with ``on_segment`` (n, L) added.
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    terrain : Terrain
+        The seafloor, in the frame centred at ``centre``.
+    xy : array_like
+        Feature positions, shape (n, 2), area frame, m.
+    lines : pandas.DataFrame
+        Segments, one row each (``heading_deg``, ``x0_m``, ``y0_m``, ``length_m``), area frame.
+    altitude_m : float
+        The vehicle's altitude above the seafloor, m.
+    pitch_deg : float
+        The vehicle's pitch, degrees.
+    same_altitude : bool
+        True for a vehicle at one depth (altitude above the mean seafloor, not the local one).
+    seed : int
+        Seed of the observation draws.
+    centre : tuple of float
+        ``(x, y)``, area frame, m: the terrain's origin.
+
+    Returns
+    -------
+    views : Views
+        The views, shape (n, L) for L segments, in the frame centred at ``centre``.
+    seen : numpy.ndarray
+        Boolean (n, L): feature i is seen from segment j.
+    info : dict
+        :func:`observe_features`' info with ``on_segment`` (n, L).
     """
     return _observe(platform, terrain, xy, _Segments.of(lines), altitude_m, pitch_deg, same_altitude, seed, centre)
 
@@ -92,7 +122,29 @@ def _observe(platform, terrain, xy, seg: _Segments, altitude_m, pitch_deg, same_
 
 def grid_points(area: SurveyArea, grid_m: float) -> tuple[np.ndarray, np.ndarray, tuple[int, int]]:
     """Cell centres of a square grid of spacing ``grid_m`` over the area's bounding box: the
-    centres ``(m, 2)`` inside the polygon, their flat indices in the box grid, and its shape."""
+    centres ``(m, 2)`` inside the polygon, their flat indices in the box grid, and its shape.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The area (local metres).
+    grid_m : float
+        Cell size, m (> 0).
+
+    Returns
+    -------
+    xy : numpy.ndarray
+        Cell centres inside the polygon, shape (m, 2), local metres.
+    flat : numpy.ndarray
+        Their flat indices into the box grid, shape (m,).
+    shape : tuple of int
+        ``(ny, nx)`` of the box grid.
+
+    Raises
+    ------
+    ValueError
+        ``grid_m`` not a finite positive number, or more than 4 000 000 cells.
+    """
     import shapely
 
     if not (isinstance(grid_m, (int, float)) and math.isfinite(grid_m) and grid_m > 0):
@@ -109,7 +161,20 @@ def grid_points(area: SurveyArea, grid_m: float) -> tuple[np.ndarray, np.ndarray
 
 def nadir_gap_m(platform, altitude_m: float) -> float:
     """Half-width of the nadir gap, m: the smaller near edge of the two sides' swaths on a flat
-    seafloor (0 when a fan reaches past nadir)."""
+    seafloor (0 when a fan reaches past nadir).
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    altitude_m : float
+        Altitude above a flat seafloor, m.
+
+    Returns
+    -------
+    float
+        Half-width of the gap, m (>= 0).
+    """
     near = [float(swath_m(platform, [port], [altitude_m])[0][0]) for port in (True, False)]
     return max(0.0, min(near))
 
@@ -120,7 +185,21 @@ def side_reach_m(platform, side: str) -> tuple[float, float]:
     :func:`~sss_locus.experiments.passes.straight_pass.swath_m`'s ``near < far``. Above the
     transducer (and, with a minimum range, above ``min_range_m sin(tilt - azimuth/2)``), and
     below ``depth_m + max_range_m sin(min(tilt + azimuth/2, 90°))`` (deeper, even the steepest
-    look-down ray ends before the seafloor); an empty interval for a fan that never looks down."""
+    look-down ray ends before the seafloor); an empty interval for a fan that never looks down.
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    side : str
+        A key of ``platform.transducers`` (``"port"`` or ``"starboard"``).
+
+    Returns
+    -------
+    low, high : float
+        Heights of the reference point above the seafloor, m; ``low == high`` (empty) for a fan
+        that never looks down.
+    """
     son, t = platform.sonar, platform.transducers[side]
     steep, shallow = t.tilt_deg + son.azimuth_deg / 2, t.tilt_deg - son.azimuth_deg / 2
     if steep <= 0:
@@ -131,7 +210,18 @@ def side_reach_m(platform, side: str) -> tuple[float, float]:
 
 def reach_limits_m(platform) -> tuple[float, float]:
     """The lowest and highest heights (m) of the reference point at which some side's fan sees
-    a flat seafloor (:func:`side_reach_m` over the sides)."""
+    a flat seafloor (:func:`side_reach_m` over the sides).
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+
+    Returns
+    -------
+    low, high : float
+        Heights of the reference point above the seafloor, m.
+    """
     windows = [side_reach_m(platform, side) for side in platform.transducers]
     return min(w[0] for w in windows), max(w[1] for w in windows)
 
@@ -140,7 +230,28 @@ def out_of_reach(platform, terrain: Terrain, xy, altitude_m: float, same_altitud
                  centre=(0.0, 0.0)) -> np.ndarray:
     """Whether and why no line of any plan can see the seafloor below each of ``xy`` (``(n, 2)``,
     area frame, m), by the module docstring's rule: ``(n,)`` int, 0 in reach, -1 too shallow (the
-    vehicle at or below the lowest height of :func:`reach_limits_m` above it), +1 too deep."""
+    vehicle at or below the lowest height of :func:`reach_limits_m` above it), +1 too deep.
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    terrain : Terrain
+        The seafloor, in the frame centred at ``centre``.
+    xy : array_like
+        Seafloor positions, shape (n, 2), area frame, m.
+    altitude_m : float
+        The vehicle's altitude, m (above the mean seafloor when ``same_altitude``).
+    same_altitude : bool
+        True for a vehicle at one depth.
+    centre : tuple of float
+        ``(x, y)``, area frame, m: the terrain's origin.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (n,), int: 0 in reach, -1 too shallow, +1 too deep.
+    """
     xy = np.asarray(xy, float) - np.asarray(centre, float)
     alt = np.full(len(xy), float(altitude_m))
     if same_altitude:  # a fixed-depth vehicle: the deeper the seafloor, the farther below
@@ -156,6 +267,29 @@ def coverage(platform, terrain: Terrain, area: SurveyArea, lines: pd.DataFrame, 
              pitch_deg: float, same_altitude: bool, *, grid_m: float, seed: int = 0,
              centre=(0.0, 0.0)) -> dict:
     """Measured coverage of ``lines`` over ``area`` (module docstring).
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    terrain : Terrain
+        The seafloor, in the frame centred at ``centre``.
+    area : SurveyArea
+        The area (local metres).
+    lines : pandas.DataFrame
+        The plan's segments (``heading_deg``, ``x0_m``, ``y0_m``, ``length_m``), area frame.
+    altitude_m : float
+        The vehicle's altitude, m.
+    pitch_deg : float
+        The vehicle's pitch, degrees.
+    same_altitude : bool
+        True for a vehicle at one depth.
+    grid_m : float
+        Coverage cell size, m.
+    seed : int
+        Seed of the observation draws (one stream per segment).
+    centre : tuple of float
+        ``(x, y)``, area frame, m: the terrain's origin.
 
     Returns
     -------
