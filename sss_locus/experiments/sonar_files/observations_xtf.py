@@ -66,7 +66,34 @@ DETECT_PINGS = 2000
 
 def channel_order(pings: dict, header, ch: int, choice: str, name: str) -> tuple[str, str]:
     """The sample order of channel ``ch`` of one file (:mod:`~sss_locus.experiments.sonar_files.sample_order`)
-    and how it was decided; a file the data cannot decide is refused, saying how to set it."""
+    and how it was decided; a file the data cannot decide is refused, saying how to set it.
+
+    Parameters
+    ----------
+    pings : dict
+        Ping number -> ``pyxtf`` ping of one file.
+    header : pyxtf.XTFFileHeader
+        The file's header (channel types).
+    ch : int
+        Channel index.
+    choice : str
+        One of :data:`~sss_locus.experiments.sonar_files.sample_order.CHOICES` (``"detect"`` reads
+        the data).
+    name : str
+        The file's name, for the error message.
+
+    Returns
+    -------
+    order : str
+        ``"near_first"`` or ``"far_first"``.
+    how : str
+        How it was decided (the choice, or the detection's evidence).
+
+    Raises
+    ------
+    ObservationError
+        ``"detect"`` and the data cannot tell the order.
+    """
     kind = channel_types(header)[ch]
     if choice != "detect":
         return so.chosen(choice, kind), f"sample_order {choice!r}"
@@ -92,7 +119,36 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse", range_
     """Sightings from XTF files and the user's matches (module docstring): the table of
     :func:`~sss_locus.experiments.sonar_files.observations.parse_sightings`, with each sighting's
     ``sample_stored`` (as in the file), ``sample_order`` and how it was decided, and how its
-    position was read (``towfish``)."""
+    position was read (``towfish``).
+
+    Parameters
+    ----------
+    matches_path : str or os.PathLike
+        The matches CSV (:data:`MATCH_COLUMNS`), the XTF files beside it.
+    missing_attitude : str
+        ``"refuse"`` or ``"level"``.
+    range_sigma_m : float
+        Default slant-range standard deviation, m.
+    sample_order : str
+        One of :data:`~sss_locus.experiments.sonar_files.sample_order.CHOICES`.
+    towfish : str
+        One of :data:`~sss_locus.experiments.sonar_files.towfish.CHOICES`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per sighting: the sightings columns (positions as recorded, degrees or metres;
+        slant range from the sample, m) plus ``xtf_file``, ``ping``, ``channel``,
+        ``sample_stored``, ``sample_order``, ``sample_order_how``, ``xtf_layback_m``,
+        ``layback_from``, ``position_read_as``.
+
+    Raises
+    ------
+    ObservationError
+        A missing file or column, or a cell or packet out of range, naming file, line or byte.
+    ValueError
+        ``sample_order`` or ``towfish`` unknown.
+    """
     if sample_order not in so.CHOICES:
         raise ValueError(f"sample_order must be one of {list(so.CHOICES)}; got {sample_order!r}")
     if towfish not in tf.CHOICES:
@@ -188,7 +244,18 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse", range_
 
 
 def ping_time_s(ping) -> float:
-    """Seconds since midnight of the ping's clock (hour, minute, second, hundredths)."""
+    """Seconds since midnight of the ping's clock (hour, minute, second, hundredths).
+
+    Parameters
+    ----------
+    ping : pyxtf.XTFPingHeader
+        The ping.
+
+    Returns
+    -------
+    float
+        Seconds since midnight, in [0, 86400).
+    """
     return 3600.0 * ping.Hour + 60.0 * ping.Minute + ping.Second + ping.HSeconds / 100.0
 
 
@@ -207,6 +274,19 @@ def write_xtf(path, pings: pd.DataFrame, *, nav_units: int = 3, note: str = "", 
     (``"far_first"`` as the real file and ``pyxtf``'s convention, or ``"near_first"``), the
     starboard one near-first. Angles, depth and altitude are stored as float32 (as XTF does),
     positions as float64.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file written (overwritten).
+    pings : pandas.DataFrame
+        One row per ping (columns above).
+    nav_units : int
+        XTF ``NavUnits``: 3 longitude/latitude (degrees), 0 metres.
+    note : str
+        The header's note (ASCII, at most 63 characters kept).
+    port_order : str
+        ``"far_first"`` or ``"near_first"``: how the port channel is stored.
     """
     import pyxtf
 
@@ -255,7 +335,26 @@ def write_xtf(path, pings: pd.DataFrame, *, nav_units: int = 3, note: str = "", 
 
 def read_observations(path, **kw) -> pd.DataFrame:
     """A sightings CSV file, or an XTF matches file (a CSV with ``file`` and ``ping`` columns):
-    the validated sightings table either way (keywords as :func:`read_xtf_sightings`)."""
+    the validated sightings table either way (keywords as :func:`read_xtf_sightings`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A sightings CSV or an XTF matches CSV.
+    **kw
+        Keywords of :func:`read_xtf_sightings` (``sample_order`` and ``towfish`` are dropped for a
+        sightings CSV).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The validated sightings table.
+
+    Raises
+    ------
+    ObservationError
+        A missing file, an XTF file given directly, or bad content.
+    """
     from sss_locus.experiments.sonar_files.observations import read_sightings, read_table
 
     path = Path(path)
@@ -273,7 +372,18 @@ def read_observations(path, **kw) -> pd.DataFrame:
 def observation_files(path) -> list[Path]:
     """The files an observations file stands for: itself and, for an XTF matches file, the XTF
     files it names that exist (in order; a missing or unreadable file is left to the reader's
-    one-line error). ``[]`` when ``path`` is not a file."""
+    one-line error). ``[]`` when ``path`` is not a file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The observations file.
+
+    Returns
+    -------
+    list of pathlib.Path
+        ``path`` first, then the existing XTF files it names (each once).
+    """
     from sss_locus.experiments.sonar_files.observations import read_table
 
     path = Path(path)

@@ -38,7 +38,18 @@ DECISIVE = 3.0
 
 
 def end_block(n: int) -> int:
-    """Samples at each end compared for the transmit pulse."""
+    """Samples at each end compared for the transmit pulse.
+
+    Parameters
+    ----------
+    n : int
+        Samples per ping.
+
+    Returns
+    -------
+    int
+        Block length, at least 4.
+    """
     return max(4, n // 128)
 
 
@@ -48,7 +59,18 @@ def _median_rows(rows):
 
 def pulse_ratio(samples: np.ndarray) -> float:
     """Median over pings of (first block + 1) / (last block + 1): > 1 when the pulse is at
-    sample 0 (``samples``: pings by samples, as stored)."""
+    sample 0 (``samples``: pings by samples, as stored).
+
+    Parameters
+    ----------
+    samples : numpy.ndarray
+        Intensities, shape (pings, samples), as stored.
+
+    Returns
+    -------
+    float
+        The ratio; NaN when a ping has too few samples to compare its ends.
+    """
     n = samples.shape[1]
     k = end_block(n)
     if n < 2 * k + 4:
@@ -61,7 +83,20 @@ def pulse_ratio(samples: np.ndarray) -> float:
 def water_ratio(samples: np.ndarray, bottom_sample: np.ndarray) -> float:
     """Median over pings of the seafloor-to-water contrast read near-first divided by the same
     read far-first: > 1 when sample 0 is the near end. ``bottom_sample``: each ping's
-    altitude as a sample count from the near end (NaN: no altitude)."""
+    altitude as a sample count from the near end (NaN: no altitude).
+
+    Parameters
+    ----------
+    samples : numpy.ndarray
+        Intensities, shape (pings, samples), as stored.
+    bottom_sample : numpy.ndarray
+        Altitude per ping in samples from the near end, shape (pings,).
+
+    Returns
+    -------
+    float
+        The ratio; NaN when no ping has its altitude within the usable range.
+    """
     n = samples.shape[1]
     k = end_block(n)
     out = []
@@ -82,7 +117,23 @@ def water_ratio(samples: np.ndarray, bottom_sample: np.ndarray) -> float:
 def detect(samples: np.ndarray, bottom_sample: np.ndarray) -> tuple[str | None, str]:
     """The order of one channel from its pings (rows as stored, non-negative intensities) and
     each ping's altitude in samples (module docstring): ``(order, evidence)``, ``order`` ``None``
-    when the data cannot tell."""
+    when the data cannot tell.
+
+    Parameters
+    ----------
+    samples : numpy.ndarray
+        Intensities, shape (pings, samples), as stored.
+    bottom_sample : numpy.ndarray
+        Altitude per ping in samples from the near end, shape (pings,) (NaN: none).
+
+    Returns
+    -------
+    order : str or None
+        ``"near_first"``, ``"far_first"``, or ``None`` (no decisive agreeing evidence, or no ping
+        with data).
+    evidence : str
+        The ratios measured, in words.
+    """
     samples = np.asarray(samples, float)
     keep = samples.max(axis=1) > 0 if samples.size else np.zeros(0, bool)  # all-zero pings say nothing
     samples, bottom_sample = samples[keep], np.asarray(bottom_sample, float)[keep]
@@ -104,7 +155,25 @@ def detect(samples: np.ndarray, bottom_sample: np.ndarray) -> tuple[str | None, 
 
 
 def chosen(choice: str, kind: int) -> str:
-    """The order a fixed ``choice`` gives a channel of ``TypeOfChannel`` ``kind`` (1 port, 2 starboard)."""
+    """The order a fixed ``choice`` gives a channel of ``TypeOfChannel`` ``kind`` (1 port, 2 starboard).
+
+    Parameters
+    ----------
+    choice : str
+        ``"near_first"`` or ``"port_far_first"``.
+    kind : int
+        The channel's ``TypeOfChannel`` (1 port, 2 starboard).
+
+    Returns
+    -------
+    str
+        ``"near_first"`` or ``"far_first"``.
+
+    Raises
+    ------
+    ValueError
+        Any other ``choice``.
+    """
     if choice == "near_first" or (choice == "port_far_first" and kind != 1):
         return "near_first"
     if choice == "port_far_first":
@@ -113,5 +182,20 @@ def chosen(choice: str, kind: int) -> str:
 
 
 def from_near(sample, n_samples, order: str):
-    """The sample index counted from the near end: ``sample`` or ``n_samples - 1 - sample``."""
+    """The sample index counted from the near end: ``sample`` or ``n_samples - 1 - sample``.
+
+    Parameters
+    ----------
+    sample : int or array_like
+        Sample index as stored.
+    n_samples : int or array_like
+        Samples per ping.
+    order : str
+        ``"near_first"`` or ``"far_first"``.
+
+    Returns
+    -------
+    int or numpy.ndarray
+        Index from the near end, in [0, n_samples - 1] for a valid ``sample``.
+    """
     return sample if order == "near_first" else n_samples - 1 - sample

@@ -73,7 +73,23 @@ class PingResults:
 
 def sensor_poses(table: pd.DataFrame, platform) -> dict:
     """World sensor axes ``W`` (m, 3, 3), origins (m, 3), the ranges and the transducers' heights
-    above the seafloor (m,) of every sighting (module docstring)."""
+    above the seafloor (m,) of every sighting (module docstring).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Sightings in the local frame (``east_m``, ``north_m``, ``depth_m``, ``grid_heading_deg``,
+        ``pitch_deg``, ``roll_deg``, ``side``, ``altitude_m``, ``slant_range_m``), m rows.
+    platform : Platform
+        The platform (its transducers' poses on the vehicle).
+
+    Returns
+    -------
+    dict
+        ``W`` (m, 3, 3) sensor-to-world rotations (world ENU, up = -depth), ``origin`` (m, 3)
+        transducer positions in m, ``ranges`` (m,) slant ranges in m, ``height`` (m,) transducer
+        heights above the seafloor in m (negative when the altitude puts it below).
+    """
     ref = np.stack([table["east_m"], table["north_m"], -table["depth_m"].to_numpy(float)], -1).astype(float)
     yaw = 90.0 - table["grid_heading_deg"].to_numpy(float)
     W = np.empty((len(table), 3, 3))
@@ -96,7 +112,22 @@ def _squeeze(loc):
 
 def ellipse_axes(cov):
     """1-sigma horizontal ellipse (semi-major, semi-minor, azimuth of the major axis clockwise
-    from grid north, deg) and vertical sigma of covariances (n, 3, 3); NaN where not finite."""
+    from grid north, deg) and vertical sigma of covariances (n, 3, 3); NaN where not finite.
+
+    Parameters
+    ----------
+    cov : numpy.ndarray
+        Covariances, shape (n, 3, 3), m², world ENU.
+
+    Returns
+    -------
+    major, minor : numpy.ndarray
+        Semi-axes, m, shape (n,).
+    azimuth : numpy.ndarray
+        Major-axis azimuth, degrees clockwise from grid north in [0, 180), shape (n,).
+    sigma_up : numpy.ndarray
+        Vertical 1-sigma, m, shape (n,). NaN in all four where ``cov`` is not finite.
+    """
     ok = np.all(np.isfinite(cov), axis=(1, 2))
     h = np.where(ok[:, None, None], cov[:, :2, :2], np.eye(2))
     val, vec = np.linalg.eigh(h)
@@ -111,7 +142,37 @@ def analyse(table: pd.DataFrame, platform, frame: LocalFrame | None = None, *,
             aperture_margin_deg: float = 2.0, below_sensors: bool = True, sea_surface: bool = True,
             n_arc_points: int = 33) -> PingResults:
     """Per-feature results for a validated sightings table in the local frame
-    (:func:`~sss_locus.experiments.sonar_files.observations.to_local_frame`); see the module docstring."""
+    (:func:`~sss_locus.experiments.sonar_files.observations.to_local_frame`); see the module docstring.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Validated sightings in the local frame (east/north metres, grid headings).
+    platform : Platform
+        The platform that recorded them.
+    frame : LocalFrame or None
+        The local frame; given, longitude/latitude columns are added to the results.
+    aperture_margin_deg : float
+        Margin added to the beam aperture in the N-view estimate, degrees (>= 0).
+    below_sensors : bool
+        Keep the N-view estimate below the shallowest sensor of the feature.
+    sea_surface : bool
+        Crop the two-view locus to below the sea surface (z = 0).
+    n_arc_points : int
+        Points per locus arc in ``locus`` (>= 2).
+
+    Returns
+    -------
+    PingResults
+        ``features`` (one row per feature, world ENU metres), ``sightings`` (the table with sensor
+        and flat-seafloor positions), ``locus`` (arc points), ``frame`` and ``excluded``
+        (sightings set aside).
+
+    Raises
+    ------
+    ValueError
+        A bad keyword, or every sighting set aside.
+    """
     if not (np.isfinite(aperture_margin_deg) and aperture_margin_deg >= 0):
         raise ValueError(f"aperture_margin_deg must be a finite number >= 0; got {aperture_margin_deg!r}")
     if int(n_arc_points) < 2:
@@ -226,7 +287,36 @@ def read_checked(path, platform=None, *, missing_attitude: str = "refuse", range
     name (default: the file's platform key, from the data files); a slant range outside the
     sonar's range limits is refused naming its line. ``sample_order`` and ``towfish``: how an
     XTF file's channels and positions are read (:mod:`~sss_locus.experiments.sonar_files.sample_order`,
-    :mod:`~sss_locus.experiments.sonar_files.towfish`). Returns ``(table, platform)``."""
+    :mod:`~sss_locus.experiments.sonar_files.towfish`). Returns ``(table, platform)``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A sightings CSV or an XTF matches file.
+    platform : Platform or None
+        The platform; ``None`` loads the file's platform key.
+    missing_attitude : str
+        ``"refuse"`` or ``"level"``.
+    range_sigma_m : float
+        Default slant-range standard deviation, m.
+    sample_order : str
+        How XTF channels are ordered (``"detect"``, ...).
+    towfish : str
+        How XTF positions are read (``"auto"``, ...).
+
+    Returns
+    -------
+    table : pandas.DataFrame
+        The sightings (positions as in the file).
+    platform : Platform
+        The platform.
+
+    Raises
+    ------
+    ValueError
+        An unknown or mismatched platform, a slant range outside the sonar's limits, or no
+        sighting with a flat-seafloor position.
+    """
     from sss_locus.experiments.sonar_files.observations_xtf import read_observations
 
     table = read_observations(path, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m,
@@ -264,7 +354,32 @@ def run(path, platform=None, origin: LocalFrame | None = None, *, missing_attitu
     """Read a sightings CSV or an XTF matches file and check it (:func:`read_checked`), put it in
     the local frame, move towed sensors back by their layback
     (:func:`~sss_locus.experiments.sonar_files.towfish.apply_layback`) and :func:`analyse` it with
-    ``platform`` (default: the file's platform key)."""
+    ``platform`` (default: the file's platform key).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A sightings CSV or an XTF matches file.
+    platform : Platform or None
+        The platform; ``None`` loads the file's platform key.
+    origin : LocalFrame or None
+        The local frame; ``None``: the sightings' mean position.
+    missing_attitude : str
+        ``"refuse"`` or ``"level"``.
+    range_sigma_m : float
+        Default slant-range standard deviation, m.
+    sample_order : str
+        How XTF channels are ordered.
+    towfish : str
+        How XTF positions are read.
+    **kw
+        Keywords of :func:`analyse`.
+
+    Returns
+    -------
+    PingResults
+        :func:`analyse`'s results.
+    """
     from sss_locus.experiments.sonar_files.observations import to_local_frame
     from sss_locus.experiments.sonar_files.towfish import apply_layback
 
@@ -277,7 +392,29 @@ def run(path, platform=None, origin: LocalFrame | None = None, *, missing_attitu
 
 def locus_points(loc, W1, o1, names, has2, n_points: int) -> pd.DataFrame:
     """Points along every arc of the loci (``n_points`` per arc, ends included), world frame:
-    columns ``feature``, ``arc``, ``east_m``, ``north_m``, ``up_m``."""
+    columns ``feature``, ``arc``, ``east_m``, ``north_m``, ``up_m``.
+
+    Parameters
+    ----------
+    loc : Locus
+        The best-pair loci, n features, arcs in the first sensor's frame.
+    W1 : numpy.ndarray
+        First sensor's rotation to world, shape (n, 3, 3).
+    o1 : numpy.ndarray
+        First sensor's origin, world, m, shape (n, 3).
+    names : numpy.ndarray
+        Feature names, shape (n,).
+    has2 : numpy.ndarray
+        Boolean (n,): the feature has a pair.
+    n_points : int
+        Points per arc (>= 2).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``n_points`` rows per arc, columns ``feature``, ``arc``, ``east_m``, ``north_m``,
+        ``up_m`` (world ENU, m); empty when no locus has an arc.
+    """
     s = np.linspace(0.0, 1.0, n_points)
     ok = ~np.isnan(loc.arc_start) & has2[:, None]
     start, end = np.where(ok, loc.arc_start, 0.0), np.where(ok, loc.arc_end, 0.0)

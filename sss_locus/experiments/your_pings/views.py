@@ -24,13 +24,37 @@ ONE_SIGHTING = "one sighting: no locus"
 
 def impossible(ranges_m: np.ndarray, height_m: np.ndarray) -> np.ndarray:
     """Sightings whose slant range is below the transducer's height above the seafloor (no
-    flat-seafloor ground range)."""
+    flat-seafloor ground range).
+
+    Parameters
+    ----------
+    ranges_m : numpy.ndarray
+        Slant ranges, m, shape (m,).
+    height_m : numpy.ndarray
+        Transducer heights above the seafloor, m, shape (m,).
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean, shape (m,).
+    """
     return np.asarray(ranges_m, float) < np.asarray(height_m, float)
 
 
 def where(table: pd.DataFrame) -> pd.Series:
     """Each sighting's place in the user's files: ``<xtf file> ping <n>`` for XTF sightings,
-    else ``<file> line <n>``."""
+    else ``<file> line <n>``.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Sightings (``source``, ``line``; ``xtf_file``, ``ping`` for XTF).
+
+    Returns
+    -------
+    pandas.Series
+        One string per row.
+    """
     text = table["source"].astype(str) + " line " + table["line"].astype(str)
     if "xtf_file" in table.columns:
         text = table["xtf_file"].astype(str) + " ping " + table["ping"].astype(str) + " (" + text + ")"
@@ -38,7 +62,22 @@ def where(table: pd.DataFrame) -> pd.Series:
 
 
 def excluded_table(table: pd.DataFrame, height_m: np.ndarray, bad: np.ndarray) -> pd.DataFrame:
-    """The sightings set aside: ``feature``, ``where``, ``slant_range_m``, ``transducer_height_m``, ``reason``."""
+    """The sightings set aside: ``feature``, ``where``, ``slant_range_m``, ``transducer_height_m``, ``reason``.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Sightings, m rows.
+    height_m : numpy.ndarray
+        Transducer heights above the seafloor, m, shape (m,).
+    bad : numpy.ndarray
+        Boolean (m,): set aside.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per sighting set aside (empty when none).
+    """
     t = table[bad]
     return pd.DataFrame({"feature": t["feature"].to_numpy(), "where": where(t).to_numpy(),
                          "slant_range_m": t["slant_range_m"].to_numpy(float),
@@ -47,7 +86,18 @@ def excluded_table(table: pd.DataFrame, height_m: np.ndarray, bad: np.ndarray) -
 
 
 def excluded_sentence(excluded: pd.DataFrame) -> str:
-    """One sentence naming every sighting set aside ("" when none)."""
+    """One sentence naming every sighting set aside ("" when none).
+
+    Parameters
+    ----------
+    excluded : pandas.DataFrame
+        :func:`excluded_table`'s result.
+
+    Returns
+    -------
+    str
+        The sentence, or ``""``.
+    """
     if not len(excluded):
         return ""
     items = "; ".join(f"{r.feature} ({r.where}: {r.slant_range_m:.3g} m below {r.transducer_height_m:.3g} m)"
@@ -57,7 +107,18 @@ def excluded_sentence(excluded: pd.DataFrame) -> str:
 
 
 def pair_slots(K: int) -> tuple[np.ndarray, np.ndarray]:
-    """Every pair ``(a, b)``, ``a < b``, of ``K`` slots, in file order."""
+    """Every pair ``(a, b)``, ``a < b``, of ``K`` slots, in file order.
+
+    Parameters
+    ----------
+    K : int
+        Number of slots.
+
+    Returns
+    -------
+    a, b : numpy.ndarray
+        Slot indices, each shape (K (K - 1) / 2,); empty when K < 2.
+    """
     a, b = np.triu_indices(K, 1)
     return a, b
 
@@ -67,7 +128,26 @@ def best_pairs(origin: np.ndarray, point: np.ndarray, mask: np.ndarray,
     """Per feature, the slots ``(i, j)`` of its best pair of sightings (module docstring) and
     whether it has one (two or more sightings). ``origin``: (n, K, 3) sensor origins;
     ``point``: (n, 3) the mean flat-seafloor positions; ``mask``: (n, K) sightings present;
-    ``length_m``: (n, P) the locus length of every pair of :func:`pair_slots` (0: empty)."""
+    ``length_m``: (n, P) the locus length of every pair of :func:`pair_slots` (0: empty).
+
+    Parameters
+    ----------
+    origin : numpy.ndarray
+        Sensor origins, world, m, shape (n, K, 3).
+    point : numpy.ndarray
+        Mean flat-seafloor positions, world, m, shape (n, 3).
+    mask : numpy.ndarray
+        Boolean (n, K): sightings present.
+    length_m : numpy.ndarray
+        Locus length of every pair, m, shape (n, P).
+
+    Returns
+    -------
+    i, j : numpy.ndarray
+        Slots of the best pair, shape (n,) (0, 1 when the feature has none).
+    has : numpy.ndarray
+        Boolean (n,): two or more sightings.
+    """
     n, K = mask.shape
     a, b = pair_slots(K)
     u = origin - point[:, None, :]
