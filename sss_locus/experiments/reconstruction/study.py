@@ -26,7 +26,18 @@ def _extent(layout: SurveyLayout, platform) -> float:
 def survey_altitude_m(envelope) -> float:
     """The altitude the chapter's survey flies: the middle of the envelope's altitude range (above
     the mean seafloor for a platform holding one height, ``same_altitude``; above the local
-    seafloor otherwise)."""
+    seafloor otherwise).
+
+    Parameters
+    ----------
+    envelope : Envelope
+        The platform's operating envelope (``altitude_min_m``, ``altitude_max_m``, m).
+
+    Returns
+    -------
+    float
+        Altitude, m.
+    """
     return 0.5 * (envelope.altitude_min_m + envelope.altitude_max_m)
 
 
@@ -37,7 +48,40 @@ def run_case(platform, envelope, noise, terrain, layout: SurveyLayout, *, n_feat
     with ``noise_scale`` (the noise model scaled; 0 is noise-free), and per feature the number
     of views lost to shadowing (``n_shadowed``). The vehicle flies at the middle of the
     envelope's altitude range (above the mean seafloor for a fixed-height platform, above the
-    local seafloor otherwise)."""
+    local seafloor otherwise).
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    envelope : Envelope
+        Its operating envelope (altitude range, ``same_altitude``).
+    noise : NoiseModel
+        The noise model (scaled by ``noise_scale``).
+    terrain : Terrain
+        The seafloor (local metres).
+    layout : SurveyLayout
+        The survey's lines and area.
+    n_features : int
+        Features placed on the seafloor.
+    noise_scale : float
+        Factor on the noise model (0: noise-free).
+    seed : int
+        Seed of features, observations and noise.
+    shadowing : str
+        Shadowing model (``"off"`` or as :func:`observe_features`).
+    below_sensors : bool
+        Keep N-view estimates below the sensors.
+    margin_sigmas : float
+        Aperture margin of the N-view estimate, in noise sigmas.
+    n_views : sequence of int
+        View counts of the N-view estimators.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per feature and estimator (errors in m, world ENU), with ``n_shadowed``.
+    """
     return run_cases(platform, envelope, noise, [(terrain, noise_scale)], layout, n_features=n_features, seed=seed,
                      shadowing=shadowing, below_sensors=below_sensors, margin_sigmas=margin_sigmas,
                      n_views=n_views)[0]
@@ -48,7 +92,38 @@ def run_cases(platform, envelope, noise, cases, layout: SurveyLayout, *, n_featu
               n_views=(3, 4, 6)) -> list[pd.DataFrame]:
     """:func:`run_case` of each ``(terrain, noise_scale)`` of ``cases``, the same tables, the
     cases' N-view estimates solved together
-    (:func:`~sss_locus.experiments.reconstruction.estimators.reconstruct_many`)."""
+    (:func:`~sss_locus.experiments.reconstruction.estimators.reconstruct_many`).
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    envelope : Envelope
+        Its operating envelope.
+    noise : NoiseModel
+        The noise model.
+    cases : sequence of tuple
+        ``(terrain, noise_scale)`` pairs.
+    layout : SurveyLayout
+        The survey's lines and area.
+    n_features : int
+        Features per case.
+    seed : int
+        Seed (the same for every case: common random numbers).
+    shadowing : str
+        Shadowing model.
+    below_sensors : bool
+        Keep N-view estimates below the sensors.
+    margin_sigmas : float
+        Aperture margin, in noise sigmas.
+    n_views : sequence of int
+        View counts of the N-view estimators.
+
+    Returns
+    -------
+    list of pandas.DataFrame
+        One table per case, in order (as :func:`run_case`).
+    """
     altitude = survey_altitude_m(envelope)
     observed, jobs = [], []
     for terrain, noise_scale in cases:
@@ -65,7 +140,34 @@ def run_cases(platform, envelope, noise, cases, layout: SurveyLayout, *, n_featu
 def relief_sweep(platform, envelope, noise, config: dict, rms_values, noise_scales, *,
                  n_features: int, seed: int, **choices) -> pd.DataFrame:
     """:func:`run_case` on the random terrain of ``config`` scaled to each RMS relief in
-    ``rms_values`` (m), for each noise scale; columns ``rms_relief_m``, ``noise_scale`` added."""
+    ``rms_values`` (m), for each noise scale; columns ``rms_relief_m``, ``noise_scale`` added.
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    envelope : Envelope
+        Its operating envelope.
+    noise : NoiseModel
+        The noise model.
+    config : dict
+        The terrain configuration (``survey`` and ``random`` tables).
+    rms_values : sequence of float
+        RMS reliefs, m.
+    noise_scales : sequence of float
+        Factors on the noise model.
+    n_features : int
+        Features per case.
+    seed : int
+        Seed of the random field and the cases.
+    **choices
+        Keywords of :func:`run_cases`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The cases' tables stacked, with ``rms_relief_m`` and ``noise_scale``.
+    """
     layout = SurveyLayout(**config["survey"])
     rc = config["random"]
     base = random_terrain(1.0, rc["correlation_length_m"], _extent(layout, platform),
@@ -82,7 +184,32 @@ def relief_sweep(platform, envelope, noise, config: dict, rms_values, noise_scal
 def shape_cases(platform, envelope, noise, config: dict, noise_scales, *, n_features: int, seed: int,
                 **choices) -> pd.DataFrame:
     """:func:`run_case` on the analytic terrains of ``config`` (flat, slope, mound, step) and on
-    its random terrain, for each noise scale; column ``terrain`` added."""
+    its random terrain, for each noise scale; column ``terrain`` added.
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    envelope : Envelope
+        Its operating envelope.
+    noise : NoiseModel
+        The noise model.
+    config : dict
+        The terrain configuration.
+    noise_scales : sequence of float
+        Factors on the noise model.
+    n_features : int
+        Features per case.
+    seed : int
+        Seed of the terrains and the cases.
+    **choices
+        Keywords of :func:`run_cases`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The cases' tables stacked, with ``terrain`` and ``noise_scale``.
+    """
     layout = SurveyLayout(**config["survey"])
     kinds = ("flat", "slope", "mound", "step", "random")
     terrains = {kind: terrain_from_config(kind, config, extent_m=_extent(layout, platform), seed=seed)
@@ -99,7 +226,25 @@ def paired_comparison(table: pd.DataFrame, a: str, b: str, by=()) -> pd.DataFram
     pairs, the median of ``error_3d(a) - error_3d(b)`` (m), the share where ``a`` is closer,
     and the one-sided Wilcoxon signed-rank p-values for "``a`` is closer" (``p_value``) and for
     "``b`` is closer" (``p_value_b_closer``) (``scipy.stats``; NaN for fewer than 10 pairs or
-    all differences 0)."""
+    all differences 0).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Per-feature rows (``feature``, ``estimator``, ``estimated``, ``error_3d_m``).
+    a : str
+        First estimator.
+    b : str
+        Second estimator.
+    by : sequence of str
+        Grouping columns (empty: one group).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per group: ``n_pairs``, ``median_difference_m``, ``share_closer``, ``p_value``,
+        ``p_value_b_closer``.
+    """
     from scipy.stats import wilcoxon
 
     rows = []

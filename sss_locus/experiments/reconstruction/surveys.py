@@ -46,12 +46,38 @@ METRICS = ("horizontal_m", "vertical_m", "shape_m")
 
 
 def layout_with_spacing(config: dict, spacing_m: float) -> SurveyLayout:
-    """The layout of ``config["survey"]`` with main lines ``spacing_m`` apart."""
+    """The layout of ``config["survey"]`` with main lines ``spacing_m`` apart.
+
+    Parameters
+    ----------
+    config : dict
+        The configuration with a ``survey`` table.
+    spacing_m : float
+        Main-line spacing, m.
+
+    Returns
+    -------
+    SurveyLayout
+        The layout.
+    """
     return SurveyLayout(**{**config["survey"], "line_spacing_m": float(spacing_m)})
 
 
 def extent_m(layout: SurveyLayout, platform) -> float:
-    """Side of the square where the seafloor must be defined for ``layout`` (m)."""
+    """Side of the square where the seafloor must be defined for ``layout`` (m).
+
+    Parameters
+    ----------
+    layout : SurveyLayout
+        The survey layout (``area_m``, ``margin_m``).
+    platform : Platform
+        The platform (its sonar's ``max_range_m``).
+
+    Returns
+    -------
+    float
+        Side length, m.
+    """
     return layout.area_m + 2.0 * (platform.sonar.max_range_m + layout.margin_m) + 10.0
 
 
@@ -62,14 +88,28 @@ def survey_cases(platform, envelope, noise, pass_noise, config: dict, *, kind: s
 
     Parameters
     ----------
+    platform : Platform
+        The sonar platform.
+    envelope : Envelope
+        Its operating envelope (the altitude flown).
+    noise : NoiseModel
+        The measurement noise model.
+    pass_noise : PassNoise
+        The per-pass navigation noise.
+    config : dict
+        The terrain configuration (``survey``, ``random``, ``slope`` tables).
     kind : {"relief", "slope"}
         ``"relief"``: ``values`` are RMS reliefs (m) of one random field per seed (correlation
         length and grid of ``config["random"]``), scaled to each; ``"slope"``: ``values`` are
         slopes (deg) of the plane of ``config["slope"]`` (its azimuth).
+    values : sequence of float
+        The reliefs (m) or slopes (deg).
     spacings_m : sequence of float
         Main-line spacings (m); cross lines as in ``config["survey"]``.
     seeds : sequence of int
         One independent survey per seed (>= 0).
+    n_features : int
+        Features per survey.
     navigation, extra, n_views, shadowing, below_sensors
         As :func:`~sss_locus.experiments.reconstruction.estimators.reconstruct`.
 
@@ -116,7 +156,23 @@ def survey_cases(platform, envelope, noise, pass_noise, config: dict, *, kind: s
 def survey_errors(table: pd.DataFrame, estimators: Sequence[str], by=("seed", "spacing_m", "value")) -> pd.DataFrame:
     """One row per survey (group of ``by``) and estimator of ``estimators``: ``n_common`` (the
     features every one of ``estimators`` estimated), ``coverage``, and the :data:`METRICS` over
-    the common subset (module docstring; NaN where it is empty)."""
+    the common subset (module docstring; NaN where it is empty).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        :func:`survey_cases`' rows.
+    estimators : sequence of str
+        The estimators compared.
+    by : sequence of str
+        Columns naming a survey.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per survey and estimator: ``n_common``, ``coverage``, ``horizontal_m``,
+        ``vertical_m``, ``shape_m`` (medians, m).
+    """
     rows = []
     for key, t in table[table.estimator.isin(list(estimators))].groupby(list(by), sort=True):
         key = key if isinstance(key, tuple) else (key,)
@@ -141,7 +197,25 @@ def over_surveys(per_survey: pd.DataFrame, by, columns=METRICS + ("coverage",),
                  confidence_level: float = 0.95) -> pd.DataFrame:
     """Mean over the surveys (the ``seed`` rows) of each of ``columns``, per group of ``by``, with
     its interval (``<column>_low``, ``<column>_high``) and the number of surveys ``n_surveys``
-    (surveys with a NaN value, an empty common subset, are left out of that column)."""
+    (surveys with a NaN value, an empty common subset, are left out of that column).
+
+    Parameters
+    ----------
+    per_survey : pandas.DataFrame
+        One row per survey (:func:`survey_errors`).
+    by : sequence of str
+        Grouping columns.
+    columns : sequence of str
+        Columns averaged.
+    confidence_level : float
+        Interval level, in (0, 1).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per group: ``n_surveys`` and, per column, the mean, ``_low`` and ``_high`` (NaN
+        interval with fewer than 3 finite surveys).
+    """
     rows = []
     for key, g in per_survey.groupby(list(by), sort=False):
         key = key if isinstance(key, tuple) else (key,)
@@ -161,7 +235,28 @@ def paired_over_surveys(per_survey: pd.DataFrame, a: str, b: str, by=("spacing_m
     """``a`` minus ``b`` per survey for each of ``columns`` (m; negative: ``a`` closer), its
     mean over the surveys and interval (:func:`over_surveys`), per group of ``by``. The verdict
     "``a`` closer" holds where the interval's high end is below 0, "``b`` closer" where its low
-    end is above 0."""
+    end is above 0.
+
+    Parameters
+    ----------
+    per_survey : pandas.DataFrame
+        One row per survey and estimator (:func:`survey_errors`).
+    a : str
+        First estimator.
+    b : str
+        Second estimator.
+    by : sequence of str
+        Grouping columns (besides ``seed``).
+    columns : sequence of str
+        Metrics differenced, m.
+    confidence_level : float
+        Interval level, in (0, 1).
+
+    Returns
+    -------
+    pandas.DataFrame
+        :func:`over_surveys` of the differences, with ``a`` and ``b``.
+    """
     keys = ["seed", *by]
     pa = per_survey[per_survey.estimator == a].set_index(keys)[list(columns)]
     pb = per_survey[per_survey.estimator == b].set_index(keys)[list(columns)]

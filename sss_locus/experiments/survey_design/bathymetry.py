@@ -83,26 +83,62 @@ class Bathymetry:
         return float(np.mean(self.area_depths_m))
 
     def stats(self) -> dict:
-        """``min``, ``median``, ``mean``, ``max`` of the depth over the area, m."""
+        """``min``, ``median``, ``mean``, ``max`` of the depth over the area, m.
+
+        Returns
+        -------
+        dict
+            ``{"min", "median", "mean", "max"}`` -> depth, m (positive down).
+        """
         d = self.area_depths_m
         return {"min": float(d.min()), "median": float(np.median(d)), "mean": float(d.mean()), "max": float(d.max())}
 
     def describe(self) -> str:
         """The depth used, in words: ``"bathymetry grid harbour.tif (SHA-256 0123456789ab, depth):
-        4.1-17.9 m over the area, median 11 m, mean 11 m"``."""
+        4.1-17.9 m over the area, median 11 m, mean 11 m"``.
+
+        Returns
+        -------
+        str
+            The sentence.
+        """
         s = self.stats()
         return (f"bathymetry grid {self.file} (SHA-256 {self.sha256[:12]}, {self.values} values): depth "
                 f"{s['min']:.3g}–{s['max']:.3g} m over the area, median {s['median']:.3g} m, mean {s['mean']:.3g} m")
 
     def depth_at(self, x, y) -> np.ndarray:
         """Depth (m, positive down) at local east/north ``x``, ``y`` (m, broadcast): bilinear
-        between cell centres, the nearest edge cell's beyond the grid."""
+        between cell centres, the nearest edge cell's beyond the grid.
+
+        Parameters
+        ----------
+        x : array_like
+            Local east, m.
+        y : array_like
+            Local north, m.
+
+        Returns
+        -------
+        numpy.ndarray
+            Depth, m, the broadcast shape.
+        """
         return self.mean_m - self.terrain((0.0, 0.0)).height_m(x, y)
 
     def terrain(self, centre):
         """The seafloor ``h = mean - depth`` as a :class:`~sss_locus.experiments.datamodel.terrain.Terrain`
         (kind ``"bathymetry"``) in the frame centred on ``centre`` (area frame, m), as the design
-        places its terrain."""
+        places its terrain.
+
+        Parameters
+        ----------
+        centre : tuple of float
+            ``(x, y)``, area frame, m.
+
+        Returns
+        -------
+        Terrain
+            Heights, m (up, relative to the mean depth), in the centred frame.
+        """
         from sss_locus.experiments.datamodel.terrain import Terrain
 
         cx, cy = (float(v) for v in centre)
@@ -133,7 +169,29 @@ def _fill_nearest(a: np.ndarray) -> np.ndarray:
 def load_bathymetry(path: str | Path, values: str, area, *, shown: str | None = None) -> Bathymetry:
     """Read the raster ``path`` over ``area`` (a :class:`~sss_locus.experiments.survey_design.area.SurveyArea`
     with an origin), checked (module docstring); ``shown`` the file's name in messages and captions
-    (default ``path``)."""
+    (default ``path``).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The raster file (GeoTIFF or any GDAL raster).
+    values : str
+        One of :data:`VALUES`: ``"depth"`` (m, positive down) or ``"elevation"`` (m, positive up).
+    area : SurveyArea
+        The area, with ``origin_lonlat``.
+    shown : str or None
+        The file's name in messages.
+
+    Returns
+    -------
+    Bathymetry
+        The grid over the area (local metres), its SHA-256 and depth statistics.
+
+    Raises
+    ------
+    ValueError
+        Unknown ``values``, a missing file, an area without an origin, or a grid that fails the checks.
+    """
     shown = str(path) if shown is None else shown
     if values not in VALUES:
         raise ValueError(f"{shown}: bathymetry_values must be one of {list(VALUES)} (depth: metres below the "
