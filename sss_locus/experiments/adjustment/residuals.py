@@ -91,13 +91,39 @@ class JointProblem:
                                      3 * self.height_rows + 2])
 
     def split(self, x) -> tuple[np.ndarray, np.ndarray]:
-        """Feature positions (n, 3) and pass corrections (P, 5) (zeros where not free) of ``x``."""
+        """Feature positions (n, 3) and pass corrections (P, 5) (zeros where not free) of ``x``.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            Parameter vector, shape (:attr:`n_params`,).
+
+        Returns
+        -------
+        points : numpy.ndarray
+            Feature positions, world ENU, m, shape (n, 3).
+        corrections : numpy.ndarray
+            Pass corrections, shape (P, 5) (m and radians as in the module docstring).
+        """
         c = np.zeros((self.priors.n_passes, 5))
         c[self.free] = x[3 * self.features.size:]
         return x[:3 * self.features.size].reshape(-1, 3), c
 
     def pack(self, points, corrections) -> np.ndarray:
-        """``x`` from feature positions (n, 3) and pass corrections (P, 5)."""
+        """``x`` from feature positions (n, 3) and pass corrections (P, 5).
+
+        Parameters
+        ----------
+        points : array_like
+            Feature positions, world ENU, m, shape (n, 3).
+        corrections : array_like
+            Pass corrections, shape (P, 5); only the free entries are kept.
+
+        Returns
+        -------
+        numpy.ndarray
+            Parameter vector, shape (:attr:`n_params`,).
+        """
         return np.concatenate([np.asarray(points, float).ravel(), np.asarray(corrections, float)[self.free]])
 
     def _geometry(self, x):
@@ -106,7 +132,18 @@ class JointProblem:
         return f[self.fslot], o, W, c
 
     def residuals(self, x) -> np.ndarray:
-        """The weighted residuals (module docstring), shape (:attr:`n_residuals`,)."""
+        """The weighted residuals (module docstring), shape (:attr:`n_residuals`,).
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            Parameter vector, shape (:attr:`n_params`,).
+
+        Returns
+        -------
+        numpy.ndarray
+            Dimensionless residuals (each divided by its sigma).
+        """
         p, o, W, c = self._geometry(x)
         return self._residuals(p, o, W, c)
 
@@ -129,7 +166,18 @@ class JointProblem:
         return (z[self.height_rows] - self.height_prior) / self.height_sigma
 
     def jacobian(self, x) -> sp.csr_matrix:
-        """The residuals' Jacobian at ``x``, ``(n_residuals, n_params)`` sparse."""
+        """The residuals' Jacobian at ``x``, ``(n_residuals, n_params)`` sparse.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            Parameter vector, shape (:attr:`n_params`,).
+
+        Returns
+        -------
+        scipy.sparse.csr_matrix
+            Shape (:attr:`n_residuals`, :attr:`n_params`).
+        """
         p, o, W, c = self._geometry(x)
         k, pi = self.rows, self.pidx
         d = p - o
@@ -168,5 +216,11 @@ class JointProblem:
         return out * np.asarray(w)[:, None]
 
     def sparsity(self) -> sp.csr_matrix:
-        """The Jacobian's structure (ones), for ``least_squares(jac_sparsity=...)``."""
+        """The Jacobian's structure (ones), for ``least_squares(jac_sparsity=...)``.
+
+        Returns
+        -------
+        scipy.sparse.csr_matrix
+            Shape (:attr:`n_residuals`, :attr:`n_params`), ones where the Jacobian may be non-zero.
+        """
         return sp.csr_matrix((np.ones(self.jrows.size), (self.jrows, self.jcols)), shape=(self.n_residuals, self.n_params))

@@ -86,7 +86,21 @@ def heading_from_compass_deg(compass_deg) -> float:
 
 
 def uturn_length_m(d_m, radius_m) -> np.ndarray:
-    """Length of the shortest turn between anti-parallel lines ``d_m`` apart (module docstring)."""
+    """Length of the shortest turn between anti-parallel lines ``d_m`` apart (module docstring).
+
+    Parameters
+    ----------
+    d_m : array_like
+        Distance between the lines, m (sign ignored).
+    radius_m : array_like
+        Turn radius, m (broadcast with ``d_m``).
+
+    Returns
+    -------
+    numpy.ndarray
+        Turn length, m, the broadcast shape; ``pi r`` + the straight part when ``d >= 2 r``, a
+        keyhole turn when the lines are closer; 0 for ``d = r = 0``.
+    """
     d, r = np.broadcast_arrays(np.abs(np.asarray(d_m, float)), np.asarray(radius_m, float))
     with np.errstate(invalid="ignore", divide="ignore"):
         alpha = np.arccos(np.clip((d + 2 * r) / np.where(r > 0, 4 * r, 1.0), -1.0, 1.0))
@@ -147,7 +161,26 @@ def _count(u, cs, near_m: float, reach_m: float) -> np.ndarray:
 def flown_positions(c_min: float, c_max: float, sets, reach_m: float, near_m: float) -> list[np.ndarray]:
     """Across-track positions (m, along the heading's left normal) of the lines of ``sets``
     (``(spacing_m, offset)`` pairs run at one heading) as flown (module docstring), one array per
-    set, increasing."""
+    set, increasing.
+
+    Parameters
+    ----------
+    c_min : float
+        The area's lowest across-track coordinate, m.
+    c_max : float
+        Its highest, m.
+    sets : sequence of tuple
+        ``(spacing_m, offset)`` per line set (offset in spacings).
+    reach_m : float
+        The swath's far edge from the track, m.
+    near_m : float
+        The nadir gap's half width, m.
+
+    Returns
+    -------
+    list of numpy.ndarray
+        Across-track positions, m, one increasing array per set.
+    """
     pos = lambda sp, off, lo, hi: c_min + (np.arange(math.floor((lo - c_min) / sp - 0.5 - off),  # noqa: E731
                                                       math.ceil((hi - c_min) / sp - 0.5 - off) + 1) + 0.5 + off) * sp
     step = min(1.0, (c_max - c_min) / 100.0) if c_max > c_min else 1.0
@@ -167,7 +200,20 @@ def flown_positions(c_min: float, c_max: float, sets, reach_m: float, near_m: fl
 
 
 def across_extent(area: SurveyArea, heading_deg: float) -> tuple[float, float]:
-    """The area's extent across lines of ``heading_deg`` (along the left normal), m."""
+    """The area's extent across lines of ``heading_deg`` (along the left normal), m.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The area (local metres).
+    heading_deg : float
+        Line heading, degrees counter-clockwise from east.
+
+    Returns
+    -------
+    lo, hi : float
+        Across-track extent, m.
+    """
     _, n = _unit(float(heading_deg))
     across = np.asarray(area.polygon.exterior.coords) @ n
     return float(across.min()), float(across.max())
@@ -179,7 +225,41 @@ def line_set(area: SurveyArea, heading_deg: float, spacing_m: float, *, offset: 
     """Parallel lines over ``area`` (module docstring; ``reach_m`` > 0: the lines as flown, with
     the swath's reach and a run-in/run-out of ``run_m``; ``across_m`` the lines' across-track
     positions, default :func:`flown_positions` of this set alone); one row per segment, columns
-    :data:`LINE_COLUMNS` (``set`` is ``name``; ``line`` counts the lines from 0 in run order)."""
+    :data:`LINE_COLUMNS` (``set`` is ``name``; ``line`` counts the lines from 0 in run order).
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The area (local metres).
+    heading_deg : float
+        Line heading, degrees counter-clockwise from east.
+    spacing_m : float
+        Line spacing, m (> 0).
+    offset : float
+        Shift of the lines, in spacings.
+    name : str
+        The set's name (``set`` column).
+    reach_m : float
+        Swath reach, m (0: lines over the polygon only).
+    run_m : float
+        Run-in and run-out, m.
+    near_m : float
+        Nadir gap half width, m.
+    across_m : array_like or None
+        Across-track positions of the lines, m.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Segments in the area frame (``x0_m``, ``y0_m``, ``x1_m``, ``y1_m``, ``heading_deg``,
+        ``length_m``, ...), alternate lines reversed; empty when no segment of at least
+        :data:`MIN_SEGMENT_M` is left.
+
+    Raises
+    ------
+    ValueError
+        A non-finite or non-positive spacing, heading, reach or run.
+    """
     if not (isinstance(spacing_m, (int, float, np.floating)) and math.isfinite(spacing_m) and spacing_m > 0):
         raise ValueError(f"spacing_m must be a finite number > 0; got {spacing_m!r}")
     if not (isinstance(heading_deg, (int, float, np.floating)) and math.isfinite(heading_deg)):
@@ -221,7 +301,20 @@ def line_set(area: SurveyArea, heading_deg: float, spacing_m: float, *, offset: 
 
 def track_length(lines: pd.DataFrame, turn_radius_m: float) -> dict[str, float]:
     """Lengths of the track that runs ``lines`` in order (module docstring): ``lines_m``,
-    ``turns_m`` (U-turns and junctions), ``total_m``, and ``n_segments``."""
+    ``turns_m`` (U-turns and junctions), ``total_m``, and ``n_segments``.
+
+    Parameters
+    ----------
+    lines : pandas.DataFrame
+        Segments in run order (:func:`line_set`).
+    turn_radius_m : float
+        Turn radius, m (>= 0).
+
+    Returns
+    -------
+    dict
+        ``lines_m``, ``turns_m``, ``total_m`` (m) and ``n_segments``; zeros for no lines.
+    """
     if not (isinstance(turn_radius_m, (int, float, np.floating)) and turn_radius_m >= 0):
         raise ValueError(f"turn_radius_m must be a number >= 0; got {turn_radius_m!r}")
     L = lines

@@ -46,7 +46,28 @@ line, back to the first line's start, the mission's home, inside the fence)."""
 
 def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_vertices: int = 60):
     """Inclusion fence (shapely Polygon) and exclusion fences (list of Polygons), local metres
-    (module docstring); ``legs`` the lines and turns (a shapely geometry) the fence must hold."""
+    (module docstring); ``legs`` the lines and turns (a shapely geometry) the fence must hold.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The area (local metres).
+    legs : shapely.Geometry
+        Lines and turns the fence must hold.
+    turn_radius_m : float
+        Turn radius, m.
+    margin_m : float
+        Margin beyond the grown track, m.
+    max_vertices : int
+        Most vertices of the inclusion fence.
+
+    Returns
+    -------
+    fence : shapely.Polygon
+        The inclusion fence.
+    holes : list of shapely.Polygon
+        The exclusion fences (the area's holes).
+    """
     import shapely
 
     outer = shapely.Polygon(area.polygon.exterior)
@@ -126,7 +147,30 @@ def _transit(a, b, free, nodes, room) -> list:
 def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: float = 5.0,
                 step_deg: float = 15.0) -> tuple[pd.DataFrame, object, list]:
     """The plan's track (module docstring): a table of :data:`PATH_COLUMNS` in flying order, the
-    inclusion fence and the exclusion fences."""
+    inclusion fence and the exclusion fences.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The area (local metres).
+    lines : pandas.DataFrame
+        Segments in run order.
+    turn_radius_m : float
+        Turn radius, m.
+    margin_m : float
+        Fence margin, m.
+    step_deg : float
+        Angular step of the turn points, degrees.
+
+    Returns
+    -------
+    path : pandas.DataFrame
+        Track points (:data:`PATH_COLUMNS`, ``east_m``/``north_m`` local metres) in flying order.
+    fence : shapely.Polygon
+        The inclusion fence.
+    holes : list of shapely.Polygon
+        The exclusion fences.
+    """
     import shapely
 
     R = float(turn_radius_m)
@@ -172,7 +216,24 @@ def flight_path(area, lines: pd.DataFrame, turn_radius_m: float, *, margin_m: fl
 
 
 def check_inside(path: pd.DataFrame, fence, holes, *, what: str = "track") -> None:
-    """Refuse, in one line, a track with a point or leg outside ``fence`` or inside a hole."""
+    """Refuse, in one line, a track with a point or leg outside ``fence`` or inside a hole.
+
+    Parameters
+    ----------
+    path : pandas.DataFrame
+        Track points (``east_m``, ``north_m``), at least one.
+    fence : shapely.Polygon
+        The inclusion fence.
+    holes : list of shapely.Polygon
+        The exclusion fences.
+    what : str
+        What the message names.
+
+    Raises
+    ------
+    ValueError
+        The track leaves the fence or crosses a hole.
+    """
     import shapely
 
     xy = path[["east_m", "north_m"]].to_numpy()
@@ -217,7 +278,22 @@ def track_cost(path: pd.DataFrame) -> dict[str, float]:
 def turn_misfits(area, lines: pd.DataFrame, turn_radius_m: float) -> list[str]:
     """The U-turns of ``lines`` that do not fit in the area's navigable water with its wall
     clearance, one sentence each naming the lines (:func:`~.turns.fit_turns`; open water: none);
-    the track joins those lines by a transit inside the water."""
+    the track joins those lines by a transit inside the water.
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The area (local metres).
+    lines : pandas.DataFrame
+        Segments in run order.
+    turn_radius_m : float
+        Turn radius, m.
+
+    Returns
+    -------
+    list of str
+        One sentence per U-turn that does not fit; empty in open water or without lines.
+    """
     from sss_locus.experiments.survey_design.turns import fit_turns
 
     water = area.water()

@@ -51,7 +51,23 @@ horizontal uncertainty) and a surveyor's target list is judged on."""
 
 
 def candidates(plans: pd.DataFrame, objective_col: str, *, n_scored: int = 8) -> pd.Index:
-    """Rows of ``plans`` (the search's table) to score (module docstring)."""
+    """Rows of ``plans`` (the search's table) to score (module docstring).
+
+    Parameters
+    ----------
+    plans : pandas.DataFrame
+        The search's plans table.
+    objective_col : str
+        The objective's column.
+    n_scored : int
+        Best searched plans scored (>= 0).
+
+    Returns
+    -------
+    pandas.Index
+        The baselines, the recommended row and the ``n_scored`` best eligible searched plans no
+        longer than the standard plan.
+    """
     if isinstance(n_scored, bool) or not isinstance(n_scored, (int, np.integer)) or n_scored < 0:
         raise ValueError(f"n_scored must be an integer >= 0; got {n_scored!r}")
     std_total = float(plans.loc[plans.kind == "standard", "total_m"].iloc[0])
@@ -65,7 +81,18 @@ def candidates(plans: pd.DataFrame, objective_col: str, *, n_scored: int = 8) ->
 
 def check_seeds(seeds) -> list[int]:
     """``seeds`` as distinct ints >= 0, at least 3 (the interval needs them); else ``ValueError``
-    naming ``noise_seeds``."""
+    naming ``noise_seeds``.
+
+    Parameters
+    ----------
+    seeds : iterable of int
+        The noise seeds.
+
+    Returns
+    -------
+    list of int
+        The seeds.
+    """
     try:
         out = [int(x) for x in seeds]
     except (TypeError, ValueError):
@@ -136,7 +163,18 @@ def summarise(scores: pd.DataFrame) -> pd.DataFrame:
     ``n_seeds``, ``min_features`` (the fewest features any of its seeds' medians used) and
     ``mean_features``, and for each error of :data:`ERRORS` its mean over the seeds with the 95 %
     interval (``error_<name>_m``, ``error_<name>_lo_m``, ``error_<name>_hi_m``; the mean and the
-    interval NaN where a seed had too few features)."""
+    interval NaN where a seed had too few features).
+
+    Parameters
+    ----------
+    scores : pandas.DataFrame
+        One row per plan and seed (``plan_index``, ``kind``, ``total_m``, errors in m, ...).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per plan, index ``plan_index``.
+    """
     out = []
     for i, g in scores.groupby("plan_index", sort=False):
         row = {"plan_index": i, "kind": g.kind.iloc[0], "total_m": float(g.total_m.mean()),
@@ -155,6 +193,13 @@ def summarise(scores: pd.DataFrame) -> pd.DataFrame:
 def recommend_under_noise(summary: pd.DataFrame, error: str = DECIDING_ERROR) -> dict:
     """The rule of the module docstring on a :func:`summarise` table, decided on ``error`` (one of
     :data:`ERRORS`).
+
+    Parameters
+    ----------
+    summary : pandas.DataFrame
+        :func:`summarise`'s table.
+    error : str
+        A key of :data:`ERRORS`.
 
     Returns
     -------
