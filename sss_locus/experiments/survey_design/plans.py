@@ -371,7 +371,7 @@ def standard_heading_deg(area: SurveyArea, terrain) -> float:
     Returns
     -------
     float
-        Heading, degrees clockwise from north, in [0, 180).
+        Heading, degrees counter-clockwise from east (the area frame), in [0, 180).
     """
     if terrain.kind == "slope" and terrain.params.get("slope_deg", 0.0) > 0:
         return float(terrain.params["azimuth_deg"] % 180.0)
@@ -462,7 +462,7 @@ def plan_grid(platform, area: SurveyArea, terrain, settings, heights_m, *, headi
     heights_m : array_like
         Seafloor heights over the area, m.
     headings_deg : sequence of float
-        Main-line headings, degrees clockwise from north.
+        Main-line headings, degrees counter-clockwise from east (the area frame).
     spacing_fractions : sequence of float
         Main-line spacings as fractions of the range scale.
     crossing_angles_deg : sequence of float
