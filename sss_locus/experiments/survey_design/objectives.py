@@ -53,7 +53,24 @@ def _pairs(seen: np.ndarray, k: int, cap: int | None = None):
 
 def pair_loci(views: Views, seen, aperture, heading_deg) -> pd.DataFrame:
     """Best-pair locus per feature (module docstring): ``n_seen``, ``locus_length_m``,
-    ``crossing_angle_deg`` (NaN where ``n_seen < 2``)."""
+    ``crossing_angle_deg`` (NaN where ``n_seen < 2``).
+
+    Parameters
+    ----------
+    views : Views
+        The views, shape (n, L).
+    seen : array_like
+        Boolean (n, L).
+    aperture : Aperture
+        The sonar's beam aperture.
+    heading_deg : array_like
+        Heading per line, degrees, shape (L,).
+
+    Returns
+    -------
+    pandas.DataFrame
+        n rows: ``n_seen``, ``locus_length_m`` (m), ``crossing_angle_deg`` (in [0, 180]).
+    """
     seen = np.asarray(seen, bool)
     n = seen.shape[0]
     best = np.full(n, np.inf)
@@ -76,7 +93,22 @@ def pair_loci(views: Views, seen, aperture, heading_deg) -> pd.DataFrame:
 
 
 def three_view_closure(views: Views, seen, aperture) -> np.ndarray:
-    """Per feature: True where some triple of its lines resolves it (module docstring)."""
+    """Per feature: True where some triple of its lines resolves it (module docstring).
+
+    Parameters
+    ----------
+    views : Views
+        The views, shape (n, L).
+    seen : array_like
+        Boolean (n, L).
+    aperture : Aperture
+        The sonar's beam aperture.
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean, shape (n,); False for features seen fewer than three times.
+    """
     seen = np.asarray(seen, bool)
     out = np.zeros(seen.shape[0], bool)
     rows = _pairs(seen, 3, MAX_TRIPLES)
@@ -94,7 +126,28 @@ def reconstruction_errors(views: Views, seen, sensor_height_m, noise, aperture, 
     """Per feature, the 3-D error of the ``all`` and ``two`` estimates under ``noise`` (NaN where
     not estimated): columns ``error_all_m``, ``error_two_m``. A plan of fewer than three segments
     is padded with unseen copies of its last segment (the estimators index three views), so a
-    one-segment plan estimates nothing (every feature NaN) and a two-segment plan no ``all``."""
+    one-segment plan estimates nothing (every feature NaN) and a two-segment plan no ``all``.
+
+    Parameters
+    ----------
+    views : Views
+        The views, shape (n, L).
+    seen : array_like
+        Boolean (n, L).
+    sensor_height_m : array_like
+        Sensor heights above the seafloor, m, shape (n, L) or broadcastable.
+    noise : NoiseModel
+        The noise model.
+    aperture : Aperture
+        The sonar's beam aperture.
+    seed : int
+        Seed of the noise.
+
+    Returns
+    -------
+    pandas.DataFrame
+        n rows: ``error_all_m``, ``error_two_m``, m.
+    """
     seen = np.asarray(seen, bool)
     if seen.shape[1] < 3:
         pad = [seen.shape[1] - 1] * (3 - seen.shape[1])

@@ -61,7 +61,26 @@ def uturn_points(p_end, heading_deg: float, q_start, radius_m: float, *, step_de
     Dubins path that turns twice toward the next line (arc, tangent, arc: with ends level, the
     quarter circles and straight of the module docstring; with a stagger, the tangent runs
     diagonally, so the vehicle does not run along the next line's track beyond its start) and,
-    for lines closer than ``2R``, the bulb turn with the stagger run straight."""
+    for lines closer than ``2R``, the bulb turn with the stagger run straight.
+
+    Parameters
+    ----------
+    p_end : array_like
+        End of the line, local metres, shape (2,).
+    heading_deg : float
+        The line's heading, degrees counter-clockwise from east.
+    q_start : array_like
+        Start of the next line, local metres, shape (2,).
+    radius_m : float
+        Turn radius, m (<= 0: a straight step across).
+    step_deg : float
+        Angular step of the arc points, degrees.
+
+    Returns
+    -------
+    numpy.ndarray
+        Points, local metres, shape (k, 2), ending at ``q_start``.
+    """
     P, Q = np.asarray(p_end, float), np.asarray(q_start, float)
     h = math.radians(heading_deg)
     e = np.array([math.cos(h), math.sin(h)])
@@ -96,7 +115,26 @@ def uturn_points(p_end, heading_deg: float, q_start, radius_m: float, *, step_de
 
 def turn_fits(free, p_end, heading_deg: float, q_start, radius_m: float) -> bool:
     """Whether the U-turn of :func:`uturn_points` from ``p_end`` to ``q_start`` stays in ``free``
-    (a shapely geometry: the water the vehicle may use, its clearance already taken off)."""
+    (a shapely geometry: the water the vehicle may use, its clearance already taken off).
+
+    Parameters
+    ----------
+    free : shapely.Geometry
+        The water the vehicle may use.
+    p_end : array_like
+        End of the line, local metres, shape (2,).
+    heading_deg : float
+        The line's heading, degrees counter-clockwise from east.
+    q_start : array_like
+        Start of the next line, local metres, shape (2,).
+    radius_m : float
+        Turn radius, m.
+
+    Returns
+    -------
+    bool
+        True when the turn stays inside ``free``.
+    """
     import shapely
 
     pts = uturn_points(p_end, heading_deg, q_start, radius_m)
@@ -119,6 +157,8 @@ def fit_turns(lines, free, radius_m: float, *, max_pull_m: float | None = None):
         Where the vehicle may be.
     radius_m : float
         The vehicle's turn radius, m.
+    max_pull_m : float or None
+        Most pull-back per end, m; ``None``: 4 turn radii.
 
     Returns
     -------

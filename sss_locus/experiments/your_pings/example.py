@@ -37,6 +37,32 @@ def simulate(platform, terrain, layout: SurveyLayout, *, n_features: int, altitu
              float32: bool = True):
     """Sightings (the CSV columns, numbers) and the truth of a simulated survey.
 
+    Parameters
+    ----------
+    platform : Platform
+        The platform surveying.
+    terrain : Terrain
+        The seafloor (local metres).
+    layout : SurveyLayout
+        The survey's lines and area.
+    n_features : int
+        Features placed on the seafloor.
+    altitude_m : float
+        Altitude flown, m.
+    seed : int
+        Seed of features, observations and noise.
+    frame : LocalFrame
+        The local frame (gives longitude/latitude and the meridian convergence).
+    noise : bool
+        Add the platform's noise (navigation per line and per ping, attitude, range).
+    n_samples : int
+        Samples per ping (range quantisation).
+    surface_m : float or None
+        Height of the sea surface in the terrain's frame, m; ``None``: the shallowest vehicle
+        position (plus the depth rating's minimum for a vehicle that dives).
+    float32 : bool
+        Round the recorded fields to float32 as XTF stores them.
+
     Returns
     -------
     sightings : pandas.DataFrame
@@ -114,7 +140,24 @@ def xtf_tables(sights: pd.DataFrame, file_name: str, port_order: str = "far_firs
     table that names it: ``(pings, matches)`` for
     :func:`~sss_locus.experiments.sonar_files.observations_xtf.write_xtf` (with the same ``port_order``)
     and the matches CSV, whose ``sample`` is the index as stored (a port sample of a
-    far-to-near channel counted from the far end)."""
+    far-to-near channel counted from the far end).
+
+    Parameters
+    ----------
+    sights : pandas.DataFrame
+        :func:`simulate`'s sightings.
+    file_name : str
+        The XTF file's name written into the matches.
+    port_order : str
+        ``"far_first"`` or ``"near_first"``.
+
+    Returns
+    -------
+    pings : pandas.DataFrame
+        One row per ping for ``write_xtf``.
+    matches : pandas.DataFrame
+        ``feature``, ``platform``, ``file``, ``ping``, ``channel``, ``sample``, ``range_sigma_m``.
+    """
     k = np.arange(len(sights))
     port = (sights["side"] == "port").to_numpy()
     pings = sights[["lon_deg", "lat_deg", "depth_m", "altitude_m", "heading_deg", "pitch_deg", "roll_deg",
@@ -133,7 +176,17 @@ CHECK_COLUMNS = ("east_m", "north_m", "grid_heading_deg", "slant_range_m")
 
 
 def write_csv(path, table: pd.DataFrame, notice: str = NOTICE) -> None:
-    """A CSV file headed by a ``# notice`` comment line (floats written exactly)."""
+    """A CSV file headed by a ``# notice`` comment line (floats written exactly).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file written (overwritten).
+    table : pandas.DataFrame
+        The rows.
+    notice : str
+        The comment line's text.
+    """
     from pathlib import Path
 
     Path(path).write_text(f"# {notice}\n" + table.to_csv(index=False))
@@ -143,7 +196,30 @@ def write_example(folder, platform, terrain, layout: SurveyLayout, *, frame: Loc
                   **kw) -> dict:
     """Write the worked example into ``folder``: ``<name>_sightings.csv``, ``<name>.xtf``,
     ``<name>_xtf_matches.csv`` and ``<name>_truth.csv`` (each marked SYNTHETIC); return the
-    paths. Keywords go to :func:`simulate`."""
+    paths. Keywords go to :func:`simulate`.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        Where the files go (created).
+    platform : Platform
+        The platform.
+    terrain : Terrain
+        The seafloor.
+    layout : SurveyLayout
+        The survey.
+    frame : LocalFrame
+        The local frame.
+    name : str
+        File name prefix.
+    **kw
+        Keywords of :func:`simulate`.
+
+    Returns
+    -------
+    dict
+        ``sightings``, ``xtf``, ``matches``, ``truth`` -> pathlib.Path.
+    """
     from pathlib import Path
 
     from sss_locus.experiments.sonar_files.observations_xtf import write_xtf

@@ -51,7 +51,25 @@ def _point(lon, lat, up):
 def geojson(res: PingResults, *, notice: str = "") -> dict:
     """The results as a GeoJSON FeatureCollection (module docstring); ``notice`` (e.g. that the
     data are synthetic) is stored as the collection's ``description``. Refused (``ValueError``)
-    for results without longitude/latitude (local metres without an origin)."""
+    for results without longitude/latitude (local metres without an origin).
+
+    Parameters
+    ----------
+    res : PingResults
+        The results, with a frame.
+    notice : str
+        Description stored in the collection (empty: none).
+
+    Returns
+    -------
+    dict
+        The GeoJSON FeatureCollection (coordinates longitude, latitude in degrees, up in m).
+
+    Raises
+    ------
+    ValueError
+        Results in local metres without a frame.
+    """
     if res.frame is None:
         raise ValueError("GeoJSON needs longitude/latitude: the sightings are in local metres; give the "
                          "local frame's origin (origin_lon_deg, origin_lat_deg)")
@@ -94,7 +112,20 @@ def geojson(res: PingResults, *, notice: str = "") -> dict:
 
 
 def geojson_text(res: PingResults, *, notice: str = "") -> str:
-    """:func:`geojson` as JSON text (no NaN: missing values are ``null``)."""
+    """:func:`geojson` as JSON text (no NaN: missing values are ``null``).
+
+    Parameters
+    ----------
+    res : PingResults
+        The results, with a frame.
+    notice : str
+        Description stored in the collection.
+
+    Returns
+    -------
+    str
+        The JSON text, ending in a newline.
+    """
     return json.dumps(geojson(res, notice=notice), indent=1, allow_nan=False) + "\n"
 
 
@@ -102,7 +133,20 @@ def against_truth(res: PingResults, truth: pd.DataFrame) -> pd.DataFrame:
     """Errors of each estimate against known feature positions (``truth``: ``feature``,
     ``east_m``, ``north_m``, ``up_m``): one row per feature and estimator (``flat`` mean,
     ``two_view``, ``nview``, ``joint`` where computed) with ``error_h_m`` and ``error_up_m`` (estimate minus truth); rows
-    without an estimate are left out (their status is in the features table)."""
+    without an estimate are left out (their status is in the features table).
+
+    Parameters
+    ----------
+    res : PingResults
+        The results (local metres).
+    truth : pandas.DataFrame
+        True positions, local frame, m.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``feature``, ``estimator``, ``n_sightings``, ``error_h_m``, ``error_up_m``.
+    """
     t = res.features.merge(truth, on="feature", how="inner", suffixes=("", "_true"))
     rows = []
     for est in [e for e in ("flat", "two_view", "nview", "joint") if f"{e}_east_m" in t]:
@@ -118,7 +162,25 @@ def against_truth(res: PingResults, truth: pd.DataFrame) -> pd.DataFrame:
 def read_truth(truth, observations) -> pd.DataFrame | None:
     """Known feature positions (a CSV with ``feature``, ``east_m``, ``north_m``, ``up_m``, in the
     local frame) to compare with, or ``None``: no ``truth`` given, or the shipped example's truth
-    with observations that are not the shipped example's (a user's own survey)."""
+    with observations that are not the shipped example's (a user's own survey).
+
+    Parameters
+    ----------
+    truth : str or os.PathLike or None
+        The truth CSV (empty or ``None``: none).
+    observations : str or os.PathLike
+        The observations file it goes with.
+
+    Returns
+    -------
+    pandas.DataFrame or None
+        ``feature`` (str), ``east_m``, ``north_m``, ``up_m`` (float, local frame); or ``None``.
+
+    Raises
+    ------
+    ValueError
+        A missing or unreadable file, a missing column, a non-finite value or a repeated feature.
+    """
     from pathlib import Path
 
     from sss_locus.paths import DATA_DIR

@@ -86,7 +86,18 @@ def infer_passes(sightings: pd.DataFrame) -> np.ndarray:
     """The pass of each sighting (module docstring): integers from 0, shape (m,).
 
     ``sightings`` needs ``source``, ``line``, ``time_s``, ``grid_heading_deg``, ``east_m`` and
-    ``north_m`` (``PingResults.sightings``)."""
+    ``north_m`` (``PingResults.sightings``).
+
+    Parameters
+    ----------
+    sightings : pandas.DataFrame
+        The sightings, m rows.
+
+    Returns
+    -------
+    numpy.ndarray
+        Pass index per sighting, int, shape (m,); empty for no sightings.
+    """
     t = sightings["time_s"].to_numpy(float)
     key = np.where(np.isfinite(t), t, sightings["line"].to_numpy(float))
     order = np.lexsort((key, sightings["source"].astype(str).to_numpy()))
@@ -129,6 +140,17 @@ def joint_estimate(res: PingResults, platform, noise: PassNoise, *, ping_positio
         ``noise.ping_heading_sigma_deg``.
     loss : str
         Robust loss (:data:`~sss_locus.experiments.adjustment.LOSSES`).
+
+    Returns
+    -------
+    JointPings
+        The features' joint estimates, the passes' corrections, the sightings with residuals and a
+        summary.
+
+    Raises
+    ------
+    ValueError
+        A ping sigma that is not a finite number >= 0.
     """
     if not isinstance(noise, PassNoise):
         raise ValueError(f"noise must be a PassNoise (noise.load_pass_noise); got {type(noise).__name__}")
@@ -198,7 +220,25 @@ def joint_estimate(res: PingResults, platform, noise: PassNoise, *, ping_positio
 
 
 def pass_table(sights: pd.DataFrame, pid, corrections, sigma) -> pd.DataFrame:
-    """Each pass's lines, heading and estimated correction (see :class:`JointPings`)."""
+    """Each pass's lines, heading and estimated correction (see :class:`JointPings`).
+
+    Parameters
+    ----------
+    sights : pandas.DataFrame
+        The sightings (``source``, ``line``, ``grid_heading_deg``), m rows.
+    pid : numpy.ndarray
+        Pass index per sighting, shape (m,).
+    corrections : numpy.ndarray
+        Pass corrections, shape (P, 5) (offsets m, heading rad).
+    sigma : numpy.ndarray
+        Their 1-sigma, shape (P, 5).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per pass: ``source``, ``first_line``, ``last_line``, ``n_sightings``,
+        ``heading_deg``, offsets (m) and heading bias (deg) with their sigmas.
+    """
     g = pd.DataFrame({"pass": pid, "source": sights["source"].astype(str).to_numpy(), "line": sights["line"].to_numpy(),
                       "h": sights["grid_heading_deg"].to_numpy(float)}).groupby("pass", sort=True)
     t = g.agg(source=("source", "first"), first_line=("line", "min"), last_line=("line", "max"),
@@ -212,7 +252,20 @@ def pass_table(sights: pd.DataFrame, pid, corrections, sigma) -> pd.DataFrame:
 def with_joint(res: PingResults, joint: JointPings) -> PingResults:
     """``res`` with the joint estimate's columns added to its features table (``joint_...``,
     ``n_passes``) and its sightings table (``pass``, residuals, ``downweighted``), so that the
-    chapter's tables, figures and GeoJSON carry it beside the other estimates."""
+    chapter's tables, figures and GeoJSON carry it beside the other estimates.
+
+    Parameters
+    ----------
+    res : PingResults
+        The per-feature results.
+    joint : JointPings
+        :func:`joint_estimate` of them.
+
+    Returns
+    -------
+    PingResults
+        A new result (``excluded`` not carried over).
+    """
     feats = res.features.merge(joint.features, on="feature", how="left", validate="one_to_one")
     extra = [c for c in joint.sightings.columns if c not in res.sightings.columns]
     return PingResults(features=feats, sightings=res.sightings.join(joint.sightings[extra]), locus=res.locus,
