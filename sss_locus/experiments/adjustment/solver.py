@@ -148,7 +148,23 @@ class JointAdjustment:
 
 def robust_loss(name: str, f_scale: float, n_robust: int):
     """``least_squares``' callable loss: ``name`` on the first ``n_robust`` residuals (scale
-    ``f_scale``, in sigmas), linear on the rest. Returns ``loss(z) -> (3, len(z))``."""
+    ``f_scale``, in sigmas), linear on the rest. Returns ``loss(z) -> (3, len(z))``.
+
+    Parameters
+    ----------
+    name : str
+        ``"soft_l1"``, ``"huber"`` or ``"cauchy"`` (anything else: linear everywhere).
+    f_scale : float
+        Soft threshold, in sigmas.
+    n_robust : int
+        Number of leading residuals the robust loss applies to.
+
+    Returns
+    -------
+    callable
+        ``loss(z)`` of squared residuals ``z`` (shape (k,)) -> array (3, k): value, first and
+        second derivatives.
+    """
     c2 = float(f_scale) ** 2
 
     def loss(z):
@@ -174,7 +190,24 @@ def robust_loss(name: str, f_scale: float, n_robust: int):
 def misses_m(sightings: Sightings, priors: NavigationPriors, points_m, corrections) -> np.ndarray:
     """How far each sighting misses its feature at ``points_m`` (N, 3) with the pass
     ``corrections`` (P, 5), metres: the larger of the range miss and the beam-plane miss (the
-    distance times the beam-plane angle), shape (m,)."""
+    distance times the beam-plane angle), shape (m,).
+
+    Parameters
+    ----------
+    sightings : Sightings
+        The sightings, m of them.
+    priors : NavigationPriors
+        The passes' navigation priors.
+    points_m : array_like
+        Feature positions, world ENU, m, shape (N, 3).
+    corrections : array_like
+        Pass corrections, shape (P, 5).
+
+    Returns
+    -------
+    numpy.ndarray
+        Miss per sighting, m, shape (m,).
+    """
     o, W = corrected_poses(sightings, priors, corrections)
     p = np.asarray(points_m, float)[sightings.feature]
     d = np.linalg.norm(p - o, axis=1)
@@ -185,7 +218,20 @@ def misses_m(sightings: Sightings, priors: NavigationPriors, points_m, correctio
 
 def default_gate_m(sightings: Sightings, priors: NavigationPriors) -> float:
     """The default gate of :func:`adjust`, metres: ``GATE_FLOOR_M`` plus ``GATE_SIGMAS`` times the
-    largest offset prior and the largest heading prior times the median range."""
+    largest offset prior and the largest heading prior times the median range.
+
+    Parameters
+    ----------
+    sightings : Sightings
+        The sightings (their ranges, m).
+    priors : NavigationPriors
+        The passes' priors (offset sigmas m, heading sigmas deg).
+
+    Returns
+    -------
+    float
+        The gate, m (``GATE_FLOOR_M`` with no sightings and no priors).
+    """
     r = float(np.median(sightings.range_m)) if sightings.n else 0.0
     return float(GATE_FLOOR_M + GATE_SIGMAS * (np.max(priors.offset_sigma_m, initial=0.0)
                                                + np.radians(np.max(priors.heading_sigma_deg, initial=0.0)) * r))

@@ -62,7 +62,15 @@ class SurveyLayout:
 
     def lines(self) -> tuple[np.ndarray, np.ndarray]:
         """Headings (deg) and one point of each line (``(L, 2)``, m): main lines first (south to
-        north, alternating 0 / 180 deg), then cross lines (west to east, 90 / 270 deg)."""
+        north, alternating 0 / 180 deg), then cross lines (west to east, 90 / 270 deg).
+
+        Returns
+        -------
+        headings_deg : numpy.ndarray
+            Line headings, degrees, shape (L,).
+        points : numpy.ndarray
+            One point on each line, local metres centred on the area, shape (L, 2).
+        """
         out_h, out_c = [], []
         for spacing, base in ((self.line_spacing_m, 0.0), (self.cross_line_spacing_m, 90.0)):
             m = int(math.floor(self.area_m / spacing + 1e-9)) + 1
@@ -73,6 +81,13 @@ class SurveyLayout:
         return np.array(out_h), np.array(out_c)
 
     def key(self) -> dict:
+        """The layout as plain data (for cache keys and records).
+
+        Returns
+        -------
+        dict
+            ``area_m``, ``line_spacing_m``, ``cross_line_spacing_m``, ``margin_m`` (m).
+        """
         return {k: getattr(self, k) for k in ("area_m", "line_spacing_m", "cross_line_spacing_m", "margin_m")}
 
     @property
@@ -167,7 +182,22 @@ def observe_features(platform, terrain: Terrain, features, layout: SurveyLayout,
 def ray_blocked(terrain: Terrain, origins, targets) -> np.ndarray:
     """Whether the terrain rises above the straight ray from each origin to its target (m, world,
     shapes (p, 3)), except within ``SHADOW_CLEARANCE_M`` of the target, at ``SHADOW_SAMPLES``
-    points along the ray."""
+    points along the ray.
+
+    Parameters
+    ----------
+    terrain : Terrain
+        The seafloor.
+    origins : array_like
+        Ray origins, world, m, shape (p, 3).
+    targets : array_like
+        Ray targets, world, m, shape (p, 3).
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean, shape (p,).
+    """
     o, t = np.asarray(origins, float), np.asarray(targets, float)
     length = np.linalg.norm(t - o, axis=-1)
     stop = np.clip(1.0 - SHADOW_CLEARANCE_M / np.where(length > 0, length, 1.0), 0.0, 1.0)

@@ -36,7 +36,25 @@ SAME_M = 0.5
 def xtf_layback(ping, nav_units: int) -> tuple[float, str, float]:
     """The layback (m) of one XTF ping, where it comes from (``"Layback"``, ``"CableOut"`` or
     ``""``), and the horizontal distance (m) between its sensor and ship positions (NaN when
-    the ship position is not recorded)."""
+    the ship position is not recorded).
+
+    Parameters
+    ----------
+    ping : pyxtf.XTFPingHeader
+        The ping (``Layback``, ``CableOut``, ``SensorDepth``, sensor and ship positions).
+    nav_units : int
+        The file's ``NavUnits``: 3 longitude/latitude degrees (geodesic distance on WGS84), else
+        metres.
+
+    Returns
+    -------
+    layback : float
+        m, >= 0 (0 when neither field is given).
+    source : str
+        ``"Layback"``, ``"CableOut"`` or ``""``.
+    apart_m : float
+        Sensor-to-ship distance, m; NaN without a ship position.
+    """
     cable = float(ping.CableOut) + float(getattr(ping, "CableOutHundredths", 0)) / 100.0
     if np.isfinite(ping.Layback) and ping.Layback > 0:
         layback, source = float(ping.Layback), "Layback"
@@ -59,7 +77,29 @@ def xtf_layback(ping, nav_units: int) -> tuple[float, str, float]:
 
 def towfish_decision(layback: float, apart_m: float, choice: str) -> tuple[float, str]:
     """The layback still to apply (m) and how the sensor position was read (``choice`` of
-    :data:`CHOICES`); ``ValueError`` (without a location) when ``"auto"`` cannot tell."""
+    :data:`CHOICES`); ``ValueError`` (without a location) when ``"auto"`` cannot tell.
+
+    Parameters
+    ----------
+    layback : float
+        The ping's layback, m.
+    apart_m : float
+        Sensor-to-ship distance, m (NaN: unknown).
+    choice : str
+        One of :data:`CHOICES`.
+
+    Returns
+    -------
+    shift_m : float
+        Layback still to apply, m (0 when the position is already the towfish's).
+    how : str
+        How the position was read, in words.
+
+    Raises
+    ------
+    ValueError
+        Unknown ``choice``, or ``"auto"`` when the distances disagree.
+    """
     if choice not in CHOICES:
         raise ValueError(f"towfish must be one of {list(CHOICES)}; got {choice!r}")
     if layback <= 0 or choice == "recorded":
@@ -77,7 +117,20 @@ def apply_layback(table: pd.DataFrame) -> pd.DataFrame:
     """Move each sighting's reference point ``layback_m`` behind the given position along its
     grid heading (local frame: ``east_m``, ``north_m``, ``grid_heading_deg``); the given
     position is kept as ``tow_east_m``, ``tow_north_m``. A table without ``layback_m`` is
-    returned as it is."""
+    returned as it is.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Sightings in the local frame (``east_m``, ``north_m``, ``grid_heading_deg`` clockwise from
+        grid north, ``layback_m`` m).
+
+    Returns
+    -------
+    pandas.DataFrame
+        A copy with the moved ``east_m``/``north_m`` and ``tow_east_m``/``tow_north_m``; the input
+        itself without ``layback_m``.
+    """
     if "layback_m" not in table.columns:
         return table
     t = table.copy()

@@ -56,7 +56,27 @@ def _dtype(info, where: str):
 
 def read_header(path: Path, data: bytes):
     """The checked file header of ``data`` (the bytes of ``path``) and its sonar channels'
-    ``(TypeOfChannel, dtype)``."""
+    ``(TypeOfChannel, dtype)``.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file (named in the errors).
+    data : bytes
+        Its content.
+
+    Returns
+    -------
+    header : pyxtf.XTFFileHeader
+        The file header.
+    channels : list of tuple
+        ``(TypeOfChannel, numpy dtype)`` per sonar channel.
+
+    Raises
+    ------
+    ObservationError
+        Truncated, not XTF, too many channels or an unknown channel type, naming the byte.
+    """
     pyxtf, _ = _structures()
     size = ctypes.sizeof(pyxtf.XTFFileHeader)
     if len(data) < size:
@@ -121,7 +141,25 @@ def _sonar_packet(path: Path, data: bytes, pos: int, end: int, header, channels)
 def read_pings(path) -> tuple[object, dict[int, object]]:
     """The file header and the sonar pings by ``PingNumber`` of one XTF file (``pyxtf``
     structures; each ping with ``ping_chan_headers``, ``data`` and its byte ``offset``), in file
-    order. Anything malformed is refused (:class:`ObservationError`) naming the file and byte."""
+    order. Anything malformed is refused (:class:`ObservationError`) naming the file and byte.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The XTF file.
+
+    Returns
+    -------
+    header : pyxtf.XTFFileHeader
+        The file header.
+    pings : dict
+        ``PingNumber`` -> ping, in file order (empty for a file without sonar pings).
+
+    Raises
+    ------
+    ObservationError
+        A missing file or a malformed packet, naming the byte.
+    """
     pyxtf, _ = _structures()
     problem = missing_file(path, "XTF file")  # empty path, directory, device, FIFO, missing
     if problem:
@@ -162,5 +200,16 @@ def read_pings(path) -> tuple[object, dict[int, object]]:
 
 
 def channel_types(header) -> list[int]:
-    """``TypeOfChannel`` of each sonar channel, in the order of a ping's channels."""
+    """``TypeOfChannel`` of each sonar channel, in the order of a ping's channels.
+
+    Parameters
+    ----------
+    header : pyxtf.XTFFileHeader
+        The file header.
+
+    Returns
+    -------
+    list of int
+        ``TypeOfChannel`` per sonar channel (1 port, 2 starboard, ...).
+    """
     return [int(header.ChanInfo[k].TypeOfChannel) for k in range(int(header.NumberOfSonarChannels))]

@@ -24,7 +24,22 @@ def summary(path, sample_order: str = "detect") -> dict:
     (min, max), ``layback_from``, ``layback_bad`` (pings whose ``Layback`` is negative or not a
     number: the reader refuses them), and ``channels``: per channel ``channel``, ``type``, ``side``,
     ``n_samples`` (min, max), ``range_m`` (min, max), ``order`` and ``order_how`` (or
-    ``order_error``, the reason the order cannot be detected)."""
+    ``order_error``, the reason the order cannot be detected).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The XTF file.
+    sample_order : str
+        How the channels' order is decided
+        (:data:`~sss_locus.experiments.sonar_files.sample_order.CHOICES`).
+
+    Returns
+    -------
+    dict
+        The keys above; a file without sonar pings has only ``file``, ``sonar``, ``recorder``,
+        ``nav_units``, ``n_pings`` (0) and ``channels`` (empty).
+    """
     header, pings = read_pings(path)  # the path as given: an empty one is not the current folder
     path = Path(path)
     numbers = np.array(sorted(pings), dtype=np.int64)
@@ -61,7 +76,27 @@ def summary(path, sample_order: str = "detect") -> dict:
 
 def waterfall_data(path, channel: int) -> tuple[np.ndarray, np.ndarray]:
     """The ping numbers (file order) and the samples as stored of one channel of an XTF file,
-    pings by samples (shorter pings padded with NaN)."""
+    pings by samples (shorter pings padded with NaN).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The XTF file.
+    channel : int
+        Sonar channel index.
+
+    Returns
+    -------
+    pings : numpy.ndarray
+        Ping numbers, int, shape (p,).
+    image : numpy.ndarray
+        Samples as stored, shape (p, max samples), NaN padded.
+
+    Raises
+    ------
+    ValueError
+        ``channel`` out of range.
+    """
     header, pings = read_pings(path)
     if not 0 <= channel < int(header.NumberOfSonarChannels):
         raise ValueError(f"channel must be in [0, {int(header.NumberOfSonarChannels) - 1}] for {Path(path).name}; got {channel}")
