@@ -22,7 +22,20 @@ CHUNK_FEATURES = 4096
 
 def feature_blocks(Jf, n_features: int) -> np.ndarray:
     """The 3 x 3 diagonal blocks of ``Jf^T Jf``, shape (n, 3, 3), for the feature columns ``Jf``
-    (sparse, ``3 n`` columns, each row touching one feature)."""
+    (sparse, ``3 n`` columns, each row touching one feature).
+
+    Parameters
+    ----------
+    Jf : scipy.sparse matrix
+        Jacobian columns of the features, shape (rows, 3 n).
+    n_features : int
+        Number of features n.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (n, 3, 3), in 1/m² (residuals in sigmas); zero blocks for unseen features.
+    """
     H = sp.coo_matrix(Jf.T @ Jf)
     blocks = np.zeros((int(n_features), 3, 3))
     np.add.at(blocks, (H.row // 3, H.row % 3, H.col % 3), H.data)

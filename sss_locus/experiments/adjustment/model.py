@@ -169,7 +169,13 @@ class NavigationPriors:
 
     def sigmas(self) -> np.ndarray:
         """Prior standard deviations of the five corrections of every pass, shape (P, 5), in the
-        solver's units (m, m, rad, m/m, m/m); 0 where a parameter is not estimated."""
+        solver's units (m, m, rad, m/m, m/m); 0 where a parameter is not estimated.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (P, 5).
+        """
         h = np.radians(self.heading_sigma_deg)
         return np.stack([self.offset_sigma_m, self.offset_sigma_m, h, self.drift_sigma, self.drift_sigma], -1)
 

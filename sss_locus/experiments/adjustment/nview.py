@@ -63,9 +63,11 @@ def beam_plane_points(W, origin, ranges, range_sigmas, beam_plane_sigmas, mask, 
         Views that saw each feature.
     start : array_like, shape (n, 3)
         Start positions (e.g. the flat-seafloor mosaic), metres.
-    loss : str, f_scale : float
-        Robust loss on the views' residuals and its scale in sigmas
+    loss : str
+        Robust loss on the views' residuals
         (:data:`~sss_locus.experiments.adjustment.LOSSES`; default linear).
+    f_scale : float
+        The robust loss's scale, in sigmas.
 
     Returns
     -------

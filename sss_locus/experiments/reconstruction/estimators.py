@@ -151,7 +151,30 @@ def reconstruct_many(cases: Sequence[Mapping], aperture: Aperture, *, n_views=(3
     N-view solver call for consecutive cases with the same number of views, up to
     :data:`SOLVER_ROWS` rows (only their intermediate arrays are held at once). The solver's
     rows are independent, and its per-iteration overhead (its iterations run until the slowest
-    row of the call stops) is paid once per call instead of once per case."""
+    row of the call stops) is paid once per call instead of once per case.
+
+    Parameters
+    ----------
+    cases : sequence of Mapping
+        The cases, each the keywords of :func:`reconstruct` (without ``aperture``, ``n_views``,
+        ``margin_sigmas``).
+    aperture : Aperture
+        The sonar's beam aperture.
+    n_views : sequence of int
+        View counts of the N-view estimators (each >= 3).
+    margin_sigmas : float
+        Aperture margin of the N-view estimate, in noise sigmas.
+
+    Returns
+    -------
+    list of pandas.DataFrame
+        One table per case, in order (as :func:`reconstruct`); empty for no cases.
+
+    Raises
+    ------
+    ValueError
+        A view count below 3.
+    """
     if any(int(k) < 3 for k in n_views):
         raise ValueError(f"n_views must be integers >= 3; got {list(n_views)}")
     tables: list[pd.DataFrame] = []
@@ -267,7 +290,22 @@ def _estimates(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture:
 
 def summarise(table: pd.DataFrame, by=("estimator",)) -> pd.DataFrame:
     """Median and 90th percentile of the 3-D, horizontal and |vertical| errors over estimated
-    features, and the share estimated / resolved / ambiguous, per group."""
+    features, and the share estimated / resolved / ambiguous, per group.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Per-feature rows of :func:`reconstruct` (errors in m).
+    by : sequence of str
+        Grouping columns.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per group: ``n``, shares ``estimated``, ``resolved``, ``ambiguous``,
+        ``n_views_median``, error medians and 90th percentile (m), ``locus_length_median_m``
+        (NaN where no feature was estimated).
+    """
     t = table.assign(abs_error_v_m=table.error_v_m.abs(),
                      resolved=table.status.isin(["resolved", "estimated", "locus"]),
                      ambiguous=table.status == "ambiguous")

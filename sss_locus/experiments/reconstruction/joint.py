@@ -80,7 +80,30 @@ def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS, *, known
     mapping of :func:`~sss_locus.experiments.reconstruction.estimators.reconstruct`, for a sonar of full
     elevation beam width ``elevation_deg``; ``known_association``: the joint solve without the
     robust loss and the gate (module docstring); ``lsmr_tol``: the joint solve's LSMR tolerance
-    (:func:`~sss_locus.experiments.adjustment.adjust`)."""
+    (:func:`~sss_locus.experiments.adjustment.adjust`).
+
+    Parameters
+    ----------
+    elevation_deg : float
+        The sonar's full elevation beam width, degrees.
+    names : sequence of str
+        Estimators, among :data:`JOINT_ESTIMATORS` (``"beam"``, ``"joint"``).
+    known_association : bool
+        Solve without the robust loss and the gate.
+    lsmr_tol : float
+        LSMR tolerance of the joint solve.
+
+    Returns
+    -------
+    dict
+        Name -> callable ``(inputs) -> (points, estimated)``: points (n, 3) world ENU m, estimated
+        boolean (n,).
+
+    Raises
+    ------
+    ValueError
+        An unknown name (and, when called, ``"joint"`` without ``navigation="per_pass"``).
+    """
     unknown = set(names) - set(JOINT_ESTIMATORS)
     if unknown:
         raise ValueError(f"names must be among {list(JOINT_ESTIMATORS)}; got {sorted(unknown)}")

@@ -35,7 +35,24 @@ def flat_slope_error(ground_range_m, height_m, slope_deg, along_m=0.0) -> dict:
     """The closed form of the module docstring (all arguments broadcast; m and deg).
 
     Returns ``across_m`` (``y_hat - y``), ``vertical_m`` (``-y tan(beta)``) and ``error_3d_m``
-    (the length of the error vector, along-track part ``-a`` included)."""
+    (the length of the error vector, along-track part ``-a`` included).
+
+    Parameters
+    ----------
+    ground_range_m : array_like
+        True ground range across track, m.
+    height_m : array_like
+        Sensor height above the seafloor under it, m.
+    slope_deg : array_like
+        Signed slope across track, degrees.
+    along_m : array_like
+        Along-track offset of the feature, m.
+
+    Returns
+    -------
+    dict
+        ``across_m``, ``vertical_m``, ``error_3d_m`` (m), each the broadcast shape.
+    """
     y, H, a = (np.asarray(v, float) for v in (ground_range_m, height_m, along_m))
     t = np.tan(np.radians(np.asarray(slope_deg, float)))
     y_hat = np.sqrt(np.maximum(y * y * (1 + t * t) - 2 * H * y * t + a * a, 0.0))
@@ -52,6 +69,28 @@ def slope_views(platform, envelope, config: dict, slopes_deg, layout: SurveyLayo
 
     Returns one row per view: ``slope_deg``, ``simulated_across_m``, ``simulated_vertical_m``,
     ``simulated_3d_m``, ``closed_across_m``, ``closed_vertical_m``, ``closed_3d_m``.
+
+    Parameters
+    ----------
+    platform : Platform
+        The sonar platform.
+    envelope : Envelope
+        Its operating envelope (altitude flown).
+    config : dict
+        The terrain configuration (``slope.azimuth_deg``).
+    slopes_deg : sequence of float
+        Slopes, degrees.
+    layout : SurveyLayout
+        The survey's lines and area.
+    n_features : int
+        Features per slope.
+    seed : int
+        Seed of features and observations.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per view (columns above, m); no row for a slope with no such view.
     """
     az = np.radians(config["slope"]["azimuth_deg"])
     rise = np.array([np.cos(az), np.sin(az)])
