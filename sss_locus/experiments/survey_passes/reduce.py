@@ -57,7 +57,7 @@ def reduce_crossing_angle_curve(platform: Platform, envelope: SurveyEnvelope, of
     n_per_angle : int
         Accepted pass pairs per angle.
     seed : int
-        Random seed (each angle's chunk derives its own stream from it).
+        Random seed, passed to each angle's :func:`~sss_locus.experiments.survey_passes.study.simulate_passes`.
     n_batches : int
         Replicate batches of each angle's rows for the medians' intervals.
     confidence_level : float
