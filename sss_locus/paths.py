@@ -92,11 +92,28 @@ MATHJAX_SUBDIR = "mathjax"
 
 def work_root() -> Path:
     """Where the build area and the cache go by default: the checkout, else (an installed
-    package) the working directory."""
+    package) the working directory.
+
+    Returns
+    -------
+    pathlib.Path
+        Absolute: the repository root in a checkout, else ``Path.cwd()``.
+    """
     return REPO_ROOT if IN_CHECKOUT else Path.cwd()
 
 
 def _default_areas() -> tuple[Path, str | None, Path]:
+    """The areas of a process outside any run context.
+
+    Returns
+    -------
+    build : pathlib.Path
+        ``<work root>/_build``.
+    name : None
+        No named build area.
+    cache : pathlib.Path
+        ``<work root>/.cache``.
+    """
     return work_root() / "_build", None, work_root() / ".cache"
 
 
@@ -107,67 +124,155 @@ areas_setting: Callable[[], tuple[Path, str | None, Path]] = _default_areas
 
 
 def build_dir() -> Path:
-    """Root of the build area: the run context's (``$SSS_LOCUS_BUILD_DIR`` or ``<repo>/_build``)."""
+    """Root of the build area: the run context's (``$SSS_LOCUS_BUILD_DIR`` or ``<repo>/_build``).
+
+    Returns
+    -------
+    pathlib.Path
+        The build area (not created here).
+    """
     return areas_setting()[0]
 
 
 def build_name() -> str | None:
-    """Name of the named build area in use (``--name``), ``None`` in the reproduction's area."""
+    """Name of the named build area in use (``--name``), ``None`` in the reproduction's area.
+
+    Returns
+    -------
+    str or None
+        The ``--name`` of the build area, or None for the reproduction's own.
+    """
     return areas_setting()[1]
 
 
 def source_dir() -> Path:
-    """Staged book source (``<build>/source``): configuration, pages, executed notebooks."""
+    """Staged book source (``<build>/source``): configuration, pages, executed notebooks.
+
+    Returns
+    -------
+    pathlib.Path
+        ``<build>/source`` (not created here).
+    """
     return build_dir() / SOURCE_SUBDIR
 
 
 def executed_dir() -> Path:
-    """Folder of executed notebook copies (``<build>/source/executed``)."""
+    """Folder of executed notebook copies (``<build>/source/executed``).
+
+    Returns
+    -------
+    pathlib.Path
+        ``<build>/source/executed`` (not created here).
+    """
     return source_dir() / EXECUTED_SUBDIR
 
 
 def extra_dir() -> Path:
-    """Staged ``html_extra_path`` folder (``<build>/source/_extra``): copied to the site root."""
+    """Staged ``html_extra_path`` folder (``<build>/source/_extra``): copied to the site root.
+
+    Returns
+    -------
+    pathlib.Path
+        ``<build>/source/_extra`` (not created here).
+    """
     return source_dir() / EXTRA_SUBDIR
 
 
 def figures_dir() -> Path:
-    """Exported figures (``<build>/source/_extra/figures``), served at ``<site>/figures/``."""
+    """Exported figures (``<build>/source/_extra/figures``), served at ``<site>/figures/``.
+
+    Returns
+    -------
+    pathlib.Path
+        ``<build>/source/_extra/figures`` (not created here).
+    """
     return extra_dir() / FIGURES_SUBDIR
 
 
 def mathjax_dir() -> Path:
-    """Local MathJax 3 copy (``<build>/source/_extra/mathjax``), served at ``<site>/mathjax/``."""
+    """Local MathJax 3 copy (``<build>/source/_extra/mathjax``), served at ``<site>/mathjax/``.
+
+    Returns
+    -------
+    pathlib.Path
+        ``<build>/source/_extra/mathjax`` (not created here).
+    """
     return extra_dir() / MATHJAX_SUBDIR
 
 
 def jupyter_dir() -> Path:
-    """Kernel state (IPython, Jupyter data/runtime, Matplotlib config) for hermetic runs."""
+    """Kernel state (IPython, Jupyter data/runtime, Matplotlib config) for hermetic runs.
+
+    Returns
+    -------
+    pathlib.Path
+        ``<build>/jupyter`` (not created here).
+    """
     return build_dir() / "jupyter"
 
 
 def jupyter_book_dir() -> Path:
-    """Jupyter Book's output folder (``<build>/jupyter-book``; it writes ``_build/html`` there)."""
+    """Jupyter Book's output folder (``<build>/jupyter-book``; it writes ``_build/html`` there).
+
+    Returns
+    -------
+    pathlib.Path
+        ``<build>/jupyter-book`` (not created here).
+    """
     return build_dir() / "jupyter-book"
 
 
 def html_dir() -> Path:
-    """Built site (``<build>/html``)."""
+    """Built site (``<build>/html``).
+
+    Returns
+    -------
+    pathlib.Path
+        ``<build>/html`` (not created here).
+    """
     return build_dir() / "html"
 
 
 def index_html() -> Path:
-    """The built book's front page."""
+    """The built book's front page.
+
+    Returns
+    -------
+    pathlib.Path
+        ``<build>/html/index.html`` (it may not exist yet).
+    """
     return html_dir() / "index.html"
 
 
 def cache_dir() -> Path:
-    """Root of the result cache: the run context's (``$SSS_LOCUS_CACHE_DIR`` or ``<repo>/.cache``)."""
+    """Root of the result cache: the run context's (``$SSS_LOCUS_CACHE_DIR`` or ``<repo>/.cache``).
+
+    Returns
+    -------
+    pathlib.Path
+        The cache folder (not created here).
+    """
     return areas_setting()[2]
 
 
 def site_url(path: Path) -> str:
-    """URL, relative to the site root, of a file under :func:`extra_dir` (``figures/x.png``)."""
+    """URL, relative to the site root, of a file under :func:`extra_dir` (``figures/x.png``).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        A file inside :func:`extra_dir` (symbolic links are resolved on both sides).
+
+    Returns
+    -------
+    str
+        The relative URL with ``/`` separators.
+
+    Raises
+    ------
+    ValueError
+        ``path`` is not inside :func:`extra_dir`.
+    """
     return path.resolve().relative_to(extra_dir().resolve()).as_posix()
 
 
@@ -175,7 +280,19 @@ def public_path(path: str | os.PathLike) -> str:
     """A file as a published manifest or page names it: relative to the repository when it is
     inside it (``data/examples/my_auv.toml``), else its file name only (``myboat.toml``) — never a
     local absolute path. The file's SHA-256 beside the name identifies it. A relative path (the
-    shipped ``data/platforms.toml``) is already public and is returned as it is."""
+    shipped ``data/platforms.toml``) is already public and is returned as it is.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A file's path, absolute or relative.
+
+    Returns
+    -------
+    str
+        POSIX-style path relative to the repository, the bare file name (outside it), or the
+        relative path unchanged.
+    """
     p = Path(path)
     if not p.is_absolute():
         return p.as_posix()
@@ -188,7 +305,19 @@ def public_path(path: str | os.PathLike) -> str:
 
 def public_values(value: Any) -> Any:
     """``value`` (a parameter value: a string, list or mapping of them) with every absolute path
-    replaced by :func:`public_path`, for what is published (manifests, pages)."""
+    replaced by :func:`public_path`, for what is published (manifests, pages).
+
+    Parameters
+    ----------
+    value : Any
+        A string, list, tuple or dict of them, nested to any depth; other values (numbers,
+        None) pass unchanged.
+
+    Returns
+    -------
+    Any
+        The same structure (tuples become lists) with absolute paths made public.
+    """
     if isinstance(value, str):
         return public_path(value) if os.path.isabs(value) else value
     if isinstance(value, (list, tuple)):

@@ -118,7 +118,18 @@ class Aperture:
 
     def range_ok(self, r) -> np.ndarray:
         """True where ``min_range <= r <= max_range`` (``r``: real numbers in metres, any shape;
-        False for NaN)."""
+        False for NaN).
+
+        Parameters
+        ----------
+        r : array_like, any shape
+            Ranges, metres (real numbers; NaN and infinity allowed).
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape of ``r``
+            False for NaN and for ranges outside the limits.
+        """
         r = as_real_array(r, "r")
         return (r >= self.min_range) & (r <= self.max_range)
 

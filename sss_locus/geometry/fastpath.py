@@ -69,7 +69,19 @@ def prefix_sums(codes: np.ndarray) -> np.ndarray:
 
 
 def row_sums(flags: np.ndarray) -> np.ndarray:
-    """Number of true entries in each row of a C-contiguous bool array ``flags`` (N, G)."""
+    """Number of true entries in each row of a C-contiguous bool array ``flags`` (N, G).
+
+    Parameters
+    ----------
+    flags : ndarray of bool, shape (N, G)
+        Any ``G`` (the byte trick needs ``G`` a multiple of 8 and C order, otherwise
+        ``np.count_nonzero`` is used).
+
+    Returns
+    -------
+    ndarray of int64, shape (N,)
+        ``np.count_nonzero(flags, axis=1)``; 0 for an all-false row.
+    """
     w = _words(flags)
     if w is None:
         return np.count_nonzero(flags, axis=1)
@@ -78,7 +90,17 @@ def row_sums(flags: np.ndarray) -> np.ndarray:
 
 
 def rows_all(flags: np.ndarray) -> np.ndarray:
-    """Whether every entry of each row of a C-contiguous bool array ``flags`` (N, G) is true."""
+    """Whether every entry of each row of a C-contiguous bool array ``flags`` (N, G) is true.
+
+    Parameters
+    ----------
+    flags : ndarray of bool, shape (N, G)
+
+    Returns
+    -------
+    ndarray of bool, shape (N,)
+        ``flags.all(axis=1)`` (True for ``G == 0``).
+    """
     w = _words(flags)
     if w is None:
         return flags.all(axis=1)
@@ -86,7 +108,17 @@ def rows_all(flags: np.ndarray) -> np.ndarray:
 
 
 def rows_any(flags: np.ndarray) -> np.ndarray:
-    """Whether any entry of each row of a C-contiguous bool array ``flags`` (N, G) is true."""
+    """Whether any entry of each row of a C-contiguous bool array ``flags`` (N, G) is true.
+
+    Parameters
+    ----------
+    flags : ndarray of bool, shape (N, G)
+
+    Returns
+    -------
+    ndarray of bool, shape (N,)
+        ``flags.any(axis=1)`` (False for ``G == 0``).
+    """
     w = _words(flags)
     if w is None:
         return flags.any(axis=1)
@@ -100,6 +132,16 @@ def first_true(flags: np.ndarray) -> np.ndarray:
     word, ``w & -w`` keeps only the lowest set bit, and the popcount of that bit minus one is the
     number of trailing zero bits (64 for a zero word); a row's trailing zero bits over its
     words, divided by 8, is the column.
+
+    Parameters
+    ----------
+    flags : ndarray of bool, shape (N, G)
+        The word trick is used for ``G == 16``; any other ``G`` falls back to ``np.argmax``.
+
+    Returns
+    -------
+    ndarray of int64, shape (N,)
+        Column index in ``[0, G)``; 0 also for a row with no true entry.
     """
     w = _words(flags)
     if w is None or w.shape[1] != 2:
@@ -120,6 +162,16 @@ def cyclic_edges(flags: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     Returns ``(flags & ~np.roll(flags, 1, axis=1), flags & ~np.roll(flags, -1, axis=1))``. Rolling
     a row by one column shifts its words by one byte, with the byte that falls off one word
     entering the neighbouring word (the last and first words are neighbours).
+
+    Parameters
+    ----------
+    flags : ndarray of bool, shape (N, G)
+
+    Returns
+    -------
+    starts, ends : ndarray of bool, shape (N, G)
+        True at the first and at the last column of each cyclic run of true entries; an
+        all-true row has neither, an all-false row neither.
     """
     w = _words(flags)
     if w is None:
@@ -177,7 +229,18 @@ def transpose_into(dst: np.ndarray, src: np.ndarray) -> np.ndarray:
 
     NumPy's general transposing copy walks the short axis innermost; copying whole columns
     (strided) from whole rows (contiguous), or back, is several times faster when one of the two
-    axes has only a few entries. Returns ``dst``.
+    axes has only a few entries.
+
+    Parameters
+    ----------
+    dst : ndarray, shape (A, B)
+        Written in place.
+    src : ndarray, shape (B, A)
+
+    Returns
+    -------
+    ndarray, shape (A, B)
+        ``dst`` itself, now holding ``src.T``.
     """
     if dst.shape[1] <= dst.shape[0]:  # few columns in dst: fill column by column
         for j in range(dst.shape[1]):
@@ -193,10 +256,34 @@ def rotate_rows(Rc: np.ndarray, v: np.ndarray) -> np.ndarray:
 
     ``Rc`` (3, 3, n) holds ``R[:, i, j]`` at ``[i, j]``; ``v`` (..., 3, n) holds vector
     components along its second-last axis. Summed in the order ``R_i0 v_0 + R_i1 v_1 + R_i2 v_2``.
+
+    Parameters
+    ----------
+    Rc : ndarray, shape (3, 3, n)
+        Rotation matrices, component-major (``Rc[i, j]`` is entry ``(i, j)`` of each).
+    v : ndarray, shape (..., 3, n)
+        Vectors, component-major (any unit; the frame they are rotated from is the one ``R``
+        maps from).
+
+    Returns
+    -------
+    ndarray, shape (..., 3, n)
+        The rotated vectors, component-major, in the same unit.
     """
     return Rc[:, 0] * v[..., 0:1, :] + Rc[:, 1] * v[..., 1:2, :] + Rc[:, 2] * v[..., 2:3, :]
 
 
 def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Cross product of component-major vectors (3, n), in the operation order of ``np.cross``."""
+    """Cross product of component-major vectors (3, n), in the operation order of ``np.cross``.
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (3, n)
+        Vectors, component-major.
+
+    Returns
+    -------
+    ndarray, shape (3, n)
+        ``a x b``, component-major (bitwise equal to ``np.cross(a.T, b.T).T``).
+    """
     return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])

@@ -163,6 +163,17 @@ class LocusResult:
         """Circle angle ``alpha`` (rad) of points ``p1`` by projection onto the circle's plane.
 
         ``p1``: finite real coordinates (m) in frame 1, shape broadcasting with ``S + (3,)``.
+
+        Parameters
+        ----------
+        p1 : array_like, shape broadcasting with S + (3,)
+            Points in sensor 1's frame, metres (finite real numbers).
+
+        Returns
+        -------
+        numpy.ndarray, shape S (broadcast)
+            ``alpha`` in radians, in ``(-pi, pi]`` (``atan2`` of the two in-plane components);
+            a point on the circle's axis gives ``0`` (``atan2(0, 0)``).
         """
         self._needs_geometry("angle_of")
         d = as_float_array(p1, "p1", tail=(3,)) - self.center

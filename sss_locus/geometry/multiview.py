@@ -104,7 +104,29 @@ def range_residuals(points, origins, ranges, sigmas, mask) -> tuple[np.ndarray, 
 
 def check_views(mask, ranges, sigmas, shape: tuple[int, int]):
     """``mask`` (bool), ``ranges`` and ``sigmas`` (float) of shape ``shape`` = (n, k), ranges
-    and sigmas finite and > 0 wherever ``mask``; a ``ValueError`` naming the argument otherwise."""
+    and sigmas finite and > 0 wherever ``mask``; a ``ValueError`` naming the argument otherwise.
+
+    Parameters
+    ----------
+    mask : array_like of bool, shape (n, k)
+        Views that saw each feature (``n`` features, ``k`` views).
+    ranges : array_like, shape (n, k)
+        Measured slant ranges, metres (finite everywhere, > 0 where ``mask``).
+    sigmas : array_like, shape (n, k)
+        Standard deviations of the ranges, metres (finite everywhere, > 0 where ``mask``).
+    shape : tuple of int
+        The expected ``(n, k)``.
+
+    Returns
+    -------
+    mask : ndarray of bool, shape (n, k)
+    ranges, sigmas : ndarray of float64, shape (n, k)
+
+    Raises
+    ------
+    ValueError
+        Wrong dtype or shape, non-finite values, or a value <= 0 in a masked view.
+    """
     mask = np.asarray(mask)
     if mask.dtype != bool or mask.shape != shape:
         raise ValueError(f"mask must be a boolean array of shape {shape}; got {mask.dtype} {mask.shape}")

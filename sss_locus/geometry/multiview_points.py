@@ -107,7 +107,30 @@ class MultiViewResult:
 def inside_apertures(W, origin, mask, points, aperture: Aperture, margin_deg=0.0) -> np.ndarray:
     """Whether ``points`` (n, 3) lie inside the aperture of every masked view, each widened by
     ``margin_deg`` (scalar or (n, k)) in azimuth and elevation (``W`` (n, k, 3, 3), ``origin``
-    (n, k, 3), ``mask`` (n, k)); range limits as given. Returns (n,) bool."""
+    (n, k, 3), ``mask`` (n, k)); range limits as given. Returns (n,) bool.
+
+    Parameters
+    ----------
+    W : ndarray, shape (n, k, 3, 3)
+        Sensor axes of each view in the world frame (sensor-to-world rotations).
+    origin : ndarray, shape (n, k, 3)
+        Sensor origins, world frame, metres.
+    mask : ndarray of bool, shape (n, k)
+        Views to test; unmasked views are ignored.
+    points : ndarray, shape (n, 3)
+        Feature positions, world frame, metres.
+    aperture : Aperture
+        Every view's aperture (one sonar model).
+    margin_deg : float or ndarray, shape (n, k)
+        Widening of the half-angles in azimuth and elevation, degrees (>= 0); the range limits
+        are not widened.
+
+    Returns
+    -------
+    ndarray of bool, shape (n,)
+        True where the point is inside every masked view (also for a row with no masked view).
+        A point at a sensor's origin has elevation 0 and azimuth 0 there.
+    """
     p = np.einsum("nkji,nkj->nki", W, points[:, None, :] - origin)
     r = np.linalg.norm(p, axis=-1)
     m = np.radians(margin_deg)
@@ -182,6 +205,14 @@ def multiview_points(W, origin, ranges, sigmas, mask, aperture: Aperture, *, pri
         sensor that saw it, when features are known to lie below the sensors); default none.
     max_iter : int
         Levenberg-Marquardt iterations.
+
+    Returns
+    -------
+    MultiViewResult
+        Per feature (leading shape (n,)): ``point`` (world frame, m), ``status``, ``covariance``
+        ((n, 3, 3), m^2), ``cost``, view counts and the three-view start's status and plane angle
+        (deg). Features with fewer than three views keep ``prior`` with status
+        ``TOO_FEW_VIEWS`` and an infinite covariance.
     """
     check_aperture(aperture, "aperture", Aperture)
     W = as_float_array(W, "W", tail=(3, 3))

@@ -160,6 +160,8 @@ def two_view_points(W1, origin1, W2, origin2, r1, r2, prior, aperture1, aperture
     prior : array_like, shape S + (3,)
         Prior positions, world frame, metres.
     aperture1, aperture2 : Aperture
+    **locus_kw
+        Further keywords of :func:`~sss_locus.geometry.locus.two_view_locus` (e.g. half-spaces).
 
     Returns
     -------

@@ -70,6 +70,26 @@ def as_real_array(value, name: str) -> np.ndarray:
     Raises :class:`InputTypeError` naming ``name`` for booleans, complex numbers, strings,
     dates and timedeltas, ``None`` and object arrays. NaN and infinity pass (see
     :func:`as_float_array` for the finite check).
+
+    Parameters
+    ----------
+    value : array_like, any shape
+        Real numbers (Python or NumPy ints and floats, arrays of them, or a masked array with
+        nothing masked).
+    name : str
+        The argument's name, used in error messages.
+
+    Returns
+    -------
+    numpy.ndarray of float64, shape of ``value``
+        Not copied when ``value`` is already a float64 array.
+
+    Raises
+    ------
+    InputTypeError
+        Non-real input, or a masked array with masked entries.
+    ValueError
+        A ragged nested sequence.
     """
     if isinstance(value, np.ma.MaskedArray):
         if np.ma.getmaskarray(value).any():
@@ -93,6 +113,22 @@ def as_float_array(value, name: str, *, tail: tuple[int, ...] = (), finite: bool
 
     Non-real input raises :class:`InputTypeError`; a wrong shape, or (with ``finite``) NaN or
     infinity, a ``ValueError``; each message names ``name``.
+
+    Parameters
+    ----------
+    value : array_like, shape (...,) + tail
+        Real numbers.
+    name : str
+        The argument's name, used in error messages.
+    tail : tuple of int
+        Required trailing dimensions, e.g. ``(3,)`` for points or ``(3, 3)`` for rotations;
+        ``()`` accepts any shape.
+    finite : bool
+        Refuse NaN and infinity (the message gives the first bad index).
+
+    Returns
+    -------
+    numpy.ndarray of float64, shape (...,) + tail
     """
     arr = as_real_array(value, name)
     if tail and (arr.ndim < len(tail) or arr.shape[arr.ndim - len(tail):] != tail):
@@ -107,7 +143,23 @@ def as_float_array(value, name: str, *, tail: tuple[int, ...] = (), finite: bool
 
 
 def check_aperture(value, name: str, cls: type) -> None:
-    """Refuse an aperture argument that is not a ``cls`` instance, naming ``name``."""
+    """Refuse an aperture argument that is not a ``cls`` instance, naming ``name``.
+
+    Parameters
+    ----------
+    value : object
+        The argument to check.
+    name : str
+        The argument's name, used in the error message.
+    cls : type
+        The required class (:class:`~sss_locus.geometry.aperture.Aperture`; passed in to keep
+        this module free of imports from the kernels).
+
+    Raises
+    ------
+    InputTypeError
+        ``value`` is not a ``cls`` instance.
+    """
     if not isinstance(value, cls):
         raise InputTypeError(f"{name} must be an sss_locus.Aperture; got {type(value).__name__}")
 
@@ -116,6 +168,25 @@ def as_positive_array(value, name: str, *, bounded: bool = False) -> np.ndarray:
     """Return ``value`` as a finite float64 array of strictly positive numbers (ranges, m).
 
     With ``bounded``, values must also lie in [:data:`LENGTH_MIN`, :data:`LENGTH_MAX`].
+
+    Parameters
+    ----------
+    value : array_like, any shape
+        Real numbers, metres.
+    name : str
+        The argument's name, used in error messages.
+    bounded : bool
+        Also require every value within [:data:`LENGTH_MIN`, :data:`LENGTH_MAX`] m.
+
+    Returns
+    -------
+    numpy.ndarray of float64, shape of ``value``
+        An empty array is returned as is.
+
+    Raises
+    ------
+    ValueError
+        A value <= 0, not finite, or (with ``bounded``) out of range; the message names ``name``.
     """
     arr = as_float_array(value, name)
     if arr.size == 0:
@@ -134,7 +205,22 @@ def as_positive_array(value, name: str, *, bounded: bool = False) -> np.ndarray:
 
 
 def check_max_abs(arr: np.ndarray, name: str, limit: float = LENGTH_MAX) -> None:
-    """Refuse any ``|component|`` of ``arr`` above ``limit`` (m), naming ``name``."""
+    """Refuse any ``|component|`` of ``arr`` above ``limit`` (m), naming ``name``.
+
+    Parameters
+    ----------
+    arr : numpy.ndarray, any shape
+        Lengths or coordinates, metres (an empty array passes).
+    name : str
+        The argument's name, used in the error message.
+    limit : float
+        Largest allowed absolute value, metres (default :data:`LENGTH_MAX`).
+
+    Raises
+    ------
+    ValueError
+        Some ``|component|`` exceeds ``limit``; the message gives the worst value.
+    """
     if arr.size and np.abs(arr).max() > limit:
         raise ValueError(
             f"{name} components must lie in [-{limit:g}, {limit:g}] m (their squares must be "
@@ -147,6 +233,23 @@ def as_rotation_matrices(value, name: str = "R") -> np.ndarray:
 
     Accepts a ``scipy.spatial.transform.Rotation`` (single or stacked) or an array. A matrix must
     be orthonormal with determinant +1 to within :data:`ROTATION_ATOL`.
+
+    Parameters
+    ----------
+    value : array_like, shape (..., 3, 3), or scipy.spatial.transform.Rotation
+        Rotation matrices (e.g. sensor-to-world, or frame 2 to frame 1).
+    name : str
+        The argument's name, used in error messages.
+
+    Returns
+    -------
+    numpy.ndarray of float64, shape (..., 3, 3)
+        The matrices, unchanged (not re-orthonormalised).
+
+    Raises
+    ------
+    ValueError
+        A matrix not orthonormal, or a reflection (determinant -1), beyond :data:`ROTATION_ATOL`.
     """
     if hasattr(value, "as_matrix") and callable(value.as_matrix):
         value = value.as_matrix()
@@ -197,7 +300,18 @@ memory_budget_setting: Callable[[], str] = _environment_memory_budget
 
 def memory_budget() -> int:
     """Bytes one request may plan to use: the setting (``$SSS_LOCUS_MEMORY_BUDGET``, or the run
-    context's) or half the physical memory."""
+    context's) or half the physical memory.
+
+    Returns
+    -------
+    int
+        Bytes; 4e9 where the physical memory cannot be read.
+
+    Raises
+    ------
+    ValueError
+        The setting is not a number.
+    """
     text = memory_budget_setting()
     if text:
         try:
@@ -211,7 +325,20 @@ def memory_budget() -> int:
 
 
 def check_memory(n_bytes: float, what: str) -> None:
-    """Refuse, in one line, a request whose arrays (``n_bytes``) exceed :func:`memory_budget`."""
+    """Refuse, in one line, a request whose arrays (``n_bytes``) exceed :func:`memory_budget`.
+
+    Parameters
+    ----------
+    n_bytes : float
+        Estimated memory the request's arrays need, bytes.
+    what : str
+        What is requested, the start of the error message (e.g. ``"monte_carlo(n_draws=...)"``).
+
+    Raises
+    ------
+    MemoryError
+        ``n_bytes`` exceeds the budget; the message gives both in GB and how to change it.
+    """
     budget = memory_budget()
     if n_bytes > budget:
         raise MemoryError(f"{what} would need about {n_bytes / 1e9:.3g} GB of memory, more than the budget "
@@ -219,7 +346,23 @@ def check_memory(n_bytes: float, what: str) -> None:
 
 
 def broadcast_leading(named_shapes: dict[str, tuple[int, ...]]) -> tuple[int, ...]:
-    """Broadcast the leading (batch) shapes of several arguments, naming them on failure."""
+    """Broadcast the leading (batch) shapes of several arguments, naming them on failure.
+
+    Parameters
+    ----------
+    named_shapes : dict of str to tuple of int
+        Argument name -> its batch shape (its shape without trailing vector/matrix dimensions).
+
+    Returns
+    -------
+    tuple of int
+        The broadcast batch shape ``S``.
+
+    Raises
+    ------
+    ValueError
+        The shapes do not broadcast; the message lists every argument with its shape.
+    """
     try:
         return np.broadcast_shapes(*named_shapes.values())
     except ValueError:
@@ -238,6 +381,16 @@ def row_exponents(*columns: np.ndarray) -> np.ndarray | None:
     in [0.5, 1) (``e = 0`` for an all-zero row), or None when every row's largest length lies
     within ``2**-60 .. 2**60``, where no intermediate of the kernels (at most a fourth power of a
     length) overflows or underflows and rescaling would not change the results.
+
+    Parameters
+    ----------
+    *columns : numpy.ndarray, all of one shape
+        Lengths, metres (ranges, translation components), one array per scalar length.
+
+    Returns
+    -------
+    numpy.ndarray of int, shape of the columns, or None
+        The exponents ``e``; None when no rescaling is needed (also for empty input).
     """
     big = np.abs(columns[0])
     for c in columns[1:]:

@@ -46,7 +46,23 @@ _ACTIVE = DataInputs()
 
 def label_key(key: str) -> str:
     """A data key as it appears in figure labels and glue keys: ``my_auv`` -> ``my-auv``
-    (injective on keys matching :data:`KEY_PATTERN`, which never contain ``-``)."""
+    (injective on keys matching :data:`KEY_PATTERN`, which never contain ``-``).
+
+    Parameters
+    ----------
+    key : str
+        A platform, sonar, envelope or noise key matching :data:`KEY_PATTERN`.
+
+    Returns
+    -------
+    str
+        ``key`` with every ``_`` replaced by ``-``.
+
+    Raises
+    ------
+    ValueError
+        ``key`` is not a string matching :data:`KEY_PATTERN`.
+    """
     if not isinstance(key, str) or not KEY_PATTERN.fullmatch(key):
         raise ValueError(f"key must match {KEY_PATTERN.pattern} (lower-case letter, then lower-case "
                          f"letters, digits or '_'); got {key!r}")
@@ -58,7 +74,22 @@ def _is_number_entry(value: Any) -> bool:
 
 
 def merge(base: Mapping[str, Any], over: Mapping[str, Any]) -> dict[str, Any]:
-    """``base`` with ``over`` merged in by key (tables recursively; numbers replaced whole)."""
+    """``base`` with ``over`` merged in by key (tables recursively; numbers replaced whole).
+
+    Parameters
+    ----------
+    base : Mapping
+        A data document (parsed TOML).
+    over : Mapping
+        The document merged on top. A number entry (a table with a ``value`` key, with its
+        unit, source and assumption) replaces the one in ``base`` whole; other tables merge key
+        by key; anything else replaces.
+
+    Returns
+    -------
+    dict
+        A new document (deep copies; neither argument is changed).
+    """
     out = copy.deepcopy(dict(base))
     for key, value in over.items():
         if isinstance(value, Mapping) and not _is_number_entry(value) and isinstance(out.get(key), Mapping) \
@@ -70,7 +101,21 @@ def merge(base: Mapping[str, Any], over: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def check_user_document(doc: Mapping[str, Any], where: str) -> None:
-    """Only the known top-level tables, and keys of the form :data:`KEY_PATTERN`."""
+    """Only the known top-level tables, and keys of the form :data:`KEY_PATTERN`.
+
+    Parameters
+    ----------
+    doc : Mapping
+        A user's data file, parsed.
+    where : str
+        The file's name, the start of every error message.
+
+    Raises
+    ------
+    ValueError
+        An unknown top-level key (with the nearest known one suggested), a top-level entry
+        that is not a table, or a key not matching :data:`KEY_PATTERN`.
+    """
     unknown = set(doc) - set(USER_TABLES) - {"schema_version"}
     if unknown:
         first = sorted(unknown)[0]
@@ -87,7 +132,28 @@ def check_user_document(doc: Mapping[str, Any], where: str) -> None:
 
 
 def parse_set(text: str, base: Mapping[str, Any]) -> dict[str, Any]:
-    """The override document of one ``KEY.PATH=VALUE`` (VALUE read as TOML, else a string)."""
+    """The override document of one ``KEY.PATH=VALUE`` (VALUE read as TOML, else a string).
+
+    Parameters
+    ----------
+    text : str
+        One ``--set`` argument, e.g. ``platforms.auv.transducers.port.tilt_deg=15`` (units as the
+        field's name says). A path must start with one of :data:`USER_TABLES`, then a key and a
+        field (only the field for the :data:`FLAT_TABLES`).
+    base : Mapping
+        The document merged so far: a number field there (or a new field given a number)
+        becomes a number entry ``{"value", "assumption": "user override: --set ..."}``.
+
+    Returns
+    -------
+    dict
+        A document holding only the override, to :func:`merge` onto ``base``.
+
+    Raises
+    ------
+    ValueError
+        No ``=``, a path too short or outside :data:`USER_TABLES`, or a path ending in ``.value``.
+    """
     if not isinstance(text, str) or "=" not in text:
         raise ValueError(f"--set expects KEY.PATH=VALUE (e.g. platforms.auv.transducers.port.tilt_deg=15); "
                          f"got {text!r}")
@@ -119,6 +185,13 @@ def parse_set(text: str, base: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def shipped_document() -> dict[str, Any]:
+    """The shipped data files (:data:`SHIPPED_FILES` under ``data/``), merged in order.
+
+    Returns
+    -------
+    dict
+        The merged document, read afresh on each call.
+    """
     doc: dict[str, Any] = {}
     for name in SHIPPED_FILES:
         doc = merge(doc, read_toml(DATA_DIR / name))
@@ -126,7 +199,19 @@ def shipped_document() -> dict[str, Any]:
 
 
 def document(inputs: DataInputs | None = None) -> dict[str, Any]:
-    """The merged data document of ``inputs`` (default: the active inputs, :func:`use`)."""
+    """The merged data document of ``inputs`` (default: the active inputs, :func:`use`).
+
+    Parameters
+    ----------
+    inputs : DataInputs, optional
+        User files (merged in order after the shipped ones, each checked by
+        :func:`check_user_document`) and ``--set`` overrides (merged last, in order).
+
+    Returns
+    -------
+    dict
+        The merged document; the shipped one for default inputs.
+    """
     inputs = _ACTIVE if inputs is None else inputs
     doc = shipped_document()
     for path in inputs.files:
@@ -139,7 +224,24 @@ def document(inputs: DataInputs | None = None) -> dict[str, Any]:
 
 
 def make_inputs(files: Iterable[str | Path] = (), sets: Iterable[str] = ()) -> DataInputs:
-    """Absolute paths of ``files`` and the overrides, as :class:`DataInputs` (not validated)."""
+    """Absolute paths of ``files`` and the overrides, as :class:`DataInputs` (not validated).
+
+    Parameters
+    ----------
+    files : iterable of str or pathlib.Path
+        User data files (``~`` expanded, made absolute; not opened here).
+    sets : iterable of str
+        ``KEY.PATH=VALUE`` overrides, kept as given.
+
+    Returns
+    -------
+    DataInputs
+
+    Raises
+    ------
+    ValueError
+        An item of ``files`` (``data_files``) or ``sets`` (``data_set``) is not a string.
+    """
     files, sets = list(files or ()), list(sets or ())
     for name, items, kind in (("data_files", files, (str, Path)), ("data_set", sets, str)):
         for item in items:
@@ -149,21 +251,57 @@ def make_inputs(files: Iterable[str | Path] = (), sets: Iterable[str] = ()) -> D
 
 
 def activate(inputs: DataInputs) -> None:
-    """Make ``inputs`` the active inputs (validate them first: :func:`sss_locus.experiments.datamodel.userdata.use`)."""
+    """Make ``inputs`` the active inputs (validate them first: :func:`sss_locus.experiments.datamodel.userdata.use`).
+
+    Parameters
+    ----------
+    inputs : DataInputs
+        Used by every later load that passes no inputs of its own (this process only).
+    """
     global _ACTIVE
     _ACTIVE = inputs
 
 
 def active() -> DataInputs:
+    """The active inputs (:func:`activate`).
+
+    Returns
+    -------
+    DataInputs
+        The default (shipped data only) until something is activated.
+    """
     return _ACTIVE
 
 
 def file_sha256(path: str | Path) -> str:
+    """SHA-256 of a file's bytes.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+
+    Returns
+    -------
+    str
+        64 lower-case hex digits.
+    """
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
 def files_read(inputs: DataInputs | None = None) -> list[dict[str, str]]:
-    """Every data file a load reads, shipped then the user's: ``{"path", "sha256", "role"}``."""
+    """Every data file a load reads, shipped then the user's: ``{"path", "sha256", "role"}``.
+
+    Parameters
+    ----------
+    inputs : DataInputs, optional
+        Default: the active inputs.
+
+    Returns
+    -------
+    list of dict
+        One row per file: ``path`` (``data/<name>`` for shipped files, the absolute path for a
+        user's), ``sha256`` and ``role`` (``"shipped"`` or ``"user"``).
+    """
     inputs = _ACTIVE if inputs is None else inputs
     rows = [{"path": f"data/{name}", "sha256": file_sha256(DATA_DIR / name), "role": "shipped"}
             for name in SHIPPED_FILES]
@@ -182,6 +320,11 @@ def note_read(*entries: str) -> None:
     Who records is the caller's business (the pipeline records a run's reads and hashes exactly
     these entries of the run's merged data into its executed copy, so an edit to a user file makes
     stale the runs that read the edited entries, and no others); this module writes nothing.
+
+    Parameters
+    ----------
+    *entries : str
+        Dotted key paths of the merged document.
     """
     if _RECORDINGS:
         _RECORDINGS[-1].update(entries)
@@ -189,14 +332,26 @@ def note_read(*entries: str) -> None:
 
 def reads_so_far() -> set[str] | None:
     """The data entries read since the outermost open :func:`recording` began, ``None`` when
-    nothing records them."""
+    nothing records them.
+
+    Returns
+    -------
+    set of str or None
+        A new set (the union over the open recordings).
+    """
     return set().union(*_RECORDINGS) if _RECORDINGS else None
 
 
 @contextmanager
 def recording() -> Iterator[set[str]]:
     """Within the block, record the data entries read (:func:`note_read`) into the set it gives;
-    on leaving, an enclosing recording gets them too (a computation inside a run)."""
+    on leaving, an enclosing recording gets them too (a computation inside a run).
+
+    Yields
+    ------
+    set of str
+        The dotted entries read inside the block, filled in as they are read.
+    """
     reads: set[str] = set()
     depth = len(_RECORDINGS)
     _RECORDINGS.append(reads)
@@ -209,7 +364,21 @@ def recording() -> Iterator[set[str]]:
 
 
 def entries_sha256(entries: Iterable[str], inputs: DataInputs | None = None) -> dict[str, str]:
-    """SHA-256 of each dotted entry of the merged document of ``inputs`` (``null`` if absent)."""
+    """SHA-256 of each dotted entry of the merged document of ``inputs`` (``null`` if absent).
+
+    Parameters
+    ----------
+    entries : iterable of str
+        Dotted key paths (duplicates are hashed once).
+    inputs : DataInputs, optional
+        Default: the active inputs.
+
+    Returns
+    -------
+    dict of str to str
+        Entry -> SHA-256 of its value as sorted-key JSON, in sorted order; an absent entry
+        hashes the JSON ``null``.
+    """
     doc = document(inputs)
     out = {}
     for entry in sorted(set(entries)):

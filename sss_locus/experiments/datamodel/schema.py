@@ -45,6 +45,19 @@ def check_hardware(platforms: Mapping[str, Any], envelopes: Mapping[str, Any]) -
 
     ``platforms``: :class:`~sss_locus.experiments.datamodel.platforms.Platform` by key; ``envelopes``:
     :class:`~sss_locus.experiments.datamodel.envelopes.SurveyEnvelope` by platform key.
+
+    Parameters
+    ----------
+    platforms : Mapping of str to Platform
+        Platforms by key (their sonars are checked once each).
+    envelopes : Mapping of str to SurveyEnvelope
+        Survey envelopes by platform key.
+
+    Raises
+    ------
+    ValueError
+        One line naming the data entry (e.g. ``sonars.<key>``, ``platforms.<key>...``) and what
+        is impossible.
     """
     sonars = {p.sonar.key: p.sonar for p in platforms.values()}
     for key, sonar in sonars.items():
@@ -90,7 +103,19 @@ def check_hardware(platforms: Mapping[str, Any], envelopes: Mapping[str, Any]) -
 
 
 def hardware_warnings(platforms: Mapping[str, Any]) -> list[str]:
-    """Values that are possible but look like a mistake (one line each; see the module docstring)."""
+    """Values that are possible but look like a mistake (one line each; see the module docstring).
+
+    Parameters
+    ----------
+    platforms : Mapping of str to Platform
+        Platforms by key.
+
+    Returns
+    -------
+    list of str
+        Warnings naming the data entry: apertures (deg) that look like radians, tilts (deg)
+        that look like radians, then the :func:`fan_warnings`; empty when nothing looks wrong.
+    """
     found = []
     for key, sonar in {p.sonar.key: p.sonar for p in platforms.values()}.items():
         if sonar.azimuth_deg <= RADIANS_FAN_DEG:
@@ -111,7 +136,20 @@ def fan_warnings(platforms: Mapping[str, Any]) -> list[tuple[tuple[str, str, str
     the horizontal looks along the sea surface, not at the seafloor, and a fan past the vertical
     looks under the vehicle. (A submerged vehicle may look up on purpose.) Returns ``((platform, side,
     kind), line)`` pairs, ``kind`` "above" or "under", so a caller can leave out what the shipped
-    platforms do already."""
+    platforms do already.
+
+    Parameters
+    ----------
+    platforms : Mapping of str to Platform
+        Platforms by key; tilts (look-down of the fan's centre) and full azimuth apertures in
+        degrees, vehicle level.
+
+    Returns
+    -------
+    list of ((str, str, str), str)
+        ``((platform key, transducer side, kind), warning line)``; empty when every fan lies
+        between the horizontal and the vertical.
+    """
     found = []
     for key, p in platforms.items():
         half = p.sonar.azimuth_deg / 2

@@ -76,6 +76,18 @@ class Terrain:
 
         Raises ``ValueError`` for non-finite positions, or (``random``) positions outside the
         synthesised grid, naming its extent.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Horizontal positions, world frame (``x`` east, ``y`` north), metres; shapes
+            broadcast together.
+
+        Returns
+        -------
+        numpy.ndarray, shape ``broadcast(x, y).shape``
+            Heights ``z`` (up), metres. A ``bathymetry`` grid gives its nearest edge cell beyond
+            its extent.
         """
         x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
         if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
@@ -100,7 +112,18 @@ class Terrain:
         return _bilinear(self.grid, x, y)
 
     def point_on_seafloor(self, x, y) -> np.ndarray:
-        """Points ``(x, y, h(x, y))``, shape ``broadcast(x, y).shape + (3,)``."""
+        """Points ``(x, y, h(x, y))``, shape ``broadcast(x, y).shape + (3,)``.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Horizontal positions, world frame, metres; shapes broadcast together.
+
+        Returns
+        -------
+        numpy.ndarray, shape ``broadcast(x, y).shape + (3,)``
+            Points on the seafloor, world frame, metres (errors as :meth:`height_m`).
+        """
         x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
         return np.stack([x, y, self.height_m(x, y)], axis=-1)
 
@@ -123,18 +146,53 @@ def _bilinear(grid, x, y) -> np.ndarray:
 
 
 def flat_terrain() -> Terrain:
-    """The flat seafloor ``h = 0``."""
+    """The flat seafloor ``h = 0``.
+
+    Returns
+    -------
+    Terrain
+        Kind ``flat``, no parameters.
+    """
     return Terrain("flat", {})
 
 
 def slope_terrain(slope_deg: float, azimuth_deg: float = 90.0) -> Terrain:
-    """A plane through the origin rising at ``slope_deg`` in [0, 60] toward ``azimuth_deg``."""
+    """A plane through the origin rising at ``slope_deg`` in [0, 60] toward ``azimuth_deg``.
+
+    Parameters
+    ----------
+    slope_deg : float
+        Inclination from the horizontal, degrees, in [0, 60] (0: flat).
+    azimuth_deg : float
+        Horizontal direction of steepest rise, degrees counter-clockwise from ``+x`` (east),
+        in [-360, 360]; default 90 (rising north).
+
+    Returns
+    -------
+    Terrain
+        Kind ``slope``.
+    """
     return Terrain("slope", {"slope_deg": _number(slope_deg, "slope_deg", 0.0, 60.0),
                              "azimuth_deg": _number(azimuth_deg, "azimuth_deg", -360.0, 360.0)})
 
 
 def mound_terrain(height_m: float, sigma_m: float, x0_m: float = 0.0, y0_m: float = 0.0) -> Terrain:
-    """A Gaussian mound of ``height_m`` (negative: a hollow) and half-width ``sigma_m`` > 0."""
+    """A Gaussian mound of ``height_m`` (negative: a hollow) and half-width ``sigma_m`` > 0.
+
+    Parameters
+    ----------
+    height_m : float
+        Height of the top above ``z = 0``, metres (negative: a hollow; 0: flat).
+    sigma_m : float
+        Standard deviation of the Gaussian, metres, > 0.
+    x0_m, y0_m : float
+        Centre, world frame, metres.
+
+    Returns
+    -------
+    Terrain
+        Kind ``mound``.
+    """
     if _number(sigma_m, "sigma_m") <= 0:
         raise ValueError(f"sigma_m must be > 0 m; got {sigma_m!r}")
     return Terrain("mound", {"height_m": _number(height_m, "height_m"), "sigma_m": float(sigma_m),
@@ -142,7 +200,23 @@ def mound_terrain(height_m: float, sigma_m: float, x0_m: float = 0.0, y0_m: floa
 
 
 def step_terrain(height_m: float, width_m: float, azimuth_deg: float = 0.0) -> Terrain:
-    """A trench ``height_m`` deep and ``width_m`` (>= 0) wide along the line at ``azimuth_deg``."""
+    """A trench ``height_m`` deep and ``width_m`` (>= 0) wide along the line at ``azimuth_deg``.
+
+    Parameters
+    ----------
+    height_m : float
+        Depth of the trench floor below ``z = 0``, metres (negative: a ridge).
+    width_m : float
+        Floor width, metres, >= 0 (0: only the line itself is lowered).
+    azimuth_deg : float
+        Direction of the trench's axis through the origin, degrees counter-clockwise from
+        ``+x``, in [-360, 360].
+
+    Returns
+    -------
+    Terrain
+        Kind ``step``.
+    """
     return Terrain("step", {"height_m": _number(height_m, "height_m"),
                             "width_m": _number(width_m, "width_m", 0.0),
                             "azimuth_deg": _number(azimuth_deg, "azimuth_deg", -360.0, 360.0)})
@@ -165,6 +239,12 @@ def random_terrain(rms_relief_m: float, correlation_length_m: float, extent_m: f
         points a side (with its padding).
     seed : int
         Seed of ``numpy.random.default_rng``.
+
+    Returns
+    -------
+    Terrain
+        Kind ``random``, with its grid (world frame, centred on the origin, padded by
+        ``3 correlation_length_m`` on every side); heights outside the grid raise.
     """
     sigma = _number(rms_relief_m, "rms_relief_m", 0.0)
     ell = _number(correlation_length_m, "correlation_length_m", 0.0)
@@ -197,7 +277,24 @@ def random_terrain(rms_relief_m: float, correlation_length_m: float, extent_m: f
 
 def place_features(terrain: Terrain, n: int, area_m: float, seed: int) -> np.ndarray:
     """``n`` features on the seafloor, horizontally uniform over the square of side ``area_m``
-    centred on the origin: shape (n, 3), world frame, metres."""
+    centred on the origin: shape (n, 3), world frame, metres.
+
+    Parameters
+    ----------
+    terrain : Terrain
+        The seafloor the features lie on.
+    n : int
+        Number of features, >= 0 (0 gives shape (0, 3)).
+    area_m : float
+        Side of the square, metres, >= 0.
+    seed : int
+        Seed of ``numpy.random.default_rng``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 3)
+        Feature positions, world frame, metres.
+    """
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
         raise ValueError(f"n must be an integer >= 0; got {n!r}")
     area = _number(area_m, "area_m", 0.0)
@@ -209,7 +306,19 @@ def place_features(terrain: Terrain, n: int, area_m: float, seed: int) -> np.nda
 def load_terrain_config(path: str | Path | None = None) -> dict:
     """The ``terrain`` and ``survey`` tables of ``data/terrain.toml`` merged with the active user
     data (:mod:`sss_locus.experiments.datamodel.userdata`), or of the file ``path`` only, validated by
-    :func:`parse_terrain_config`."""
+    :func:`parse_terrain_config`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path, optional
+        A terrain file to read alone; default the merged data (whose entries ``terrain`` and
+        ``survey`` are then noted as read).
+
+    Returns
+    -------
+    dict
+        As :func:`parse_terrain_config`.
+    """
     if path is None:
         datadoc.note_read("terrain", "survey")
     return parse_terrain_config(datadoc.document() if path is None else read_toml(path))
@@ -220,6 +329,17 @@ def parse_terrain_config(doc: dict) -> dict:
     "mound": {...}, "step": {...}, "random": {...}, "survey": {...}, "provenance": {key: note}}``.
 
     Raises ``ValueError`` naming the full key path of a missing, unknown or out-of-range entry.
+
+    Parameters
+    ----------
+    doc : dict
+        A parsed data document holding ``terrain`` and ``survey`` tables.
+
+    Returns
+    -------
+    dict
+        Per terrain kind its parameter values (plain numbers, units in the names), ``survey``,
+        and ``provenance``: dotted key -> source or assumption note.
     """
     data = models.validate_document(doc, ("terrain", "survey"))
     tables = {kind: getattr(data.terrain, kind) for kind in models.Terrain.model_fields}
@@ -235,7 +355,30 @@ def parse_terrain_config(doc: dict) -> dict:
 def terrain_from_config(kind: str, config: dict, *, extent_m: float = 1000.0, seed: int = 0,
                         **overrides) -> Terrain:
     """The terrain ``kind`` (one of :data:`KINDS`) with the parameters of ``config``
-    (:func:`load_terrain_config`), any of them replaced by ``overrides``."""
+    (:func:`load_terrain_config`), any of them replaced by ``overrides``.
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`KINDS`.
+    config : dict
+        :func:`load_terrain_config`'s result.
+    extent_m : float
+        ``random`` only: side of the square where heights are defined, metres.
+    seed : int
+        ``random`` only: seed of the field.
+    **overrides
+        Parameters of ``kind`` replacing the configured ones (names as in ``config[kind]``).
+
+    Returns
+    -------
+    Terrain
+
+    Raises
+    ------
+    ValueError
+        An unknown ``kind`` or override name, or a parameter out of its range.
+    """
     if kind not in KINDS:
         raise ValueError(f"kind must be one of {list(KINDS)}; got {kind!r}")
     if kind == "flat":

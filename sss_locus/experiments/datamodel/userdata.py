@@ -45,6 +45,17 @@ def validate(inputs: DataInputs) -> dict[str, Any]:
     Raises ``ValueError`` naming the file or the full key path of the first bad entry: unknown
     keys (with the nearest known one; :mod:`sss_locus.experiments.datamodel.models`) and
     impossible hardware (:mod:`sss_locus.experiments.datamodel.schema`) included.
+
+    Parameters
+    ----------
+    inputs : DataInputs
+        User files and ``--set`` overrides (:func:`~sss_locus.experiments.datamodel.datadoc.make_inputs`).
+
+    Returns
+    -------
+    dict
+        The merged document (shipped data, then the files, then the overrides). An error
+        about an entry a user file or override defines says which one.
     """
     for path in inputs.files:
         if Path(path).is_dir():
@@ -89,7 +100,20 @@ def _origin(message: str, inputs: DataInputs) -> str:
 
 def use(data_files: Iterable[str | Path] = (), data_set: Iterable[str] = ()) -> DataInputs:
     """Validate and activate user data for this process (a notebook calls this with its
-    ``data_files`` and ``data_set`` parameters); return the active :class:`DataInputs`."""
+    ``data_files`` and ``data_set`` parameters); return the active :class:`DataInputs`.
+
+    Parameters
+    ----------
+    data_files : iterable of str or pathlib.Path
+        User TOML data files, merged in order over the shipped data.
+    data_set : iterable of str
+        ``KEY.PATH=VALUE`` overrides, applied last, in order.
+
+    Returns
+    -------
+    DataInputs
+        The inputs now active (nothing is activated when validation raises ``ValueError``).
+    """
     inputs = make_inputs(data_files, data_set)
     validate(inputs)
     activate(inputs)
@@ -101,7 +125,18 @@ def hardware_flags(inputs: DataInputs | None = None) -> list[str]:
     one line each (:func:`sss_locus.experiments.datamodel.schema.hardware_warnings`). A fan that reaches
     above the horizontal or past the vertical (:func:`~sss_locus.experiments.datamodel.schema.fan_warnings`)
     is flagged for the user's platforms only, not where the shipped platform of that key does it
-    already (the paper's AUV: a 130 deg fan at 25.5 deg look-down)."""
+    already (the paper's AUV: a 130 deg fan at 25.5 deg look-down).
+
+    Parameters
+    ----------
+    inputs : DataInputs, optional
+        Default: the active inputs.
+
+    Returns
+    -------
+    list of str
+        Warning lines naming the data entry; empty for the shipped data.
+    """
     platforms = parse_platforms(document(inputs))
     shipped = {kind for kind, _ in schema.fan_warnings(parse_platforms(datadoc.shipped_document()))}
     user_fans = {line for kind, line in schema.fan_warnings(platforms) if kind not in shipped}
@@ -112,7 +147,26 @@ def hardware_flags(inputs: DataInputs | None = None) -> list[str]:
 def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = None, *,
                     envelopes: bool | Iterable[str] = True) -> dict[str, Any]:
     """The sonar, mounting and envelope values the named platforms resolve to (for manifests);
-    the envelope only for ``envelopes`` (True: every platform, else the keys listed)."""
+    the envelope only for ``envelopes`` (True: every platform, else the keys listed).
+
+    Parameters
+    ----------
+    platform_keys : iterable of str
+        Platform keys; keys the data do not define are skipped.
+    inputs : DataInputs, optional
+        Default: the active inputs.
+    envelopes : bool or iterable of str
+        Which platforms' survey envelopes to include (False: none).
+
+    Returns
+    -------
+    dict
+        Platform key -> ``name``, ``sonar`` (key, name, full apertures ``azimuth_deg`` and
+        ``elevation_deg``, ``max_range_m``, ``min_range_m``), ``tilt_deg`` by side,
+        ``attitude_max_deg`` (roll, pitch), ``depth_m`` ``[min, max]``, optionally ``envelope``
+        and ``set_by_user`` (fields set by ``--set``). The entries read are noted
+        (:func:`~sss_locus.experiments.datamodel.datadoc.note_read`).
+    """
     doc = document(inputs)
     platforms = parse_platforms(doc)
     out: dict[str, Any] = {}
@@ -143,7 +197,21 @@ def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = No
 
 
 def record(platform_keys: Iterable[str] = (), inputs: DataInputs | None = None) -> dict[str, Any]:
-    """The data-input record of a run: files read with SHA-256, overrides, resolved values."""
+    """The data-input record of a run: files read with SHA-256, overrides, resolved values.
+
+    Parameters
+    ----------
+    platform_keys : iterable of str
+        Platforms whose resolved values are recorded.
+    inputs : DataInputs, optional
+        Default: the active inputs.
+
+    Returns
+    -------
+    dict
+        ``files`` (:func:`~sss_locus.experiments.datamodel.datadoc.files_read`), ``overrides``
+        (the ``--set`` texts) and ``values`` (:func:`resolved_values`).
+    """
     inputs = active() if inputs is None else inputs
     return {"files": files_read(inputs), "overrides": list(inputs.sets),
             "values": resolved_values(platform_keys, inputs)}
@@ -216,7 +284,26 @@ def figure_record(platform_keys: Iterable[str], inputs: DataInputs | None = None
 
 
 def describe_platform(key: str, inputs: DataInputs | None = None) -> str:
-    """One line naming a platform's sonar, aperture, range and tilt (for captions)."""
+    """One line naming a platform's sonar, aperture, range and tilt (for captions).
+
+    Parameters
+    ----------
+    key : str
+        A platform key of the data.
+    inputs : DataInputs, optional
+        Default: the active inputs.
+
+    Returns
+    -------
+    str
+        E.g. ``"<platform>: <sonar>, 130° × 0.27°, 150 m, tilt 25.5°"`` (full apertures in
+        degrees, maximum range in metres, the distinct tilts of its sides joined by ``/``).
+
+    Raises
+    ------
+    KeyError
+        ``key`` is not a platform of the data.
+    """
     values = resolved_values([key], inputs)[key]
     s, tilts = values["sonar"], sorted(set(values["tilt_deg"].values()))
     tilt = "/".join(f"{t:g}" for t in tilts)
@@ -240,6 +327,20 @@ def changed_from_shipped(platform_keys: Iterable[str], inputs: DataInputs | None
     ``terrain`` and ``survey``, which only the reconstruction chapter reads); as dotted key paths
     (e.g. ``platforms.auv.transducers.port.tilt_deg``), or ``platforms.<key>`` for a key the
     shipped data do not have. Empty when the platforms read exactly the shipped values.
+
+    Parameters
+    ----------
+    platform_keys : iterable of str
+        The platforms a run used.
+    inputs : DataInputs, optional
+        Default: the active inputs.
+    tables : iterable of str
+        Shared tables the run read (compared whole).
+
+    Returns
+    -------
+    list of str
+        Dotted key paths, without repeats, in the order found.
     """
     doc, shipped = document(inputs), shipped_document()
     found: list[str] = []

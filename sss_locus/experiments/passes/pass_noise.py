@@ -61,12 +61,31 @@ class PassNoise:
             object.__setattr__(self, f.name, float(v))
 
     def scaled(self, k: float) -> "PassNoise":
-        """Every standard deviation multiplied by ``k`` (>= 0)."""
+        """Every standard deviation multiplied by ``k`` (>= 0).
+
+        Parameters
+        ----------
+        k : float
+            Finite factor >= 0 (0: no navigation error).
+
+        Returns
+        -------
+        PassNoise
+            A new instance; units unchanged.
+        """
         if not (isinstance(k, (int, float, np.integer, np.floating)) and math.isfinite(k) and k >= 0):
             raise ValueError(f"k must be a finite number >= 0; got {k!r}")
         return replace(self, **{f.name: k * getattr(self, f.name) for f in fields(self)})
 
     def key(self) -> dict:
+        """The standard deviations by field name (for cache keys and manifests).
+
+        Returns
+        -------
+        dict of str to float
+            Field name (unit in the name: ``_m``, ``_deg``; ``drift_sigma_fraction`` in m/m) ->
+            value.
+        """
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
@@ -75,7 +94,23 @@ def parse_pass_noise(table, where: str, per_view) -> PassNoise:
     :class:`~sss_locus.experiments.datamodel.models.NoiseTable`, or a parsed table validated
     here; ``where`` its key path). With none of :data:`PASS_FIELDS` present, the fallback of
     the module docstring from ``per_view`` (a :class:`~sss_locus.experiments.noise.study.NoiseModel`);
-    with some but not all, a ``ValueError`` naming the missing ones."""
+    with some but not all, a ``ValueError`` naming the missing ones.
+
+    Parameters
+    ----------
+    table : NoiseTable or Mapping
+        A platform's ``[noise.<platform>]`` table.
+    where : str
+        Its key path (e.g. ``noise.auv``), used in error messages.
+    per_view : NoiseModel
+        The platform's per-view noise model, for the fallback (its ``horizontal_sigma_m``
+        and ``heading_sigma_deg``).
+
+    Returns
+    -------
+    PassNoise
+        From the table's values, or the fallback (no drift, no jitter).
+    """
     from sss_locus.experiments.datamodel import models
 
     if not isinstance(table, models.NoiseTable):

@@ -41,7 +41,45 @@ def reduce_crossing_angle_curve(platform: Platform, envelope: SurveyEnvelope, of
     :func:`~sss_locus.experiments.survey_passes.planning.crossing_angle_curve` for the same arguments (one
     row per angle, the same numbers bit for bit), computed in each angle's chunk; and the
     pickled size of what the client received. Arguments as there (the angles distinct), checked
-    before any chunk runs."""
+    before any chunk runs.
+
+    Parameters
+    ----------
+    platform : Platform
+        Sonar and mounting (apertures and tilts in degrees, ranges in metres).
+    envelope : SurveyEnvelope
+        The platform's survey envelope (altitudes, attitudes, line spacing).
+    offset_model : OffsetModel
+        How the two passes' lateral offsets are drawn.
+    crossing_angles_deg : array_like, shape (G,)
+        Distinct crossing angles between the two passes, degrees (any order; rows come out
+        sorted).
+    n_per_angle : int
+        Accepted pass pairs per angle.
+    seed : int
+        Random seed, passed to each angle's :func:`~sss_locus.experiments.survey_passes.study.simulate_passes`.
+    n_batches : int
+        Replicate batches of each angle's rows for the medians' intervals.
+    confidence_level : float
+        Of those intervals, in (0, 1).
+    values : sequence of str
+        The per-pair columns summarised (default :data:`~sss_locus.experiments.survey_passes.planning.VALUES`).
+    progress : callable, optional
+        ``progress(done, total)`` after each chunk (:func:`~sss_locus.experiments.stats.scale.map_chunks`).
+
+    Returns
+    -------
+    curve : pandas.DataFrame
+        One row per angle (sorted): ``crossing_angle_deg``, the medians, quartiles and
+        intervals of ``values``, and ``acceptance`` (share of drawn pairs accepted).
+    bytes_to_client : int
+        Pickled size, bytes, of the per-angle rows the chunks returned.
+
+    Raises
+    ------
+    ValueError
+        Repeated angles, wrong argument types, or any argument out of its range.
+    """
     angles, n, seed = check_inputs(crossing_angles_deg, n_per_angle, seed)
     if np.unique(angles).size != angles.size:
         raise ValueError(f"crossing_angles_deg must be distinct angles; got {crossing_angles_deg!r}")

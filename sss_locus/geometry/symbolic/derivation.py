@@ -5,7 +5,19 @@ import sympy as sp
 
 
 def vector(name: str, **assumptions) -> sp.Matrix:
-    """A 3x1 column of real symbols ``name_x, name_y, name_z``."""
+    """A 3x1 column of real symbols ``name_x, name_y, name_z``.
+
+    Parameters
+    ----------
+    name : str
+        Stem of the three symbols' names (e.g. ``"p"`` gives ``p_x, p_y, p_z``).
+    **assumptions
+        Further SymPy assumptions on the symbols (e.g. ``positive=True``); they are always real.
+
+    Returns
+    -------
+    sympy.Matrix, shape (3, 1)
+    """
     return sp.Matrix(sp.symbols(f"{name}_x {name}_y {name}_z", real=True, **assumptions))
 
 
@@ -43,6 +55,17 @@ def quaternion_rotation(q=None) -> sp.Matrix:
 
     ``R(q) = M(q) / |q|^2`` with ``M`` the usual homogeneous quadratic form;
     ``R(q)^T R(q) = I`` and ``det R(q) = 1`` hold identically in ``q``.
+
+    Parameters
+    ----------
+    q : sequence of 4 sympy expressions, optional
+        ``(q_w, q_x, q_y, q_z)``, scalar part first; default the free symbols of
+        :func:`symbols`. ``q = 0`` is undefined (division by ``|q|^2``).
+
+    Returns
+    -------
+    sympy.Matrix, shape (3, 3)
+        The rotation matrix, a rational function of ``q``.
     """
     w, x, y, z = symbols()["q"] if q is None else q
     n2 = w**2 + x**2 + y**2 + z**2
@@ -305,6 +328,19 @@ def derive_crop(center=None, radius=None, e1=None, e2=None, a=None, b=None):
     Arguments default to free symbols (vectors ``c``, ``e1``, ``e2``, ``a``;
     scalars ``rho``, ``b``).
 
+    Parameters
+    ----------
+    center : sympy.Matrix, shape (3, 1), optional
+        Circle centre ``c`` (in the frame the half-space is written in).
+    radius : sympy expression, optional
+        Circle radius ``rho`` (positive).
+    e1, e2 : sympy.Matrix, shape (3, 1), optional
+        Orthonormal basis of the circle's plane; ``alpha`` is measured from ``e1`` towards ``e2``.
+    a : sympy.Matrix, shape (3, 1), optional
+        Normal of the half-space.
+    b : sympy expression, optional
+        Offset of the half-space.
+
     Returns
     -------
     result : dict
@@ -351,6 +387,18 @@ def elevation_halfspaces(r, phi_max):
     with ``phi_max`` in ``(0, pi/2]`` is ``r sin(phi_max) - z >= 0`` and
     ``z + r sin(phi_max) >= 0``, both affine. Returns ``[(a, b), (a, b)]``
     (upper bound first); always intersected.
+
+    Parameters
+    ----------
+    r : sympy expression
+        Range (sphere radius), positive; in the sensor's frame.
+    phi_max : sympy expression
+        Half elevation aperture, radians, in ``(0, pi/2]``.
+
+    Returns
+    -------
+    list of 2 tuples (sympy.Matrix (3, 1), sympy expression)
+        ``(a, b)`` of ``a . p + b >= 0`` in the sensor's frame, upper bound first.
     """
     sz = r * sp.sin(phi_max)
     return [(sp.Matrix([0, 0, -1]), sz), (sp.Matrix([0, 0, 1]), sz)]
@@ -363,6 +411,17 @@ def azimuth_halfspaces(theta_max):
     ``x sin(theta_max) + y cos(theta_max) >= 0`` (``theta >= -theta_max``).
     For ``theta_max <= pi/2`` (full azimuth <= 180 deg) the wedge is their
     intersection, for wider wedges their union. Returns ``[(a, b), (a, b)]``.
+
+    Parameters
+    ----------
+    theta_max : sympy expression
+        Half azimuth aperture, radians.
+
+    Returns
+    -------
+    list of 2 tuples (sympy.Matrix (3, 1), sympy expression)
+        ``(a, b)`` of ``a . p + b >= 0`` in the sensor's frame (``b = 0``: both planes pass
+        through the sensor), the ``theta <= theta_max`` side first.
     """
     s, c = sp.sin(theta_max), sp.cos(theta_max)
     return [(sp.Matrix([s, -c, 0]), sp.S.Zero), (sp.Matrix([s, c, 0]), sp.S.Zero)]
@@ -373,5 +432,23 @@ def halfspace_in_frame1(a2, b2, R, t):
 
     With ``p2 = R p1 + t``: ``(R^T a2) . p1 + (a2 . t + b2) >= 0``.
     Returns ``(a1, b1)``.
+
+    Parameters
+    ----------
+    a2 : sympy.Matrix, shape (3, 1)
+        Normal of the half-space in frame 2.
+    b2 : sympy expression
+        Its offset.
+    R : sympy.Matrix, shape (3, 3)
+        Rotation of the relation ``p2 = R p1 + t``.
+    t : sympy.Matrix, shape (3, 1)
+        Translation of that relation.
+
+    Returns
+    -------
+    a1 : sympy.Matrix, shape (3, 1)
+        ``R^T a2``.
+    b1 : sympy expression
+        ``a2 . t + b2``.
     """
     return R.T * a2, (a2.T * t)[0] + b2

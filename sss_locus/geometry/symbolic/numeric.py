@@ -86,6 +86,15 @@ def kernel_discrepancy(seed: int = 0, n: int = 2000, elevation_deg: float = 10.0
     bounded by sensor 1's elevation band only and every kernel arc end must be one of the four
     derived boundary angles ``alpha0 +- arccos(-D / hypot(A, B))``.
 
+    Parameters
+    ----------
+    seed : int
+        Seed of ``numpy.random.default_rng`` for the configurations.
+    n : int
+        Number of random configurations.
+    elevation_deg : float
+        Full elevation aperture of sensor 1, degrees (its half is the band's bound).
+
     Returns
     -------
     dict

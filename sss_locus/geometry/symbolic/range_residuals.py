@@ -37,7 +37,16 @@ def derive_range_jacobian():
 
 def numeric_range_jacobian():
     """``f(p_x, p_y, p_z, o_x, o_y, o_z, rho, sigma) -> (e, [de/dp_x, de/dp_y, de/dp_z])``
-    from the derived expressions (numpy, vectorised over array arguments)."""
+    from the derived expressions (numpy, vectorised over array arguments).
+
+    Returns
+    -------
+    callable
+        ``f`` of eight broadcasting arrays: feature ``p`` and sensor origin ``o`` components
+        (m, one frame), measured range ``rho`` and its standard deviation ``sigma`` (m). It
+        returns the weighted residual ``e = (|p - o| - rho) / sigma`` (dimensionless) and its
+        three derivatives (1/m); at ``p = o`` the derivatives are NaN (0/0).
+    """
     r, _ = derive_range_jacobian()
     args = list(r["p"]) + list(r["o"]) + [r["rho"], r["sigma"]]
     return sp.lambdify(args, (r["residual"], list(r["gradient"])), "numpy")
@@ -50,6 +59,15 @@ def kernel_jacobian_discrepancy(seed: int = 0, n: int = 2000, n_views: int = 4) 
     ``n`` features ``p ~ N(0, 40 m)``, each seen from ``n_views`` sensors ``o ~ N(0, 60 m)``,
     with measured ranges ``rho = |p - o| + N(0, 1 m)`` (kept > 0) and ``sigma`` uniform in
     [0.05, 1] m.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of ``numpy.random.default_rng`` for the configurations.
+    n : int
+        Number of random features.
+    n_views : int
+        Sensors (views) per feature.
 
     Returns
     -------

@@ -22,7 +22,15 @@ def _dot(a: sp.Matrix, b: sp.Matrix):
 
 
 def three_view_symbols() -> dict:
-    """``u2``, ``u3`` (plane normals, free vectors), ``c2``, ``c3`` (offsets), ``r1``, ``s``."""
+    """``u2``, ``u3`` (plane normals, free vectors), ``c2``, ``c3`` (offsets), ``r1``, ``s``.
+
+    Returns
+    -------
+    dict
+        ``u2``, ``u3`` (sympy.Matrix (3, 1) of real symbols: normals of the planes ``u . p = c``
+        in frame 1), ``c2``, ``c3`` (real symbols), ``r1`` (positive symbol: range of view 1)
+        and ``s`` (real symbol: the parameter along the line of the two planes).
+    """
     return {"u2": vector("u2"), "u3": vector("u3"), "c2": sp.Symbol("c_2", real=True),
             "c3": sp.Symbol("c_3", real=True), "r1": sp.Symbol("r_1", positive=True),
             "s": sp.Symbol("s", real=True)}
