@@ -70,6 +70,11 @@ def platform_colors(platforms: Iterable, order: Iterable[str] | None = None) -> 
     order : iterable of str, optional
         All platform keys in data-file order; default
         :func:`sss_locus.experiments.datamodel.platforms.load_platforms` order.
+
+    Returns
+    -------
+    dict of str to str
+        Platform key -> matplotlib colour name; keys not in ``order`` come after it.
     """
     keys = [getattr(p, "key", p) for p in platforms]
     if order is None:
@@ -81,13 +86,39 @@ def platform_colors(platforms: Iterable, order: Iterable[str] | None = None) -> 
 
 
 def platform_name(platform) -> str:
-    """Display name of a platform: its ``name`` in the data file."""
+    """Display name of a platform: its ``name`` in the data file.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (its ``name``).
+
+    Returns
+    -------
+    str
+        The display name.
+    """
     return platform.name
 
 
 def platform_title(platform, width: int = 60, prefix: str = "") -> str:
     """``prefix`` plus the platform's display name, wrapped to lines of at most ``width``
-    characters (names from the data can be long)."""
+    characters (names from the data can be long).
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (its ``name``).
+    width : int
+        Largest line length (characters).
+    prefix : str
+        Text before the name (e.g. a panel letter ``"(a) "``).
+
+    Returns
+    -------
+    str
+        The title, lines joined by newlines.
+    """
     return textwrap.fill(f"{prefix}{platform_name(platform)}", width)
 
 PAGE_WIDTH_IN = 7.8
@@ -114,7 +145,13 @@ titles; legends that want less pass :data:`SMALL_FONT_PT`), and which the readab
 @contextmanager
 def theme() -> Iterator[None]:
     """The book's seaborn theme for the figures created inside the ``with`` block: style
-    ``whitegrid``, context ``notebook`` with :data:`THEME_RC`, palette :data:`PALETTE`."""
+    ``whitegrid``, context ``notebook`` with :data:`THEME_RC`, palette :data:`PALETTE`.
+
+    Yields
+    ------
+    None
+        Inside the block, the theme's settings apply; after it, the previous ones.
+    """
     import seaborn as sns
 
     with sns.axes_style("whitegrid", rc=THEME_RC), sns.plotting_context("notebook", rc=THEME_RC), \
@@ -123,7 +160,18 @@ def theme() -> Iterator[None]:
 
 
 def themed(fn):
-    """Decorator: ``fn`` draws its figure inside :func:`theme`."""
+    """Decorator: ``fn`` draws its figure inside :func:`theme`.
+
+    Parameters
+    ----------
+    fn : callable
+        A function that creates and draws a figure.
+
+    Returns
+    -------
+    callable
+        ``fn`` wrapped (name and docstring kept).
+    """
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
         with theme():
@@ -163,7 +211,22 @@ def upward_heatmap(ax, z, **kwargs):
     row 0 at the bottom (``y`` increasing upwards, as on a numeric axis) and no grid, without a
     colour bar (add one with ``fig.colorbar(mesh, ax=ax)``); returns the mesh. Cell ``(j, i)``
     spans ``[i, i + 1] x [j, j + 1]``: the caller puts ticks at the values its cells stand for.
-    ``kwargs`` go to ``seaborn.heatmap`` (``cmap``, ``norm``, ``square``, ...)."""
+    ``kwargs`` go to ``seaborn.heatmap`` (``cmap``, ``norm``, ``square``, ...).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes to draw on.
+    z : numpy.ndarray, shape (n_y, n_x)
+        Cell values, NaN for blank cells.
+    **kwargs
+        Passed to ``seaborn.heatmap``.
+
+    Returns
+    -------
+    matplotlib.collections.QuadMesh
+        The heatmap's mesh (for a colour bar).
+    """
     import numpy as np
     import seaborn as sns
 

@@ -43,6 +43,18 @@ UNITS = (("_deg", "deg"), ("_rad", "rad"), ("_pct", "%"), ("_km", "km"), ("_m", 
 def header(name: object) -> str:
     """A column name in words with its unit: ``"median_length_m"`` -> ``"median length (m)"``.
 
+    Parameters
+    ----------
+    name : object
+        A column name: a string, or a tuple (a column of a MultiIndex) whose parts are joined.
+
+    Returns
+    -------
+    str
+        The header; a name ending in a unit suffix of :data:`UNITS` gets the unit in brackets.
+
+    Examples
+    --------
     >>> header("ci_low_deg"), header("platform"), header(("rho", "seed 1")), header("track_km"), header("time_h")
     ('ci low (deg)', 'platform', 'rho seed 1', 'track (km)', 'time (h)')
     """
@@ -60,6 +72,20 @@ def cell(value: object, digits: int = 3) -> str:
     and more with thousands separators, below 0.001 in scientific notation), booleans as yes/no,
     missing as :data:`NOT_APPLICABLE`.
 
+    Parameters
+    ----------
+    value : object
+        The cell's value.
+    digits : int
+        Significant figures of a floating-point value.
+
+    Returns
+    -------
+    str
+        The cell's text.
+
+    Examples
+    --------
     >>> [cell(v) for v in (0.012345, 8.08e-12, 123456.7, 7, True, None, float("nan"), "auv")]
     ['0.0123', '8.08e-12', '123,457', '7', 'yes', '–', '–', 'auv']
     """
@@ -126,6 +152,18 @@ def readable_table(frame: pd.DataFrame, *, caption: str = "", digits: int = 3,
     row_labels : sequence of str, optional
         The columns that name a row, when a wide table is turned a quarter (default: its leading
         text columns, at most two); their values head the turned table's columns.
+
+    Returns
+    -------
+    pandas.io.formats.style.Styler
+        The table as text cells (numbers right-aligned), headers in words with units, index
+        hidden, caption (HTML) above; its id is a hash of its content (the same table, the same
+        HTML).
+
+    Raises
+    ------
+    ValueError
+        When ``frame`` is not a DataFrame or ``row_labels`` are not its columns.
     """
     if not isinstance(frame, pd.DataFrame):
         raise ValueError(f"frame must be a pandas DataFrame; got {type(frame).__name__}")
@@ -170,6 +208,18 @@ def caption_html(text: str) -> str:
     """A caption in the chapters' inline Markdown as HTML: ``**bold**`` and ```code``` marked up,
     everything else escaped (a user's file or feature name is text, never markup).
 
+    Parameters
+    ----------
+    text : str
+        The caption (inline Markdown: ``**bold**`` and backquoted code only).
+
+    Returns
+    -------
+    str
+        HTML.
+
+    Examples
+    --------
     >>> caption_html("**Real data**: `a<b.csv` & more")
     '<strong>Real data</strong>: <code>a&lt;b.csv</code> &amp; more'
     """
@@ -182,6 +232,23 @@ def key_caption(names: Mapping[str, str]) -> str:
     """The caption line that names the platforms a table labels by key only (short row labels
     instead of long names wrapping into tall rows).
 
+    Parameters
+    ----------
+    names : mapping of str to str
+        Platform key -> display name; at least one.
+
+    Returns
+    -------
+    str
+        The caption line.
+
+    Raises
+    ------
+    ValueError
+        When ``names`` is empty.
+
+    Examples
+    --------
     >>> key_caption({"auv": "Torpedo AUV", "boat": "Surface boat"})
     'Platforms by key: auv, Torpedo AUV; boat, Surface boat.'
     """
@@ -193,6 +260,18 @@ def key_caption(names: Mapping[str, str]) -> str:
 def files_note(label: str) -> str:
     """The caption sentence that points to a published table's files (served beside the figures).
 
+    Parameters
+    ----------
+    label : str
+        The table's label (its files' stem).
+
+    Returns
+    -------
+    str
+        The sentence.
+
+    Examples
+    --------
     >>> files_note("tab-survey-peaks")
     'Cite it with its files: figures/tab-survey-peaks.csv (values), .json (what it was computed from), .bib.'
     """

@@ -23,6 +23,20 @@ def fmt_sig(x: float, digits: int = 2) -> str:
 
     Non-finite values read ``"n/a"``.
 
+    Parameters
+    ----------
+    x : float
+        The number.
+    digits : int
+        Significant figures.
+
+    Returns
+    -------
+    str
+        The number as text (trailing zeros kept: ``"2.0"``), or ``"n/a"``.
+
+    Examples
+    --------
     >>> fmt_sig(123.4), fmt_sig(2.0), fmt_sig(float("nan"))
     ('120', '2.0', 'n/a')
     """
@@ -36,6 +50,22 @@ def interval_digits(low: float, high: float, digits: int = 2, most: int = 4) -> 
     """The significant figures to print an interval with: ``digits``, or more (up to ``most``)
     while its two ends would print the same, so a printed interval always shows its width.
 
+    Parameters
+    ----------
+    low, high : float
+        The interval's ends.
+    digits : int
+        The fewest significant figures.
+    most : int
+        The most significant figures.
+
+    Returns
+    -------
+    int
+        Significant figures, ``digits`` to ``most``.
+
+    Examples
+    --------
     >>> interval_digits(2.9, 3.41), interval_digits(2.10, 2.14), interval_digits(0.1799, 0.1801, most=4)
     (2, 3, 4)
     """
@@ -52,6 +82,22 @@ def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> s
     ``estimate`` holds ``median``, ``ci_low`` and ``ci_high``; a degree sign is written without a
     space (``"20° (95 % CI 18°–22°)"``).
 
+    Parameters
+    ----------
+    estimate : mapping of str to float
+        ``median``, ``ci_low`` and ``ci_high``, in ``unit``.
+    unit : str
+        Unit written after each number (``"m"``, ``"°"``, ...).
+    digits : int
+        The fewest significant figures.
+
+    Returns
+    -------
+    str
+        The median and its interval.
+
+    Examples
+    --------
     >>> fmt_interval({"median": 3.14, "ci_low": 2.9, "ci_high": 3.41}, "m")
     '3.1 m (95 % CI 2.9–3.4 m)'
     >>> fmt_interval({"median": 0.1812, "ci_low": 0.1794, "ci_high": 0.1833}, "m")
@@ -68,6 +114,24 @@ def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool
     where the ends would print alike (:func:`interval_digits`); with ``percent`` the numbers are
     percentages (a share of 0 with an interval of 0 reads ``"0 %"``).
 
+    Parameters
+    ----------
+    value : float
+        The estimate (a fraction with ``percent``).
+    low, high : float
+        The ends of its 95 % interval.
+    digits : int
+        The fewest significant figures.
+    percent : bool
+        Print the numbers as percentages (times 100, with ``" %"``).
+
+    Returns
+    -------
+    str
+        The estimate and its interval.
+
+    Examples
+    --------
     >>> fmt_ci(4.1514, 4.110, 4.1927), fmt_ci(2.1245, 2.1012, 2.1439), fmt_ci(0.0088, 0.00853, 0.00908, percent=True)
     ('4.2 (95 % CI 4.1–4.2)', '2.12 (95 % CI 2.10–2.14)', '0.88 % (95 % CI 0.85–0.91 %)')
     >>> fmt_ci(0.0, 0.0, 0.0, percent=True)
@@ -108,6 +172,18 @@ def fmt_ci_cells(values, lows, highs, digits: int = 2, missing: str = "—") -> 
 def fmt_span(low: float, high: float) -> str:
     """A span of bin centres in whole degrees, one angle if it is one bin.
 
+    Parameters
+    ----------
+    low, high : float
+        The first and last bin centres (deg).
+
+    Returns
+    -------
+    str
+        The span in whole degrees.
+
+    Examples
+    --------
     >>> fmt_span(-85.0, -75.0), fmt_span(78.75, 78.75)
     ('-85° to -75°', '79°')
     """
@@ -120,6 +196,18 @@ def fmt_span(low: float, high: float) -> str:
 def fmt_percent(fraction: float) -> str:
     """A fraction as a percentage with enough digits to tell it from 0 % and 100 %.
 
+    Parameters
+    ----------
+    fraction : float
+        A share, 0 to 1.
+
+    Returns
+    -------
+    str
+        The percentage with ``" %"``.
+
+    Examples
+    --------
     >>> fmt_percent(0.5), fmt_percent(0.0004), fmt_percent(0.9996), fmt_percent(1.0)
     ('50.0 %', '0.04 %', '99.96 %', '100.0 %')
     """
@@ -132,6 +220,20 @@ def fmt_percent(fraction: float) -> str:
 def fmt_change(ratio: float, ci_low: float, ci_high: float) -> str:
     """A ratio of medians as a signed change in whole percent with its interval.
 
+    Parameters
+    ----------
+    ratio : float
+        Ratio of two medians (1: no change).
+    ci_low, ci_high : float
+        The ends of its 95 % interval.
+
+    Returns
+    -------
+    str
+        The signed change in percent with its interval.
+
+    Examples
+    --------
     >>> fmt_change(0.52, 0.47, 0.58)
     '-48 % (95 % CI -53 % to -42 %)'
     """
@@ -146,6 +248,20 @@ def fmt_bands(bands: pd.DataFrame, kind: str) -> str:
     """The ``kind`` ("prefer" or "avoid") bands of
     :func:`~sss_locus.experiments.survey_passes.planning.planning_bands` as text, ``"none"`` if there are none.
 
+    Parameters
+    ----------
+    bands : pandas.DataFrame
+        Rows ``kind``, ``lo_deg``, ``hi_deg`` (crossing angles, deg).
+    kind : str
+        ``"prefer"`` or ``"avoid"``.
+
+    Returns
+    -------
+    str
+        The bands in degrees, comma-separated, or ``"none"``.
+
+    Examples
+    --------
     >>> b = pd.DataFrame({"kind": ["prefer", "prefer", "avoid"], "lo_deg": [0.0, 170.0, 60.0],
     ...                   "hi_deg": [0.0, 180.0, 110.0]})
     >>> fmt_bands(b, "prefer"), fmt_bands(b, "avoid")
@@ -160,6 +276,18 @@ def fmt_bands(bands: pd.DataFrame, kind: str) -> str:
 def plain_label(quantity: str) -> str:
     """A quantity's display name as plain text (no LaTeX), e.g. ``"|ψ₂|"``.
 
+    Parameters
+    ----------
+    quantity : str
+        A column name (a key of :data:`~sss_locus.report.common.style.QUANTITY_LABELS`, or any).
+
+    Returns
+    -------
+    str
+        Its display name in Unicode, or ``quantity`` itself when it has none.
+
+    Examples
+    --------
     >>> plain_label("abs_psi2_deg"), plain_label("unknown_q")
     ('|ψ₂|', 'unknown_q')
     """

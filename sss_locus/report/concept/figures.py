@@ -53,6 +53,8 @@ def concept_data(locus, axes2: np.ndarray, origin2: np.ndarray, r1: float, r2: f
         The two measured ranges.
     n_per_arc : int
         Points per locus arc.
+    names : sequence of str
+        Names of the two sensors (the ``sensor`` column of ``sensors``).
 
     Returns
     -------
@@ -91,7 +93,30 @@ def draw_sensor(ax, aperture, axes: np.ndarray, origin: np.ndarray, r: float, co
                 axis_length_m: float = 3.0) -> np.ndarray:
     """One sensor on 3-D axes ``ax``: its range sphere of radius ``r`` (faint wireframe), the part
     inside ``aperture`` (filled), the wedge's edges and the sensor frame (``axes`` columns, at
-    ``origin``). Returns the filled cap's points, shape (n, 3), for the axis limits."""
+    ``origin``). Returns the filled cap's points, shape (n, 3), for the axis limits.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        3-D axes in sensor 1's frame (m).
+    aperture : Aperture
+        The sensor's aperture (``half_azimuth_rad``, ``half_elevation_rad``).
+    axes : numpy.ndarray, shape (3, 3)
+        The sensor's axes (columns x, y, z) in the drawing's frame.
+    origin : numpy.ndarray, shape (3,)
+        The sensor's origin in the drawing's frame (m).
+    r : float
+        The measured range (m).
+    colour : str
+        Colour of its sphere and wedge.
+    axis_length_m : float
+        Length of the drawn frame's arrows (m).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 3)
+        The cap's points (m).
+    """
     def world(p):
         return p @ axes.T + origin
 
@@ -241,7 +266,24 @@ def interactive_locus_concept(data: dict[str, pd.DataFrame], aperture, feature: 
                               locus_length_m: float):
     """The concept scene of :func:`plot_locus_concept` as a plotly figure: drag to rotate, scroll
     to zoom, click a legend entry to hide or show the spheres, apertures, circle or locus.
-    Returns a ``plotly.graph_objects.Figure``."""
+    Returns a ``plotly.graph_objects.Figure``.
+
+    Parameters
+    ----------
+    data : dict of str to pandas.DataFrame
+        :func:`concept_data` tables (sensor 1's frame, m).
+    aperture : Aperture
+        Both sensors' aperture.
+    feature : numpy.ndarray, shape (3,)
+        The feature in sensor 1's frame (m).
+    locus_length_m : float
+        The locus length (m), stated in the legend.
+
+    Returns
+    -------
+    plotly.graph_objects.Figure
+        The figure (axes ``x1``, ``y1``, ``z1`` in m, equal aspect).
+    """
     import plotly.graph_objects as go
 
     circle, sensors = _xyz(data["circle"]), data["sensors"]
@@ -270,7 +312,27 @@ def interactive_locus_concept(data: dict[str, pd.DataFrame], aperture, feature: 
 
 def offline_html(fig, div_id: str, plotly_js: str = PLOTLY_JS) -> str:
     """HTML of a plotly figure that loads plotly.js from ``plotly_js`` (the site's copy), not
-    from a CDN."""
+    from a CDN.
+
+    Parameters
+    ----------
+    fig : plotly.graph_objects.Figure
+        The figure.
+    div_id : str
+        The HTML id of its ``div`` (stable ids: the same figure, the same page).
+    plotly_js : str
+        Path of plotly.js as the page sees it; must end in ``.js``.
+
+    Returns
+    -------
+    str
+        An HTML fragment (no ``<html>``), without the plotly logo, responsive.
+
+    Raises
+    ------
+    ValueError
+        When ``plotly_js`` is not a ``.js`` path.
+    """
     if not plotly_js.endswith(".js"):
         raise ValueError(f"plotly_js must be the path of a .js file, got {plotly_js!r}")
     return fig.to_html(full_html=False, include_plotlyjs=plotly_js, div_id=div_id,

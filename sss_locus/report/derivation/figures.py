@@ -13,6 +13,15 @@ def show(label: str, expr, sep: str = "=") -> None:
 
     ``label`` is LaTeX; ``expr`` a SymPy expression (or anything :func:`sympy.latex` accepts);
     ``sep`` goes between them, e.g. ``""`` when the label already ends the sentence.
+
+    Parameters
+    ----------
+    label : str
+        LaTeX before the expression; ``""`` for none.
+    expr : sympy.Expr
+        The expression.
+    sep : str
+        LaTeX between them.
     """
     import sympy as sp
     from IPython.display import Math, display

@@ -42,13 +42,38 @@ BREAKDOWN_COLORS = {"position only": "tab:brown", "range only": "tab:green"}
 
 
 def level_label(scale: float) -> str:
-    """Label of a noise level, as in the notebook's noise models: ``level_label(0.1) == "×0.1"``."""
+    """Label of a noise level, as in the notebook's noise models: ``level_label(0.1) == "×0.1"``.
+
+    Parameters
+    ----------
+    scale : float
+        Factor on every standard deviation of the noise model.
+
+    Returns
+    -------
+    str
+        The label.
+    """
     return f"×{scale:g}"
 
 
 def scale_text(bases: Mapping, scale: float) -> str:
     """What a noise level scales, with the standard deviations it gives: ``bases`` maps platform
-    keys to their :class:`~sss_locus.experiments.noise.study.NoiseModel` (the file's values)."""
+    keys to their :class:`~sss_locus.experiments.noise.study.NoiseModel` (the file's values).
+
+    Parameters
+    ----------
+    bases : mapping of str to NoiseModel
+        Platform key -> its noise model as in the file.
+    scale : float
+        The level's factor.
+
+    Returns
+    -------
+    str
+        One clause: range sigma in mm and percent of the range, position sigmas in m, attitude
+        sigmas in degrees.
+    """
     parts = []
     for key, base in bases.items():
         m = base.scaled(scale)
@@ -68,7 +93,23 @@ def advice_texts(prefix: str, verdicts: Mapping[tuple[str, str, float], Mapping[
     ``<prefix>-<platform>-<model>-<level>-verdict`` ("holds"/"fails") and ``-ends-extent``,
     ``-oblique-extent``, ``-perpendicular-extent`` (m); the ``independent`` model without its
     tag (``nz-auv-x0p1-verdict``), the headline level also without the level
-    (``nz-auv-matched-10-same-verdict``)."""
+    (``nz-auv-matched-10-same-verdict``).
+
+    Parameters
+    ----------
+    prefix : str
+        Start of every glue key (e.g. ``nz``).
+    verdicts : mapping of (str, str, float) to mapping of str to float
+        The verdicts, each with ``holds`` and the median extents ``ends``, ``oblique``,
+        ``perpendicular`` (m).
+    head_scale : float
+        The headline noise level.
+
+    Returns
+    -------
+    dict of str to str
+        Glue key -> text; extents in m (2 significant figures).
+    """
     out = {}
     for (key, spec, scale), v in verdicts.items():
         model = "" if spec == "independent" else f"-{model_tag(spec)}"
@@ -83,7 +124,18 @@ def advice_texts(prefix: str, verdicts: Mapping[tuple[str, str, float], Mapping[
 
 def file_label(label: str) -> str:
     """A noise model's label as part of a file name: ``"×0.1"`` -> ``"x0p1"``,
-    ``"range only"`` -> ``"range-only"``."""
+    ``"range only"`` -> ``"range-only"``.
+
+    Parameters
+    ----------
+    label : str
+        The noise model's label.
+
+    Returns
+    -------
+    str
+        The label with ``×`` as ``x``, spaces as ``-`` and ``.`` as ``p``.
+    """
     return label.replace("×", "x").replace(" ", "-").replace(".", "p")
 
 
@@ -93,6 +145,18 @@ def curve_frames(curves: Mapping[str, Mapping[str, pd.DataFrame]],
     ``"<platform key>-<file_label(label)>"`` (the figure data of :func:`sss_locus.pipeline.publish.publish`).
 
     ``labels`` restricts (and orders) the noise models; default: all of each platform.
+
+    Parameters
+    ----------
+    curves : mapping of str to mapping of str to pandas.DataFrame
+        ``curves[platform key][label]``: crossing-angle curves (medians and quartiles, m).
+    labels : iterable of str, optional
+        Noise-model labels to keep, in order.
+
+    Returns
+    -------
+    dict of str to pandas.DataFrame
+        Name -> the curve table, unchanged.
     """
     return {f"{key}-{file_label(lab)}": by_label[lab]
             for key, by_label in curves.items()
@@ -207,6 +271,21 @@ def plot_noise_curves(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.
     level and with attitude errors only (:func:`plot_empty_share`).
     ``curves[platform.key]`` must hold the labels :func:`level_label` of every scale,
     ``"range only"`` and ``"attitude only"``.
+
+    Parameters
+    ----------
+    platforms : sequence of Platform
+        The platforms, one row each (their ``key`` and ``name``).
+    curves : mapping of str to mapping of str to pandas.DataFrame
+        ``curves[platform key][label]``: crossing-angle curves with ``locus_length_m_*``,
+        ``extent_m_median`` (m) and ``empty_fraction_median`` (0–1).
+    noise_scales : sequence of float
+        The noise levels, the first the reference.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure of ``len(platforms)`` x 2 panels.
     """
     fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 3.9 * len(platforms) + 1.2),
                             constrained_layout=True, squeeze=False)
@@ -266,7 +345,23 @@ def plot_band_widths(by_label: Mapping[str, pd.DataFrame], head: str, *, title: 
 def plot_breakdown(platforms: Sequence, curves: Mapping[str, Mapping[str, pd.DataFrame]],
                    head: str):
     """Band width against crossing angle by error group, one panel per platform
-    (:func:`plot_band_widths`), one legend below; returns the figure."""
+    (:func:`plot_band_widths`), one legend below; returns the figure.
+
+    Parameters
+    ----------
+    platforms : sequence of Platform
+        The platforms, one panel each (two a row).
+    curves : mapping of str to mapping of str to pandas.DataFrame
+        ``curves[platform key][label]`` with ``head`` and the keys of :data:`BREAKDOWN_COLORS`
+        (``band_width_m_*`` and ``locus_length_m_median`` columns, m).
+    head : str
+        Label of the all-errors curves.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure, legend below.
+    """
     ncols = min(len(platforms), 2)  # side by side: one row per two platforms, one legend
     nrows = -(-len(platforms) // ncols)
     fig, axs = plt.subplots(nrows, ncols, figsize=(PAGE_WIDTH_IN, 3.6 * nrows + 1.0),
@@ -335,6 +430,20 @@ def plot_check(check: pd.DataFrame, platforms: Sequence, scales: Sequence[float]
     ``check`` has one row per pass pair (or configuration), noise scale and kind: columns
     ``platform`` (key), ``kind`` (``"two"``: distance to the circle, top row; ``"three"``:
     three-view point error, bottom row), ``scale``, ``monte_carlo_m`` and ``first_order_m``.
+
+    Parameters
+    ----------
+    check : pandas.DataFrame
+        The rows described above (distances in m).
+    platforms : sequence of Platform
+        The platforms, in legend order.
+    scales : sequence of float
+        Noise scales, one column each.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure of 2 x ``len(scales)`` log-log panels, legend below.
     """
     colors = platform_colors(platforms)
     fig, axs = plt.subplots(2, len(scales), figsize=(PAGE_WIDTH_IN, 7.4), constrained_layout=True,

@@ -47,7 +47,23 @@ SCATTER_COLUMNS = ("elevation_misalignment_deg", "locus_length_normalized", "n_a
 
 def scatter_subset(df: pd.DataFrame, n_points: int, seed: int) -> pd.DataFrame:
     """The random subset of at most ``n_points`` rows of ``df`` drawn in the scatter panel
-    (``DataFrame.sample`` with ``random_state=seed``), columns :data:`SCATTER_COLUMNS`."""
+    (``DataFrame.sample`` with ``random_state=seed``), columns :data:`SCATTER_COLUMNS`.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The pose-space samples, with the columns :data:`SCATTER_COLUMNS`
+        (``elevation_misalignment_deg`` in deg, ``locus_length_normalized`` without unit, ``n_arcs``).
+    n_points : int
+        Largest number of rows drawn.
+    seed : int
+        Random state of the sample.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``min(n_points, len(df))`` rows of ``df`` (index kept), columns :data:`SCATTER_COLUMNS`.
+    """
     sub = df.sample(n=min(n_points, len(df)), random_state=seed)
     return sub[list(SCATTER_COLUMNS)]
 
@@ -244,6 +260,20 @@ def fmt_metric(name: str, v) -> str:
     correlations to two decimals, ratios to two significant figures, fractions in percent and
     angles in whole degrees (without the intervals and peak regions of :func:`printed_metric`).
 
+    Parameters
+    ----------
+    name : str
+        The metric's name (its ending gives the kind).
+    v : float or str
+        Its value.
+
+    Returns
+    -------
+    str
+        The printed text.
+
+    Examples
+    --------
     >>> fmt_metric("top_raw", "mean_range_m"), fmt_metric("raw_baseline_m_rank", 3.0)
     ('mean range', '3')
     >>> fmt_metric("norm_azimuth1_deg_rho", -0.0569), fmt_metric("multi_arc_fraction", 0.0123)
@@ -269,6 +299,25 @@ def printed_metric(name: str, metrics: Mapping[str, float | str]) -> tuple[str, 
     overlap) or ``"span"`` (a peak printed as the span ``what = (low, high)`` of its peak region,
     :func:`~sss_locus.experiments.pose_space.claims.peak_region`: the seeds' spans overlap).
 
+    Parameters
+    ----------
+    name : str
+        The metric's name.
+    metrics : mapping of str to float or str
+        All claim metrics of one run (with ``<name>_ci_low``/``_ci_high`` or the peak's
+        ``_lo_deg``/``_hi_deg`` where it has them).
+
+    Returns
+    -------
+    text : str
+        What the chapter prints.
+    kind : str
+        ``"text"``, ``"unit"``, ``"interval"`` or ``"span"``.
+    what : object
+        What two seeds compare: the text, the unit of the last digit, or ``(low, high)``.
+
+    Examples
+    --------
     >>> printed_metric("x_ratio", {"x_ratio": 2.13, "x_ratio_ci_low": 2.07, "x_ratio_ci_high": 2.19})
     ('2.1 (95 % CI 2.1–2.2)', 'interval', (2.07, 2.19))
     >>> printed_metric("p_deg", {"p_deg": -75.0, "p_lo_deg": -85.0, "p_hi_deg": -75.0})[:2]
@@ -301,6 +350,20 @@ def agree_at_print(kind: str, a, b) -> bool:
     last printed digit (``a``, ``b`` are ``(value, unit)``; the larger unit counts), or
     overlapping intervals or spans (``a``, ``b`` are ``(low, high)``).
 
+    Parameters
+    ----------
+    kind : str
+        ``kind`` of :func:`printed_metric`.
+    a, b : object
+        The two seeds' ``what`` (texts, ``(value, unit)`` or ``(low, high)``).
+
+    Returns
+    -------
+    bool
+        Whether the two agree at the printed precision.
+
+    Examples
+    --------
     >>> agree_at_print("unit", (-0.0569, 0.01), (-0.0582, 0.01)), agree_at_print("unit", (0.0569, 0.001), (0.0582, 0.001))
     (True, False)
     >>> agree_at_print("interval", (2.07, 2.19), (2.01, 2.12)), agree_at_print("span", (-85, -85), (-75, -65))
@@ -329,7 +392,21 @@ def metric_texts(metrics: Mapping[str, float | str], rho: pd.DataFrame) -> dict[
     """Prose of every claim metric (:func:`printed_metric`; a peak's span under
     ``<name>_span`` besides the bin of its largest median under ``<name>``) plus the replicate
     interval of every rank correlation, ``"<raw|norm>_<quantity>_ci"`` -> ``"[lo, hi]"`` (three
-    decimals)."""
+    decimals).
+
+    Parameters
+    ----------
+    metrics : mapping of str to float or str
+        The claim metrics of one run
+        (:func:`~sss_locus.experiments.pose_space.claims.claim_metrics`).
+    rho : pandas.DataFrame
+        The Spearman table: ``target``, ``quantity``, ``ci_low``, ``ci_high``.
+
+    Returns
+    -------
+    dict of str to str
+        Metric or interval name -> text.
+    """
     out = {}
     for name, v in metrics.items():
         if name.endswith(SKIPPED_SUFFIXES[:4]):
@@ -357,6 +434,20 @@ def seed_stability_table(runs: Mapping[str, tuple[Mapping, Mapping]], seeds: tup
     panel, ``stable`` empty: the bins are drawn, not printed) gives the share of bins shown in
     both seeds whose 95 % intervals overlap (with ``map_ci``) in ``bins agreeing (share)`` and
     the median relative difference of their medians in ``median relative difference``.
+
+    Parameters
+    ----------
+    runs : mapping of str to (mapping, mapping)
+        Platform key -> the two seeds' runs.
+    seeds : (int, int)
+        The two seeds (they name the columns ``seed <s>``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per compared number: ``platform``, ``quantity``, the two seed columns, ``stable``,
+        ``rule`` and, on the heatmap rows, ``median relative difference`` (a fraction) and
+        ``bins agreeing (share)``.
     """
     sa, sb = (f"seed {s}" for s in seeds)
     rules = {"text": "same quantity", "unit": "within half a unit of the last printed digit",
@@ -405,7 +496,21 @@ def _heatmap_rows(key: str, a: Mapping, b: Mapping, sa: str, sb: str) -> list[di
 def check_row(run: str, metrics: Mapping[str, float | str]) -> dict:
     """One row of the modelling-choice table: the headline claim metrics of one run, with the
     hotspot's peak region (bins whose median is within the interval of the largest, as spans of
-    bin centres and whether one has equal azimuths) and the interval of the yaw dip."""
+    bin centres and whether one has equal azimuths) and the interval of the yaw dip.
+
+    Parameters
+    ----------
+    run : str
+        Name of the run (its modelling choice).
+    metrics : mapping of str to float or str
+        Its claim metrics (:func:`~sss_locus.experiments.pose_space.claims.claim_metrics`).
+
+    Returns
+    -------
+    dict
+        Column -> value; rank correlations without unit, azimuths in whole degrees, the yaw ratio
+        and the fragmented share as fractions.
+    """
     m = metrics
     return {"run": run, "top raw": plain_label(m["top_raw"]),
             "top normalised": plain_label(m["top_norm"]),
@@ -425,7 +530,20 @@ def check_row(run: str, metrics: Mapping[str, float | str]) -> dict:
 
 def reading_texts(prefix: str, effect: pd.DataFrame) -> dict[str, str]:
     """Glue texts of :func:`~sss_locus.experiments.pose_space.choices.reading_effect`:
-    ``<prefix>-<reading>-<raw|norm>-mis-rho``, ``-mis-rank`` and ``-top`` for each reading."""
+    ``<prefix>-<reading>-<raw|norm>-mis-rho``, ``-mis-rank`` and ``-top`` for each reading.
+
+    Parameters
+    ----------
+    prefix : str
+        Start of every glue key.
+    effect : pandas.DataFrame
+        The reading effect table: ``reading``, ``target``, ``rho``, ``rank``, ``top``.
+
+    Returns
+    -------
+    dict of str to str
+        Glue key -> text.
+    """
     out = {}
     for r in effect.itertuples():
         p = f"{prefix}-{r.reading}-{r.target}"
@@ -439,7 +557,21 @@ def hotspot_texts(prefix: str, check: Mapping[str, float]) -> dict[str, str]:
     """Glue texts of :func:`~sss_locus.experiments.pose_space.choices.hotspot_check`, keyed
     ``<prefix>-hotspot-...``: the peak bin, its count and median, the targeted re-measurement
     with its interval, the runner-up bin (with its interval where the check has one) and whether
-    the peak survives (``yes``/``no``)."""
+    the peak survives (``yes``/``no``).
+
+    Parameters
+    ----------
+    prefix : str
+        Start of every glue key.
+    check : mapping of str to float
+        The hotspot check: bin centres ``x_mid``/``y_mid`` (deg), counts, medians and intervals
+        (m), ``still_peak``.
+
+    Returns
+    -------
+    dict of str to str
+        Glue key -> text; azimuths in degrees, lengths in m.
+    """
     p = f"{prefix}-hotspot"
     return {
         f"{p}-bin": f"({check['x_mid']:.0f}°, {check['y_mid']:.0f}°)",
@@ -463,7 +595,22 @@ def fan_texts(prefix: str, level: Mapping[str, float], pitched: Sequence[Mapping
     """Glue texts of :func:`~sss_locus.experiments.pose_space.choices.fan_share_removed` for a level sensor
     (``level``) and the same sensor at other pitches (``pitched``): ``<prefix>-fan-removed``,
     ``-fan-removed-pitched`` (the largest over ``pitched``, or the level share if empty) and
-    ``-fan-theta-min`` (degrees)."""
+    ``-fan-theta-min`` (degrees).
+
+    Parameters
+    ----------
+    prefix : str
+        Start of every glue key.
+    level : mapping of str to float
+        The level sensor's ``share`` (0–1) and ``theta_min_deg`` (deg).
+    pitched : sequence of mapping of str to float
+        The same at other pitches (each with ``share``).
+
+    Returns
+    -------
+    dict of str to str
+        Glue key -> text; shares in percent, angle in degrees.
+    """
     worst = max([level["share"]] + [p["share"] for p in pitched])
     return {f"{prefix}-fan-removed": f"{100 * level['share']:.0f} %",
             f"{prefix}-fan-removed-pitched": f"{100 * worst:.0f} %",

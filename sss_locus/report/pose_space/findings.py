@@ -20,13 +20,43 @@ RAW, NORM = "locus_length_m", "locus_length_normalized"
 
 
 def platform_title(name: str, key: str) -> str:
-    """How a generated paragraph names its platform: ``"Example AUV (`my_auv`)"``."""
+    """How a generated paragraph names its platform: ``"Example AUV (`my_auv`)"``.
+
+    Parameters
+    ----------
+    name : str
+        The platform's display name.
+    key : str
+        Its data key.
+
+    Returns
+    -------
+    str
+        The name with the key in code quotes (Markdown).
+    """
     return f"{name} (`{key}`)"
 
 
 def findings_markdown(paragraphs: Mapping[str, str]) -> str:
     """Paragraphs keyed by platform title as one Markdown list, one item per platform.
 
+    Parameters
+    ----------
+    paragraphs : mapping of str to str
+        Platform title (:func:`platform_title`) -> its paragraph; at least one.
+
+    Returns
+    -------
+    str
+        The Markdown list, one line per item.
+
+    Raises
+    ------
+    ValueError
+        When ``paragraphs`` is empty.
+
+    Examples
+    --------
     >>> findings_markdown({"A (`a`)": "It is long.", "B (`b`)": "It is short."})
     '- **A (`a`)**: It is long.\\n- **B (`b`)**: It is short.\\n'
     """
@@ -38,6 +68,18 @@ def findings_markdown(paragraphs: Mapping[str, str]) -> str:
 def fmt_rho(rho: float) -> str:
     """A rank correlation to two decimals, without a negative zero.
 
+    Parameters
+    ----------
+    rho : float
+        Spearman's rank correlation (−1 to 1).
+
+    Returns
+    -------
+    str
+        The text.
+
+    Examples
+    --------
     >>> fmt_rho(0.456), fmt_rho(-0.001), fmt_rho(-0.3)
     ('0.46', '0.00', '-0.30')
     """
@@ -50,7 +92,22 @@ def _direction(rho: float) -> str:
 
 
 def ranked(rho: pd.DataFrame, target: str, top: int) -> list[tuple[str, float]]:
-    """The ``top`` quantities with the largest ``|rho|`` for ``target``, largest first."""
+    """The ``top`` quantities with the largest ``|rho|`` for ``target``, largest first.
+
+    Parameters
+    ----------
+    rho : pandas.DataFrame
+        A Spearman table (``target``, ``quantity``, ``rho``).
+    target : str
+        :data:`RAW` or :data:`NORM`.
+    top : int
+        Number of quantities.
+
+    Returns
+    -------
+    list of (str, float)
+        ``(quantity, rho)`` pairs, ties in table order.
+    """
     tab = rho[rho["target"] == target].copy()
     tab = tab.assign(size=tab["rho"].abs()).sort_values("size", ascending=False, kind="stable")
     return [(q, float(r)) for q, r in zip(tab["quantity"].head(top), tab["rho"].head(top))]
@@ -71,6 +128,23 @@ def drivers_finding(rho: pd.DataFrame, top: int = 3) -> str:
     quantity; when normalising changes the first, the raw first's two ρ; the azimuths'
     normalised ρ; and that pitch is out of the ranking when its column was constant. The one
     source of this paragraph (CONTRIBUTING.md, "One source per sentence").
+
+    Parameters
+    ----------
+    rho : pandas.DataFrame
+        The Spearman table, as above.
+    top : int
+        Number of quantities named per target (at least 1).
+
+    Returns
+    -------
+    str
+        The paragraph.
+
+    Raises
+    ------
+    ValueError
+        When ``top < 1`` or ``rho`` has no rows of a target.
     """
     if top < 1:
         raise ValueError(f"top must be >= 1; got {top}")
@@ -217,6 +291,22 @@ def reading_finding(effect: pd.DataFrame) -> str:
 
     ``effect``: :func:`~sss_locus.experiments.pose_space.choices.reading_effect` (columns ``reading``,
     ``target``, ``rho``, ``rank``, ``top``).
+
+    Parameters
+    ----------
+    effect : pandas.DataFrame
+        The reading effect table, as above, with the ``magnitude`` and ``signed`` rows of the
+        normalised target (``target == "norm"``).
+
+    Returns
+    -------
+    str
+        The sentence.
+
+    Raises
+    ------
+    ValueError
+        When a reading is missing.
     """
     norm = effect[effect["target"] == "norm"].set_index("reading")
     if not {"magnitude", "signed"} <= set(norm.index):
@@ -231,7 +321,20 @@ def reading_finding(effect: pd.DataFrame) -> str:
 
 def fan_finding(level: Mapping[str, float], pitched: list[Mapping[str, float]]) -> str:
     """The part of one platform's fan the feature-below rule removes
-    (:func:`~sss_locus.experiments.pose_space.choices.fan_share_removed`, level and pitched)."""
+    (:func:`~sss_locus.experiments.pose_space.choices.fan_share_removed`, level and pitched).
+
+    Parameters
+    ----------
+    level : mapping of str to float
+        The level sensor's ``share`` removed (0–1) and ``theta_min_deg`` (deg).
+    pitched : list of mapping of str to float
+        The same for pitched sensors (each with ``share``); may be empty.
+
+    Returns
+    -------
+    str
+        The sentence(s); shares in percent, azimuths in degrees.
+    """
     worst = max([level["share"]] + [p["share"] for p in pitched])
     text = f"the rule removes {100 * level['share']:.0f} % of the fan of a level sensor"
     if level["share"] > 0:
@@ -248,7 +351,20 @@ def fan_finding(level: Mapping[str, float], pitched: list[Mapping[str, float]]) 
 
 def hotspot_finding(check: Mapping[str, float]) -> str:
     """The azimuth hotspot of one platform re-sampled
-    (:func:`~sss_locus.experiments.pose_space.choices.hotspot_check`)."""
+    (:func:`~sss_locus.experiments.pose_space.choices.hotspot_check`).
+
+    Parameters
+    ----------
+    check : mapping of str to float
+        The hotspot check: bin centres ``x_mid``/``y_mid`` and ``runner_up_x_mid``/``_y_mid``
+        (deg), counts, medians and targeted interval (m), ``still_peak`` and optionally the
+        runner-up's interval.
+
+    Returns
+    -------
+    str
+        The sentence; lengths in m, azimuths in degrees.
+    """
     c = check
     verdict = ("its targeted interval lies above the runner-up, so the bin is still the peak" if c["still_peak"]
                else "its targeted interval does not lie above the runner-up, so the peak bin is not settled")
@@ -262,7 +378,20 @@ def hotspot_finding(check: Mapping[str, float]) -> str:
 
 
 def pose_summary(rho: pd.DataFrame, metrics: Mapping[str, float]) -> str:
-    """One sentence per platform for the chapter's summary."""
+    """One sentence per platform for the chapter's summary.
+
+    Parameters
+    ----------
+    rho : pandas.DataFrame
+        The platform's Spearman table (``target``, ``quantity``, ``rho``).
+    metrics : mapping of str to float
+        Its claim metrics (the azimuth peak and the yaw peaks' spans, deg).
+
+    Returns
+    -------
+    str
+        The sentence, without a capital or subject.
+    """
     (raw, _), (norm, _) = ranked(rho, RAW, 1)[0], ranked(rho, NORM, 1)[0]
     return (f"the raw locus length ranks {plain_label(raw)} first and the range-normalised length "
             f"{plain_label(norm)}; the longest loci sit at azimuths θ₁, θ₂ ≈ {metrics['azimuth_peak_theta1_deg']:.0f}°, "

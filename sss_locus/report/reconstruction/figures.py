@@ -79,7 +79,18 @@ def _mark_floor(ax) -> None:
 
 
 def noise_label(scale: float) -> str:
-    """``"noise-free"``, ``"noise model × 0.1"``, ``"full noise model"``."""
+    """``"noise-free"``, ``"noise model × 0.1"``, ``"full noise model"``.
+
+    Parameters
+    ----------
+    scale : float
+        Factor on the noise model (0: none, 1: the full model).
+
+    Returns
+    -------
+    str
+        The label.
+    """
     if scale == 0:
         return "noise-free"
     return "full noise model" if scale == 1 else f"noise model × {scale:g}"
@@ -88,7 +99,20 @@ def noise_label(scale: float) -> str:
 def height_sentence(platforms: Sequence, envelopes: Sequence) -> str:
     """How each platform flies in the chapter's survey, from its envelope: one height above the
     mean seafloor (``same_altitude``, e.g. a surface boat) or following the terrain, at
-    :func:`~sss_locus.experiments.reconstruction.study.survey_altitude_m`; Markdown, no final stop."""
+    :func:`~sss_locus.experiments.reconstruction.study.survey_altitude_m`; Markdown, no final stop.
+
+    Parameters
+    ----------
+    platforms : sequence of Platform
+        The platforms (their ``name``).
+    envelopes : sequence of SurveyEnvelope
+        Their envelopes, in the same order (``same_altitude`` and the altitudes, m).
+
+    Returns
+    -------
+    str
+        The clauses joined by ``"; "``; heights in m.
+    """
     from sss_locus.experiments.reconstruction.study import survey_altitude_m
 
     return "; ".join(
@@ -100,7 +124,20 @@ def height_sentence(platforms: Sequence, envelopes: Sequence) -> str:
 
 
 def spacing_label(spacing_m: float, range_m: float) -> str:
-    """``"lines 240 m apart (1.6 × range)"``."""
+    """``"lines 240 m apart (1.6 × range)"``.
+
+    Parameters
+    ----------
+    spacing_m : float
+        Distance between neighbouring lines (m).
+    range_m : float
+        The sonar's maximum slant range (m).
+
+    Returns
+    -------
+    str
+        The label.
+    """
     return f"lines {fmt_sig(spacing_m, 3)} m apart ({fmt_sig(spacing_m / range_m, 2)} × range)"
 
 
@@ -135,7 +172,29 @@ def plot_sweep(platforms: Sequence, summary: pd.DataFrame, *, estimators: Sequen
     """Mean error over surveys (log scale, 95 % interval bars) against the swept ``value``: one
     row per metric (:data:`METRIC_LABELS`), one column per platform, one colour per estimator,
     one line style per spacing (the first solid). ``summary``: :func:`over_surveys` by
-    ``("platform", "spacing_m", "value", "estimator")``. Returns the figure."""
+    ``("platform", "spacing_m", "value", "estimator")``. Returns the figure.
+
+    Parameters
+    ----------
+    platforms : sequence of Platform
+        The platforms, one column each (their ``key``, ``name`` and ``sonar.max_range_m``).
+    summary : pandas.DataFrame
+        Columns ``platform``, ``spacing_m``, ``value``, ``estimator`` and, per metric, its mean
+        (m) with ``<metric>_low``/``<metric>_high``.
+    estimators : sequence of str
+        Keys of :data:`ESTIMATORS` to draw.
+    metrics : sequence of str
+        Keys of :data:`METRIC_LABELS`, one row each.
+    xlabel : str
+        Label (with unit) of the swept value.
+    spacings_m : sequence of float, optional
+        Line spacings (m) to draw, the first solid; default all, widest first.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure, legend below.
+    """
     spacings = list(spacings_m) if spacings_m is not None else sorted(summary.spacing_m.unique(), reverse=True)
     fig, axs = plt.subplots(len(metrics), len(platforms), figsize=(PAGE_WIDTH_IN, 2.2 * len(metrics) + 1.2),
                             constrained_layout=True, squeeze=False, sharex=True, sharey="row")
@@ -174,7 +233,26 @@ def plot_slope(platforms: Sequence, single: pd.DataFrame, summary: pd.DataFrame,
     """Top row: the median single-view flat-seafloor 3-D error on the slope, closed form (line)
     and simulated (markers), against the slope (``single``: per platform and ``slope_deg``,
     columns ``closed_3d_m`` and ``simulated_3d_m``). Rows below: :func:`plot_sweep`'s rows for
-    ``metrics`` (``summary`` over one spacing, ``value`` the slope). Returns the figure."""
+    ``metrics`` (``summary`` over one spacing, ``value`` the slope). Returns the figure.
+
+    Parameters
+    ----------
+    platforms : sequence of Platform
+        The platforms, one column each.
+    single : pandas.DataFrame
+        ``platform``, ``slope_deg``, ``closed_3d_m``, ``simulated_3d_m`` (m).
+    summary : pandas.DataFrame
+        As :func:`plot_sweep`'s, over one spacing, ``value`` the slope (deg).
+    estimators : sequence of str
+        Keys of :data:`ESTIMATORS` to draw.
+    metrics : sequence of str
+        Keys of :data:`METRIC_LABELS`, one row each below the top row.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure, legend below.
+    """
     fig, axs = plt.subplots(1 + len(metrics), len(platforms), figsize=(PAGE_WIDTH_IN, 2.1 * (1 + len(metrics)) + 1.0),
                             constrained_layout=True, squeeze=False, sharex=True, sharey="row")
     for j, pf in enumerate(platforms):
@@ -211,7 +289,23 @@ def plot_slope(platforms: Sequence, single: pd.DataFrame, summary: pd.DataFrame,
 def plot_views(platforms: Sequence, summary: pd.DataFrame, metrics: Sequence[str]):
     """Mean error over surveys (95 % interval bars) of each step of :data:`VIEW_STEPS` (the
     mosaic first), one line per metric, one column per platform; ``summary``: :func:`over_surveys`
-    by ``("platform", "estimator")`` on one subset of features. Returns the figure."""
+    by ``("platform", "estimator")`` on one subset of features. Returns the figure.
+
+    Parameters
+    ----------
+    platforms : sequence of Platform
+        The platforms, one panel each.
+    summary : pandas.DataFrame
+        ``platform``, ``estimator`` and, per metric, its mean (m) with ``<metric>_high`` (and
+        ``_low``).
+    metrics : sequence of str
+        Keys of :data:`METRIC_LABELS`, one line each.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure of one row of panels, legend below.
+    """
     fig, axs = plt.subplots(1, len(platforms), figsize=(PAGE_WIDTH_IN, 3.6), constrained_layout=True,
                             squeeze=False, sharey=True)
     x = np.arange(len(VIEW_STEPS))
@@ -239,14 +333,40 @@ def plot_views(platforms: Sequence, summary: pd.DataFrame, metrics: Sequence[str
 
 
 def difference_text(row, metric: str) -> str:
-    """``"-1.2 m (95 % CI -1.5 to -0.9)"``: a paired difference of ``metric`` with its interval."""
+    """``"-1.2 m (95 % CI -1.5 to -0.9)"``: a paired difference of ``metric`` with its interval.
+
+    Parameters
+    ----------
+    row : mapping or pandas.Series
+        A paired-difference row with ``metric``, ``<metric>_low``, ``<metric>_high`` (m).
+    metric : str
+        A key of :data:`METRIC_LABELS`.
+
+    Returns
+    -------
+    str
+        The difference with its interval, m.
+    """
     return (f"{fmt_sig(row[metric], 2)} m (95 % CI {fmt_sig(row[f'{metric}_low'], 2)} to "
             f"{fmt_sig(row[f'{metric}_high'], 2)})")
 
 
 def comparison_word(row, metric: str) -> str:
     """``"closer"``, ``"farther"`` or ``"not distinguishable"``: the sign of the interval of a
-    paired difference (a minus b) of ``metric``."""
+    paired difference (a minus b) of ``metric``.
+
+    Parameters
+    ----------
+    row : mapping or pandas.Series
+        A paired-difference row with ``<metric>_low`` and ``<metric>_high`` (m).
+    metric : str
+        A key of :data:`METRIC_LABELS`.
+
+    Returns
+    -------
+    str
+        One of the three words.
+    """
     if row[f"{metric}_high"] < 0:
         return "closer"
     if row[f"{metric}_low"] > 0:
@@ -258,7 +378,28 @@ def verdict_sentence(platform, paired: pd.DataFrame, metric: str, *, a_name: str
                      value_unit: str = "m RMS relief") -> str:
     """One Markdown sentence per platform, error and comparison: for each spacing, at which swept
     values ``a`` is closer / farther than ``b`` in ``metric`` (the interval over surveys of the
-    paired difference below / above 0) and the difference at the largest value."""
+    paired difference below / above 0) and the difference at the largest value.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (its ``name``).
+    paired : pandas.DataFrame
+        Its paired differences: ``spacing_m``, ``value`` and the metric with ``_low``/``_high`` (m).
+    metric : str
+        A key of :data:`METRIC_LABELS`.
+    a_name, b_name : str
+        The two estimators compared (a minus b), in words.
+    range_m : float
+        The sonar's maximum slant range (m), for the spacing labels.
+    value_unit : str
+        Unit of the swept value, in words.
+
+    Returns
+    -------
+    str
+        The sentence (Markdown).
+    """
     parts = []
     for spacing, c in paired.groupby("spacing_m", sort=False):
         c = c.sort_values("value")

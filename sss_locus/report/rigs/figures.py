@@ -77,7 +77,24 @@ def rig_outlines(platforms: Mapping[str, Platform], plot_range_m: Mapping[str, f
     """What :func:`plot_rigs` draws, in page coordinates (``h`` to starboard, ``v`` up the page),
     metres: per platform, view and side a row with the frame origin and the projected ``x``,
     ``y``, ``z`` axes, followed by the frustum outline's vertices (``frustum_vertex``, ``h``,
-    ``v``). ``plot_range_m`` and ``axis_length_m`` are keyed by platform key."""
+    ``v``). ``plot_range_m`` and ``axis_length_m`` are keyed by platform key.
+
+    Parameters
+    ----------
+    platforms : mapping of str to Platform
+        The platforms by key.
+    plot_range_m : mapping of str to float
+        Range (m) each platform's frusta are drawn to.
+    axis_length_m : mapping of str to float
+        Length (m) of each platform's drawn sensor axes.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``platform``, ``view``, ``side``, ``origin_h``, ``origin_v``,
+        ``<x|y|z>_axis_<h|v>`` (frame rows) and ``frustum_vertex``, ``h``, ``v`` (outline rows),
+        m; the columns a row does not use are NaN.
+    """
     return pd.DataFrame([dict(platform=key, **row) for key, p in platforms.items() for view in VIEWS
                          for row in _rows(p, view, plot_range_m[key], axis_length_m[key])])
 
@@ -98,7 +115,18 @@ def _draw_hull(ax, platform: Platform, view: str) -> None:
 
 
 def hull_size(platform: Platform) -> str:
-    """The hull sketch's size as drawn by :func:`draw_rig`, e.g. ``"0.19 m by 1.75 m"``."""
+    """The hull sketch's size as drawn by :func:`draw_rig`, e.g. ``"0.19 m by 1.75 m"``.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (``length_m``, ``fixed_depth``, the port transducer's ``lateral_offset_m``).
+
+    Returns
+    -------
+    str
+        The size in m, in words.
+    """
     length = f"{platform.length_m:g} m" if platform.length_m else "1 m (length not in the data)"
     if platform.fixed_depth:
         return f"{length} long, width drawn arbitrarily"
@@ -109,7 +137,26 @@ def draw_rig(platform: Platform, view: str, plot_range_m: float, axis_length_m: 
     """One panel: hull sketch, each transducer's frustum (filled, to ``plot_range_m``) and frame
     (``x``, ``y``, ``z`` arrows of ``axis_length_m``; an axis along the line of sight is a ring
     with a dot, toward the viewer, or a cross, away). ``view`` is a key of :data:`VIEWS`.
-    Returns the axes."""
+    Returns the axes.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (vehicle frame: ``x`` forward, ``y`` to port, ``z`` up; m).
+    view : str
+        A key of :data:`VIEWS`.
+    plot_range_m : float
+        Range (m) the frusta are drawn to.
+    axis_length_m : float
+        Length (m) of the sensor axes' arrows.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: the current axes, :func:`~sss_locus.report.common.style.get_axis`).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on (equal aspect, m).
+    """
     ax = get_axis(ax)
     h, v = VIEWS[view]
     toward_viewer = np.cross(h, v)  # unit vector pointing out of the page
@@ -139,7 +186,22 @@ def plot_rigs(platforms: Mapping[str, Platform], plot_range_m: Mapping[str, floa
               axis_length_m: Mapping[str, float]):
     """The rig figure: one row per platform (in the data's order), top-down (left) and from the
     stern (right), each panel titled with its letter, the platform's name and the view;
-    ``plot_range_m`` and ``axis_length_m`` are keyed by platform key. Returns the figure."""
+    ``plot_range_m`` and ``axis_length_m`` are keyed by platform key. Returns the figure.
+
+    Parameters
+    ----------
+    platforms : mapping of str to Platform
+        The platforms by key, in the data's order.
+    plot_range_m : mapping of str to float
+        Range (m) each platform's frusta are drawn to.
+    axis_length_m : mapping of str to float
+        Length (m) of each platform's drawn sensor axes.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure of ``len(platforms)`` x ``len(VIEWS)`` panels, legend below.
+    """
     fig, axs = plt.subplots(len(platforms), len(VIEWS), figsize=(PAGE_WIDTH_IN, 4.2 * len(platforms)),
                             constrained_layout=True, squeeze=False)
     for r, (key, p) in enumerate(platforms.items()):
@@ -155,7 +217,19 @@ def plot_rigs(platforms: Mapping[str, Platform], plot_range_m: Mapping[str, floa
 
 def coverage_text(platforms: Mapping[str, Platform]) -> str:
     """One sentence per platform: its port transducer's tilt (with whether the data give a source
-    or an assumption for it), fan and the elevation angles the fan spans (MyST, for gluing)."""
+    or an assumption for it), fan and the elevation angles the fan spans (MyST, for gluing).
+
+    Parameters
+    ----------
+    platforms : mapping of str to Platform
+        The platforms by key (their sonar's ``azimuth_deg``, the port transducer's ``tilt_deg`` and
+        its provenance).
+
+    Returns
+    -------
+    str
+        The sentences, angles in degrees.
+    """
     out = []
     for key, p in platforms.items():
         t = p.transducers["port"]
@@ -175,6 +249,19 @@ def coverage_text(platforms: Mapping[str, Platform]) -> str:
 def data_sources(platform_keys: Iterable[str], inputs: userdata.DataInputs | None = None) -> str:
     """The data files the drawn platforms and their sonars come from, for the caption: the ones
     the figure's manifest lists (:func:`~sss_locus.experiments.datamodel.userdata.figure_record`), shipped
-    files by their repository path, a user's file by its name."""
+    files by their repository path, a user's file by its name.
+
+    Parameters
+    ----------
+    platform_keys : iterable of str
+        The platforms drawn.
+    inputs : DataInputs, optional
+        A user's data files (default: the shipped ones).
+
+    Returns
+    -------
+    str
+        The files joined by ``" and "``.
+    """
     files = userdata.figure_record(list(platform_keys), inputs, read=set())["files"]
     return " and ".join(f["path"] if f["role"] == "shipped" else Path(f["path"]).name for f in files)

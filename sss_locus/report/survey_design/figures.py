@@ -38,7 +38,20 @@ BASELINES = {"standard": ("standard plan (NOAA-style, 200 %, as flown)", "*", "t
 def plan_label(row) -> str:
     """A plan in words, with the lines' compass heading (degrees clockwise from grid north of
     the area's local frame): ``"090°/270° lines 120 m apart + cross lines at 90°, 240 m;
-    altitude 21 m"``."""
+    altitude 21 m"``.
+
+    Parameters
+    ----------
+    row : pandas.Series
+        One plan: ``heading_deg`` (deg counter-clockwise from east), ``spacing_m``,
+        ``crossing_deg`` (deg, NaN without cross lines), ``cross_spacing_m``, ``altitude_m`` (m),
+        ``pitch_deg`` (deg).
+
+    Returns
+    -------
+    str
+        The plan in words.
+    """
     a = round((90.0 - row["heading_deg"]) % 180.0, 1)
     text = f"{a:03.0f}°/{a + 180:03.0f}° lines {row['spacing_m']:.0f} m apart"
     if not math.isnan(row["crossing_deg"]):
@@ -57,7 +70,37 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water
     vehicle that does not run ArduPilot no ArduPilot mission, and why); the cost is the track the
     mission flies (``row.total_m``: lines, U-turns, transits and the return to the start); in
     navigable water (a walled harbour) its clearance, and ``turn_notes`` the turns that did not fit
-    (:func:`sss_locus.experiments.survey_design.route.turn_misfits`)."""
+    (:func:`sss_locus.experiments.survey_design.route.turn_misfits`).
+
+    Parameters
+    ----------
+    platform : Platform
+        The vehicle (``name``, ``turn_radius_m``, ``speed_m_s``, depth limits).
+    area : SurveyArea
+        The survey area (``name``, ``origin_lonlat``, ``sha256``, navigable water and clearance).
+    area_file : str
+        The area file's name as shown.
+    row : pandas.Series
+        The recommended plan (:func:`plan_label`'s columns, ``run_m``, ``total_m`` in m, ``time_h``).
+    cov : dict
+        Its coverage: shares ``once``, ``twice`` (0–1), ``n_holes`` and the out-of-reach parts
+        (:func:`reach_sentence`).
+    files : iterable of str
+        Names of the mission files written.
+    water_depth_m : float
+        The water depth the plan used (m).
+    depth_source : str
+        Where that depth came from, in words.
+    ardupilot : bool
+        Whether the vehicle runs ArduPilot (its ``.plan``/``.waypoints`` files exist).
+    turn_notes : iterable of str
+        The turns that did not fit, in words.
+
+    Returns
+    -------
+    str
+        The caption (markdown); lengths in m and km, time in h.
+    """
     names = ", ".join(f"`{n}`" for n in files)
     why = ("" if area.origin_lonlat is not None else
            " (the others need longitude/latitude: give the area file an `origin_lonlat`)")
@@ -86,7 +129,21 @@ def reach_sentence(platform, cov: dict) -> str:
     """The part of the area no plan can see (``cov["out_of_reach"]``, its area
     ``cov["out_of_reach_m2"]`` and its parts ``too_deep``, ``too_shallow``:
     :func:`~sss_locus.experiments.survey_design.coverage.out_of_reach`) in one sentence with the
-    depths the sonar reaches, ``""`` when there is none."""
+    depths the sonar reaches, ``""`` when there is none.
+
+    Parameters
+    ----------
+    platform : Platform
+        The vehicle (``name``, ``fixed_depth``, ``depth_min_m`` and the sonar's reach).
+    cov : dict
+        The coverage with ``out_of_reach`` (share 0–1), ``out_of_reach_m2`` (m²), ``too_deep``
+        and ``too_shallow`` (shares).
+
+    Returns
+    -------
+    str
+        The sentence (areas in percent and ha, depths in m) ending in a space, or ``""``.
+    """
     if float(cov.get("out_of_reach", 0.0)) <= 0:
         return ""
     area_m2 = cov["out_of_reach_m2"] / cov["out_of_reach"]
@@ -106,7 +163,23 @@ def reach_sentence(platform, cov: dict) -> str:
 def plot_front(fronts: dict, objective: str, platforms: dict):
     """Track length against the objective for every plan of each platform (one panel each):
     searched plans grey (hollow: not eligible), the Pareto front joined, the baselines marked,
-    the recommended plan circled."""
+    the recommended plan circled.
+
+    Parameters
+    ----------
+    fronts : dict of str to pandas.DataFrame
+        Platform key -> every scored plan: ``kind``, ``eligible``, ``front``, optional
+        ``recommended``, ``total_m`` (m) and the objective's column.
+    objective : str
+        A key of :data:`OBJECTIVES`.
+    platforms : dict of str to Platform
+        The platforms by key (panel titles).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure, one panel per platform, track length in km, legend below.
+    """
     col = OBJECTIVES[objective]
     keys = list(fronts)
     fig, axes = plt.subplots(1, len(keys), figsize=(PAGE_WIDTH_IN, 3.6), squeeze=False, constrained_layout=True)
@@ -163,7 +236,39 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     turns and transits, with ``fence`` the inclusion fence, with ``bathymetry`` (a
     :class:`~sss_locus.experiments.survey_design.bathymetry.Bathymetry`) its depth contours inside
     the area, labelled in metres; on the area's WGS 84 graticule with a scale bar
-    (:mod:`sss_locus.report.survey_design.map`)."""
+    (:mod:`sss_locus.report.survey_design.map`).
+
+    Parameters
+    ----------
+    area : SurveyArea
+        The survey area (its ``polygon`` in the local frame, m; ``origin_lonlat``).
+    lines : pandas.DataFrame
+        The plan's lines in run order: ``x0_m``, ``y0_m``, ``x1_m``, ``y1_m``, ``length_m`` (local
+        frame, m) and ``set`` (``"main"`` or a cross/repeat set).
+    grid : pandas.DataFrame
+        Coverage cells: centres ``x_m``, ``y_m`` (m), ``n_lines`` and optionally ``out_of_reach``.
+    grid_m : float
+        Cell size (m).
+    nadir_gap_m : float
+        Half-width (m) of each line's nadir gap; 0 draws none.
+    platform : Platform
+        The vehicle (not drawn; kept for the caller's signature).
+    title : str
+        Axes title.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; ``None``: a new figure of the page's width.
+    track : pandas.DataFrame, optional
+        The mission's waypoints (``east_m``, ``north_m``).
+    fence : shapely.geometry.Polygon, optional
+        The inclusion fence (local frame, m).
+    bathymetry : Bathymetry, optional
+        Depth grid whose contours (m) are drawn inside the area.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure of the axes drawn on.
+    """
     if ax is None:
         fig, ax = plt.subplots(figsize=(PAGE_WIDTH_IN, 5.2), constrained_layout=True)
     cmap = ListedColormap(["tab:red", "#c6dbef", "#6baed6", "#2171b5"])
@@ -268,7 +373,21 @@ ERROR_LABELS = {"horizontal": "horizontal", "vertical": "vertical", "shape": "ma
 def error_text(row, name: str = "horizontal") -> str:
     """A plan's mean error ``name`` (of :data:`ERROR_LABELS`) over the seeds with its 95 %
     interval (a row of :func:`~sss_locus.experiments.survey_design.scoring.summarise`), e.g.
-    ``"2.6 (95 % CI 2.4–2.8) m"``; ``"too few features"`` without an interval."""
+    ``"2.6 (95 % CI 2.4–2.8) m"``; ``"too few features"`` without an interval.
+
+    Parameters
+    ----------
+    row : pandas.Series
+        A row of ``summarise`` with ``error_<name>_m``, ``error_<name>_lo_m``,
+        ``error_<name>_hi_m`` (m).
+    name : str
+        A key of :data:`ERROR_LABELS`.
+
+    Returns
+    -------
+    str
+        The error with its interval in m, or ``"too few features"``.
+    """
     if not math.isfinite(row[f"error_{name}_lo_m"]):
         return "too few features"
     return fmt_ci(row[f"error_{name}_m"], row[f"error_{name}_lo_m"], row[f"error_{name}_hi_m"]) + " m"
@@ -293,7 +412,25 @@ def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataF
     (:func:`sss_locus.experiments.survey_design.scoring.recommend_under_noise`): the deciding
     error of the standard plan and of the best plan with their intervals over the seeds and the
     counts behind them, the other two errors beside, and whether the interval excludes the
-    standard plan's."""
+    standard plan's.
+
+    Parameters
+    ----------
+    summary : pandas.DataFrame
+        The plans' scores (``summarise``), indexed as ``verdict`` names them.
+    verdict : dict
+        ``recommend_under_noise``'s verdict: ``standard``, ``best``, ``error``, ``reason``,
+        ``holds``.
+    plans : pandas.DataFrame
+        The plans (:func:`plan_label`'s columns), same index.
+    platform : Platform
+        The vehicle (its ``name``).
+
+    Returns
+    -------
+    str
+        One or two sentences; errors in m.
+    """
     name, std = platform.name, summary.loc[verdict["standard"]]
     e = verdict["error"]
     what = f"{ERROR_LABELS[e]} error of the joint estimate"
@@ -318,7 +455,20 @@ def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataF
 def verdict_words(verdicts: dict, platforms: dict) -> str:
     """The claims-page verdict: per platform, whether a plan beat the standard plan on the
     deciding error of the joint estimate, the platforms by their keys (``"a plan beats the
-    standard plan on the horizontal error (auv); standard plan kept (boat)"``)."""
+    standard plan on the horizontal error (auv); standard plan kept (boat)"``).
+
+    Parameters
+    ----------
+    verdicts : dict of str to dict
+        Platform key -> its verdict (``holds``, ``error``).
+    platforms : dict
+        The platforms shown (keys of ``verdicts`` outside it are left out).
+
+    Returns
+    -------
+    str
+        The verdicts, ``"; "``-separated, capitalised.
+    """
     parts = [(f"a plan beats the standard plan on the {ERROR_LABELS[v['error']]} error" if v["holds"]
               else "standard plan kept") + f" ({k})" for k, v in verdicts.items() if k in platforms]
     text = "; ".join(parts)
@@ -328,7 +478,19 @@ def verdict_words(verdicts: dict, platforms: dict) -> str:
 def with_compass(frame: pd.DataFrame) -> pd.DataFrame:
     """``frame`` with its ``heading_deg`` (degrees counter-clockwise from east, the computation's
     convention) replaced by ``heading_compass_deg``: degrees clockwise from north of the area's
-    local frame (true north at its origin), as written in every published table."""
+    local frame (true north at its origin), as written in every published table.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        A table, perhaps with ``heading_deg``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        A copy with ``heading_compass_deg`` (0–360 deg) in its place, or ``frame`` itself
+        without ``heading_deg``.
+    """
     if "heading_deg" not in frame:
         return frame
     at = list(frame.columns).index("heading_deg")

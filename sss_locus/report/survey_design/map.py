@@ -36,7 +36,17 @@ def _deg(value: float, pos: str, neg: str) -> str:
 def add_graticule(ax, area, *, colour: str = "0.45") -> None:
     """Meridians and parallels of the area's neighbourhood on ``ax`` (local metres), labelled
     meridians inside the top edge on a white box (:data:`LABEL_BOX`), parallels outside the right
-    edge, upright (a legend beside the axes starts at :data:`LEGEND_X`); nothing without an origin."""
+    edge, upright (a legend beside the axes starts at :data:`LEGEND_X`); nothing without an origin.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes in the area's local frame (east, north in m), its limits already set (kept).
+    area : SurveyArea
+        The area (``origin_lonlat``, ``to_lonlat``, ``to_local``).
+    colour : str
+        Colour of the lines and labels.
+    """
     if area.origin_lonlat is None:
         return
     x0, x1 = ax.get_xlim()
@@ -72,7 +82,20 @@ def add_graticule(ax, area, *, colour: str = "0.45") -> None:
 
 def add_scale_bar(ax, *, loc: str = "lower right") -> float:
     """A scale bar of a 1-2-5 length about a fifth of the axes' width (local metres); returns
-    its length, m."""
+    its length, m.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes in local metres, its limits already set.
+    loc : str
+        Where the bar goes (a matplotlib legend location).
+
+    Returns
+    -------
+    float
+        The bar's length (m).
+    """
     from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
 
     x0, x1 = ax.get_xlim()

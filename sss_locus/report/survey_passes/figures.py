@@ -38,7 +38,18 @@ GAMMAS = (0, 90, 180)
 
 def model_tag(spec: str) -> str:
     """An offset-model spec as a glue-key and file-name part: ``"matched:2.5:same"`` ->
-    ``"matched-2p5-same"``."""
+    ``"matched-2p5-same"``.
+
+    Parameters
+    ----------
+    spec : str
+        Offset-model spec as given on the command line or in a profile (``kind:jitter_m:side``).
+
+    Returns
+    -------
+    str
+        ``spec`` with ``:`` as ``-`` and ``.`` as ``p``.
+    """
     return spec.replace(":", "-").replace(".", "p")
 
 
@@ -49,7 +60,20 @@ def _pitch_range(lo: float, hi: float) -> str:
 
 
 def describe_setup(platform, envelope: SurveyEnvelope) -> str:
-    """One platform's passes in words, from its data: ``"<name>: <altitude and pitch>"``."""
+    """One platform's passes in words, from its data: ``"<name>: <altitude and pitch>"``.
+
+    Parameters
+    ----------
+    platform : Platform
+        The platform (its ``name`` is used).
+    envelope : SurveyEnvelope
+        Its survey envelope: altitude above the feature (m) and pitch (deg) ranges of the passes.
+
+    Returns
+    -------
+    str
+        One sentence fragment, altitudes in m and pitches in degrees.
+    """
     lo, hi = envelope.altitude_min_m, envelope.altitude_max_m
     alt = f"{lo:g} m" if lo == hi else f"{lo:g}–{hi:g} m"
     level = envelope.pitch_min_deg == envelope.pitch_max_deg == 0
@@ -67,7 +91,18 @@ SIDE_RULE_TEXT = {"random": "on a random side of the vehicle", "same": "on the s
 
 
 def describe_offset_model(model: OffsetModel) -> str:
-    """Where the passes see the feature across their swaths, in words."""
+    """Where the passes see the feature across their swaths, in words.
+
+    Parameters
+    ----------
+    model : OffsetModel
+        The offset model (``kind``, ``jitter_m`` in m, ``side_rule``, ``side1``).
+
+    Returns
+    -------
+    str
+        A sentence fragment without a capital or full stop.
+    """
     if model.kind == "independent":
         text = "each pass sees the feature anywhere in its swath"
         text += "" if model.side_rule == "random" else f", pass 2 {SIDE_RULE_TEXT[model.side_rule]}"
@@ -120,7 +155,19 @@ def plot_crossing_curves(curves: Mapping[str, CrossingAngleCurve], value: str = 
 def plot_fig5(curves: Mapping[str, CrossingAngleCurve]):
     """The paper's Fig. 5: (a) locus length and (b) elevation misalignment against crossing
     angle, median line and interquartile band per platform (:func:`plot_crossing_curves`).
-    Returns the figure."""
+    Returns the figure.
+
+    Parameters
+    ----------
+    curves : mapping of str to CrossingAngleCurve
+        The curves keyed by platform key, each with its median and quartile columns of
+        ``locus_length_m`` (m) and ``elevation_misalignment_deg`` (deg) per ``crossing_angle_deg``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure of two panels sharing the crossing-angle axis (deg), legend below.
+    """
     colors = platform_colors([cur.platform for cur in curves.values()])
     fig, axs = plt.subplots(2, 1, figsize=(PAGE_WIDTH_IN, 6.8), sharex=True, constrained_layout=True)
     for ax, v, tag in zip(axs, VALUES, "ab"):
@@ -139,7 +186,23 @@ def curve_texts(prefix: str, cur: CrossingAngleCurve, over: bool = True) -> dict
     interval, medians at 0/90/180°, the peak median and (``over``: needs the curve's samples)
     the medians there over the peak; plus ``<prefix>-rejected`` (share of drawn pairs rejected),
     ``-rejected-max`` (largest share at one angle) and ``-shape-rho`` (rank correlation of the two
-    median curves over the grid)."""
+    median curves over the grid).
+
+    Parameters
+    ----------
+    prefix : str
+        Start of every glue key (e.g. ``sp-boat``).
+    cur : CrossingAngleCurve
+        The curve: its medians and quartiles (m, deg), peaks with bootstrap intervals (deg) and
+        acceptance per angle.
+    over : bool
+        Whether to add the ``-over-peak`` ratios (needs the curve's samples).
+
+    Returns
+    -------
+    dict of str to str
+        Glue key -> text; lengths in m, misalignments and angles in degrees, shares in percent.
+    """
     out = {}
     c = cur.curve
     for v in VALUES:
@@ -161,7 +224,19 @@ def curve_texts(prefix: str, cur: CrossingAngleCurve, over: bool = True) -> dict
 
 
 def peak_table(curves: Mapping[str, CrossingAngleCurve]) -> pd.DataFrame:
-    """Peak angle with its interval and the medians at 0/90/180° of each platform and quantity."""
+    """Peak angle with its interval and the medians at 0/90/180° of each platform and quantity.
+
+    Parameters
+    ----------
+    curves : mapping of str to CrossingAngleCurve
+        The curves keyed by platform key.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per platform and quantity: ``platform``, ``quantity``, ``peak angle (deg)``,
+        ``95 % CI (deg)`` (text) and ``median at <γ>°`` (3 significant digits, m or deg).
+    """
     rows = []
     for k, cur in curves.items():
         for name, pk in cur.peak.items():
@@ -176,7 +251,22 @@ def plot_offset_models(main: Mapping[str, CrossingAngleCurve],
                        sensitivity: Mapping[tuple[str, str], CrossingAngleCurve], main_label: str):
     """Median length (row a) and misalignment (row b) per platform (columns): the main curves
     (black, legend ``main_label``) and one line per offset model of ``sensitivity`` (keyed
-    ``(platform key, spec)``). Returns the figure."""
+    ``(platform key, spec)``). Returns the figure.
+
+    Parameters
+    ----------
+    main : mapping of str to CrossingAngleCurve
+        The main curves keyed by platform key (one column of panels each).
+    sensitivity : mapping of (str, str) to CrossingAngleCurve
+        The offset-model curves keyed ``(platform key, offset-model spec)``.
+    main_label : str
+        Legend entry of the main curves.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure of 2 x ``len(main)`` panels against crossing angle (deg), legend below.
+    """
     keys = list(main)
     fig, axs = plt.subplots(2, len(keys), figsize=(PAGE_WIDTH_IN, 8.5), sharex=True,
                             constrained_layout=True, squeeze=False)
@@ -217,7 +307,21 @@ def offset_models_bimodal_note(sensitivity: Mapping[tuple[str, str], CrossingAng
                                value: str = "elevation_misalignment_deg") -> str:
     """Caption sentence for the offset models whose pass pairs mix sides (:func:`_mixes_sides`):
     their median jumps between the same-side and the opposite-side population from angle to
-    angle, with the widest quartile range (angle, quartiles) as computed. Empty if none mixes."""
+    angle, with the widest quartile range (angle, quartiles) as computed. Empty if none mixes.
+
+    Parameters
+    ----------
+    sensitivity : mapping of (str, str) to CrossingAngleCurve
+        The offset-model curves keyed ``(platform key, offset-model spec)``.
+    value : str
+        The quantity whose quartiles are quoted, one of :data:`VALUES` (default the elevation
+        misalignment, deg).
+
+    Returns
+    -------
+    str
+        The sentence, starting with a space; ``""`` if no curve mixes sides.
+    """
     out = []
     for (k, _), cur in sensitivity.items():
         if not _mixes_sides(cur):
@@ -239,7 +343,20 @@ def offset_models_bimodal_note(sensitivity: Mapping[tuple[str, str], CrossingAng
 
 def offset_model_table(sensitivity: Mapping[tuple[str, str], CrossingAngleCurve]) -> pd.DataFrame:
     """Peak angle, medians at 0°, the peak, 90° and 180°, and the smallest acceptance of each
-    (platform, offset model) curve."""
+    (platform, offset model) curve.
+
+    Parameters
+    ----------
+    sensitivity : mapping of (str, str) to CrossingAngleCurve
+        The offset-model curves keyed ``(platform key, offset-model spec)``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per curve: ``platform``, ``offset model``, ``peak angle (deg)``, ``peak 95 % CI
+        (deg)``, the medians of the locus length (m, 2 significant digits) and the smallest
+        acceptance (share of drawn pairs, 0–1).
+    """
     rows = []
     for (k, _), cur in sensitivity.items():
         pk, peak = cur.peak["locus_length_m"], cur.curve["locus_length_m_median"].max()
@@ -256,7 +373,18 @@ def offset_model_table(sensitivity: Mapping[tuple[str, str], CrossingAngleCurve]
 def offset_model_texts(sensitivity: Mapping[tuple[str, str], CrossingAngleCurve]) -> dict[str, str]:
     """Glue texts ``sp-<platform>-<model tag>-...`` of the offset-model curves: length and
     misalignment peak angles with their bootstrap intervals, medians at 0/90/180° over the peak
-    (with their replicate intervals, :func:`~sss_locus.experiments.survey_passes.verdicts.over_peak`)."""
+    (with their replicate intervals, :func:`~sss_locus.experiments.survey_passes.verdicts.over_peak`).
+
+    Parameters
+    ----------
+    sensitivity : mapping of (str, str) to CrossingAngleCurve
+        The offset-model curves keyed ``(platform key, offset-model spec)``.
+
+    Returns
+    -------
+    dict of str to str
+        Glue key -> text; angles in degrees, ratios over the peak without unit.
+    """
     out = {}
     for (k, spec), cur in sensitivity.items():
         p, pk = f"sp-{label_key(k)}-{model_tag(spec)}", cur.peak["locus_length_m"]
@@ -283,6 +411,25 @@ def pitch_depth_texts(pitch: pd.DataFrame, depth: pd.DataFrame,
     ``pitch`` has one row per pitch level (both passes pitched) followed by the level-pass-1
     rows turning to port and to starboard; ``depth`` one row per altitude, the first the
     reference. Both hold :func:`~sss_locus.experiments.survey_passes.planning.median_ratio` columns.
+
+    Parameters
+    ----------
+    pitch : pandas.DataFrame
+        Nose-up over nose-down ratios, rows as above; columns ``ratio``, ``ratio_ci_low``,
+        ``ratio_ci_high``, ``median_x``, ``median_y`` (m).
+    depth : pandas.DataFrame
+        Ratios per altitude, rows as above; columns ``altitude (m)``, ``ratio``, ``norm_ratio`` and
+        their ``_ci_low``/``_ci_high``.
+    pitch_levels_deg : sequence of float
+        The pitch levels (deg) of the first rows of ``pitch``.
+    prefix : str
+        Start of every glue key.
+
+    Returns
+    -------
+    dict of str to str
+        Glue key -> text: changes as percentages with intervals, pitches in degrees, altitudes
+        and medians in m.
     """
     out = {}
     for i, p in enumerate(pitch_levels_deg):
@@ -314,7 +461,26 @@ def plot_pitch_depth(pitch: pd.DataFrame, depth: pd.DataFrame, band_deg: tuple[f
     (the first ``n_both`` with both passes pitched, in black; the rest in
     :data:`VARIANT_COLORS`); (b) median length and length per unit range at each altitude of
     ``depth`` relative to the first. ``band_deg`` is the crossing-angle band both were run in.
-    Returns the figure."""
+    Returns the figure.
+
+    Parameters
+    ----------
+    pitch : pandas.DataFrame
+        One row per comparison: ``comparison`` (row label), ``ratio``, ``ratio_ci_low``,
+        ``ratio_ci_high``.
+    depth : pandas.DataFrame
+        One row per altitude: ``altitude (m)``, ``ratio``, ``norm_ratio`` and their
+        ``_ci_low``/``_ci_high`` columns.
+    band_deg : (float, float)
+        The crossing-angle band (deg), for panel (a)'s title.
+    n_both : int
+        Number of leading ``pitch`` rows with both passes pitched.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure with the two panels side by side.
+    """
     # side by side: (a)'s long row labels are wrapped, (b) takes the rest of the width
     fig, axs = plt.subplots(1, 2, figsize=(PAGE_WIDTH_IN, 4.2), constrained_layout=True,
                             gridspec_kw={"width_ratios": [1, 1.1]})
@@ -349,7 +515,19 @@ def near_end_texts(checks: Mapping[str, pd.DataFrame]) -> dict[str, str]:
     """Glue texts of :func:`~sss_locus.experiments.survey_passes.verdicts.near_end_check` over several curves
     (``checks`` keyed by a label such as ``"AUV, matched ±10 m, same side"``):
     ``sp-near-<0|180>-held`` ("k of n curves"), ``sp-near-<0|180>-worst`` (the worst curve, with
-    the median at the end and at its worst nearby angle)."""
+    the median at the end and at its worst nearby angle).
+
+    Parameters
+    ----------
+    checks : mapping of str to pandas.DataFrame
+        Label -> the rows of ``near_end_check`` (``end_deg``, ``all_preferred``, ``ratio``,
+        ``worst_median`` and ``end_median`` in m, ``worst_angle_deg``).
+
+    Returns
+    -------
+    dict of str to str
+        Glue key -> text; lengths in m, angles in degrees.
+    """
     out = {}
     for end in (0.0, 180.0):
         rows = {lab: c[c["end_deg"] == end].iloc[0] for lab, c in checks.items()}
@@ -368,6 +546,18 @@ def near_end_caption(window_deg: float) -> str:
     """The caption sentence of a table of :func:`~sss_locus.experiments.survey_passes.verdicts.near_end_check`
     rows (one curve and end a row).
 
+    Parameters
+    ----------
+    window_deg : float
+        Half-width (deg) of the window looked at next to each end.
+
+    Returns
+    -------
+    str
+        The caption sentence.
+
+    Examples
+    --------
     >>> near_end_caption(10.0).split(":")[0]
     'Each curve within 10° of each end'
     """
@@ -379,6 +569,19 @@ def near_end_caption(window_deg: float) -> str:
 def peak_agreement_texts(prefix: str, agreement: Mapping[str, float | bool]) -> dict[str, str]:
     """Glue texts ``<prefix>-peak-gap`` (degrees, misalignment minus length) and
     ``<prefix>-peaks-overlap`` ("overlap"/"do not overlap") of
-    :func:`~sss_locus.experiments.survey_passes.verdicts.peak_agreement`."""
+    :func:`~sss_locus.experiments.survey_passes.verdicts.peak_agreement`.
+
+    Parameters
+    ----------
+    prefix : str
+        Start of both glue keys.
+    agreement : mapping of str to float or bool
+        ``gap_deg`` (deg) and ``intervals_overlap`` of ``peak_agreement``.
+
+    Returns
+    -------
+    dict of str to str
+        The two glue texts.
+    """
     return {f"{prefix}-peak-gap": f"{agreement['gap_deg']:+.0f}",
             f"{prefix}-peaks-overlap": "overlap" if agreement["intervals_overlap"] else "do not overlap"}

@@ -34,6 +34,25 @@ def verdict_word(flags: Iterable[bool], words: tuple[str, str, str] = VERDICT_WO
     """``"Reproduced"`` if every flag holds, ``"Not reproduced"`` if none does, else ``"Partly"``
     (``words``: the three words to use instead, in that order).
 
+    Parameters
+    ----------
+    flags : iterable of bool
+        The verdicts of the claim's cases; at least one.
+    words : (str, str, str)
+        The words for all, some and none holding.
+
+    Returns
+    -------
+    str
+        One of ``words``.
+
+    Raises
+    ------
+    ValueError
+        When ``flags`` is empty.
+
+    Examples
+    --------
     >>> verdict_word([True, True]), verdict_word([True, False]), verdict_word([False])
     ('Reproduced', 'Partly', 'Not reproduced')
     """
@@ -45,7 +64,20 @@ def verdict_word(flags: Iterable[bool], words: tuple[str, str, str] = VERDICT_WO
 
 def preferred_span(bands: pd.DataFrame, angle_deg: float) -> str:
     """The preferred band of :func:`~sss_locus.experiments.survey_passes.planning.planning_bands` that holds
-    ``angle_deg``, as text (``"0–4°"``, ``"180°"``), or ``"none"``."""
+    ``angle_deg``, as text (``"0–4°"``, ``"180°"``), or ``"none"``.
+
+    Parameters
+    ----------
+    bands : pandas.DataFrame
+        The bands: ``kind``, ``lo_deg``, ``hi_deg`` (deg).
+    angle_deg : float
+        The crossing angle (deg).
+
+    Returns
+    -------
+    str
+        The band in whole degrees, or ``"none"``.
+    """
     hit = bands[(bands["kind"] == "prefer") & (bands["lo_deg"] <= angle_deg + 1e-9)
                 & (bands["hi_deg"] >= angle_deg - 1e-9)]
     if not len(hit):
@@ -134,6 +166,8 @@ def noise_advice_findings(prefix: str, verdicts: Mapping[tuple[str, str, float],
 
     Parameters
     ----------
+    prefix : str
+        Start of both glue keys.
     verdicts : mapping (platform key, offset-model spec, noise scale) -> dict
         :func:`~sss_locus.experiments.survey_passes.verdicts.advice_verdict` on the median extent (its
         ``holds`` flag decides).
@@ -141,6 +175,8 @@ def noise_advice_findings(prefix: str, verdicts: Mapping[tuple[str, str, float],
         Display label of each offset model.
     empty_share : mapping platform key -> float
         Mean share of noisy draws with an empty computed locus at the headline level.
+    oblique_band_deg : (float, float)
+        The oblique band (deg) the ends are compared with, as the verdicts were computed.
 
     Returns
     -------

@@ -47,7 +47,23 @@ def plot_planning_bands(curves: Mapping[tuple[str, str], CrossingAngleCurve],
     """Median locus length (black, IQR grey) against crossing angle with the computed bands to
     prefer (green) and avoid (red) shaded and the paper's band to avoid hatched; one row per
     offset model and one column per platform (``curves`` and ``bands`` keyed
-    ``(platform key, offset-model spec)``). Returns the figure."""
+    ``(platform key, offset-model spec)``). Returns the figure.
+
+    Parameters
+    ----------
+    curves : mapping of (str, str) to CrossingAngleCurve
+        The curves (``crossing_angle_deg``, ``locus_length_m_median`` and quartiles, m).
+    bands : mapping of (str, str) to pandas.DataFrame
+        Their bands: ``kind`` (``"prefer"``/``"avoid"``), ``lo_deg``, ``hi_deg`` (grid angles,
+        deg).
+    paper_avoid_deg : (float, float)
+        The paper's band to avoid (deg).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure, legend below.
+    """
     specs, keys = _models_and_platforms(curves)
     fig, axs = plt.subplots(len(specs), len(keys), figsize=(PAGE_WIDTH_IN, 3.4 * len(specs) + 0.8),
                             sharex=True, constrained_layout=True, squeeze=False)
@@ -89,7 +105,21 @@ def plot_planning_bands(curves: Mapping[tuple[str, str], CrossingAngleCurve],
 def bands_table(curves: Mapping[tuple[str, str], CrossingAngleCurve],
                 bands: Mapping[tuple[str, str], pd.DataFrame]) -> pd.DataFrame:
     """One row per offset model and platform (models outer): bands to prefer and avoid, what 90°
-    is, and the paper's advice."""
+    is, and the paper's advice.
+
+    Parameters
+    ----------
+    curves : mapping of (str, str) to CrossingAngleCurve
+        The curves keyed ``(platform key, offset-model spec)``.
+    bands : mapping of (str, str) to pandas.DataFrame
+        Their bands, same keys.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``platform``, ``offset model``, ``prefer (computed)``, ``avoid (computed)`` (text,
+        deg), ``90° is`` and ``paper``.
+    """
     specs, keys = _models_and_platforms(curves)
     rows = []
     for spec in specs:
@@ -104,7 +134,18 @@ def bands_table(curves: Mapping[tuple[str, str], CrossingAngleCurve],
 
 def band_texts(bands: Mapping[tuple[str, str], pd.DataFrame]) -> dict[str, str]:
     """Glue texts ``pl-<platform>-<model tag>-prefer``, ``-avoid`` and ``-90`` (``<platform>``:
-    the key with ``_`` as ``-``)."""
+    the key with ``_`` as ``-``).
+
+    Parameters
+    ----------
+    bands : mapping of (str, str) to pandas.DataFrame
+        The bands keyed ``(platform key, offset-model spec)``.
+
+    Returns
+    -------
+    dict of str to str
+        Glue key -> text (angles in degrees).
+    """
     out = {}
     for (key, spec), b in bands.items():
         tag = f"pl-{label_key(key)}-{model_tag(spec)}"
@@ -118,7 +159,20 @@ def bands_markdown(curves: Mapping[tuple[str, str], CrossingAngleCurve],
                    bands: Mapping[tuple[str, str], pd.DataFrame]) -> str:
     """The chapter's summary table (MyST): one row per platform of the run under each offset
     model (models outer), the bands to prefer and avoid and what 90° is, then the paper's advice.
-    Every platform of ``curves`` has its rows, the paper's or not."""
+    Every platform of ``curves`` has its rows, the paper's or not.
+
+    Parameters
+    ----------
+    curves : mapping of (str, str) to CrossingAngleCurve
+        The curves keyed ``(platform key, offset-model spec)``.
+    bands : mapping of (str, str) to pandas.DataFrame
+        Their bands, same keys.
+
+    Returns
+    -------
+    str
+        The Markdown table, ending in a newline.
+    """
     specs, keys = _models_and_platforms(curves)
     rows = ["| | Prefer (computed) | Avoid (computed) | 90° |", "|---|---|---|---|"]
     for spec in specs:
@@ -133,7 +187,18 @@ def bands_markdown(curves: Mapping[tuple[str, str], CrossingAngleCurve],
 
 
 def offset_model_words(model) -> str:
-    """An offset model in plain words: where the two passes see the feature across their swaths."""
+    """An offset model in plain words: where the two passes see the feature across their swaths.
+
+    Parameters
+    ----------
+    model : OffsetModel
+        The offset model (``kind``, ``jitter_m`` in m, ``side_rule``).
+
+    Returns
+    -------
+    str
+        The words.
+    """
     if model.kind == "independent":
         return "passes flown without regard to the feature (independent offsets)"
     side = {"same": "on the same side", "opposite": "on opposite sides",
@@ -180,7 +245,27 @@ def paper_band_finding(curve: pd.DataFrame, bands: pd.DataFrame,
 def cross_line_finding(curves: Mapping[tuple[str, str], CrossingAngleCurve],
                        bands: Mapping[tuple[str, str], pd.DataFrame], key: str) -> str:
     """What a cross-line (90°) is for platform ``key`` under each offset model of ``curves``
-    (keyed ``(platform key, spec)``), and whether the offset model changes it."""
+    (keyed ``(platform key, spec)``), and whether the offset model changes it.
+
+    Parameters
+    ----------
+    curves : mapping of (str, str) to CrossingAngleCurve
+        The curves keyed ``(platform key, offset-model spec)``.
+    bands : mapping of (str, str) to pandas.DataFrame
+        Their bands, same keys.
+    key : str
+        The platform.
+
+    Returns
+    -------
+    str
+        The sentence.
+
+    Raises
+    ------
+    ValueError
+        When ``bands`` has no curve of ``key``.
+    """
     said = {spec: band_at(b, 90.0) for (k, spec), b in bands.items() if k == key}
     if not said:
         raise ValueError(f"no curve of platform {key!r}")

@@ -40,7 +40,18 @@ OUTCOMES = (("resolved (1 point)", 1, "tab:green"), ("two-fold ambiguity", 2, "t
 
 
 def pattern_label(name: str) -> str:
-    """A pattern's name on two lines, for an axis: ``"two lines +\\ncross line"``."""
+    """A pattern's name on two lines, for an axis: ``"two lines +\\ncross line"``.
+
+    Parameters
+    ----------
+    name : str
+        The pattern's name.
+
+    Returns
+    -------
+    str
+        The name with a line break after ``" + "`` and before the separation of 60° patterns.
+    """
     return name.replace(" + ", " +\n").replace(" 60 deg apart", "\n60° apart")
 
 
@@ -128,6 +139,21 @@ def plot_patterns(platforms: Sequence, tables: Mapping[str, Mapping[str, pd.Data
     ``tables[platform.key][pattern]`` is a three-view table. Rows (a), (b), (c); columns the
     platforms; the patterns, in the tables' order from the top, label the rows of the left
     column only (shared).
+
+    Parameters
+    ----------
+    platforms : sequence of Platform
+        The platforms, one column each.
+    tables : mapping of str to mapping of str to pandas.DataFrame
+        ``tables[platform key][pattern]``: three-view tables with ``n_valid``,
+        ``plane_angle_deg`` (deg) and ``point_error_q95_m`` (m).
+    range_sigma_m : float
+        The range error (m) the point errors are per.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure of 3 x ``len(platforms)`` panels, legend below.
     """
     n = len(platforms)
     fig, axs = plt.subplots(3, n, figsize=(PAGE_WIDTH_IN, 6.4), constrained_layout=True,
@@ -152,6 +178,20 @@ def sym_grid(sweep: pd.DataFrame, value: str) -> tuple[np.ndarray, np.ndarray]:
     The sweep holds one row per pair ``heading2_deg <= heading3_deg``; swapping passes 2 and 3
     changes nothing, so each value fills both ``z[i, j]`` and ``z[j, i]`` (NaN where no pair
     was run): row ``j`` is heading ``h[j]`` of pass 3, column ``i`` heading ``h[i]`` of pass 2.
+
+    Parameters
+    ----------
+    sweep : pandas.DataFrame
+        A heading sweep: ``heading2_deg``, ``heading3_deg`` (deg) and ``value``.
+    value : str
+        The column to grid.
+
+    Returns
+    -------
+    h : numpy.ndarray, shape (n,)
+        The headings run (deg), increasing.
+    z : numpy.ndarray, shape (n, n)
+        The values, symmetric, NaN where no pair was run.
     """
     h = np.unique(np.concatenate([sweep.heading2_deg, sweep.heading3_deg]))
     z = np.full((h.size, h.size), np.nan)
@@ -209,7 +249,23 @@ def plot_heading_sweep(platforms: Sequence, sweeps: Mapping[str, pd.DataFrame], 
     """Median plane angle (left) and median first-order 95 % point error for a ``range_sigma_m``
     range error (right, log colour scale) against the headings of passes 2 and 3, one row per
     platform (:func:`plot_sweep_heatmap`); returns the figure. ``sweeps[platform.key]`` is a
-    heading sweep with noise."""
+    heading sweep with noise.
+
+    Parameters
+    ----------
+    platforms : sequence of Platform
+        The platforms, one row each.
+    sweeps : mapping of str to pandas.DataFrame
+        Platform key -> heading sweep with ``plane_angle_median_deg`` (deg) and
+        ``point_error_q95_median_m`` (m).
+    range_sigma_m : float
+        The range error (m) the point errors are per.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure of ``len(platforms)`` x 2 heatmaps.
+    """
     fig, axs = plt.subplots(len(platforms), 2, figsize=(PAGE_WIDTH_IN, 3.5 * len(platforms)), constrained_layout=True,
                             squeeze=False)
     for row, pf in zip(axs, platforms):
@@ -226,6 +282,18 @@ def cells_text(cells: pd.DataFrame) -> str:
     """Cells of a heading sweep in words: each ``(h2, h3)`` when there are at most three, else
     their number and the spans of their headings.
 
+    Parameters
+    ----------
+    cells : pandas.DataFrame
+        Cells with ``heading2_deg`` and ``heading3_deg`` (deg).
+
+    Returns
+    -------
+    str
+        The cells in words, headings in whole degrees.
+
+    Examples
+    --------
     >>> cells_text(pd.DataFrame({"heading2_deg": [0.0, 180.0], "heading3_deg": [0.0, 180.0]}))
     '(0°, 0°), (180°, 180°)'
     >>> cells_text(pd.DataFrame({"heading2_deg": [45.0, 60, 90, 75], "heading3_deg": [90.0, 120, 135, 105]}))
@@ -246,7 +314,20 @@ def sweep_texts(sweep: pd.DataFrame) -> dict[str, str]:
     headings spread out (passes 2 and 3 each at least 45° from pass 1 and from each other,
     within 45–135°) and on the diagonal away from the corners (``h2 = h3``, not 0° or 180°);
     ``resolved``, the share resolved over all cells, and ``unresolved-upper``, the one-sided
-    exact 95 % bound of the share left unresolved over all cells."""
+    exact 95 % bound of the share left unresolved over all cells.
+
+    Parameters
+    ----------
+    sweep : pandas.DataFrame
+        One platform's heading sweep: ``heading2_deg``, ``heading3_deg`` (deg),
+        ``point_error_q95_median_m`` with ``point_error_q95_median_ci_low_m``/``_ci_high_m`` (m),
+        ``n`` (configurations per cell) and ``resolved_fraction`` (0–1).
+
+    Returns
+    -------
+    dict of str to str
+        Glue suffix -> text; errors in m with intervals, shares in percent.
+    """
     v = "point_error_q95_median_m"
 
     def err(row) -> str:
@@ -272,6 +353,20 @@ def share_text(share: float, n: int) -> str:
     (:func:`~sss_locus.experiments.three_views.patterns.share_interval`), in percent with one
     decimal, or more while the interval's ends would print alike.
 
+    Parameters
+    ----------
+    share : float
+        The share, 0 to 1.
+    n : int
+        Number of configurations it is a share of.
+
+    Returns
+    -------
+    str
+        The share with its interval, in percent.
+
+    Examples
+    --------
     >>> share_text(0.996, 4000), share_text(1.0, 4000), share_text(0.0, 4000)
     ('99.6 % (95 % CI 99.4–99.8 %)', '100.0 % (95 % CI 99.9–100.0 %)', '0.0 % (95 % CI 0.0–0.1 %)')
     """

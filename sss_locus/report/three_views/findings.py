@@ -32,6 +32,23 @@ def curve_shape(curve: pd.DataFrame, peak_deg: float, prefer_below: float, avoid
     to 135°, ``"near-reciprocal"`` beyond), ``ends_preferred`` (both 0° and 180° in a prefer band
     of :func:`~sss_locus.experiments.survey_passes.planning.planning_bands`), ``ends_ratio`` (median at 180°
     over that at 0°) and ``bands`` (the bands).
+
+    Parameters
+    ----------
+    curve : pandas.DataFrame
+        A crossing-angle curve: ``crossing_angle_deg`` and ``<value>_median`` (and the quartiles
+        :func:`~sss_locus.experiments.survey_passes.planning.planning_bands` reads).
+    peak_deg : float
+        The curve's peak angle (deg).
+    prefer_below, avoid_above : float
+        The planning bands' thresholds, as ``planning_bands`` takes them.
+    value : str
+        The quantity of the curve.
+
+    Returns
+    -------
+    dict
+        The flags named above.
     """
     bands = planning_bands(curve, value, prefer_below=prefer_below, avoid_above=avoid_above)
     c = curve.sort_values("crossing_angle_deg")
@@ -101,7 +118,21 @@ def shorter_finding(curves: Mapping[str, object], titles: Mapping[str, str]) -> 
     ``curves`` maps platform keys to main curves on one grid, ``titles`` the keys to names.
     Returns one sentence per consecutive pair of platforms ordered by their overall median
     (the number of crossing angles where the first one's median is the shorter), or ``""`` for
-    a single platform."""
+    a single platform.
+
+    Parameters
+    ----------
+    curves : mapping of str to CrossingAngleCurve
+        Platform key -> main curve (``curve`` with ``crossing_angle_deg`` and
+        ``locus_length_m_median``, m).
+    titles : mapping of str to str
+        Platform key -> its name in the sentence.
+
+    Returns
+    -------
+    str
+        The sentence(s), or ``""``.
+    """
     if len(curves) < 2:
         return ""
     med = {k: c.curve.sort_values("crossing_angle_deg")["locus_length_m_median"].to_numpy(float)
@@ -358,6 +389,20 @@ def fan_top_clause(fan_deg: float, tilt_deg: float) -> str:
     """Where the top edge of a fan of full width ``fan_deg`` lies when its axis is tilted
     ``tilt_deg`` below the horizontal (a level platform).
 
+    Parameters
+    ----------
+    fan_deg : float
+        Full vertical width of the fan (deg).
+    tilt_deg : float
+        Tilt of its axis below the horizontal (deg).
+
+    Returns
+    -------
+    str
+        The clause, angles in degrees.
+
+    Examples
+    --------
     >>> fan_top_clause(50.0, 15.0), fan_top_clause(50.0, 25.0), fan_top_clause(50.0, 35.0)
     ('the fan reaches 10° above the horizontal', 'the top of the fan is horizontal', \
 'the top of the fan is 10° below the horizontal')
@@ -472,7 +517,22 @@ def sweep_finding(sweep: pd.DataFrame) -> str:
 def tilt_markdown(rows: pd.DataFrame, platforms: Mapping[str, object], titles: Mapping[str, str]) -> str:
     """:func:`tilt_finding` of every platform in the tilt table ``rows`` (column ``platform``;
     ``platforms`` maps its keys to the platforms), titled by ``titles`` (platform key -> title),
-    or a sentence saying the table is empty."""
+    or a sentence saying the table is empty.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        The tilt table (a ``platform`` column and :func:`tilt_finding`'s columns).
+    platforms : mapping of str to Platform
+        Platform key -> platform.
+    titles : mapping of str to str
+        Platform key -> title.
+
+    Returns
+    -------
+    str
+        A Markdown list, one item per platform, or the sentence for an empty table.
+    """
     if rows.empty:
         return "No platform of this run is a surface vessel: the tilt comparison is empty.\n"
     return "".join(f"- **{titles[k]}**: {tilt_finding(g, platforms[k])}\n"
@@ -483,7 +543,19 @@ def pattern_ranking(summary: pd.DataFrame) -> str:
     """One platform's patterns from the smallest to the largest median 95 % point error with its
     full noise model (``pattern``, ``error_full_median_m``), and the smallest share resolved
     (``resolved`` of ``n``, as :func:`~sss_locus.report.three_views.figures.share_text`): the one
-    source of the chapter's planning advice (CONTRIBUTING.md, "One source per sentence")."""
+    source of the chapter's planning advice (CONTRIBUTING.md, "One source per sentence").
+
+    Parameters
+    ----------
+    summary : pandas.DataFrame
+        One row per pattern: ``pattern``, ``error_full_median_m`` (m), ``resolved`` (share 0–1),
+        ``n``.
+
+    Returns
+    -------
+    str
+        The paragraph, errors in m.
+    """
     s = summary.sort_values("error_full_median_m", kind="stable")
     low = summary.loc[summary["resolved"].idxmin()]
     return ("with the platform's full noise model the median 95 % point error is "
@@ -497,7 +569,24 @@ def skipped_study_note(study: str, capability: str, limits_deg: Mapping[str, flo
     """Why a chapter's ``study`` is skipped: no platform of the run has ``capability``.
 
     ``limits_deg`` maps each platform's title to its pitch limit (degrees); ``need_deg`` is the
-    largest magnitude the study asks for. One sentence for the chapter's page (MyST)."""
+    largest magnitude the study asks for. One sentence for the chapter's page (MyST).
+
+    Parameters
+    ----------
+    study : str
+        The study's name, in words.
+    capability : str
+        What a platform must do, in words (a relative clause: "can pitch").
+    limits_deg : mapping of str to float
+        Platform title -> its pitch limit (deg).
+    need_deg : float
+        The largest pitch the study asks for (deg).
+
+    Returns
+    -------
+    str
+        The sentence (MyST).
+    """
     have = "; ".join(f"{name}: ±{lim:g}°" for name, lim in limits_deg.items())
     return (f"The {study} is skipped in this run: it needs a platform that {capability} (a pitch envelope "
             f"and a limit of at least ±{need_deg:g}°), and no platform of this run does ({have}). "

@@ -27,7 +27,19 @@ def _pct(row) -> str:
 
 def effect_texts(effects: pd.DataFrame) -> dict[str, str]:
     """Glue texts ``<condition>-<subset>-<statistic>`` (e.g. ``boat-pose-tilt15-all-length_ratio``):
-    percentages with their 95 % replicate interval, plus ``<condition>-<subset>-n`` (sample count)."""
+    percentages with their 95 % replicate interval, plus ``<condition>-<subset>-n`` (sample count).
+
+    Parameters
+    ----------
+    effects : pandas.DataFrame
+        The long table of :func:`~sss_locus.experiments.water.study.crop_effects`: ``condition``,
+        ``subset``, ``statistic``, ``estimate``, ``ci_low``, ``ci_high`` (fractions 0–1) and ``n``.
+
+    Returns
+    -------
+    dict of str to str
+        Glue key -> text (percent with one decimal; counts with thousands separators).
+    """
     out = {}
     for row in effects.itertuples():
         base = f"{row.condition}-{row.subset}"
@@ -46,7 +58,20 @@ TABLE_COLUMNS = {"length_ratio": "length kept", "shortened_share": "loci shorten
 def effect_table(effects: pd.DataFrame) -> pd.DataFrame:
     """One row per condition and subset: sample count and the statistics of
     :data:`TABLE_COLUMNS` in percent, ``"estimate (low–high)"`` with the 95 % interval (compact,
-    for the book's column; every statistic is in the figure's data)."""
+    for the book's column; every statistic is in the figure's data).
+
+    Parameters
+    ----------
+    effects : pandas.DataFrame
+        The long table of :func:`~sss_locus.experiments.water.study.crop_effects` (``label``,
+        ``subset``, ``n``, ``statistic``, ``estimate``, ``ci_low``, ``ci_high``; fractions).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``condition``, ``samples`` (the subset), ``n`` and one text column per statistic,
+        headed ``"<heading> (%)"``.
+    """
     sel = effects[effects["statistic"].isin(list(TABLE_COLUMNS))]
     text = [f"{100 * r.estimate:.1f} ({100 * r.ci_low:.1f}–{100 * r.ci_high:.1f})" for r in sel.itertuples()]
     wide = sel.assign(text=text).pivot_table(index=["label", "subset", "n"], columns="statistic",
@@ -130,7 +155,25 @@ def plot_crop_bars(effects: pd.DataFrame, statistics, *, crop: str = "surface", 
 def plot_crop_effects(effects: pd.DataFrame, crop: str = "surface"):
     """(a) Share of fragmented loci without and with the crop; (b) share of the total locus
     length the crop keeps; one row per condition whose ``crop`` column is ``crop`` (all
-    samples), 95 % replicate-batch intervals (:func:`plot_crop_bars`). Returns the figure."""
+    samples), 95 % replicate-batch intervals (:func:`plot_crop_bars`). Returns the figure.
+
+    Parameters
+    ----------
+    effects : pandas.DataFrame
+        The long table of :func:`~sss_locus.experiments.water.study.crop_effects`.
+    crop : str
+        A key of :data:`CROP_TEXT`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A new figure of two panels sharing the conditions, legend below.
+
+    Raises
+    ------
+    ValueError
+        When ``crop`` is unknown or no condition has it.
+    """
     sel = _crop_rows(effects, crop)
     labels = list(dict.fromkeys(sel["label"]))
     fig, axs = plt.subplots(1, 2, figsize=(7.2, 0.55 * len(labels) + 1.9), sharey=True,

@@ -36,7 +36,18 @@ ELLIPSE_SCALE = 3.0
 
 def truth_label(notice: str = "") -> str:
     """The legend's name of the truth: ``"truth (synthetic example)"`` for the chapter's worked
-    example (``notice``), plain ``"truth (known positions)"`` for a user's own truth file."""
+    example (``notice``), plain ``"truth (known positions)"`` for a user's own truth file.
+
+    Parameters
+    ----------
+    notice : str
+        The worked example's notice (e.g. ``"synthetic example"``); ``""`` for a user's truth.
+
+    Returns
+    -------
+    str
+        The legend entry.
+    """
     return f"truth ({notice})" if notice else "truth (known positions)"
 
 
@@ -44,7 +55,27 @@ def plan_view(res, platform, *, truth: pd.DataFrame | None = None, notice: str =
     """Left: the survey in plan (grid east/north): the sensors at each sighting and every
     feature's estimates; right, per feature: the horizontal distance of each estimate from the
     truth (with ``truth``) or of the flat-seafloor mean from the best estimate (N views, else two
-    views). Returns ``(fig, data)``."""
+    views). Returns ``(fig, data)``.
+
+    Parameters
+    ----------
+    res : PingResults
+        The run's results (:func:`~sss_locus.experiments.your_pings.study.analyse`): ``features`` and
+        ``sightings`` tables with ``*_east_m``/``*_north_m`` columns in the local frame (m).
+    platform : Platform
+        The platform, named in the title.
+    truth : pandas.DataFrame, optional
+        Known positions: ``feature``, ``east_m``, ``north_m``, ``up_m`` (local frame, m).
+    notice : str
+        Notice of a worked example, in the title and the truth's label.
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+        A new figure of two panels, legend below.
+    data : pandas.DataFrame
+        The bars drawn: ``feature``, ``estimator``, ``distance_h_m``, ``distance_up_m`` (m).
+    """
     f, s = res.features, res.sightings
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(PAGE_WIDTH_IN, 4.2), width_ratios=(1.2, 1.0), layout="constrained")
     ax.scatter(s["sensor_east_m"], s["sensor_north_m"], s=6, c="0.6", marker=".", label="sensor at each sighting")
@@ -89,7 +120,27 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
     """One small plan view per feature (up to ``max_features``), centred on its flat-seafloor
     mean: each sighting's flat-seafloor position, the two-view locus, the estimates, the N-view
     ellipse (x3) and the truth (named by :func:`truth_label` of ``notice``). Returns ``(fig, data)``
-    (the positions drawn, relative)."""
+    (the positions drawn, relative).
+
+    Parameters
+    ----------
+    res : PingResults
+        The run's results (``features``, ``sightings`` and ``locus`` tables, local frame, m).
+    truth : pandas.DataFrame, optional
+        Known positions: ``feature``, ``east_m``, ``north_m`` (local frame, m).
+    max_features : int
+        Largest number of panels (the first features of ``res.features``).
+    notice : str
+        Notice of a worked example, in the truth's label.
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+        A new figure of up to four panels a row, legend below.
+    data : pandas.DataFrame
+        The sightings drawn: ``feature``, ``line``, ``flat_east_m``, ``flat_north_m`` (m from the
+        feature's flat-seafloor mean).
+    """
     f = res.features.head(max_features)
     n = len(f)
     cols = min(4, n)
@@ -138,13 +189,38 @@ def feature_panels(res, *, truth: pd.DataFrame | None = None, max_features: int 
 
 def drawn(f: pd.DataFrame, key: str) -> pd.DataFrame:
     """The features whose ``key`` estimate is drawn: the two-view point only on a non-empty
-    locus (where the locus is empty it is a fallback on the circle or sphere, not a locus point)."""
+    locus (where the locus is empty it is a fallback on the circle or sphere, not a locus point).
+
+    Parameters
+    ----------
+    f : pandas.DataFrame
+        Features table (with ``two_view_status``).
+    key : str
+        An estimator of :data:`ESTIMATES`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows of ``f`` to draw.
+    """
     return f[f["two_view_status"] == "locus"] if key == "two_view" else f
 
 
 def panel_status(r) -> str:
     """A feature's statuses in a few words: one sighting, or the two-view locus (its pair,
-    empty or not) and the N-view status."""
+    empty or not) and the N-view status.
+
+    Parameters
+    ----------
+    r : pandas.Series
+        One row of the features table (``n_sightings``, ``two_view_status``, ``two_view_pair``,
+        ``nview_status``).
+
+    Returns
+    -------
+    str
+        Up to three lines of text (a panel title).
+    """
     n = int(r["n_sightings"])
     if n == 1:
         return "\n" + ONE_SIGHTING
@@ -187,7 +263,24 @@ def _ellipse(ax, r, key, e0, n0):
 def map_caption(n_sightings: int, *, known: bool, synthetic: bool, geojson: bool) -> str:
     """The caption of the chapter's map (:func:`plan_view`) of ``n_sightings``, against the truth
     when ``known``, listing the result files written beside it (a GeoJSON file only with
-    ``geojson``: sightings in local metres without an origin have no longitude/latitude)."""
+    ``geojson``: sightings in local metres without an origin have no longitude/latitude).
+
+    Parameters
+    ----------
+    n_sightings : int
+        Number of sightings drawn.
+    known : bool
+        Whether the right panel is against known positions.
+    synthetic : bool
+        Whether the data is the synthetic worked example (the caption starts by saying so).
+    geojson : bool
+        Whether a GeoJSON file was written.
+
+    Returns
+    -------
+    str
+        The caption (markdown).
+    """
     files = ("every feature's results (`--features.csv`), every sighting (`--sightings.csv`), the loci's "
              "points (`--locus.csv`)")
     return (("**Synthetic example** (made by the project's simulator over a known seafloor). " if synthetic else "")
@@ -207,7 +300,22 @@ def map_caption(n_sightings: int, *, known: bool, synthetic: bool, geojson: bool
 def page_data_words(synthetic: bool, inputs) -> tuple[str, str]:
     """What the page's results are computed from, for its introduction and for the sentence
     before the real pass: the shipped worked example (``synthetic``: made by the project's
-    simulator over a known seafloor) or the run's own sightings (``inputs``, their files, named)."""
+    simulator over a known seafloor) or the run's own sightings (``inputs``, their files, named).
+
+    Parameters
+    ----------
+    synthetic : bool
+        Whether the page shows the shipped synthetic example.
+    inputs : iterable of str or path-like
+        The run's sightings files (only their names are used).
+
+    Returns
+    -------
+    intro : str
+        The introduction's sentence (markdown).
+    before_real : str
+        The sentence before the real pass.
+    """
     if synthetic:
         return ("The page below shows a worked example, **synthetic**: a small survey made by the project's own "
                 "simulator over a known random seafloor (`tools/make_your_pings_example.py`), so the estimates can "
@@ -220,7 +328,20 @@ def page_data_words(synthetic: bool, inputs) -> tuple[str, str]:
 def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
     """What the run found, in numbers: features, sightings, statuses, the flat-seafloor spread and,
     with ``errors`` (:func:`~sss_locus.experiments.your_pings.files.against_truth`), the median
-    errors of each estimator."""
+    errors of each estimator.
+
+    Parameters
+    ----------
+    res : PingResults
+        The run's results (``features``, ``sightings`` and optionally ``excluded`` tables).
+    errors : pandas.DataFrame, optional
+        Errors against the truth: ``estimator``, ``feature``, ``error_h_m``, ``error_up_m`` (m).
+
+    Returns
+    -------
+    str
+        A paragraph; lengths in m.
+    """
     f = res.features
     st = f["nview_status"].value_counts()
     nonempty = f["locus_arcs"] > 0
@@ -259,7 +380,19 @@ def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
 
 def order_sentence(sightings: pd.DataFrame) -> str:
     """For XTF sightings, which end of each matched channel was taken as the near end and how it
-    was decided (" ..." or "" for a sightings CSV)."""
+    was decided (" ..." or "" for a sightings CSV).
+
+    Parameters
+    ----------
+    sightings : pandas.DataFrame
+        The sightings table; XTF ones carry ``xtf_file``, ``channel``, ``side``, ``sample_order``
+        and ``sample_order_how``.
+
+    Returns
+    -------
+    str
+        The sentence with a leading space, or ``""``.
+    """
     if "sample_order" not in sightings.columns:
         return ""
     rows = sightings.drop_duplicates(["xtf_file", "channel"]).sort_values(["xtf_file", "channel"])
@@ -271,7 +404,22 @@ def order_sentence(sightings: pd.DataFrame) -> str:
 def view_3d(res, *, truth: pd.DataFrame | None = None, notice: str = ""):
     """The sensors, each sighting's line of sight to its flat-seafloor position, the loci and
     the estimates in 3-D (grid east, north, up; plotly figure, drag to rotate); the truth named
-    by :func:`truth_label` of ``notice``."""
+    by :func:`truth_label` of ``notice``.
+
+    Parameters
+    ----------
+    res : PingResults
+        The run's results (``sightings``, ``features``, ``locus`` tables in the local frame, m).
+    truth : pandas.DataFrame, optional
+        Known positions: ``feature``, ``east_m``, ``north_m``, ``up_m`` (m).
+    notice : str
+        Notice of a worked example, in the truth's label.
+
+    Returns
+    -------
+    plotly.graph_objects.Figure
+        The 3-D figure (axes in m, up exaggerated by the aspect ratio).
+    """
     import plotly.graph_objects as go
 
     s, f, loc = res.sightings, res.features, res.locus

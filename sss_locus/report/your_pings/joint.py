@@ -18,7 +18,21 @@ CLEAR_RATIO = 1.5
 def joint_sentence(summary: dict) -> str:
     """What the joint adjustment did with the user's sightings: how many features and passes,
     how much better the lines agree than in the mosaic (from the user's residuals), what stays
-    unobservable, and the sightings the robust loss down-weighted."""
+    unobservable, and the sightings the robust loss down-weighted.
+
+    Parameters
+    ----------
+    summary : dict
+        The joint adjustment's summary: ``n_adjusted``, ``n_passes``, ``success``,
+        ``shape_ratio``, ``mosaic_disagreement_m``, ``joint_misfit_m``, ``common_shift_sigma_m``
+        (m), ``n_downweighted``, ``n_gated``, ``n_used``, ``ping_position_sigma_m`` (m) and
+        ``ping_attitude_sigma_deg`` (deg).
+
+    Returns
+    -------
+    str
+        The paragraph (Markdown); distances in m.
+    """
     n, P = summary["n_adjusted"], summary["n_passes"]
     if n == 0:
         return (f"No feature was seen on two or more of the {P} passes, so there is no joint estimate: a range and a "
@@ -56,7 +70,24 @@ def joint_sentence(summary: dict) -> str:
 
 
 def passes_caption(n_passes: int, names: str, platform_name: str, *, synthetic: bool) -> str:
-    """Caption of the pass-correction table."""
+    """Caption of the pass-correction table.
+
+    Parameters
+    ----------
+    n_passes : int
+        Number of passes found.
+    names : str
+        The sightings files, as shown.
+    platform_name : str
+        The platform's display name.
+    synthetic : bool
+        Whether the data is the synthetic worked example.
+
+    Returns
+    -------
+    str
+        The caption.
+    """
     return (("Synthetic example (made by the project's simulator). " if synthetic else "")
             + f"Each of the {n_passes} passes of {names} ({platform_name}), found from the sightings (a new pass where "
             f"the heading turns by more than {fmt_sig(TURN_DEG)} deg or the track jumps more than "

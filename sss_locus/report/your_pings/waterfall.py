@@ -18,7 +18,27 @@ from sss_locus.report.common.style import PAGE_WIDTH_IN
 def waterfall(path, *, marks: pd.DataFrame | None = None, sample_order: str = "detect", height_in: float = 5.0):
     """One panel per sidescan channel (ping number down, sample as stored across, intensity on
     a log scale); ``marks`` (``channel``, ``ping``, ``sample``, ``label``) are circled and named.
-    Returns ``(fig, data)``: ``data`` the marks drawn with the panel they are in."""
+    Returns ``(fig, data)``: ``data`` the marks drawn with the panel they are in.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The XTF file.
+    marks : pandas.DataFrame, optional
+        Marks to circle: ``channel``, ``ping``, ``sample`` (as stored), ``label``.
+    sample_order : str
+        How each channel's near end is found: ``"detect"``, ``"near_first"`` or
+        ``"port_far_first"`` (:data:`~sss_locus.experiments.sonar_files.sample_order.CHOICES`).
+    height_in : float
+        Figure height (inches).
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+        A new figure, one panel per sidescan channel.
+    data : pandas.DataFrame
+        ``marks`` as given (an empty table of its four columns without).
+    """
     info = summary(path, sample_order)
     chans = [c for c in info["channels"] if c["type"] in (1, 2)]
     fig, axes = plt.subplots(1, max(len(chans), 1), figsize=(PAGE_WIDTH_IN, height_in), layout="constrained",
