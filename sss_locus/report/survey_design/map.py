@@ -74,7 +74,7 @@ def add_graticule(ax, area, *, colour: str = "0.45") -> None:
                 k = int(np.argmax(gx))  # outside the right edge, upright along it: off the plan
                 if not y0 + 0.08 * (y1 - y0) < gy[k] < y1 - 0.08 * (y1 - y0):  # would run past a corner
                     continue
-                ax.annotate(label, (x1, gy[k]), xytext=(2, 0), textcoords="offset points", fontsize=8,
+                ax.annotate(label, (x1, gy[k]), xytext=(2, 0), textcoords="offset points", fontsize=9,
                             color=colour, ha="left", va="center", rotation=90, annotation_clip=False)
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
