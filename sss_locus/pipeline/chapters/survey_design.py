@@ -8,28 +8,28 @@ import time
 
 from IPython.display import Markdown
 from myst_nb import glue
-import pandas as pd
 
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
 from sss_locus.experiments.survey_design.area import load_area, with_water_depth
-from sss_locus.experiments.survey_design.front import (OBJECTIVES, by_crossing_angle, coverage_grid_m, depth_settings,
-                                                       load_area_bathymetry, plan_coverage, search_plans, vehicle_depth_m)
+from sss_locus.experiments.survey_design.front import (OBJECTIVES, coverage_grid_m, depth_settings, load_area_bathymetry,
+                                                       plan_coverage, search_plans, vehicle_depth_m)
 from sss_locus.experiments.survey_design.lines import heading_from_compass_deg
 from sss_locus.experiments.survey_design.plans import load_settings
 from sss_locus.experiments.survey_design.route import turn_misfits
-from sss_locus.experiments.survey_design.scoring import ERRORS, recommend_under_noise, score_plans, summarise
+from sss_locus.experiments.survey_design.scoring import recommend_under_noise, score_plans, summarise
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish.missions import mission_files, waypoints
 from sss_locus.pipeline.publish.publish import place, publish
 from sss_locus.pipeline.run.cache import cached
 from sss_locus.report.common.text import fmt_percent, fmt_sig
-from sss_locus.report.survey_design.figures import (ERROR_LABELS, OBJECTIVE_LABELS, error_text, noise_table_shown,
-                                                    noise_verdict_sentence, plan_caption, plan_label, plot_front,
-                                                    plot_plan, verdict_words, with_compass)
+from sss_locus.report.survey_design.figures import (ERROR_LABELS, OBJECTIVE_LABELS, error_text, noise_verdict_sentence,
+                                                    plan_caption, plan_label, plot_front, plot_plan, verdict_words)
 from sss_locus.report.survey_design.prose import (area_note, best_pairs_sentence, crossing_caption, front_caption,
                                                   noise_caption, plans_caption, standard_twice_sentence,
                                                   standard_twice_text)
+from sss_locus.report.survey_design.tables import (all_plans, crossing_table, noise_table, noise_table_shown,
+                                                   plans_table, with_compass)
 
 
 class KEYS:
@@ -44,12 +44,12 @@ class KEYS:
     fig_plan = "fig-survey-plan-{platform}"  # figure label of the platform's recommended plan
 
 
-__all__ = ["key", "KEYS", "area_note", "best_pairs_sentence", "by_crossing_angle", "cached", "coverage_grid_m",
-           "crossing_caption", "depth_settings", "ERROR_LABELS", "error_text", "ERRORS", "fmt_percent", "fmt_sig",
-           "front_caption", "glue", "heading_from_compass_deg", "load_area", "load_area_bathymetry",
+__all__ = ["all_plans", "area_note", "best_pairs_sentence", "cached", "coverage_grid_m", "crossing_caption",
+           "crossing_table", "depth_settings", "ERROR_LABELS", "error_text", "fmt_percent", "fmt_sig",
+           "front_caption", "glue", "heading_from_compass_deg", "key", "KEYS", "load_area", "load_area_bathymetry",
            "load_noise_model", "load_pass_noise", "load_platform", "load_settings", "Markdown", "mission_files",
-           "noise_caption", "noise_table_shown", "noise_verdict_sentence", "OBJECTIVE_LABELS", "OBJECTIVES", "pd",
-           "place", "plan_caption", "plan_coverage", "plan_label", "plans_caption", "plot_front", "plot_plan",
-           "publish", "recommend_under_noise", "score_plans", "search_plans", "show_table",
-           "standard_twice_sentence", "standard_twice_text", "summarise", "time", "turn_misfits", "use_data",
-           "vehicle_depth_m", "verdict_words", "waypoints", "with_compass", "with_water_depth"]
+           "noise_caption", "noise_table", "noise_table_shown", "noise_verdict_sentence", "OBJECTIVE_LABELS",
+           "OBJECTIVES", "place", "plan_caption", "plan_coverage", "plan_label", "plans_caption", "plans_table",
+           "plot_front", "plot_plan", "publish", "recommend_under_noise", "score_plans", "search_plans",
+           "show_table", "standard_twice_sentence", "standard_twice_text", "summarise", "time", "turn_misfits",
+           "use_data", "vehicle_depth_m", "verdict_words", "waypoints", "with_compass", "with_water_depth"]

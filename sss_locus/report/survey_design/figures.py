@@ -26,7 +26,7 @@ from sss_locus.experiments.survey_design.coverage import reach_limits_m
 from sss_locus.experiments.survey_design.front import OBJECTIVES
 from sss_locus.report.common.style import PAGE_WIDTH_IN, platform_title, themed
 from sss_locus.report.survey_design.map import LEGEND_X, add_graticule, add_scale_bar
-from sss_locus.report.common.text import fmt_ci, fmt_ci_cells, fmt_percent, fmt_sig
+from sss_locus.report.common.text import fmt_ci, fmt_percent, fmt_sig
 
 OBJECTIVE_LABELS = {"locus": "median best-pair locus length (m)",
                     "three_view": "share of features not resolved by three views",
@@ -473,71 +473,3 @@ def verdict_words(verdicts: dict, platforms: dict) -> str:
               else "standard plan kept") + f" ({k})" for k, v in verdicts.items() if k in platforms]
     text = "; ".join(parts)
     return text[0].upper() + text[1:]
-
-
-def with_compass(frame: pd.DataFrame) -> pd.DataFrame:
-    """``frame`` with its ``heading_deg`` (degrees counter-clockwise from east, the computation's
-    convention) replaced by ``heading_compass_deg``: degrees clockwise from north of the area's
-    local frame (true north at its origin), as written in every published table.
-
-    Parameters
-    ----------
-    frame : pandas.DataFrame
-        A table, perhaps with ``heading_deg``.
-
-    Returns
-    -------
-    pandas.DataFrame
-        A copy with ``heading_compass_deg`` (0–360 deg) in its place, or ``frame`` itself
-        without ``heading_deg``.
-    """
-    if "heading_deg" not in frame:
-        return frame
-    at = list(frame.columns).index("heading_deg")
-    out = frame.drop(columns="heading_deg")
-    out.insert(at, "heading_compass_deg", (90.0 - frame["heading_deg"].to_numpy(float)) % 360.0)
-    return out
-
-
-def noise_table_shown(frame: pd.DataFrame) -> pd.DataFrame:
-    """The plans scored with the joint adjustment as a reader reads them: one row a plan, each
-    error with its interval.
-
-    Parameters
-    ----------
-    frame : pandas.DataFrame
-        Indexed by ``(platform, kind, plan_index)``, with ``total_m``, ``covered_twice``,
-        ``n_seeds``, ``min_features`` (the fewest features a seed's medians used) and, for each
-        error of :data:`ERROR_LABELS`, ``error_<e>_m`` with its 95 % interval
-        ``error_<e>_lo_m``/``error_<e>_hi_m`` (NaN where a seed had under 30 features).
-
-    Returns
-    -------
-    pandas.DataFrame
-        Indexed by ``(platform, plan)``: ``plan`` is the kind, searched plans named by their
-        number (``"search, plan 4"``: several searched plans of one platform are told apart);
-        columns ``track_km``, ``covered_twice``, ``horizontal_error_m``, ``vertical_error_m``,
-        ``map_shape_error_m`` (text: the mean over the seeds of the median error and its 95 %
-        interval, or ``"—"`` under 30 features), ``seeds`` and ``fewest_features``.
-
-    >>> f = pd.DataFrame({"total_m": [8000.0, 7000.0], "covered_twice": [1.0, 1.0], "n_seeds": [5, 5],
-    ...     "min_features": [120, 12], "error_horizontal_m": [0.9, float("nan")],
-    ...     "error_horizontal_lo_m": [0.6, float("nan")], "error_horizontal_hi_m": [1.2, float("nan")],
-    ...     "error_vertical_m": [0.2, float("nan")], "error_vertical_lo_m": [0.1, float("nan")],
-    ...     "error_vertical_hi_m": [0.3, float("nan")], "error_shape_m": [0.5, float("nan")],
-    ...     "error_shape_lo_m": [0.4, float("nan")], "error_shape_hi_m": [0.6, float("nan")]},
-    ...     index=pd.MultiIndex.from_tuples([("boat", "standard", 0), ("boat", "search", 4)],
-    ...                                     names=["platform", "kind", "plan_index"]))
-    >>> noise_table_shown(f).reset_index()[["plan", "horizontal_error_m", "fewest_features"]].values.tolist()
-    [['standard', '0.90 (95 % CI 0.60–1.2)', 120], ['search, plan 4', '—', 12]]
-    """
-    rows = frame.reset_index()
-    plan = rows["kind"].where(rows["kind"] != "search", "search, plan " + rows["plan_index"].astype(str))
-    out = pd.DataFrame({"platform": rows["platform"], "plan": plan, "track_km": rows["total_m"] / 1e3,
-                        "covered_twice": rows["covered_twice"]})
-    for e, label in ERROR_LABELS.items():
-        v, lo, hi = (rows[f"error_{e}{s}_m"].to_numpy(float) for s in ("", "_lo", "_hi"))
-        out[f"{label.replace('-', '_')}_error_m"] = fmt_ci_cells(v, lo, hi)
-    out["seeds"] = rows["n_seeds"]
-    out["fewest_features"] = rows["min_features"]
-    return out.set_index(["platform", "plan"])

@@ -495,7 +495,7 @@ def test_the_subsets_of_lines_seeing_each_feature_match_a_brute_force_enumeratio
 
 
 def test_published_headings_are_compass_headings():
-    from sss_locus.report.survey_design.figures import with_compass
+    from sss_locus.report.survey_design.tables import with_compass
 
     t = with_compass(pd.DataFrame({"set": ["main"] * 4, "heading_deg": [0.0, 90.0, 180.0, 300.0], "x": 1}))
     assert list(t.columns) == ["set", "heading_compass_deg", "x"]

@@ -199,7 +199,7 @@ def test_the_rule_is_decided_on_the_named_error_and_a_plan_under_30_features_is_
     as '—' and is never recommended; the intervals are Student's t over the seeds, computed here."""
     from scipy import stats
 
-    from sss_locus.report.survey_design.figures import noise_table_shown
+    from sss_locus.report.survey_design.tables import noise_table_shown
 
     std = [(0, "standard", 1, 1000.0, 200, 1.0, 0.90), (0, "standard", 2, 1000.0, 200, 1.4, 1.00),
            (0, "standard", 3, 1000.0, 200, 1.2, 0.95)]
