@@ -55,6 +55,7 @@ from sss_locus.experiments.survey_design.coverage import coverage, observe_lines
 from sss_locus.experiments.survey_design.objectives import pair_loci, reconstruction_errors, three_view_closure
 from sss_locus.experiments.survey_design.plans import (Plan, check_mission, lawnmower_plan, load_settings, plan_grid, plan_ok,
                                                        standard_plan, water_depth)
+from sss_locus.experiments.survey_design.lines import heading_from_compass_deg
 from sss_locus.experiments.survey_design.route import flight_path, track_cost
 from sss_locus.experiments.datamodel.terrain import KINDS, load_terrain_config, terrain_from_config
 
@@ -124,6 +125,36 @@ def check_grid(grid) -> dict:
         raise ValueError(f"grid must be a dict with exactly the keys {sorted(GRID_KEYS)}; got {got}")
     return {k: _floats(k, v, lo, hi, allow_nan=k == "crossing_angles_deg") for k, (lo, hi) in GRID_KEYS.items()
             for v in [grid[k]]}
+
+
+def search_grid(*, headings_compass_deg, spacing_fractions, crossing_angles_deg, no_cross_lines: bool,
+                cross_spacing_factors, altitude_fractions, pitches_deg) -> dict:
+    """The plan grid :func:`search_plans` searches, from a chapter's parameters.
+
+    Parameters
+    ----------
+    headings_compass_deg : sequence of float
+        Main-line compass headings, deg clockwise from north (converted to the computation's
+        convention, deg counter-clockwise from east, by
+        :func:`~sss_locus.experiments.survey_design.lines.heading_from_compass_deg`).
+    spacing_fractions : sequence of float
+        Main-line spacings, times the platform's range scale.
+    crossing_angles_deg : sequence of float
+        Angles of the second line set to the main lines, deg (0: an offset repeat).
+    no_cross_lines : bool
+        Also search plans of main lines only (a NaN crossing angle, put first).
+    cross_spacing_factors, altitude_fractions, pitches_deg : sequence of float
+        As the keys of :data:`GRID_KEYS` of the same names.
+
+    Returns
+    -------
+    dict
+        The grid, checked by :func:`check_grid` (key -> list of float).
+    """
+    return check_grid(dict(
+        headings_deg=[heading_from_compass_deg(h) for h in headings_compass_deg], spacing_fractions=spacing_fractions,
+        crossing_angles_deg=([float("nan")] if no_cross_lines else []) + list(crossing_angles_deg),
+        cross_spacing_factors=cross_spacing_factors, altitude_fractions=altitude_fractions, pitches_deg=pitches_deg))
 
 
 MAX_COVERAGE_CELLS = 20_000

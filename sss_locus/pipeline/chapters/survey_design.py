@@ -13,8 +13,7 @@ from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
 from sss_locus.experiments.survey_design.area import load_area, with_water_depth
 from sss_locus.experiments.survey_design.front import (OBJECTIVES, coverage_grid_m, depth_settings, load_area_bathymetry,
-                                                       plan_coverage, search_plans, vehicle_depth_m)
-from sss_locus.experiments.survey_design.lines import heading_from_compass_deg
+                                                       plan_coverage, search_grid, search_plans, vehicle_depth_m)
 from sss_locus.experiments.survey_design.plans import load_settings
 from sss_locus.experiments.survey_design.route import turn_misfits
 from sss_locus.experiments.survey_design.scoring import recommend_under_noise, score_plans, summarise
@@ -46,10 +45,10 @@ class KEYS:
 
 __all__ = ["all_plans", "area_note", "best_pairs_sentence", "cached", "coverage_grid_m", "crossing_caption",
            "crossing_table", "depth_settings", "ERROR_LABELS", "error_text", "fmt_percent", "fmt_sig",
-           "front_caption", "glue", "heading_from_compass_deg", "key", "KEYS", "load_area", "load_area_bathymetry",
+           "front_caption", "glue", "key", "KEYS", "load_area", "load_area_bathymetry",
            "load_noise_model", "load_pass_noise", "load_platform", "load_settings", "Markdown", "mission_files",
            "noise_caption", "noise_table", "noise_table_shown", "noise_verdict_sentence", "OBJECTIVE_LABELS",
            "OBJECTIVES", "place", "plan_caption", "plan_coverage", "plan_label", "plans_caption", "plans_table",
-           "plot_front", "plot_plan", "publish", "recommend_under_noise", "score_plans", "search_plans",
+           "plot_front", "plot_plan", "publish", "recommend_under_noise", "score_plans", "search_grid", "search_plans",
            "show_table", "standard_twice_sentence", "standard_twice_text", "summarise", "time", "turn_misfits",
            "use_data", "vehicle_depth_m", "verdict_words", "waypoints", "with_compass", "with_water_depth"]

@@ -596,3 +596,16 @@ def test_a_boat_over_water_its_sonar_cannot_see_through_is_refused_naming_the_de
             standard_plan(boat, area, flat_terrain(), settings, np.zeros(1))
     settings = sd.depth_settings(with_water_depth(area, deepest * 0.999, "-p water_depth_m"), load_settings())
     assert standard_plan(boat, area, flat_terrain(), settings, np.zeros(1)).altitude_m == deepest * 0.999
+
+
+def test_search_grid_turns_compass_headings_into_the_computations_and_puts_main_lines_only_first():
+    from sss_locus.experiments.survey_design.front import search_grid
+    base = dict(spacing_fractions=[1.0], crossing_angles_deg=[90.0], cross_spacing_factors=[1.0],
+                altitude_fractions=[0.1], pitches_deg=[0.0])
+    grid = search_grid(headings_compass_deg=[0.0, 90.0, 45.0], no_cross_lines=True, **base)
+    # north (000°) is 90° counter-clockwise from east, east (090°) is 0°, north-east 45°
+    assert [h % 360 for h in grid["headings_deg"]] == pytest.approx([90.0, 0.0, 45.0])
+    assert math.isnan(grid["crossing_angles_deg"][0]) and grid["crossing_angles_deg"][1:] == [90.0]
+    assert search_grid(headings_compass_deg=[0.0], no_cross_lines=False, **base)["crossing_angles_deg"] == [90.0]
+    with pytest.raises(ValueError, match="spacing_fractions"):
+        search_grid(headings_compass_deg=[0.0], no_cross_lines=False, **{**base, "spacing_fractions": [-1.0]})
