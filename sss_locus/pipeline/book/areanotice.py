@@ -67,9 +67,9 @@ def front_notice(summary: Mapping[str, Any]) -> str:
     return ("```{important}\n**This is not the paper's reproduction: it is the build area "
             f"`{summary['name']}`**, built with the profile {profiles} for the platforms {platforms} from "
             f"{_data_words(summary)}. Its figures, tables and findings are computed from these inputs; "
-            f"their BibTeX keys carry the area's name (`sss-locus:{summary['name']}:<label>`). The text "
-            "written for the paper's platforms is left out where these inputs differ, and the claims page "
-            "says whether its verdicts apply.\n```\n")
+            f"their BibTeX keys carry the area's name (`sss-locus:{summary['name']}:<label>`), and so is "
+            "every chapter's text. The claims page says whether its verdicts, written for the paper's "
+            "inputs, apply.\n```\n")
 
 
 def announcement(summary: Mapping[str, Any]) -> str:

@@ -1,14 +1,12 @@
-"""Where a run's inputs differ from the paper's, said wherever the book shows text written for them.
+"""How a run's inputs differ from the paper's, recorded with each executed chapter and said on
+the claims page.
 
-The chapters' figures, captions, tables and glued numbers follow the run for any platform. Their
-prose cannot always: a paragraph that compares the AUV with the boat is written for the paper's
-platforms (each notebook's default ``platforms`` parameter) with the shipped ``data/``. Such a
-markdown cell carries the cell tag :data:`PROSE_TAG` (chapters whose verdicts are generated for
-any platform by their findings functions have none: CONTRIBUTING.md, "One source per
-sentence"). When a run's inputs differ from the paper's for that notebook — a default platform not selected, or a value one of them reads changed by
-``--data``/``--set`` — the runner replaces the tagged cells of the executed copy by one note per
-block of consecutive tagged cells saying why (:func:`adapt_prose`), and records the comparison in
-the copy's metadata (``sss_locus.paper_inputs``, :func:`compare`).
+Every chapter's prose is generated from its run's numbers for every platform of the run, the
+paper's included (CONTRIBUTING.md, "One source per sentence"), so no chapter text needs to be
+swapped when the inputs are not the paper's. The runner still records, in each executed copy's
+metadata (``sss_locus.paper_inputs``), how the run's inputs differ from the paper's for that
+notebook (:func:`compare`): a default platform not selected, a value one of them reads changed by
+``--data``/``--set``, or a platform added beside them.
 
 The claims page quotes the chapters' numbers beside verdicts written for the paper's inputs. At
 every build, :func:`claims_notice` turns the recorded comparisons into a notice that
@@ -18,13 +16,9 @@ missing from a chapter the page's table cannot be built at all and the notice re
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping, Sequence
-from pathlib import Path
 from typing import Any
 
-#: Cell tag of a markdown cell written for the paper's platforms with the shipped data.
-PROSE_TAG = "paper-inputs"
 #: Data tables not keyed by platform that only some chapters read (their changes count for those).
 SHARED_TABLES = ("terrain", "survey")
 
@@ -73,49 +67,6 @@ def _reasons(record: Mapping[str, Any]) -> str:
     if record.get("changed"):
         out.append("changes " + ", ".join(f"`{c}`" for c in record["changed"]))
     return " and ".join(out)
-
-
-def prose_note(record: Mapping[str, Any]) -> str:
-    """The note that stands in for prose written for the paper's inputs (MyST), once a chapter."""
-    return ("```{note}\nThe passages written for the paper's platforms with the shipped data — "
-            f"{_names(record['paper'])} — are left out here: this run {_reasons(record)}. The figures, "
-            "captions and tables of this chapter show the values this run used, and its findings outside "
-            "those passages are generated from this run's numbers.\n```\n")
-
-
-def _tags(cell: Mapping[str, Any]) -> list[str]:
-    return cell.get("metadata", {}).get("tags", []) if cell["cell_type"] == "markdown" else []
-
-
-def adapt_prose(notebook: Path, record: Mapping[str, Any] | None) -> int:
-    """Fit an executed ``notebook``'s prose to its run's inputs (``record`` from :func:`compare`).
-
-    When the inputs are not the paper's the :data:`PROSE_TAG` cells go: each block of
-    consecutive tagged cells keeps only the leading headings of its first cell, and the first
-    block of the chapter is followed by :func:`prose_note` (one note a chapter). Returns the
-    number of cells replaced or dropped."""
-    if is_paper(record):
-        return 0
-    nb = json.loads(notebook.read_text(encoding="utf-8"))
-    cells, changed, previous_tagged, noted = [], 0, False, False
-    for cell in nb["cells"]:
-        tagged = PROSE_TAG in _tags(cell)
-        if tagged:
-            changed += 1
-            if not previous_tagged:  # keep the block's leading headings; the note once a chapter
-                lines = "".join(cell["source"]).splitlines(keepends=True)
-                n = next((i for i, line in enumerate(lines) if not line.startswith("#")), len(lines))
-                heads = "".join(lines[:n]) + ("\n" if n and not noted else "")
-                if heads or not noted:
-                    cells.append({**cell, "source": heads + ("" if noted else prose_note(record))})
-                noted = True
-        else:
-            cells.append(cell)
-        previous_tagged = tagged
-    if changed:
-        nb["cells"] = cells
-        notebook.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
-    return changed
 
 
 def claims_notice(records: Mapping[str, Mapping[str, Any] | None]) -> tuple[str, bool]:

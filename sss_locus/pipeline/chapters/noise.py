@@ -6,6 +6,7 @@ No logic of its own (:mod:`sss_locus.pipeline.chapters`).
 
 import time
 
+from IPython.display import Markdown
 from myst_nb import glue
 import numpy as np
 import pandas as pd
@@ -25,6 +26,10 @@ from sss_locus.pipeline.run.cache import cached
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
 from sss_locus.report.survey_passes.findings import noise_advice_findings
+from sss_locus.report.noise.findings import (answer_finding, breakdown_finding, check_finding, crop_finding,
+                                             guide_sentence, offset_models_finding, range_floor_finding,
+                                             summary_finding)
+from sss_locus.report.pose_space.findings import findings_markdown, platform_title
 from sss_locus.report.noise.figures import (level_label, plot_noise_curves, curve_frames, advice_texts, scale_text,
                                             plot_breakdown, plot_check)
 from sss_locus.report.common.tables import readable_table
@@ -57,7 +62,9 @@ class KEYS:
     three_lost = "nz-{platform}-three-lost"  # share of three-view draws lost
 
 
-__all__ = ["key", "KEYS", "advice_texts", "advice_verdict", "Aperture", "cached", "crossing_angle_grid", "curve_frames",
+__all__ = ["key", "KEYS", "advice_texts", "answer_finding", "breakdown_finding", "check_finding", "crop_finding",
+           "findings_markdown", "guide_sentence", "Markdown", "offset_models_finding", "platform_title",
+           "range_floor_finding", "summary_finding", "advice_verdict", "Aperture", "cached", "crossing_angle_grid", "curve_frames",
            "curve_summary", "draw_pattern", "first_order", "fmt_bands", "fmt_interval", "fmt_sig",
            "gaussian_norm_quantile", "glue", "level_label", "load_envelope",
            "load_noise_model", "load_platform", "median_with_interval", "monte_carlo",

@@ -6,6 +6,7 @@ No logic of its own (:mod:`sss_locus.pipeline.chapters`).
 
 import time
 
+from IPython.display import Markdown
 from myst_nb import glue
 import numpy as np
 
@@ -18,6 +19,8 @@ from sss_locus.experiments.water.study import default_conditions, crop_effects, 
 from sss_locus.pipeline.run.cache import cached
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
+from sss_locus.report.pose_space.findings import findings_markdown, platform_title
+from sss_locus.report.water.findings import seafloor_finding, subset_finding, surface_finding, water_summary
 from sss_locus.report.water.figures import crop_caption, effect_table, effect_texts, effects_caption, plot_crop_effects, seafloor_caption
 
 
@@ -30,7 +33,8 @@ class KEYS:
     deepest = "wa-{platform}-deepest-m"  # deepest feature the platform's geometry reaches (m)
 
 
-__all__ = ["key", "KEYS", "cached", "crop_caption", "effects_caption", "seafloor_caption", "crop_effects", "deepest_feature_m", "default_conditions", "effect_table",
+__all__ = ["key", "KEYS", "cached", "findings_markdown", "Markdown", "platform_title", "seafloor_finding",
+           "subset_finding", "surface_finding", "water_summary", "crop_caption", "effects_caption", "seafloor_caption", "crop_effects", "deepest_feature_m", "default_conditions", "effect_table",
            "effect_texts", "glue", "load_envelope", "load_platform", "np", "OffsetModel",
            "pass2_above_surface_share", "plot_crop_effects", "publish", "sample_pose_space", "show_table",
            "simulate_passes", "time", "use_data"]

@@ -265,7 +265,6 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
             record["paper_inputs"] = paperinputs.compare(entry, parameters, list(record.get("data_read", ())))
             _label_injected_cell(staged, profile, parameters, record)
             studies.drop_skipped(staged)  # a study no platform of the run can fly: a note, not its cells
-            paperinputs.adapt_prose(staged, record["paper_inputs"])
             with outputs.build_lock() if not side else _nothing():
                 outputs.commit_run(staged, staging / "figures", executed, figures,
                                    None if side else entry.source_relative)

@@ -1,5 +1,7 @@
-"""Text written for the paper's inputs is never shown as if it applied to other inputs
-(sss_locus.pipeline.book.paperinputs, the claims notice of the book build, data differences)."""
+"""Text written for the paper's inputs is never shown as if it applied to other inputs: the
+chapters' prose is generated for every platform of the run, and the claims page says when its
+verdicts do not apply (sss_locus.pipeline.book.paperinputs, the claims notice of the book build,
+data differences)."""
 
 from __future__ import annotations
 
@@ -69,42 +71,17 @@ def test_compare_reads_the_defaults_of_each_notebook():
     assert read["changed"] == ["terrain.random.rms_relief_m"] and not paperinputs.is_paper(read)
 
 
-def _notebook(tmp_path, cells):
-    path = tmp_path / "nb.ipynb"
-    path.write_text(json.dumps({"cells": cells, "metadata": {}, "nbformat": 4, "nbformat_minor": 5}))
-    return path
+RETIRED_TAGS = ("generated-findings", "paper-inputs")
+"""Tags of the retired twins: prose generated for other platforms, and prose written for the paper's
+(the runner swapped the second for a note when the inputs were not the paper's)."""
 
 
-def _md(text, tagged=False):
-    return {"cell_type": "markdown", "metadata": {"tags": [paperinputs.PROSE_TAG]} if tagged else {}, "source": text}
-
-
-def test_tagged_prose_gives_way_to_one_note_a_chapter(tmp_path):
-    cells = [_md("intro"), _md("## Drivers\n\nAUV {glue:text}`x-auv`", True), _md("boat {glue:text}`x-boat`", True),
-             _md("made {glue:md}"), _md("generic"), _md("## Summary\nmore AUV", True), _md("summary made")]
-    for record in (_record("pose_space", {"platforms": ["auv", "boat"]}),
-                   _record("pose_space", {"platforms": ["auv", "boat", "my_auv"]})):  # the paper's, or added beside
-        path = _notebook(tmp_path, cells)
-        assert paperinputs.adapt_prose(path, record) == 0
-        assert json.loads(path.read_text())["cells"] == cells
-    path = _notebook(tmp_path, cells)
-    other = _record("pose_space", {"platforms": ["my_auv"], "data_files": [str(EXAMPLE)]})
-    assert paperinputs.adapt_prose(path, other) == 3
-    out = ["".join(c["source"]) for c in json.loads(path.read_text())["cells"]]
-    assert out[0] == "intro" and out[2:5] == ["made {glue:md}", "generic", "## Summary\n"] and out[5] == "summary made"
-    assert len(out) == 6 and sum("```{note}" in c for c in out) == 1  # one note a chapter
-    note = out[1]
-    assert note.startswith("## Drivers\n\n") and "{glue:text}" not in note  # the section keeps its heading
-    assert "does not include `auv`, `boat`" in note and "Torpedo AUV" in note  # paper platforms by name
-    assert "generated from this run's numbers" in note
-
-
-def test_no_chapter_keeps_a_twin_of_generated_findings():
-    """One source per sentence: a verdict generated for any platform is shown in the reproduction too,
-    so no cell is tagged to be dropped from it (the tag of the retired twins)."""
+def test_no_chapter_keeps_prose_written_for_one_set_of_inputs():
+    """One source per sentence: every chapter's prose is generated for any platform and shown in the
+    reproduction too, so no cell is tagged to be dropped from one or the other."""
     for name, entry in REGISTRY.items():
         for cell in json.loads(entry.source.read_text(encoding="utf-8"))["cells"]:
-            assert "generated-findings" not in cell.get("metadata", {}).get("tags", []), name
+            assert not set(RETIRED_TAGS) & set(cell.get("metadata", {}).get("tags", [])), name
 
 
 def test_claims_notice_says_what_differs_and_when_the_table_cannot_be_shown(tmp_path):
@@ -138,12 +115,13 @@ def test_claims_page_has_a_heading_for_the_notice():
 
 
 @pytest.mark.parametrize("name", PLATFORM_NOTEBOOKS)
-def test_tagged_cells_are_the_only_markdown_naming_per_platform_glue(name):
-    """Untagged markdown never quotes a platform-keyed glue value or figure label of a shipped
-    platform: with other platforms it would be an undefined key (the build stops) or a false text."""
+def test_no_markdown_names_per_platform_glue(name):
+    """No markdown cell quotes a platform-keyed glue value or figure label of a shipped platform:
+    with other platforms it would be an undefined key (the build stops) or a false text. Such
+    numbers reach the page inside the findings generated for every platform of the run."""
     nb = json.loads(REGISTRY[name].source.read_text(encoding="utf-8"))
     for cell in nb["cells"]:
-        if cell["cell_type"] != "markdown" or paperinputs.PROSE_TAG in cell["metadata"].get("tags", []):
+        if cell["cell_type"] != "markdown":
             continue
         text = "".join(cell["source"])
         for key in ("auv", "boat"):

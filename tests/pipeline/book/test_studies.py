@@ -29,7 +29,7 @@ def test_a_skipped_study_keeps_its_heading_and_says_why(tmp_path):
                      _glue("skipped-study:pitch", "No platform of this run pitches."),
                      _md("## Pitch\n### and depth\nUses {glue:text}`sp-pitch-platform`.", "study:pitch"),
                      {"cell_type": "code", "metadata": {"tags": ["study:pitch"]}, "source": "if pk:", "outputs": []},
-                     _md("```{glue:figure} fig-survey-pitch-depth\n```", "study:pitch", "paper-inputs"),
+                     _md("```{glue:figure} fig-survey-pitch-depth\n```", "study:pitch", "hide-input"),
                      _md("## Summary", "study:other"))
     assert studies.drop_skipped(path) == ["pitch"]
     cells = json.loads(path.read_text())["cells"]
