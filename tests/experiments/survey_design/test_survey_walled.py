@@ -15,7 +15,8 @@ shapely = pytest.importorskip("shapely")
 pytest.importorskip("pyproj")
 
 from sss_locus.experiments.survey_design.area import load_area  # noqa: E402
-from sss_locus.experiments.survey_design.plans import Plan, load_settings  # noqa: E402
+from sss_locus.experiments.survey_design.plans import Plan  # noqa: E402
+from sss_locus.experiments.survey_design.settings import load_settings  # noqa: E402
 from sss_locus.experiments.survey_design.route import turn_misfits  # noqa: E402
 from sss_locus.pipeline.publish.missions import mission_files  # noqa: E402
 
