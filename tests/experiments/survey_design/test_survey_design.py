@@ -274,7 +274,7 @@ def test_bad_design_inputs_are_refused_before_work(tmp_path):
         sd.design(auv, area, "flat", grid={"headings_deg": [0.0]}, n_features=20)
     with pytest.raises(ValueError, match="no water depth: give the area file a water_depth_m"):
         sd.design(auv, area_from_vertices(RECT), "flat", grid=SMALL_GRID, n_features=20)
-    with pytest.raises(ValueError, match=r"test must be a number of metres in \(0, 12000\]"):
+    with pytest.raises(ValueError, match=r"test must be a finite number in \(0\.0, 12000\.0\]; got -3\.0"):
         deep(area, -3.0)
 
 
