@@ -3,7 +3,8 @@
 One model per table: :class:`Sonar`, :class:`Platform` (with :class:`Transducer`,
 :class:`Attitude`, :class:`DepthRange`, :class:`PlatformSurvey`, :class:`Mission`),
 :class:`Envelope`, :class:`OffsetModels`, :class:`NoiseTable`, :class:`Terrain`,
-:class:`Survey`, :class:`SurveyDesign`, and :class:`Data` for a whole (merged) document.
+:class:`Survey`, :class:`SurveyDesign`, and :class:`Data` for a whole (merged) document; and
+:class:`Area` (:class:`AreaFile`) for a survey area file, whose values are plain (no provenance).
 
 Every number is a :class:`Sourced` value ``{value = ..., source = "..."}`` or ``{value = ...,
 assumption = "..."}`` (exactly one of the two notes); its bounds are the ``Field(ge=, le=, gt=)``

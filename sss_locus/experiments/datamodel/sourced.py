@@ -161,20 +161,20 @@ class Sourced(Table, Generic[T]):
 
 
 def number(ge: float | None = None, le: float | None = None, *, gt: float | None = None):
-    """The type of a sourced finite number within bounds.
+    """The type of a sourced finite number within bounds: ``Sourced[bounded(ge, le, gt=gt)]``
+    (:func:`bounded`).
 
     Parameters
     ----------
     ge, le, gt : float, optional
-        Lower bound (included), upper bound (included), lower bound (excluded); ``None``:
-        unbounded.
+        As :func:`bounded`.
 
     Returns
     -------
     type
-        ``Sourced[Annotated[float, Field(...)]]``, strict (no ``"15"``, no ``true``), finite.
+        ``Sourced[...]`` of a strict, finite number within the bounds.
     """
-    return Sourced[Annotated[float, Field(strict=True, allow_inf_nan=False, ge=ge, le=le, gt=gt)]]
+    return Sourced[bounded(ge, le, gt=gt)]
 
 
 def validation_message(exc: ValidationError, where: str = "") -> str:

@@ -56,12 +56,16 @@ unless the feature's properties give ``origin_lonlat``. Holes (inner rings) are 
 ``vertices_lonlat`` they are in the frame around the origin; ``holes_lonlat`` (rings of WGS 84
 degrees) goes with ``vertices_lonlat``.
 
-Validation: every ring closed or not, at least three distinct vertices of numbers (not booleans
-or strings), a valid polygon (:func:`shapely.is_valid`: no self-intersection), an area of at
-least :data:`MIN_AREA_M2`, at most :data:`MAX_VERTICES` vertices in a file of at most
-:data:`MAX_FILE_BYTES`, every vertex within :data:`MAX_ORIGIN_DISTANCE_M` of the origin when
-there is one, GeoJSON members of their RFC 7946 types; each refused in one line naming the file
-and the rule.
+Validation: the ``[area]`` table (and a GeoJSON area's coordinates and the properties above) is
+validated by the data model first (:class:`sss_locus.experiments.datamodel.models.Area`: member
+types, rings of finite numbers, longitudes and latitudes in range, the bounds of the numbers,
+which keys go together, at most :data:`MAX_VERTICES` vertices; bounds documented in
+``data/README.md``), then the polygon: every ring closed or not, at least three distinct
+vertices, a valid polygon (:func:`shapely.is_valid`: no self-intersection), holes inside the
+outline and not along it, an area of at least :data:`MIN_AREA_M2`, every vertex within
+:data:`MAX_ORIGIN_DISTANCE_M` of the origin when there is one, in a file of at most
+:data:`MAX_FILE_BYTES`, GeoJSON members of their RFC 7946 types; each refused in one line naming
+the file, the key and the rule.
 """
 
 from __future__ import annotations
@@ -109,21 +113,26 @@ def _projection(origin_lonlat):
 def _check_origin(origin, where: str):
     if origin is None:
         return None
-    return checked(models.LonLat, origin.tolist() if isinstance(origin, np.ndarray) else origin,
-                   f"{where}: origin_lonlat")
+    return checked(models.LonLat, _plain(origin), f"{where}: origin_lonlat")
 
 
-def _numeric(value) -> bool:
-    """Whether ``value`` is a number or (nested) list of numbers: ``true`` and ``"380"`` are not."""
-    if isinstance(value, (bool, np.bool_, str, bytes)):
-        return False
-    if isinstance(value, (int, float, np.integer, np.floating)):
-        return True
-    if isinstance(value, (list, tuple, np.ndarray)):
-        if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
-            return True
-        return len(value) > 0 and all(_numeric(v) for v in value)
-    return False
+def _plain(value):
+    """``value`` with its numpy arrays as (nested) lists, for the data model's checks."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value
+
+
+def _ring(kind, ring, where: str) -> np.ndarray:
+    """``ring`` checked as the data model's ``kind`` (e.g. ``LocalRing``), as a (k, 2) array."""
+    return np.asarray(checked(kind, _plain(ring), where), float).reshape(-1, 2)
+
+
+def _rings(kind, rings, where: str) -> list[np.ndarray]:
+    """``rings`` checked as the data model's ``kind`` (e.g. ``LocalRings``), as (k, 2) arrays."""
+    return [np.asarray(r, float).reshape(-1, 2) for r in checked(kind, _plain(rings), where)]
 
 
 def _check_vertex_count(rings, where: str) -> None:
@@ -348,15 +357,11 @@ def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str 
     import shapely
 
     where = source if source != "vertices" else "area"
-    if not isinstance(holes_m, (list, tuple)) or not all(isinstance(h, (list, tuple, np.ndarray)) for h in holes_m):
-        raise ValueError(f"{where}: holes_m must be a list of rings, each a list of [x, y] pairs; got {holes_m!r:.80}")
-    rings = [vertices_m, *holes_m]
-    _check_vertex_count(rings, where)
+    holes = _plain(holes_m)
+    _check_vertex_count([vertices_m, *(holes if isinstance(holes, list) else [])], where)
     clean = []
-    for ring in rings:
-        v = np.asarray(ring, float) if _numeric(ring) else None
-        if v is None or v.ndim != 2 or v.shape[1] != 2 or not np.all(np.isfinite(v)):
-            raise ValueError(f"{where}: vertices must be a list of [x, y] pairs of finite numbers; got {ring!r:.80}")
+    for v in [_ring(models.LocalRing, vertices_m, f"{where}: vertices"),
+              *_rings(models.LocalRings, holes, f"{where}: holes_m")]:
         if len(v) > 1 and np.array_equal(v[0], v[-1]):
             v = v[:-1]
         if len(np.unique(v, axis=0)) < 3:
@@ -413,16 +418,11 @@ def area_from_lonlat(vertices_lonlat, origin_lonlat=None, *, holes_lonlat=(), ho
     """
     import pyproj
 
-    if not isinstance(holes_lonlat, (list, tuple)) or not all(isinstance(h, (list, tuple)) for h in holes_lonlat):
-        raise ValueError(f"{source}: holes must be a list of rings of [longitude, latitude] pairs; got {holes_lonlat!r:.80}")
-    _check_vertex_count([vertices_lonlat, *holes_lonlat, *(holes_m if isinstance(holes_m, (list, tuple)) else ())], source)
-    rings = []
-    for ring in (vertices_lonlat, *holes_lonlat):
-        v = np.asarray(ring, float) if _numeric(ring) else None
-        if v is None or v.ndim != 2 or v.shape[1] != 2 or not np.all(np.isfinite(v)) or np.any(np.abs(v) > [180, 90]):
-            raise ValueError(f"{source}: vertices_lonlat must be [longitude, latitude] pairs of finite numbers in "
-                             f"degrees (|lon| <= 180, |lat| <= 90); got {ring!r:.80}")
-        rings.append(v)
+    holes = _plain(holes_lonlat)
+    _check_vertex_count([vertices_lonlat, *(holes if isinstance(holes, list) else []),
+                         *(holes_m if isinstance(holes_m, (list, tuple)) else ())], source)
+    rings = [_ring(models.LonLatRing, vertices_lonlat, f"{source}: vertices_lonlat"),
+             *_rings(models.LonLatRings, holes, f"{source}: holes_lonlat")]
     origin = _check_origin(rings[0][0] if origin_lonlat is None else origin_lonlat, source)
     every = np.vstack(rings)
     _, _, dist = pyproj.Geod(ellps="WGS84").inv(np.full(len(every), origin[0]), np.full(len(every), origin[1]),
