@@ -30,6 +30,24 @@ from sss_locus.experiments.datamodel import datadoc
 from sss_locus.experiments.datamodel import models
 
 
+def check_sigmas(table) -> None:
+    """Refuse, naming the field, a frozen dataclass of standard deviations with a field that is
+    not a finite number >= 0 (``true`` and ``"0.1"`` are not numbers); store every field as a float.
+
+    Parameters
+    ----------
+    table : dataclass instance
+        A frozen dataclass whose every field is a standard deviation (e.g. :class:`NoiseModel`,
+        :class:`~sss_locus.experiments.passes.pass_noise.PassNoise`).
+    """
+    for f in fields(table):
+        v = getattr(table, f.name)
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) \
+                or not math.isfinite(v) or v < 0:
+            raise ValueError(f"{type(table).__name__}.{f.name} must be a finite number >= 0; got {v!r}")
+        object.__setattr__(table, f.name, float(v))
+
+
 @dataclass(frozen=True)
 class NoiseModel:
     """Standard deviations of the measurement errors of one view (see the module docstring).
@@ -47,12 +65,7 @@ class NoiseModel:
     heading_sigma_deg: float = 0.0
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) \
-                    or not math.isfinite(v) or v < 0:
-                raise ValueError(f"NoiseModel.{f.name} must be a finite number >= 0; got {v!r}")
-            object.__setattr__(self, f.name, float(v))
+        check_sigmas(self)
 
     def scaled(self, k: float) -> "NoiseModel":
         """Every standard deviation multiplied by ``k`` (>= 0); ``scaled(0)`` is noise-free.

@@ -36,7 +36,7 @@ import numpy as np
 
 from sss_locus.experiments.datamodel import datadoc
 from sss_locus.experiments.datamodel import models
-from sss_locus.experiments.datamodel.noise_model import parse_noise_model
+from sss_locus.experiments.datamodel.noise_model import check_sigmas, parse_noise_model
 
 NAVIGATION_MODELS = ("per_pass", "per_view")
 """The named navigation-error models (module docstring)."""
@@ -58,12 +58,7 @@ class PassNoise:
     ping_heading_sigma_deg: float = 0.0
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) \
-                    or not math.isfinite(v) or v < 0:
-                raise ValueError(f"PassNoise.{f.name} must be a finite number >= 0; got {v!r}")
-            object.__setattr__(self, f.name, float(v))
+        check_sigmas(self)
 
     def scaled(self, k: float) -> "PassNoise":
         """Every standard deviation multiplied by ``k`` (>= 0).
