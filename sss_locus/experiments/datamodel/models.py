@@ -247,10 +247,11 @@ _DEGREES = "in degrees (|lon| <= 180, |lat| <= 90)"
 #: ``[longitude, latitude]``, WGS 84 degrees.
 LonLat = described(Annotated[tuple[_LON, _LAT], Field(strict=False)], f"[longitude, latitude] {_DEGREES}")
 #: A ring of ``[x, y]`` pairs, local east/north metres.
-LocalRing = described(list[Annotated[tuple[_FINITE, _FINITE], Field(strict=False)]],
+LocalRing = described(Annotated[list[Annotated[tuple[_FINITE, _FINITE], Field(strict=False)]], Field(min_length=1)],
                       "a list of [x, y] pairs of finite numbers")
 #: A ring of ``[longitude, latitude]`` pairs, WGS 84 degrees.
-LonLatRing = described(list[LonLat], f"a list of [longitude, latitude] pairs of finite numbers {_DEGREES}")
+LonLatRing = described(Annotated[list[LonLat], Field(min_length=1)],
+                       f"a list of [longitude, latitude] pairs of finite numbers {_DEGREES}")
 LocalRings = described(list[LocalRing], "a list of rings, each a list of [x, y] pairs", whole=False)
 LonLatRings = described(list[LonLatRing], "a list of rings, each a list of [longitude, latitude] pairs", whole=False)
 _RINGS = ("vertices_m", "vertices_lonlat", "holes_m", "holes_lonlat", "navigable_m", "navigable_lonlat")

@@ -240,7 +240,7 @@ def test_the_area_file_is_recorded_in_the_plan_figures_manifest(tmp_path, monkey
 @pytest.mark.parametrize("doc, message", [
     ("[area]\nvertices_m = [[0, 0], [100, 100], [100, 0], [0, 100]]\n", "not valid"),   # a bow tie
     ("[area]\nvertices_m = [[0, 0], [100, 0]]\n", "at least 3 distinct vertices"),
-    ("[area]\nvertices_m = []\n", "vertices must be"),
+    ("[area]\nvertices_m = []\n", r"area\.vertices_m must be a list of \[x, y\] pairs"),
     ("[area]\nvertices_m = [[0, 0], [5, 0], [5, 5], [0, 5]]\n", "are the vertices in metres"),
     ("[area]\nname = 'x'\n", "exactly one of vertices_m or vertices_lonlat"),
     ("[area]\nvertices_m = [[0, 0], [90, 0], [90, 90]]\norigin_lonlat = [200, 0]\n", "origin_lonlat"),
