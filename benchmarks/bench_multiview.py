@@ -39,7 +39,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from scipy.optimize import least_squares  # noqa: E402
 
 from sss_locus.experiments.datamodel.envelopes import load_envelope  # noqa: E402
-from sss_locus.experiments.noise.study import load_noise_model, noise_sigmas, perturb  # noqa: E402
+from sss_locus.experiments.datamodel.noise_model import load_noise_model
+from sss_locus.experiments.passes.propagation import noise_sigmas, perturb  # noqa: E402
 from sss_locus.experiments.datamodel.platforms import load_platform  # noqa: E402
 from sss_locus.experiments.datamodel.terrain import load_terrain_config, place_features, random_terrain  # noqa: E402
 from sss_locus.experiments.reconstruction.terrain_survey import SurveyLayout, observe_features  # noqa: E402

@@ -67,6 +67,11 @@ def _timed_kernel(modules):
 
 def measure_studies(quick: bool) -> dict:
     from sss_locus.experiments.noise import study as noise
+    try:
+        from sss_locus.experiments.datamodel.noise_model import load_noise_model
+        from sss_locus.experiments.passes import propagation
+    except ImportError:  # a baseline tree from before the noise model moved to the data model
+        propagation, load_noise_model = noise, noise.load_noise_model
     from sss_locus.experiments.survey_passes import planning, study as survey_passes
     from sss_locus.experiments.pose_space import study as pose_space
     from sss_locus.experiments.datamodel.envelopes import OffsetModel, load_envelope
@@ -77,7 +82,7 @@ def measure_studies(quick: bool) -> dict:
     except ImportError:  # a baseline tree from before pose_claims
         from sss_locus.experiments.pose_space.stats import claim_metrics
 
-    spent = _timed_kernel([pose_space, survey_passes, noise])
+    spent = _timed_kernel([pose_space, survey_passes, propagation])
     out = {}
     n = 100_000 if quick else 600_000
     spec = pose_space.PoseSpaceSpec(load_platform("auv"))
@@ -110,7 +115,7 @@ def measure_studies(quick: bool) -> dict:
     samples, _ = survey_passes.simulate_passes(pf, env, OffsetModel("independent"), grid[::4], 50, 1)
     draws = 16 if quick else 64
     spent[0], start = 0.0, time.perf_counter()
-    noise.survey_noise_table(pf, samples, {"x1": noise.load_noise_model("auv")}, n_draws=draws, seed=1)
+    noise.survey_noise_table(pf, samples, {"x1": load_noise_model("auv")}, n_draws=draws, seed=1)
     out["noise"] = dict(n=len(samples) * draws, seconds=time.perf_counter() - start, kernel=spent[0])
     return out
 

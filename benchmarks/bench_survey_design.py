@@ -48,7 +48,8 @@ def _modules():
     move into rooms (issue 41), at their old flat paths."""
     try:
         from sss_locus.experiments.datamodel.platforms import load_platform
-        from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+        from sss_locus.experiments.datamodel.noise_model import load_noise_model
+        from sss_locus.experiments.passes.pass_noise import load_pass_noise
         from sss_locus.experiments.survey_design import front as sd, scoring
         from sss_locus.experiments.survey_design.area import area_from_vertices, with_water_depth
     except ImportError:  # a tree before the rooms

@@ -81,11 +81,7 @@ CHAPTERS = _chapters()
 
 #: Imports that cross the rooms' order today, each a module that mixes two jobs and went whole to
 #: the room most of it belongs to (CONTRIBUTING.md, "Follow-ups"). Remove an entry when it is fixed.
-KNOWN_CROSSINGS = {
-    # the first-order noise propagation lives in the noise chapter's study; the three-view
-    # chapter (before noise in the book) uses it for its error ellipses
-    ("sss_locus.experiments.three_views.patterns", "sss_locus.experiments.noise.study"),
-}
+KNOWN_CROSSINGS: set[tuple[str, str]] = set()  # none left: the noise propagation moved to passes/
 
 
 def _modules() -> dict[str, Path]:

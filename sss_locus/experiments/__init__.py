@@ -14,8 +14,9 @@ Rooms (shared rooms, then one per chapter of the book in ``_toc.yml`` order; CON
 ``datamodel/``
     The data model: the TOML inputs read and validated (each value sourced or marked as an
     assumption), platforms, survey envelopes, seafloor models, the water column, a user's data
-    (``--data``/``--set``). Modules: ``datadoc``, ``envelopes``, ``inputs``, ``models``,
-    ``platforms``, ``schema``, ``sourced``, ``terrain``, ``userdata``, ``water_column``.
+    (``--data``/``--set``), the noise model, a survey area file's table. Modules: ``datadoc``,
+    ``envelopes``, ``inputs``, ``models``, ``noise_model``, ``platforms``, ``schema``,
+    ``sourced``, ``terrain``, ``userdata``, ``water_column``.
 ``sonar_files/``
     A user's recorded sonar files and the sightings picked on them: XTF bytes read strictly,
     which end of a channel is near, layback, an XTF file's summary, sightings CSVs and XTF
@@ -24,8 +25,8 @@ Rooms (shared rooms, then one per chapter of the book in ``_toc.yml`` order; CON
 ``passes/``
     Straight passes and their views, shared by the survey-pass, three-view, noise and
     reconstruction chapters: one pass and its exact ping, passes as world-frame views,
-    navigation errors shared per pass. Modules: ``pass_noise``, ``straight_pass``,
-    ``view_sets``.
+    navigation errors shared per pass, how measurement errors spread the loci (Monte Carlo and
+    first order). Modules: ``pass_noise``, ``propagation``, ``straight_pass``, ``view_sets``.
 ``adjustment/``
     The joint adjustment (acoustic bundle adjustment) of every feature and every pass's
     navigation, used by the reconstruction, your-pings and survey-design chapters. Modules:
@@ -41,7 +42,7 @@ Rooms (shared rooms, then one per chapter of the book in ``_toc.yml`` order; CON
     The three-view chapter: three passes over one feature, patterns and heading sweeps. Modules:
     ``patterns``.
 ``noise/``
-    The noise chapter: the noise model and how range and navigation errors spread the loci.
+    The noise chapter: the spread of every pass pair's locus under the chapter's noise models.
     Modules: ``study``.
 ``water/``
     The water chapter: the crop to the water column, compared in pairs. Modules: ``study``.
@@ -57,5 +58,5 @@ Rooms (shared rooms, then one per chapter of the book in ``_toc.yml`` order; CON
     The survey-design chapter: area polygons, lines and turns, routes, measured coverage,
     objectives, plans, the Pareto front and the recommended plan, plans scored over seeds.
     Modules: ``area``, ``bathymetry``, ``coverage``, ``front``, ``joint``, ``lines``,
-    ``objectives``, ``plans``, ``route``, ``scoring``, ``turns``.
+    ``objectives``, ``plans``, ``route``, ``scoring``, ``settings``, ``turns``.
 """

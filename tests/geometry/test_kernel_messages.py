@@ -9,7 +9,9 @@ import pytest
 
 from sss_locus import Aperture, two_view_locus
 from sss_locus.experiments.datamodel.envelopes import load_envelope
-from sss_locus.experiments.noise.study import first_order, gaussian_norm_quantile, load_noise_model, monte_carlo
+from sss_locus.experiments.passes.propagation import first_order, monte_carlo
+from sss_locus.experiments.stats.gaussian_norm import gaussian_norm_quantile
+from sss_locus.experiments.datamodel.noise_model import load_noise_model
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.three_views.patterns import PATTERNS
 from sss_locus.experiments.passes.view_sets import draw_pattern

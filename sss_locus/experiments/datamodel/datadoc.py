@@ -9,11 +9,11 @@ import hashlib
 import json
 import re
 import tomllib
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from sss_locus.paths import DATA_DIR
 from sss_locus.experiments.datamodel.inputs import read_toml, suggestion
@@ -27,6 +27,7 @@ USER_TABLES: tuple[str, ...] = ("sonars", "platforms", "envelopes", "offset_mode
 #: Tables whose numbers sit one level down (``survey.area_m``), not two (``noise.auv.range_m``).
 FLAT_TABLES: tuple[str, ...] = ("survey", "survey_design")
 SET_NOTE = "user override: --set "
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -328,6 +329,37 @@ def note_read(*entries: str) -> None:
     """
     if _RECORDINGS:
         _RECORDINGS[-1].update(entries)
+
+
+def load_table(parse: Callable[[dict[str, Any]], T], path: str | Path | None = None, *entries: str,
+               doc: Mapping[str, Any] | None = None) -> T:
+    """What every loader of the data does: ``parse`` (validate one table and build its object) of
+    the run's merged data, noting ``entries`` as read (:func:`note_read`); or of the one TOML
+    file ``path`` (nothing noted); or of the parsed document ``doc``.
+
+    Parameters
+    ----------
+    parse : callable
+        ``parse(document) -> object``: validates the table(s) it needs
+        (:func:`sss_locus.experiments.datamodel.models.validate_document`).
+    path : str or pathlib.Path, optional
+        A TOML file read alone instead of the run's data.
+    *entries : str
+        Dotted key paths of the run's data that ``parse`` reads (e.g. ``noise.auv``).
+    doc : mapping, optional
+        A parsed document used instead of any file (nothing noted).
+
+    Returns
+    -------
+    object
+        ``parse``'s result.
+    """
+    if doc is not None:
+        return parse(doc)
+    if path is not None:
+        return parse(read_toml(path))
+    note_read(*entries)
+    return parse(document())
 
 
 def reads_so_far() -> set[str] | None:

@@ -18,7 +18,6 @@ import numpy as np
 from sss_locus.paths import DATA_DIR
 from sss_locus.experiments.datamodel import datadoc
 from sss_locus.experiments.datamodel import models
-from sss_locus.experiments.datamodel.inputs import read_toml
 
 SURVEY_FILE: Path = DATA_DIR / "survey.toml"
 OFFSET_KINDS = ("independent", "matched")
@@ -224,9 +223,7 @@ def load_envelope(platform_key: str, path: str | Path | None = None) -> SurveyEn
     SurveyEnvelope
         The validated envelope.
     """
-    if path is None:
-        datadoc.note_read(f"envelopes.{platform_key}")
-    return parse_envelope(datadoc.document() if path is None else read_toml(path), platform_key)
+    return datadoc.load_table(lambda doc: parse_envelope(doc, platform_key), path, f"envelopes.{platform_key}")
 
 
 def parse_envelope(doc: dict, platform_key: str) -> SurveyEnvelope:
@@ -290,9 +287,6 @@ def default_offset_model(kind: str = "independent", side_rule: str = "random",
     """
     if kind != "matched":
         return OffsetModel(kind, 0.0, side_rule)
-    if doc is None:
-        doc = datadoc.document() if path is None else read_toml(path)
-        if path is None:
-            datadoc.note_read("offset_models.matched")
-    data = models.validate_document(doc, ("offset_models",))
+    data = datadoc.load_table(lambda d: models.validate_document(d, ("offset_models",)), path,
+                              "offset_models.matched", doc=doc)
     return OffsetModel(kind, data.offset_models.matched.jitter_m.value, side_rule)

@@ -3,7 +3,8 @@
 One model per table: :class:`Sonar`, :class:`Platform` (with :class:`Transducer`,
 :class:`Attitude`, :class:`DepthRange`, :class:`PlatformSurvey`, :class:`Mission`),
 :class:`Envelope`, :class:`OffsetModels`, :class:`NoiseTable`, :class:`Terrain`,
-:class:`Survey`, :class:`SurveyDesign`, and :class:`Data` for a whole (merged) document.
+:class:`Survey`, :class:`SurveyDesign`, and :class:`Data` for a whole (merged) document; and
+:class:`Area` (:class:`AreaFile`) for a survey area file, whose values are plain (no provenance).
 
 Every number is a :class:`Sourced` value ``{value = ..., source = "..."}`` or ``{value = ...,
 assumption = "..."}`` (exactly one of the two notes); its bounds are the ``Field(ge=, le=, gt=)``
@@ -21,13 +22,13 @@ The merge of shipped data, users' files and ``--set`` overrides stays on plain d
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, model_validator
+from pydantic import BaseModel, Field, model_validator
 from pydantic_core import PydanticCustomError
 
 from sss_locus.experiments.datamodel.inputs import suggestion
-from .sourced import Key, Sourced, Table, Text, number, validated
+from .sourced import Key, Sourced, Table, Text, bounded, described, number, validated
 
 Finite = number()
 NonNegative = number(ge=0.0)
@@ -196,6 +197,11 @@ class Survey(Table):
     margin_m: number(ge=0.0, le=1e5)
 
 
+#: How far a track keeps off the navigable water's edge, m: ``survey_design.wall_clearance_m``
+#: (sourced) and an area file's own ``wall_clearance_m`` (plain).
+WallClearanceM = bounded(ge=0.0, le=1000.0)
+
+
 class SurveyDesign(Table):
     """``[survey_design]``: the rules of the survey-design chapter's plans."""
 
@@ -206,7 +212,7 @@ class SurveyDesign(Table):
     standard_altitude_max_fraction: Fraction
     min_two_view_share: Fraction
     run_in_turn_radii: number(ge=0.0, le=1000.0)
-    wall_clearance_m: number(ge=0.0, le=1000.0)
+    wall_clearance_m: Sourced[WallClearanceM]
     water_depth_m: number(ge=1e-3, le=12000.0) | None = None
 
     @model_validator(mode="after")
@@ -217,6 +223,131 @@ class SurveyDesign(Table):
                                        "other": repr(self.standard_altitude_max_fraction.value),
                                        "got": repr(self.standard_altitude_min_fraction.value)})
         return self
+
+
+# ---------------------------------------------------------------------------------------------
+# The survey area file (sss_locus.experiments.survey_design.area): plain values, no provenance
+# ---------------------------------------------------------------------------------------------
+MAX_VERTICES = 100_000
+"""Most vertices (all rings) an area may have: a survey boundary needs far fewer; more (a
+coastline traced at centimetres) would make every coverage test slow."""
+#: The mean water depth over an area, m (an area file's ``water_depth_m``, a run's ``-p water_depth_m``).
+WaterDepthM = bounded(gt=0.0, le=12000.0)
+#: How far past an area's outer edge the water is navigable, m.
+WaterBeyondM = bounded(ge=0.0, le=1e5)
+BATHYMETRY_VALUES = ("depth", "elevation")
+"""``bathymetry_values``: ``depth`` (positive down) or ``elevation`` (positive up, negative in water)."""
+#: The sign convention of a bathymetry grid, one of :data:`BATHYMETRY_VALUES`.
+BathymetryValues = described(Literal[BATHYMETRY_VALUES], f"one of {list(BATHYMETRY_VALUES)} (depth: metres below "
+                             "the sea surface, positive down; elevation: positive up, negative in the water)")
+_FINITE = Annotated[float, Field(strict=True, allow_inf_nan=False)]
+_LON = Annotated[float, Field(strict=True, allow_inf_nan=False, ge=-180.0, le=180.0)]
+_LAT = Annotated[float, Field(strict=True, allow_inf_nan=False, ge=-90.0, le=90.0)]
+_DEGREES = "in degrees (|lon| <= 180, |lat| <= 90)"
+#: ``[longitude, latitude]``, WGS 84 degrees.
+LonLat = described(Annotated[tuple[_LON, _LAT], Field(strict=False)], f"[longitude, latitude] {_DEGREES}")
+#: A ring of ``[x, y]`` pairs, local east/north metres.
+LocalRing = described(Annotated[list[Annotated[tuple[_FINITE, _FINITE], Field(strict=False)]], Field(min_length=1)],
+                      "a list of [x, y] pairs of finite numbers")
+#: A ring of ``[longitude, latitude]`` pairs, WGS 84 degrees.
+LonLatRing = described(Annotated[list[LonLat], Field(min_length=1)],
+                       f"a list of [longitude, latitude] pairs of finite numbers {_DEGREES}")
+LocalRings = described(list[LocalRing], "a list of rings, each a list of [x, y] pairs", whole=False)
+LonLatRings = described(list[LonLatRing], "a list of rings, each a list of [longitude, latitude] pairs", whole=False)
+_RINGS = ("vertices_m", "vertices_lonlat", "holes_m", "holes_lonlat", "navigable_m", "navigable_lonlat")
+
+
+def too_many_vertices(rings) -> str | None:
+    """Why an area of these rings has too many vertices (more than :data:`MAX_VERTICES`), else
+    ``None``.
+
+    Parameters
+    ----------
+    rings : sequence
+        Rings (sequences of vertices; anything else counts 0).
+
+    Returns
+    -------
+    str or None
+        The count and the limit, in words.
+    """
+    count = sum(len(r) if isinstance(r, (list, tuple)) or hasattr(r, "shape") else 0 for r in rings)
+    if count > MAX_VERTICES:
+        return (f"the area has {count:,} vertices, more than {MAX_VERTICES:,}; simplify its boundary (e.g. "
+                "shapely's simplify or QGIS's Simplify)")
+    return None
+
+
+def _rule(message: str, field: str | None = None, **ctx) -> PydanticCustomError:
+    return PydanticCustomError("rule", message, {**ctx, **({"field": field} if field else {})})
+
+
+class Area(Table):
+    """``[area]`` of a survey area file (:mod:`sss_locus.experiments.survey_design.area`; a GeoJSON
+    area's polygon and properties are read into the same keys): plain values (no provenance but
+    the table's own ``source``/``assumption`` text). The polygon's own checks (distinct vertices,
+    no crossing, its size, holes inside it, distance from the origin) are the area module's."""
+
+    name: Text | None = None
+    source: Text | None = None
+    assumption: Text | None = None
+    vertices_m: LocalRing | None = None
+    vertices_lonlat: LonLatRing | None = None
+    origin_lonlat: LonLat | None = None
+    holes_m: LocalRings = []
+    holes_lonlat: LonLatRings = []
+    water_depth_m: WaterDepthM | None = None
+    water_beyond_m: WaterBeyondM | None = None
+    navigable_m: LocalRing | None = None
+    navigable_lonlat: LonLatRing | None = None
+    wall_clearance_m: WallClearanceM | None = None
+    bathymetry: Text | None = None
+    bathymetry_values: BathymetryValues | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _vertex_count(cls, data: Any):
+        if isinstance(data, Mapping):
+            rings = [data.get("vertices_m"), data.get("vertices_lonlat"), data.get("navigable_m"),
+                     data.get("navigable_lonlat")]
+            for key in ("holes_m", "holes_lonlat"):
+                rings += data.get(key) if isinstance(data.get(key), list) else []
+            why = too_many_vertices(rings)
+            if why:
+                raise _rule(why)
+        return data
+
+    @model_validator(mode="after")
+    def _combinations(self):
+        given = {k for k in type(self).model_fields if getattr(self, k) not in (None, [])}
+        if ("vertices_m" in given) == ("vertices_lonlat" in given):
+            raise _rule("needs exactly one of vertices_m or vertices_lonlat; got {got}",
+                        got="both" if "vertices_m" in given else "neither")
+        if "holes_lonlat" in given and "vertices_lonlat" not in given:
+            raise _rule("goes with vertices_lonlat (with vertices_m, give holes_m)", "holes_lonlat")
+        water = sorted(given & {"navigable_m", "navigable_lonlat", "water_beyond_m"})
+        if len(water) > 1:
+            raise _rule("give one of navigable_m, navigable_lonlat or water_beyond_m; got {got}", got=", ".join(water))
+        if "navigable_lonlat" in given and "vertices_m" in given and "origin_lonlat" not in given:
+            raise _rule("needs the area's origin_lonlat = [longitude, latitude] (to place it in the area's "
+                        "local metres)", "navigable_lonlat")
+        values = " or ".join(f'"{v}"' for v in BATHYMETRY_VALUES)
+        if "bathymetry" in given and "bathymetry_values" not in given:
+            raise _rule(f"is missing: a bathymetry grid needs bathymetry_values = {values} (depth: metres below "
+                        "the sea surface, positive down; elevation: positive up, negative in the water)",
+                        "bathymetry_values")
+        if "bathymetry_values" in given and "bathymetry" not in given:
+            raise _rule('is missing: bathymetry_values goes with bathymetry = "FILE" (a raster, path relative '
+                        "to the area file)", "bathymetry")
+        if "bathymetry" in given and "water_depth_m" in given:
+            raise _rule("goes without water_depth_m: the depths are the bathymetry grid's", "bathymetry")
+        return self
+
+
+class AreaFile(Table):
+    """A survey area TOML file: its ``[area]`` table."""
+
+    area: Area
 
 
 class Data(Table):

@@ -40,7 +40,7 @@ from scipy.spatial.transform import Rotation
 from sss_locus.paths import DATA_DIR
 from sss_locus.experiments.datamodel import datadoc
 from sss_locus.experiments.datamodel import models
-from sss_locus.experiments.datamodel.inputs import check_range, read_toml
+from sss_locus.experiments.datamodel.inputs import check_range
 
 PLATFORMS_FILE: Path = DATA_DIR / "platforms.toml"
 SIDES: tuple[str, str] = ("port", "starboard")
@@ -318,9 +318,7 @@ def load_platforms(path: str | Path | None = None) -> dict[str, Platform]:
     dict of str to Platform
         The platforms by key.
     """
-    if path is None:
-        datadoc.note_read("platforms", "sonars")
-    return parse_platforms(datadoc.document() if path is None else read_toml(path))
+    return datadoc.load_table(parse_platforms, path, "platforms", "sonars")
 
 
 def load_platform(key: str, path: str | Path | None = None) -> Platform:
@@ -338,7 +336,7 @@ def load_platform(key: str, path: str | Path | None = None) -> Platform:
     Platform
         The platform.
     """
-    platforms = parse_platforms(datadoc.document() if path is None else read_toml(path))
+    platforms = datadoc.load_table(parse_platforms, path)  # the entries it reads: noted below
     if key not in platforms:
         raise ValueError(f"platform must be one of {sorted(platforms)}; got {key!r}")
     if path is None:

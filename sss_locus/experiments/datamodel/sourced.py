@@ -5,13 +5,14 @@ The tables themselves: :mod:`sss_locus.experiments.datamodel.models`."""
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping
 from typing import Annotated, Any, Generic, Literal, TypeVar, get_args, get_origin
 
 from annotated_types import Ge, Gt, Le, Lt
-from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, StringConstraints, ValidationError,
-                      field_validator, model_validator)
+from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, StringConstraints, TypeAdapter, ValidationError,
+                      WrapValidator, field_validator, model_validator)
 from pydantic_core import PydanticCustomError
 
 from sss_locus.experiments.datamodel.datadoc import KEY_PATTERN
@@ -61,8 +62,13 @@ def _rule(field) -> str:
         return f"one of {list(get_args(annotation))}"
     if annotation is bool:
         return "true or false"
+    return _range_rule(field.metadata)
+
+
+def _range_rule(metadata) -> str:
+    """``"a finite number in [lo, hi]"`` (``(``/``)`` for an open end) of a number's constraints."""
     lo, hi, lo_open, hi_open = -math.inf, math.inf, True, True
-    for m in field.metadata:
+    for m in metadata:
         if isinstance(m, (Ge, Gt)):
             lo, lo_open = float(m.ge if isinstance(m, Ge) else m.gt), isinstance(m, Gt)
         elif isinstance(m, (Le, Lt)):
@@ -70,6 +76,57 @@ def _rule(field) -> str:
     if math.isinf(lo) and math.isinf(hi):
         return "a finite number"
     return f"a finite number in {'(' if lo_open else '['}{lo}, {hi}{')' if hi_open else ']'}"
+
+
+def described(kind: Any, rule: str, *, whole: bool = True) -> Any:
+    """``kind`` whose refusal reads ``must be <rule>; got <value>`` (the value's first 80
+    characters) instead of pydantic's per-item errors.
+
+    Parameters
+    ----------
+    kind : type
+        A type pydantic validates (e.g. ``list[tuple[float, float]]``).
+    rule : str
+        The valid values in words.
+    whole : bool
+        ``True``: any error inside the value is reported as the whole value's; ``False``: only a
+        value of the wrong kind itself (errors of its items keep their own key path and message).
+
+    Returns
+    -------
+    type
+        ``Annotated[kind, WrapValidator(...)]``.
+    """
+    def rephrase(value: Any, handler):
+        try:
+            return handler(value)
+        except ValidationError as exc:
+            if not whole and any(e["loc"] for e in exc.errors()):
+                raise
+            raise PydanticCustomError("value_range", "must be {rule}; got {got}",
+                                      {"rule": rule, "got": f"{value!r:.80}"}) from None
+
+    return Annotated[kind, WrapValidator(rephrase)]
+
+
+def bounded(ge: float | None = None, le: float | None = None, *, gt: float | None = None) -> Any:
+    """The type of a plain (not sourced) finite number within bounds, refused in the words of
+    :func:`number` (an area file's numbers).
+
+    Parameters
+    ----------
+    ge, le, gt : float, optional
+        Lower bound (included), upper bound (included), lower bound (excluded); ``None``:
+        unbounded.
+
+    Returns
+    -------
+    type
+        ``Annotated[float, Field(...)]``, strict (no ``"15"``, no ``true``), finite; a refusal
+        reads ``must be a finite number in [ge, le]; got <value>``.
+    """
+    field = Field(strict=True, allow_inf_nan=False, ge=ge, le=le, gt=gt)
+    return described(Annotated[float, field], _range_rule(field.metadata))
 
 
 class Sourced(Table, Generic[T]):
@@ -104,22 +161,20 @@ class Sourced(Table, Generic[T]):
 
 
 def number(ge: float | None = None, le: float | None = None, *, gt: float | None = None):
-    """The type of a sourced finite number within bounds.
+    """The type of a sourced finite number within bounds: ``Sourced[bounded(ge, le, gt=gt)]``
+    (:func:`bounded`).
 
     Parameters
     ----------
     ge, le, gt : float, optional
-        Lower bound (included), upper bound (included), lower bound (excluded); ``None``:
-        unbounded.
+        As :func:`bounded`.
 
     Returns
     -------
     type
-        ``Sourced[Annotated[float, Field(...)]]``, strict (no ``"15"``, no ``true``), finite.
+        ``Sourced[...]`` of a strict, finite number within the bounds.
     """
-    return Sourced[Annotated[float, Field(strict=True, allow_inf_nan=False, ge=ge, le=le, gt=gt)]]
-
-
+    return Sourced[bounded(ge, le, gt=gt)]
 
 
 def validation_message(exc: ValidationError, where: str = "") -> str:
@@ -141,7 +196,7 @@ def validation_message(exc: ValidationError, where: str = "") -> str:
     kind, ctx, got, loc = error["type"], error.get("ctx") or {}, error.get("input"), list(error["loc"])
     if loc and loc[-1] == "[key]":
         kind, loc = "bad_key", loc[:-1]
-    if kind in ("unknown_key", "order"):
+    if kind in ("unknown_key", "order") or (kind == "rule" and "field" in ctx):
         loc.append(ctx["key" if kind == "unknown_key" else "field"])
     path = ".".join(str(part) for part in [where, *loc] if part != "")
     msg = error["msg"].removeprefix("Value error, ")
@@ -156,8 +211,10 @@ def validation_message(exc: ValidationError, where: str = "") -> str:
         return f"{path} must be a table; got {type(got).__name__}"
     if kind == "string_type":
         return f"{path} must be a string; got {got!r}"
-    if kind in ("value_range", "one_note", "non_empty", "order"):
+    if kind in ("value_range", "one_note", "non_empty", "order") or (kind == "rule" and "field" in ctx):
         return f"{path} {msg}"
+    if kind == "rule":
+        return f"{path}: {msg}" if path else msg
     return f"{path}: {msg.replace('Input should be', 'must be')}; got {got!r}"
 
 
@@ -180,5 +237,34 @@ def validated(model: type[BaseModel], doc: Any, where: str = "") -> Any:
     """
     try:
         return model.model_validate(doc)
+    except ValidationError as exc:
+        raise ValueError(validation_message(exc, where)) from None
+
+
+@functools.lru_cache(maxsize=None)
+def _adapter(kind: Any) -> TypeAdapter:
+    return TypeAdapter(kind)
+
+
+def checked(kind: Any, value: Any, where: str) -> Any:
+    """``value`` validated as ``kind`` (a declared type of the data model, e.g. a
+    :func:`bounded` number), a refusal as a one-line ``ValueError`` starting with ``where``.
+
+    Parameters
+    ----------
+    kind : type
+        The type.
+    value : Any
+        The value.
+    where : str
+        What the value is (a key, ``-p water_depth_m``), prefixed to the message.
+
+    Returns
+    -------
+    Any
+        The validated value.
+    """
+    try:
+        return _adapter(kind).validate_python(value)
     except ValidationError as exc:
         raise ValueError(validation_message(exc, where)) from None

@@ -37,7 +37,6 @@ import numpy as np
 from sss_locus.paths import DATA_DIR
 from sss_locus.experiments.datamodel import datadoc
 from sss_locus.experiments.datamodel import models
-from sss_locus.experiments.datamodel.inputs import read_toml
 
 TERRAIN_FILE: Path = DATA_DIR / "terrain.toml"
 KINDS = ("flat", "slope", "mound", "step", "random")
@@ -319,9 +318,7 @@ def load_terrain_config(path: str | Path | None = None) -> dict:
     dict
         As :func:`parse_terrain_config`.
     """
-    if path is None:
-        datadoc.note_read("terrain", "survey")
-    return parse_terrain_config(datadoc.document() if path is None else read_toml(path))
+    return datadoc.load_table(parse_terrain_config, path, "terrain", "survey")
 
 
 def parse_terrain_config(doc: dict) -> dict:

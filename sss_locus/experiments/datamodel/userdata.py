@@ -18,7 +18,7 @@ The active inputs (:func:`use`) are module state, set once per process: the comm
 them before it validates parameters, and a notebook's imports cell calls
 ``userdata.use(data_files, data_set)``; the loaders (:func:`sss_locus.experiments.datamodel.platforms.load_platforms`,
 :func:`sss_locus.experiments.datamodel.envelopes.load_envelope`,
-:func:`sss_locus.experiments.noise.study.load_noise_model`,
+:func:`sss_locus.experiments.datamodel.noise_model.load_noise_model`,
 :func:`sss_locus.experiments.datamodel.terrain.load_terrain_config`) read :func:`document`.
 """
 

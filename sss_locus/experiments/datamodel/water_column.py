@@ -6,7 +6,7 @@ option of the pose-space and survey-pass studies (``PoseSpaceSpec(water=...)``,
 ``simulate_passes(..., water=...)``) that also crops each locus to the water, exactly, through
 the kernel's half-spaces (:mod:`sss_locus.geometry.halfspaces`). The samples are the same with
 and without it (the same seed draws the same configurations): only the locus changes, so the
-two tables compare row by row (:func:`crop_effect`).
+two tables compare row by row (:func:`sss_locus.experiments.water.study.crop_effect`).
 
 Frames: world ``z`` up (:mod:`sss_locus.experiments.datamodel.platforms`). The sea surface is level; a
 feature must have ``z_world <= z_surface`` and, with a seafloor, ``z_world >= z_surface - W``
@@ -30,12 +30,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import pandas as pd
 
 from sss_locus.geometry import max_depth_half_space, sea_surface_half_space
 from sss_locus.experiments.datamodel.inputs import check_range
 from sss_locus.experiments.datamodel.platforms import Platform
-from sss_locus.experiments.stats.replicates import N_BATCHES, batch_statistic, check_batches, check_confidence, replicate_interval
 
 
 @dataclass(frozen=True)
@@ -171,74 +169,3 @@ def deepest_feature_m(platform: Platform) -> float:
     t = platform.transducers["port"]
     down = np.radians(min(t.tilt_deg + platform.sonar.azimuth_deg / 2, 90.0))
     return float(platform.depth_min_m + t.depth_m + platform.sonar.max_range_m * np.sin(down))
-
-
-def crop_effect(uncropped: pd.DataFrame, cropped: pd.DataFrame, *, n_batches: int = N_BATCHES,
-                confidence_level: float = 0.95) -> pd.DataFrame:
-    """How the water crop changes the loci of the same samples, with replicate intervals.
-
-    Parameters
-    ----------
-    uncropped, cropped : pandas.DataFrame
-        The same configurations row by row (same sampler, spec and seed), without and with a
-        :class:`WaterColumn`; columns ``locus_length_m`` (m) and ``n_arcs``.
-    n_batches : int
-        Replicate batches of the rows (a pair stays together; >= 3): each statistic is computed
-        on each batch, and :func:`~sss_locus.experiments.stats.replicates.replicate_interval` turns
-        their spread into an interval around the whole table's value, clipped to [0, 1] (every
-        statistic below is a share; for a rare one, a handful of events, the interval is rough).
-    confidence_level : float
-        In (0, 1).
-
-    Returns
-    -------
-    pandas.DataFrame
-        One row per statistic, columns ``statistic, estimate, ci_low, ci_high, n``:
-
-        - ``length_ratio``: total cropped length over total uncropped length (ratio of means);
-        - ``shortened_share``: share of samples whose locus the crop shortens;
-        - ``emptied_share``: share of non-empty loci the crop removes entirely;
-        - ``multi_arc_share_uncropped`` / ``multi_arc_share_cropped``: share of samples whose
-          locus has more than one arc (``n_arcs > 1``), without and with the crop;
-        - ``extra_arcs_share``: share of fragmented loci (uncropped) whose every extra arc
-          the crop removes (``n_arcs`` drops to <= 1), over all samples.
-    """
-    if len(uncropped) != len(cropped) or len(cropped) == 0:
-        raise ValueError(f"uncropped and cropped must be the same non-empty samples; got "
-                         f"{len(uncropped)} and {len(cropped)} rows")
-    check_batches(n_batches)
-    check_confidence(confidence_level)
-    a = uncropped["locus_length_m"].to_numpy(float)
-    b = cropped["locus_length_m"].to_numpy(float)
-    if np.any(b > a * (1.0 + 1e-9) + 1e-12):
-        raise ValueError("cropped lengths exceed uncropped ones: the two tables are not the same samples")
-    na, nb = uncropped["n_arcs"].to_numpy(), cropped["n_arcs"].to_numpy()
-    cols = {
-        "length_a": a, "length_b": b,
-        "shortened_share": (b < a * (1.0 - 1e-9)).astype(float),
-        "emptied": ((a > 0) & (b == 0)).astype(float), "nonempty": (a > 0).astype(float),
-        "multi_arc_share_uncropped": (na > 1).astype(float),
-        "multi_arc_share_cropped": (nb > 1).astype(float),
-        "extra_arcs_share": ((na > 1) & (nb <= 1)).astype(float),
-    }
-    names = list(cols)
-    M = np.stack([cols[k] for k in names], axis=1)
-    batches = batch_statistic(M, lambda rows: rows.mean(axis=0), n_batches)
-    full = M.mean(axis=0)
-
-    def stats(v):  # (..., columns) of means -> the reported statistics
-        col = {k: v[..., i] for i, k in enumerate(names)}
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return {
-                "length_ratio": col["length_b"] / col["length_a"],
-                "shortened_share": col["shortened_share"],
-                "emptied_share": col["emptied"] / col["nonempty"],
-                "multi_arc_share_uncropped": col["multi_arc_share_uncropped"],
-                "multi_arc_share_cropped": col["multi_arc_share_cropped"],
-                "extra_arcs_share": col["extra_arcs_share"],
-            }
-
-    est, bs = stats(full), stats(batches)
-    ci = {k: replicate_interval(est[k], bs[k], confidence_level, bounds=(0.0, 1.0)) for k in est}  # all in [0, 1]
-    return pd.DataFrame([{"statistic": k, "estimate": float(est[k]), "ci_low": float(ci[k][0]),
-                          "ci_high": float(ci[k][1]), "n": len(M)} for k in est])

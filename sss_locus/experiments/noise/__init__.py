@@ -1,2 +1,4 @@
-"""The noise chapter: the noise model and how range and navigation errors spread the loci.
+"""The noise chapter: the spread of every pass pair's locus under the chapter's noise models
+(the model: :mod:`sss_locus.experiments.datamodel.noise_model`; its propagation:
+:mod:`sss_locus.experiments.passes.propagation`).
 """

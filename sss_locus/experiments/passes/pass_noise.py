@@ -13,7 +13,7 @@ Two named models of the errors of the views of a survey (features ``i`` times pa
     and per ping a small independent jitter of the horizontal position
     (``ping_horizontal_sigma_m`` per axis) and heading (``ping_heading_sigma_deg``). Range,
     vertical, roll and pitch errors stay per view, with the sigmas of the
-    :class:`~sss_locus.experiments.noise.study.NoiseModel`;
+    :class:`~sss_locus.experiments.datamodel.noise_model.NoiseModel`;
 ``"per_view"``
     the noise chapter's model: all seven errors independent per view (per feature and pass),
     the horizontal and heading sigmas those of the ``NoiseModel``. Kept so the earlier numbers
@@ -30,8 +30,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
+from pathlib import Path
 
 import numpy as np
+
+from sss_locus.experiments.datamodel import datadoc
+from sss_locus.experiments.datamodel import models
+from sss_locus.experiments.datamodel.noise_model import check_sigmas, parse_noise_model
 
 NAVIGATION_MODELS = ("per_pass", "per_view")
 """The named navigation-error models (module docstring)."""
@@ -53,12 +58,7 @@ class PassNoise:
     ping_heading_sigma_deg: float = 0.0
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) \
-                    or not math.isfinite(v) or v < 0:
-                raise ValueError(f"PassNoise.{f.name} must be a finite number >= 0; got {v!r}")
-            object.__setattr__(self, f.name, float(v))
+        check_sigmas(self)
 
     def scaled(self, k: float) -> "PassNoise":
         """Every standard deviation multiplied by ``k`` (>= 0).
@@ -93,7 +93,7 @@ def parse_pass_noise(table, where: str, per_view) -> PassNoise:
     """The :class:`PassNoise` of a ``[noise.<platform>]`` table (a validated
     :class:`~sss_locus.experiments.datamodel.models.NoiseTable`, or a parsed table validated
     here; ``where`` its key path). With none of :data:`PASS_FIELDS` present, the fallback of
-    the module docstring from ``per_view`` (a :class:`~sss_locus.experiments.noise.study.NoiseModel`);
+    the module docstring from ``per_view`` (a :class:`~sss_locus.experiments.datamodel.noise_model.NoiseModel`);
     with some but not all, a ``ValueError`` naming the missing ones.
 
     Parameters
@@ -129,12 +129,12 @@ def parse_pass_noise(table, where: str, per_view) -> PassNoise:
 def view_errors(sigmas, standard, *, model: str, pass_noise: PassNoise | None = None, along_m=None,
                 rng: np.random.Generator | None = None) -> np.ndarray:
     """The errors (physical units) of every view of a survey: shape (n, L, 7) in the order of
-    :data:`~sss_locus.experiments.noise.study.ERROR_NAMES` (range m, x y z m, roll pitch heading rad).
+    :data:`~sss_locus.experiments.passes.propagation.ERROR_NAMES` (range m, x y z m, roll pitch heading rad).
 
     Parameters
     ----------
     sigmas : ndarray, shape (n, L, 7)
-        Per-view standard deviations (:func:`~sss_locus.experiments.noise.study.noise_sigmas`).
+        Per-view standard deviations (:func:`~sss_locus.experiments.passes.propagation.noise_sigmas`).
     standard : ndarray, shape (n, L, 7)
         Independent standard normal draws, one set per view.
     model : {"per_pass", "per_view"}
@@ -176,3 +176,26 @@ def view_errors(sigmas, standard, *, model: str, pass_noise: PassNoise | None = 
     d[..., 6] = heading[None] + z[..., 6] * math.radians(p.ping_heading_sigma_deg)
     return d
 
+
+def load_pass_noise(platform_key: str, path: str | Path | None = None) -> PassNoise:
+    """The per-pass navigation errors (:mod:`~sss_locus.experiments.passes.pass_noise`) of
+    ``platform_key``, read like :func:`~sss_locus.experiments.datamodel.noise_model.load_noise_model` from the same table.
+
+    Parameters
+    ----------
+    platform_key : str
+        The platform's key in the noise table (``[noise.<key>]``).
+    path : str or pathlib.Path, optional
+        A noise TOML file of the same schema; default: the run's data set (``data/noise.toml``
+        merged with the user's files).
+
+    Returns
+    -------
+    PassNoise
+        The per-pass offset, heading bias, drift and per-ping jitter standard deviations.
+    """
+    def parse(doc):
+        m = models.entry(models.validate_document(doc, ("noise",)).noise, "noise", platform_key)
+        return parse_pass_noise(m, f"noise.{platform_key}", parse_noise_model(doc, platform_key))
+
+    return datadoc.load_table(parse, path, f"noise.{platform_key}")

@@ -4,7 +4,7 @@ correction against two views + a prior and N >= 3 views + least squares.
 Per feature, the views that saw it (:func:`~sss_locus.experiments.reconstruction.terrain_survey.
 observe_features`) are put in a random order (seeded; data association known), and the
 estimates are computed from *estimated* poses and ranges (the noise chapter's model,
-:func:`~sss_locus.experiments.noise.study.perturb`):
+:func:`~sss_locus.experiments.passes.propagation.perturb`):
 
 ``flat``
     slant-range correction of every view on a flat seafloor at the transducer's measured
@@ -45,7 +45,8 @@ import pandas as pd
 from sss_locus.geometry import Aperture
 from sss_locus.geometry.multiview_points import MultiViewStatus, multiview_points
 from sss_locus.geometry.slant_range import flat_seafloor_points, two_view_points
-from sss_locus.experiments.noise.study import NoiseModel, noise_sigmas, perturb
+from sss_locus.experiments.datamodel.noise_model import NoiseModel
+from sss_locus.experiments.passes.propagation import noise_sigmas, perturb
 from sss_locus.experiments.passes.pass_noise import PassNoise, view_errors
 from sss_locus.experiments.passes.view_sets import Views
 
@@ -123,7 +124,7 @@ def reconstruct(views: Views, seen, sensor_height_m, noise: NoiseModel, aperture
         Further estimators: ``name -> fn(inputs) -> (point (n, 3), estimated (n,) bool)``, where
         ``inputs`` (a dict) holds the noisy survey in pass order: ``W`` (n, L, 3, 3),
         ``origin`` (n, L, 3), ``ranges`` (n, L), ``sigmas`` (n, L, 7) (per-view sigmas of
-        :func:`~sss_locus.experiments.noise.study.noise_sigmas`), ``range_sigma_m`` (n, L) (effective,
+        :func:`~sss_locus.experiments.passes.propagation.noise_sigmas`), ``range_sigma_m`` (n, L) (effective,
         as the N-view estimator's), ``seen`` (n, L), ``flat`` (n, L, 3) (each view's
         flat-seafloor point), ``sensor_height_m``, ``along_m``, ``noise``, ``pass_noise``,
         ``navigation``, ``aperture``.

@@ -56,12 +56,16 @@ unless the feature's properties give ``origin_lonlat``. Holes (inner rings) are 
 ``vertices_lonlat`` they are in the frame around the origin; ``holes_lonlat`` (rings of WGS 84
 degrees) goes with ``vertices_lonlat``.
 
-Validation: every ring closed or not, at least three distinct vertices of numbers (not booleans
-or strings), a valid polygon (:func:`shapely.is_valid`: no self-intersection), an area of at
-least :data:`MIN_AREA_M2`, at most :data:`MAX_VERTICES` vertices in a file of at most
-:data:`MAX_FILE_BYTES`, every vertex within :data:`MAX_ORIGIN_DISTANCE_M` of the origin when
-there is one, GeoJSON members of their RFC 7946 types; each refused in one line naming the file
-and the rule.
+Validation: the ``[area]`` table (and a GeoJSON area's coordinates and the properties above) is
+validated by the data model first (:class:`sss_locus.experiments.datamodel.models.Area`: member
+types, rings of finite numbers, longitudes and latitudes in range, the bounds of the numbers,
+which keys go together, at most :data:`MAX_VERTICES` vertices; bounds documented in
+``data/README.md``), then the polygon: every ring closed or not, at least three distinct
+vertices, a valid polygon (:func:`shapely.is_valid`: no self-intersection), holes inside the
+outline and not along it, an area of at least :data:`MIN_AREA_M2`, every vertex within
+:data:`MAX_ORIGIN_DISTANCE_M` of the origin when there is one, in a file of at most
+:data:`MAX_FILE_BYTES`, GeoJSON members of their RFC 7946 types; each refused in one line naming
+the file, the key and the rule.
 """
 
 from __future__ import annotations
@@ -74,13 +78,15 @@ from pathlib import Path
 
 import numpy as np
 
-from sss_locus.experiments.datamodel.inputs import missing_file, read_toml, suggestion
+from sss_locus.experiments.datamodel import models
+from sss_locus.experiments.datamodel.inputs import missing_file, read_toml
+from sss_locus.experiments.datamodel.sourced import checked, validated
+from sss_locus.experiments.survey_design.settings import load_settings
 
 MIN_AREA_M2 = 100.0
 """Smallest area accepted, m^2 (10 m x 10 m): smaller is taken for a unit mistake."""
-MAX_VERTICES = 100_000
-"""Most vertices (all rings) an area may have: a survey boundary needs far fewer; more (a
-coastline traced at centimetres) would make every coverage test slow."""
+MAX_VERTICES = models.MAX_VERTICES
+"""Most vertices (all rings) an area may have (:data:`sss_locus.experiments.datamodel.models.MAX_VERTICES`)."""
 MIN_CLEARANCE_M = 0.5
 """Least clearance off the navigable water's edge, m, whatever ``wall_clearance_m`` says: a track
 on the fence itself would leave it by the mission files' coordinate rounding (1e-7 degrees)."""
@@ -107,31 +113,32 @@ def _projection(origin_lonlat):
 def _check_origin(origin, where: str):
     if origin is None:
         return None
-    o = np.asarray(origin, float) if _numeric(origin) else None
-    if o is None or o.shape != (2,) or not np.all(np.isfinite(o)) or abs(o[0]) > 180 or abs(o[1]) > 90:
-        raise ValueError(f"{where}: origin_lonlat must be [longitude, latitude] in degrees "
-                         f"(|lon| <= 180, |lat| <= 90); got {origin!r}")
-    return (float(o[0]), float(o[1]))
+    return checked(models.LonLat, _plain(origin), f"{where}: origin_lonlat")
 
 
-def _numeric(value) -> bool:
-    """Whether ``value`` is a number or (nested) list of numbers: ``true`` and ``"380"`` are not."""
-    if isinstance(value, (bool, np.bool_, str, bytes)):
-        return False
-    if isinstance(value, (int, float, np.integer, np.floating)):
-        return True
-    if isinstance(value, (list, tuple, np.ndarray)):
-        if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
-            return True
-        return len(value) > 0 and all(_numeric(v) for v in value)
-    return False
+def _plain(value):
+    """``value`` with its numpy arrays as (nested) lists, for the data model's checks."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value
+
+
+def _ring(kind, ring, where: str) -> np.ndarray:
+    """``ring`` checked as the data model's ``kind`` (e.g. ``LocalRing``), as a (k, 2) array."""
+    return np.asarray(checked(kind, _plain(ring), where), float).reshape(-1, 2)
+
+
+def _rings(kind, rings, where: str) -> list[np.ndarray]:
+    """``rings`` checked as the data model's ``kind`` (e.g. ``LocalRings``), as (k, 2) arrays."""
+    return [np.asarray(r, float).reshape(-1, 2) for r in checked(kind, _plain(rings), where)]
 
 
 def _check_vertex_count(rings, where: str) -> None:
-    count = sum(len(r) if isinstance(r, (list, tuple, np.ndarray)) else 0 for r in rings)
-    if count > MAX_VERTICES:
-        raise ValueError(f"{where}: the area has {count:,} vertices, more than {MAX_VERTICES:,}; "
-                         "simplify its boundary (e.g. shapely's simplify or QGIS's Simplify)")
+    why = models.too_many_vertices(rings)
+    if why:
+        raise ValueError(f"{where}: {why}")
 
 
 @dataclass(frozen=True)
@@ -350,15 +357,11 @@ def area_from_vertices(vertices_m, *, origin_lonlat=None, holes_m=(), name: str 
     import shapely
 
     where = source if source != "vertices" else "area"
-    if not isinstance(holes_m, (list, tuple)) or not all(isinstance(h, (list, tuple, np.ndarray)) for h in holes_m):
-        raise ValueError(f"{where}: holes_m must be a list of rings, each a list of [x, y] pairs; got {holes_m!r:.80}")
-    rings = [vertices_m, *holes_m]
-    _check_vertex_count(rings, where)
+    holes = _plain(holes_m)
+    _check_vertex_count([vertices_m, *(holes if isinstance(holes, list) else [])], where)
     clean = []
-    for ring in rings:
-        v = np.asarray(ring, float) if _numeric(ring) else None
-        if v is None or v.ndim != 2 or v.shape[1] != 2 or not np.all(np.isfinite(v)):
-            raise ValueError(f"{where}: vertices must be a list of [x, y] pairs of finite numbers; got {ring!r:.80}")
+    for v in [_ring(models.LocalRing, vertices_m, f"{where}: vertices"),
+              *_rings(models.LocalRings, holes, f"{where}: holes_m")]:
         if len(v) > 1 and np.array_equal(v[0], v[-1]):
             v = v[:-1]
         if len(np.unique(v, axis=0)) < 3:
@@ -415,16 +418,11 @@ def area_from_lonlat(vertices_lonlat, origin_lonlat=None, *, holes_lonlat=(), ho
     """
     import pyproj
 
-    if not isinstance(holes_lonlat, (list, tuple)) or not all(isinstance(h, (list, tuple)) for h in holes_lonlat):
-        raise ValueError(f"{source}: holes must be a list of rings of [longitude, latitude] pairs; got {holes_lonlat!r:.80}")
-    _check_vertex_count([vertices_lonlat, *holes_lonlat, *(holes_m if isinstance(holes_m, (list, tuple)) else ())], source)
-    rings = []
-    for ring in (vertices_lonlat, *holes_lonlat):
-        v = np.asarray(ring, float) if _numeric(ring) else None
-        if v is None or v.ndim != 2 or v.shape[1] != 2 or not np.all(np.isfinite(v)) or np.any(np.abs(v) > [180, 90]):
-            raise ValueError(f"{source}: vertices_lonlat must be [longitude, latitude] pairs of finite numbers in "
-                             f"degrees (|lon| <= 180, |lat| <= 90); got {ring!r:.80}")
-        rings.append(v)
+    holes = _plain(holes_lonlat)
+    _check_vertex_count([vertices_lonlat, *(holes if isinstance(holes, list) else []),
+                         *(holes_m if isinstance(holes_m, (list, tuple)) else ())], source)
+    rings = [_ring(models.LonLatRing, vertices_lonlat, f"{source}: vertices_lonlat"),
+             *_rings(models.LonLatRings, holes, f"{source}: holes_lonlat")]
     origin = _check_origin(rings[0][0] if origin_lonlat is None else origin_lonlat, source)
     every = np.vstack(rings)
     _, _, dist = pyproj.Geod(ellps="WGS84").inv(np.full(len(every), origin[0]), np.full(len(every), origin[1]),
@@ -475,55 +473,61 @@ def _from_geojson(doc, source: str) -> SurveyArea:
     if not isinstance(rings, list) or not all(isinstance(r, list) for r in rings):
         raise ValueError(f"{source}: GeoJSON Polygon 'coordinates' must be an array of rings (arrays of "
                          f"[longitude, latitude] positions); got {rings!r:.60}")
-    area = area_from_lonlat(rings[0], props.get("origin_lonlat"), holes_lonlat=rings[1:],
-                            name=str(props.get("name", Path(source).stem)), source=source)
-    return _depth_from(area, props, source)
+    table = {k: props[k] for k in _PROPERTIES if k in props}  # other properties are the user's own
+    area = _table(models.Area, {**table, "vertices_lonlat": rings[0], "holes_lonlat": rings[1:]}, source, "")
+    return _from_table(area, str(props.get("name", Path(source).stem)), source)
 
 
-def _navigable_from(area: SurveyArea, doc, source: str) -> SurveyArea:
-    """``area`` with the navigable water and the wall clearance of ``doc`` (module docstring)."""
+#: The properties of a GeoJSON area read as the keys of an area file's ``[area]`` table.
+_PROPERTIES = ("origin_lonlat", "water_depth_m", "water_beyond_m", "bathymetry", "bathymetry_values", "navigable_m",
+               "navigable_lonlat", "wall_clearance_m")
+
+
+def _table(model, doc, source: str, where: str):
+    """``doc`` validated by the data model's ``model`` (a refusal names the file ``source``)."""
+    try:
+        return validated(model, doc, where)
+    except ValueError as exc:
+        raise ValueError(f"{source}: {exc}") from None
+
+
+def _from_table(table: models.Area, name: str, source: str) -> SurveyArea:
+    """The area of a validated ``[area]`` table (its polygon checked, its navigable water placed)."""
+    if table.vertices_m is not None:
+        area = area_from_vertices(table.vertices_m, origin_lonlat=table.origin_lonlat, holes_m=table.holes_m,
+                                  name=name, source=source)
+    else:
+        area = area_from_lonlat(table.vertices_lonlat, table.origin_lonlat, holes_m=table.holes_m,
+                                holes_lonlat=table.holes_lonlat, name=name, source=source)
+    area = _navigable_from(area, table, source)
+    if table.bathymetry is not None:  # found and read by load_area
+        area = replace(area, bathymetry=(table.bathymetry, table.bathymetry, "", table.bathymetry_values))
+    if table.water_beyond_m is not None:
+        area = replace(area, water_beyond_m=table.water_beyond_m)
+    if table.water_depth_m is None:
+        return area
+    return with_water_depth(area, table.water_depth_m, f"{source}: water_depth_m")
+
+
+def _navigable_from(area: SurveyArea, table: models.Area, source: str) -> SurveyArea:
+    """``area`` with the navigable water and the wall clearance of ``table`` (module docstring)."""
     import shapely
 
-    if "wall_clearance_m" in doc:
-        v = doc["wall_clearance_m"]
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (0 <= v <= 1000):
-            raise ValueError(f"{source}: wall_clearance_m must be a number of metres in [0, 1000]; got {v!r}")
-        area = replace(area, wall_clearance_m=float(v))
-    keys = [k for k in ("navigable_m", "navigable_lonlat") if k in doc]
-    if not keys:
+    if table.wall_clearance_m is not None:
+        area = replace(area, wall_clearance_m=table.wall_clearance_m)
+    key = "navigable_m" if table.navigable_m is not None else "navigable_lonlat"
+    ring = getattr(table, key)
+    if ring is None:
         return area
-    if len(keys) > 1 or "water_beyond_m" in doc:
-        raise ValueError(f"{source}: give one of navigable_m, navigable_lonlat or water_beyond_m")
-    ring = doc[keys[0]]
-    if keys[0] == "navigable_lonlat":
-        if area.origin_lonlat is None or not _numeric(ring) or np.asarray(ring, float).ndim != 2:
-            raise ValueError(f"{source}: navigable_lonlat must be [longitude, latitude] pairs of an area with an origin")
+    if key == "navigable_lonlat":  # the table has an origin (models.Area)
         ring = np.column_stack(area.to_local(*np.asarray(ring, float).T))
-    water = area_from_vertices(ring, source=f"{source}: {keys[0]}").polygon
+    water = area_from_vertices(ring, source=f"{source}: {key}").polygon
     outside = area.polygon.difference(water.buffer(1e-6))
     if not outside.is_empty:
         far = max(shapely.Point(q).distance(water) for q in shapely.get_coordinates(outside))
         raise ValueError(f"{source}: the navigable water must contain the area; {outside.area:.0f} m^2 of the area lie "
                          f"outside it, up to {far:.1f} m")
     return replace(area, navigable_wkt=water.wkt)
-
-
-def _depth_from(area: SurveyArea, doc, source: str) -> SurveyArea:
-    area = _navigable_from(area, doc, source)
-    if "bathymetry" in doc or "bathymetry_values" in doc:
-        grid, values = doc.get("bathymetry"), doc.get("bathymetry_values")
-        if not isinstance(grid, str) or not grid.strip() or "water_depth_m" in doc:
-            raise ValueError(f"{source}: a bathymetry grid needs bathymetry = \"FILE\" (a raster, path relative to "
-                             "the area file) with bathymetry_values = \"depth\" or \"elevation\", and no water_depth_m")
-        area = replace(area, bathymetry=(grid, grid, "", values))  # found and read by load_area
-    if "water_beyond_m" in doc:
-        v = doc["water_beyond_m"]
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (0 <= v <= 1e5):
-            raise ValueError(f"{source}: water_beyond_m must be a number of metres in [0, 100000]; got {v!r}")
-        area = replace(area, water_beyond_m=float(v))
-    if "water_depth_m" not in doc:
-        return area
-    return with_water_depth(area, doc["water_depth_m"], f"{source}: water_depth_m")
 
 
 def with_water_depth(area: SurveyArea, depth_m, source: str) -> SurveyArea:
@@ -552,9 +556,7 @@ def with_water_depth(area: SurveyArea, depth_m, source: str) -> SurveyArea:
     if area.bathymetry:
         raise ValueError(f"{source}: the area {area.name!r} gives a bathymetry grid ({area.bathymetry[1]}), whose depths "
                          "are used; drop this water depth")
-    if isinstance(depth_m, bool) or not isinstance(depth_m, (int, float)) or not (0 < depth_m <= 12000):
-        raise ValueError(f"{source} must be a number of metres in (0, 12000]; got {depth_m!r}")
-    return replace(area, water_depth_m=float(depth_m), water_depth_source=source)
+    return replace(area, water_depth_m=checked(models.WaterDepthM, depth_m, source), water_depth_source=source)
 
 
 def load_area(path: str | Path) -> SurveyArea:
@@ -598,12 +600,7 @@ def load_area(path: str | Path) -> SurveyArea:
     shown = public_path(p.resolve())  # what captions, pages and manifests name: never a local absolute path
     depth_source = f"{shown}: water_depth_m" if area.water_depth_source else ""
     if area.water() is not None and area.wall_clearance_m is None:  # walls: the run's clearance
-        from sss_locus.experiments.datamodel import datadoc
-        from sss_locus.experiments.datamodel import models
-
-        datadoc.note_read("survey_design")  # the table survey_plans.load_settings validates too
-        settings = models.values(models.validate_document(datadoc.document(), ("survey_design",)).survey_design)
-        area = replace(area, wall_clearance_m=float(settings["wall_clearance_m"]))
+        area = replace(area, wall_clearance_m=float(load_settings()["wall_clearance_m"]))
     if area.bathymetry:  # the grid beside the area file, read and checked now
         from sss_locus.experiments.survey_design.bathymetry import load_bathymetry
 
@@ -629,28 +626,10 @@ def _load_area(p: Path, source: str) -> SurveyArea:
             raise ValueError(f"{source}: a GeoJSON object is expected")
         return _from_geojson(doc, source)
     doc = read_toml(p)
-    area = doc.get("area")
-    if not isinstance(area, dict):
+    if not isinstance(doc.get("area"), dict):
         raise ValueError(f"{source}: missing table [area] (with vertices_m or vertices_lonlat)")
-    allowed = ("name", "vertices_m", "vertices_lonlat", "origin_lonlat", "holes_m", "holes_lonlat", "source",
-               "assumption", "water_depth_m", "water_beyond_m", "bathymetry", "bathymetry_values", "navigable_m",
-               "navigable_lonlat", "wall_clearance_m")
-    unknown = sorted(set(area) - set(allowed))
-    if unknown:
-        raise ValueError(f"{source}: unknown keys in [area]: {unknown}{suggestion(unknown[0], allowed)} "
-                         f"(allowed: {', '.join(allowed)})")
-    if ("vertices_m" in area) == ("vertices_lonlat" in area):
-        raise ValueError(f"{source}: [area] needs exactly one of vertices_m or vertices_lonlat")
-    if "holes_lonlat" in area and "vertices_lonlat" not in area:
-        raise ValueError(f"{source}: holes_lonlat goes with vertices_lonlat (with vertices_m, give holes_m)")
-    name = str(area.get("name", p.stem))
-    if "vertices_m" in area:
-        out = area_from_vertices(area["vertices_m"], origin_lonlat=area.get("origin_lonlat"),
-                                 holes_m=area.get("holes_m", ()), name=name, source=source)
-    else:
-        out = area_from_lonlat(area["vertices_lonlat"], area.get("origin_lonlat"), holes_m=area.get("holes_m", []),
-                               holes_lonlat=area.get("holes_lonlat", []), name=name, source=source)
-    return _depth_from(out, area, source)
+    table = _table(models.AreaFile, doc, source, "").area
+    return _from_table(table, p.stem if table.name is None else table.name, source)
 
 
 def area_from_key(key: dict) -> SurveyArea:

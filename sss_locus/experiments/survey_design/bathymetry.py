@@ -39,7 +39,10 @@ from pathlib import Path
 
 import numpy as np
 
-VALUES = ("depth", "elevation")
+from sss_locus.experiments.datamodel import models
+from sss_locus.experiments.datamodel.sourced import checked
+
+VALUES = models.BATHYMETRY_VALUES
 """``bathymetry_values``: ``depth`` (positive down) or ``elevation`` (positive up, negative in water)."""
 MAX_DEPTH_M = 12000.0
 """Deepest depth accepted, m."""
@@ -193,9 +196,7 @@ def load_bathymetry(path: str | Path, values: str, area, *, shown: str | None = 
         Unknown ``values``, a missing file, an area without an origin, or a grid that fails the checks.
     """
     shown = str(path) if shown is None else shown
-    if values not in VALUES:
-        raise ValueError(f"{shown}: bathymetry_values must be one of {list(VALUES)} (depth: metres below the "
-                         f"sea surface, positive down; elevation: positive up, negative in the water); got {values!r}")
+    checked(models.BathymetryValues, values, f"{shown}: bathymetry_values")
     p = Path(path)
     if not p.is_file():
         from sss_locus.experiments.datamodel.inputs import missing_file

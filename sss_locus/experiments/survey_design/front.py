@@ -53,8 +53,9 @@ import pandas as pd
 from sss_locus.experiments.survey_design.area import SurveyArea, area_from_key
 from sss_locus.experiments.survey_design.coverage import coverage, observe_lines
 from sss_locus.experiments.survey_design.objectives import pair_loci, reconstruction_errors, three_view_closure
-from sss_locus.experiments.survey_design.plans import (Plan, check_mission, lawnmower_plan, load_settings, plan_grid, plan_ok,
-                                                       standard_plan, water_depth)
+from sss_locus.experiments.survey_design.plans import (Plan, check_mission, lawnmower_plan, plan_grid, plan_ok, standard_plan,
+                                                       water_depth)
+from sss_locus.experiments.survey_design.settings import load_settings
 from sss_locus.experiments.survey_design.lines import heading_from_compass_deg
 from sss_locus.experiments.survey_design.route import flight_path, track_cost
 from sss_locus.experiments.datamodel.terrain import KINDS, load_terrain_config, terrain_from_config

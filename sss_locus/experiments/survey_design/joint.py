@@ -69,7 +69,7 @@ def plan_joint_errors(setting, plan, noise, pass_noise, *, seed: int) -> dict:
         Platform, area, seafloor and the features (drawn with ``setting.seed``).
     plan : sss_locus.experiments.survey_design.plans.Plan
         The plan; its segments over ``setting.area`` are the passes.
-    noise : sss_locus.experiments.noise.study.NoiseModel
+    noise : sss_locus.experiments.datamodel.noise_model.NoiseModel
         The platform's per-ping noise (range, vertical, roll, pitch).
     pass_noise : sss_locus.experiments.passes.pass_noise.PassNoise
         The platform's per-pass navigation errors (offset, heading bias, drift, jitter).

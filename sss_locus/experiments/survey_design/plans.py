@@ -41,39 +41,9 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import pandas as pd
 
-from sss_locus.experiments.datamodel import datadoc
-from sss_locus.experiments.datamodel import models
 from sss_locus.experiments.survey_design.area import SurveyArea, principal_heading_deg
 from sss_locus.experiments.survey_design.lines import across_extent, flown_positions, line_set
 from sss_locus.experiments.survey_design.route import flight_path, track_cost
-
-
-def load_settings(doc=None) -> dict:
-    """The ``survey_design`` table (``data/survey_design.toml`` merged with the active user data,
-    or of ``doc``), validated: values by key plus ``provenance`` (key -> source/assumption).
-
-    Parameters
-    ----------
-    doc : dict or None
-        A data document (parsed TOML tables); ``None`` reads ``data/survey_design.toml`` merged
-        with the active user data.
-
-    Returns
-    -------
-    dict
-        Setting name -> value (units in the names: ``_m``, ``_deg``, fractions) plus
-        ``provenance`` (key -> source or assumption).
-
-    Raises
-    ------
-    ValueError
-        The table fails validation (named key and valid range).
-    """
-    if doc is None:
-        datadoc.note_read("survey_design")
-        doc = datadoc.document()
-    table = models.validate_document(doc, ("survey_design",)).survey_design
-    return {**models.values(table), "provenance": models.provenance(table, "survey_design")}
 
 
 @dataclass(frozen=True)
@@ -153,7 +123,7 @@ def range_scale_m(platform, settings) -> float:
     platform : Platform
         The platform (its ``sonar.max_range_m``, m).
     settings : dict
-        Survey-design settings (:func:`load_settings`).
+        Survey-design settings (:func:`~sss_locus.experiments.survey_design.settings.load_settings`).
 
     Returns
     -------
@@ -172,7 +142,7 @@ def swath_reach_m(platform, settings, altitude_m: float) -> float:
     platform : Platform
         The platform (sonar fan and transducers).
     settings : dict
-        Survey-design settings (:func:`load_settings`).
+        Survey-design settings (:func:`~sss_locus.experiments.survey_design.settings.load_settings`).
     altitude_m : float
         Altitude above the seafloor, m.
 
@@ -390,7 +360,7 @@ def standard_plan(platform, area: SurveyArea, terrain, settings, heights_m) -> P
     terrain : Terrain
         The terrain (sets the heading on a slope).
     settings : dict
-        Survey-design settings (:func:`load_settings`, with ``water_depth_m``).
+        Survey-design settings (:func:`~sss_locus.experiments.survey_design.settings.load_settings`, with ``water_depth_m``).
     heights_m : array_like
         Seafloor heights over the area, m.
 
@@ -458,7 +428,7 @@ def plan_grid(platform, area: SurveyArea, terrain, settings, heights_m, *, headi
     terrain : Terrain
         The terrain.
     settings : dict
-        Survey-design settings (:func:`load_settings`, with ``water_depth_m``).
+        Survey-design settings (:func:`~sss_locus.experiments.survey_design.settings.load_settings`, with ``water_depth_m``).
     heights_m : array_like
         Seafloor heights over the area, m.
     headings_deg : sequence of float

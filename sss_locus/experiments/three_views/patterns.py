@@ -12,7 +12,8 @@ import numpy as np
 import pandas as pd
 
 from sss_locus.geometry import Aperture, three_view_points
-from sss_locus.experiments.noise.study import first_order, gaussian_norm_quantile
+from sss_locus.experiments.passes.propagation import first_order
+from sss_locus.experiments.stats.gaussian_norm import gaussian_norm_quantile
 from sss_locus.experiments.stats.replicates import N_BATCHES, median_with_interval
 from sss_locus.experiments.passes.view_sets import Views, draw_pattern
 
@@ -36,8 +37,8 @@ def three_view_table(views: Views, aperture, noise=None) -> pd.DataFrame:
     ``n_valid_no_elevation`` / ``n_valid_no_azimuth``: the same count with the elevation bound
     (azimuth and range bounds) of every aperture lifted, to show which bound rejects the second
     candidate. With a
-    :class:`~sss_locus.experiments.noise.study.NoiseModel` ``noise``, also ``point_error_q95_m``: the first-order
-    95 % error of the point (:func:`sss_locus.experiments.noise.study.first_order`).
+    :class:`~sss_locus.experiments.datamodel.noise_model.NoiseModel` ``noise``, also ``point_error_q95_m``: the first-order
+    95 % error of the point (:func:`sss_locus.experiments.passes.propagation.first_order`).
 
     Parameters
     ----------

@@ -2,7 +2,7 @@
 
 Each *condition* is one platform in one study (pose space or survey passes) with one
 :class:`~sss_locus.experiments.datamodel.water_column.WaterColumn`. It is run twice with the same seed, without
-and with the crop; the samples are identical, so :func:`~sss_locus.experiments.datamodel.water_column.crop_effect`
+and with the crop; the samples are identical, so :func:`crop_effect`
 compares the two tables row by row (paired bootstrap intervals). Fragmentation (the share of
 loci with more than one arc) is reported on all samples and, for the pose space, also on the
 subset the pose-space chapter's ``multi_arc_fraction`` uses: sensor 2 on the port side, like
@@ -22,8 +22,9 @@ from sss_locus.experiments.datamodel.envelopes import OffsetModel, SurveyEnvelop
 from sss_locus.experiments.datamodel.platforms import Platform
 from sss_locus.experiments.pose_space.study import PoseSpaceSpec, sample_pose_space
 from sss_locus.experiments.survey_passes.study import simulate_passes
-from sss_locus.experiments.stats.replicates import N_BATCHES
-from sss_locus.experiments.datamodel.water_column import WaterColumn, crop_effect
+from sss_locus.experiments.stats.replicates import (N_BATCHES, batch_statistic, check_batches, check_confidence,
+                                                   replicate_interval)
+from sss_locus.experiments.datamodel.water_column import WaterColumn
 
 STUDIES = ("pose space", "survey passes")
 
@@ -165,7 +166,7 @@ def crop_effects(conditions: Sequence[Condition], *, n_samples: int, n_per_angle
     seed : int
         Seed of the samplers.
     n_batches : int
-        Replicate batches for the intervals (:func:`~sss_locus.experiments.datamodel.water_column.crop_effect`).
+        Replicate batches for the intervals (:func:`crop_effect`).
     sample, simulate : callable
         :func:`~sss_locus.experiments.pose_space.study.sample_pose_space` and
         :func:`~sss_locus.experiments.survey_passes.study.simulate_passes`, or cached versions of
@@ -177,7 +178,7 @@ def crop_effects(conditions: Sequence[Condition], *, n_samples: int, n_per_angle
         Columns ``condition`` (slug), ``label``, ``platform``, ``study``, ``crop``
         (:attr:`Condition.crop`), ``subset`` (``"all"``
         or ``"port-port"``: sensor 2 on the port side too, pose space only), then the columns of
-        :func:`~sss_locus.experiments.datamodel.water_column.crop_effect`.
+        :func:`crop_effect`.
     """
     rows = []
     kw = dict(n_samples=n_samples, n_per_angle=n_per_angle, crossing_angles_deg=crossing_angles_deg,
@@ -223,3 +224,73 @@ def pass2_above_surface_share(samples: pd.DataFrame, platform: Platform, water: 
     depth2 = water.depth_for(platform) + samples["altitude1_m"].to_numpy(float) - samples["altitude2_m"].to_numpy(float)
     return float(np.mean(depth2 < 0.0))
 
+
+def crop_effect(uncropped: pd.DataFrame, cropped: pd.DataFrame, *, n_batches: int = N_BATCHES,
+                confidence_level: float = 0.95) -> pd.DataFrame:
+    """How the water crop changes the loci of the same samples, with replicate intervals.
+
+    Parameters
+    ----------
+    uncropped, cropped : pandas.DataFrame
+        The same configurations row by row (same sampler, spec and seed), without and with a
+        :class:`~sss_locus.experiments.datamodel.water_column.WaterColumn`; columns ``locus_length_m`` (m) and ``n_arcs``.
+    n_batches : int
+        Replicate batches of the rows (a pair stays together; >= 3): each statistic is computed
+        on each batch, and :func:`~sss_locus.experiments.stats.replicates.replicate_interval` turns
+        their spread into an interval around the whole table's value, clipped to [0, 1] (every
+        statistic below is a share; for a rare one, a handful of events, the interval is rough).
+    confidence_level : float
+        In (0, 1).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per statistic, columns ``statistic, estimate, ci_low, ci_high, n``:
+
+        - ``length_ratio``: total cropped length over total uncropped length (ratio of means);
+        - ``shortened_share``: share of samples whose locus the crop shortens;
+        - ``emptied_share``: share of non-empty loci the crop removes entirely;
+        - ``multi_arc_share_uncropped`` / ``multi_arc_share_cropped``: share of samples whose
+          locus has more than one arc (``n_arcs > 1``), without and with the crop;
+        - ``extra_arcs_share``: share of fragmented loci (uncropped) whose every extra arc
+          the crop removes (``n_arcs`` drops to <= 1), over all samples.
+    """
+    if len(uncropped) != len(cropped) or len(cropped) == 0:
+        raise ValueError(f"uncropped and cropped must be the same non-empty samples; got "
+                         f"{len(uncropped)} and {len(cropped)} rows")
+    check_batches(n_batches)
+    check_confidence(confidence_level)
+    a = uncropped["locus_length_m"].to_numpy(float)
+    b = cropped["locus_length_m"].to_numpy(float)
+    if np.any(b > a * (1.0 + 1e-9) + 1e-12):
+        raise ValueError("cropped lengths exceed uncropped ones: the two tables are not the same samples")
+    na, nb = uncropped["n_arcs"].to_numpy(), cropped["n_arcs"].to_numpy()
+    cols = {
+        "length_a": a, "length_b": b,
+        "shortened_share": (b < a * (1.0 - 1e-9)).astype(float),
+        "emptied": ((a > 0) & (b == 0)).astype(float), "nonempty": (a > 0).astype(float),
+        "multi_arc_share_uncropped": (na > 1).astype(float),
+        "multi_arc_share_cropped": (nb > 1).astype(float),
+        "extra_arcs_share": ((na > 1) & (nb <= 1)).astype(float),
+    }
+    names = list(cols)
+    M = np.stack([cols[k] for k in names], axis=1)
+    batches = batch_statistic(M, lambda rows: rows.mean(axis=0), n_batches)
+    full = M.mean(axis=0)
+
+    def stats(v):  # (..., columns) of means -> the reported statistics
+        col = {k: v[..., i] for i, k in enumerate(names)}
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return {
+                "length_ratio": col["length_b"] / col["length_a"],
+                "shortened_share": col["shortened_share"],
+                "emptied_share": col["emptied"] / col["nonempty"],
+                "multi_arc_share_uncropped": col["multi_arc_share_uncropped"],
+                "multi_arc_share_cropped": col["multi_arc_share_cropped"],
+                "extra_arcs_share": col["extra_arcs_share"],
+            }
+
+    est, bs = stats(full), stats(batches)
+    ci = {k: replicate_interval(est[k], bs[k], confidence_level, bounds=(0.0, 1.0)) for k in est}  # all in [0, 1]
+    return pd.DataFrame([{"statistic": k, "estimate": float(est[k]), "ci_low": float(ci[k][0]),
+                          "ci_high": float(ci[k][1]), "n": len(M)} for k in est])

@@ -22,7 +22,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+from sss_locus.experiments.datamodel.noise_model import load_noise_model
+from sss_locus.experiments.passes.pass_noise import load_pass_noise
 from sss_locus.experiments.sonar_files.observations import LocalFrame
 from sss_locus.experiments.passes.straight_pass import attitude_angles
 from sss_locus.experiments.datamodel.terrain import place_features

@@ -128,7 +128,7 @@ def joint_estimate(res: PingResults, platform, noise: PassNoise, *, ping_positio
     platform : Platform
         The platform that took them (mounting, sonar beam width).
     noise : PassNoise
-        Its per-pass navigation errors (:func:`~sss_locus.experiments.noise.study.load_pass_noise`):
+        Its per-pass navigation errors (:func:`~sss_locus.experiments.passes.pass_noise.load_pass_noise`):
         ``pass_offset_sigma_m`` and ``pass_heading_bias_sigma_deg`` are the priors of each pass's
         offset (per axis) and heading bias.
     ping_position_sigma_m : float, >= 0, optional

@@ -13,8 +13,10 @@ import pandas as pd
 
 from sss_locus import Aperture
 from sss_locus.experiments.datamodel.envelopes import load_envelope, OffsetModel
-from sss_locus.experiments.noise.study import (load_noise_model, survey_noise_table, monte_carlo,
-                                               gaussian_norm_quantile, first_order)
+from sss_locus.experiments.datamodel.noise_model import load_noise_model
+from sss_locus.experiments.noise.study import survey_noise_table
+from sss_locus.experiments.passes.propagation import monte_carlo, first_order
+from sss_locus.experiments.stats.gaussian_norm import gaussian_norm_quantile
 from sss_locus.experiments.survey_passes.planning import crossing_angle_grid, curve_summary, peak_angle, planning_bands
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.stats.replicates import median_with_interval

@@ -12,13 +12,14 @@ import numpy as np
 import pandas as pd
 
 from sss_locus.experiments.datamodel.envelopes import load_envelope
-from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+from sss_locus.experiments.datamodel.noise_model import load_noise_model
+from sss_locus.experiments.passes.pass_noise import load_pass_noise
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.reconstruction.joint import adjustment_estimators
 from sss_locus.experiments.reconstruction.surveys import (survey_cases, layout_with_spacing, survey_errors,
                                                           over_surveys, paired_over_surveys)
 from sss_locus.experiments.reconstruction.slope_error import slope_views
-from sss_locus.experiments.survey_design.plans import load_settings
+from sss_locus.experiments.survey_design.settings import load_settings
 from sss_locus.experiments.datamodel.terrain import load_terrain_config
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish

@@ -10,11 +10,12 @@ from IPython.display import Markdown
 from myst_nb import glue
 
 from sss_locus.experiments.datamodel.platforms import load_platform
-from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+from sss_locus.experiments.datamodel.noise_model import load_noise_model
+from sss_locus.experiments.passes.pass_noise import load_pass_noise
 from sss_locus.experiments.survey_design.area import load_area, with_water_depth
 from sss_locus.experiments.survey_design.front import (OBJECTIVES, coverage_grid_m, depth_settings, load_area_bathymetry,
                                                        plan_coverage, search_grid, search_plans, vehicle_depth_m)
-from sss_locus.experiments.survey_design.plans import load_settings
+from sss_locus.experiments.survey_design.settings import load_settings
 from sss_locus.experiments.survey_design.route import turn_misfits
 from sss_locus.experiments.survey_design.scoring import recommend_under_noise, score_plans, summarise
 from sss_locus.pipeline.chapters.common import key, show_table, use_data

@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 
 from sss_locus.experiments.datamodel.envelopes import load_envelope
-from sss_locus.experiments.noise.study import NoiseModel, load_noise_model
+from sss_locus.experiments.datamodel.noise_model import NoiseModel, load_noise_model
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.three_views.patterns import (PATTERNS, three_view_table, heading_sweep,
                                                         median_intervals)

@@ -9,7 +9,7 @@ from myst_nb import glue
 from pathlib import Path
 import pandas as pd
 
-from sss_locus.experiments.noise.study import load_pass_noise
+from sss_locus.experiments.passes.pass_noise import load_pass_noise
 from sss_locus.experiments.sonar_files.observations import LocalFrame
 from sss_locus.experiments.sonar_files.observations_xtf import observation_files
 from sss_locus.experiments.datamodel.platforms import load_platform

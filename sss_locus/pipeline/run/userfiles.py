@@ -127,7 +127,7 @@ def check_files(parameters: dict) -> None:
             from sss_locus.experiments.survey_design import front as sd
             from sss_locus.experiments.datamodel.platforms import load_platform
             from sss_locus.experiments.survey_design.area import load_area
-            from sss_locus.experiments.survey_design.plans import load_settings
+            from sss_locus.experiments.survey_design.settings import load_settings
             from sss_locus.pipeline.run.budgets import check_survey_design
 
             area = load_area(path)

@@ -59,7 +59,7 @@ def level_label(scale: float) -> str:
 
 def scale_text(bases: Mapping, scale: float) -> str:
     """What a noise level scales, with the standard deviations it gives: ``bases`` maps platform
-    keys to their :class:`~sss_locus.experiments.noise.study.NoiseModel` (the file's values).
+    keys to their :class:`~sss_locus.experiments.datamodel.noise_model.NoiseModel` (the file's values).
 
     Parameters
     ----------

@@ -4,7 +4,7 @@ Input: the long table of :func:`sss_locus.experiments.water.study.crop_effects`.
 
 The figure is drawn in the book's seaborn theme (:func:`~sss_locus.report.common.style.theme`) with
 matplotlib's ``barh``, not ``seaborn.barplot``: its bars and 95 % intervals are the estimates and
-replicate-batch intervals :func:`~sss_locus.experiments.datamodel.water_column.crop_effect` computed (the figure's
+replicate-batch intervals :func:`~sss_locus.experiments.water.study.crop_effect` computed (the figure's
 CSV data), which ``seaborn.barplot`` would compute a second time, with its own bootstrap.
 """
 

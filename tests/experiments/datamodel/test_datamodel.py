@@ -32,7 +32,7 @@ EXAMPLE_KEY = {"sonars": "edgetech_2205", "platforms": "boat", "envelopes": "auv
 
 def _documented() -> dict[str, str]:
     text = (REPO / "data" / "README.md").read_text(encoding="utf-8")
-    section = text.split("## Valid values", 1)[1]
+    section = text.split("## Valid values", 1)[1].split("\n## ", 1)[0]  # the area file's table is its own
     return {m.group(1): m.group(2).strip() for m in map(ROW.match, section.splitlines()) if m}
 
 

@@ -1,4 +1,6 @@
-"""Noise model and propagation (sss_locus.experiments.noise.study) and the pass geometry it uses (sss_locus.experiments.passes.view_sets).
+"""Noise model (sss_locus.experiments.datamodel.noise_model), its propagation
+(sss_locus.experiments.passes.propagation), the noise chapter's study (sss_locus.experiments.noise.study)
+and the pass geometry it uses (sss_locus.experiments.passes.view_sets).
 
 * the Monte Carlo percentile and the first-order (Jacobian) estimate agree for small noise, for
   the band of the two-view locus and for the three-view point;
@@ -17,9 +19,10 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from sss_locus import Aperture, two_view_locus
-from sss_locus.experiments.noise.study import (NoiseModel, first_order, gaussian_norm_quantile, load_noise_model,
-                             monte_carlo, noise_sigmas, perturb, survey_noise_table,
-                             two_view_offsets)
+from sss_locus.experiments.datamodel.noise_model import NoiseModel, load_noise_model
+from sss_locus.experiments.passes.propagation import first_order, monte_carlo, noise_sigmas, perturb, two_view_offsets
+from sss_locus.experiments.stats.gaussian_norm import gaussian_norm_quantile
+from sss_locus.experiments.noise.study import survey_noise_table
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.datamodel.envelopes import OffsetModel, load_envelope
 from sss_locus.experiments.survey_passes.study import simulate_passes

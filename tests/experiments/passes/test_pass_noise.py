@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from sss_locus.experiments.datamodel.envelopes import load_envelope
-from sss_locus.experiments.noise.study import NoiseModel, load_noise_model, load_pass_noise, parse_noise_model
+from sss_locus.experiments.datamodel.noise_model import NoiseModel, load_noise_model, parse_noise_model
+from sss_locus.experiments.passes.pass_noise import load_pass_noise
 from sss_locus.experiments.passes.pass_noise import PASS_FIELDS, PassNoise, parse_pass_noise, view_errors
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.reconstruction.estimators import reconstruct

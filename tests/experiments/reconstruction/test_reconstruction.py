@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from sss_locus.experiments.datamodel.envelopes import load_envelope
-from sss_locus.experiments.noise.study import load_noise_model
+from sss_locus.experiments.datamodel.noise_model import load_noise_model
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.reconstruction.estimators import reconstruct, summarise
 from sss_locus.experiments.datamodel.terrain import (flat_terrain, place_features, random_terrain, slope_terrain,

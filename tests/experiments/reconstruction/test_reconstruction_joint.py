@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from sss_locus.experiments.datamodel.envelopes import load_envelope
-from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+from sss_locus.experiments.datamodel.noise_model import load_noise_model
+from sss_locus.experiments.passes.pass_noise import load_pass_noise
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.reconstruction.estimators import reconstruct
 from sss_locus.experiments.reconstruction.joint import adjustment_estimators

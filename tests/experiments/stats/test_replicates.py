@@ -23,7 +23,7 @@ import pytest
 from sss_locus.experiments.survey_passes.planning import median_ratio
 from sss_locus.experiments.pose_space.stats import spearman_table
 from sss_locus.experiments.stats.replicates import median_with_interval
-from sss_locus.experiments.datamodel.water_column import crop_effect
+from sss_locus.experiments.water.study import crop_effect
 
 N_STUDIES = 1000  # coverage's standard error ~0.7 %: 93-97 % is about +-3 of them
 N_BOOT_STUDIES, N_RESAMPLES = 100, 200

@@ -101,7 +101,7 @@ def test_average_ranks_are_the_brute_force_average_ranks(values):
 
 
 def test_gaussian_norm_quantile_of_a_batch_equals_one_at_a_time():
-    from sss_locus.experiments.noise.study import gaussian_norm_quantile
+    from sss_locus.experiments.stats.gaussian_norm import gaussian_norm_quantile
 
     A = np.random.default_rng(6).standard_normal((300, 3, 3))
     cov = A @ A.transpose(0, 2, 1)

@@ -67,7 +67,7 @@ def test_deeply_nested_geojson_names_the_file(tmp_path):
 def test_booleans_and_strings_are_not_coordinates(tmp_path, value):
     body = (f"vertices_m = {value}\n" if value.startswith("[[") else
             f"vertices_m = [[0, 0], [900, 0], [900, 400], [0, {value}]]\n")
-    _one_line_refusal(_toml(tmp_path, body), "vertices must be a list of [x, y] pairs")
+    _one_line_refusal(_toml(tmp_path, body), "area.vertices_m must be a list of [x, y] pairs")
 
 
 def test_a_boolean_origin_is_refused(tmp_path):
@@ -142,7 +142,7 @@ def _area_toml(tmp_path, body):
 def test_a_misspelt_area_key_gets_the_nearest_known_key(tmp_path):
     """As in the data files (``--data``), a misspelt key of the area file is refused naming it
     and the key it was probably meant to be."""
-    with pytest.raises(ValueError, match=r"unknown keys in \[area\]: \['hole_m'\]; did you mean `holes_m`\?"):
+    with pytest.raises(ValueError, match=r"a\.toml: area\.hole_m: unknown key 'hole_m'; did you mean `holes_m`\?"):
         load_area(_area_toml(tmp_path, "hole_m = [[[10, 10], [20, 10], [20, 20]]]\n"))
 
 

@@ -157,7 +157,7 @@ def test_bad_grids_are_refused_in_one_line_naming_the_file(tmp_path, setup, mess
 
 def test_grid_and_depth_together_are_refused(tmp_path):
     _write_tif(tmp_path / "harbour.tif")
-    with pytest.raises(ValueError, match="no water_depth_m"):
+    with pytest.raises(ValueError, match="area.bathymetry goes without water_depth_m"):
         load_area(_area_file(tmp_path, extra="water_depth_m = 10.0\n"))
     area = load_area(_area_file(tmp_path))
     with pytest.raises(ValueError, match=r"-p water_depth_m: .* bathymetry grid"):

@@ -18,7 +18,8 @@ from sss_locus.experiments.datamodel.platforms import load_platform  # noqa: E40
 from sss_locus.experiments.survey_design.area import area_from_vertices, load_area, with_water_depth  # noqa: E402
 from sss_locus.experiments.survey_design.coverage import coverage  # noqa: E402
 from sss_locus.experiments.survey_design.lines import line_set, track_length, uturn_length_m  # noqa: E402
-from sss_locus.experiments.survey_design.plans import Plan, load_settings, plan_grid, standard_plan  # noqa: E402
+from sss_locus.experiments.survey_design.plans import Plan, plan_grid, standard_plan  # noqa: E402
+from sss_locus.experiments.survey_design.settings import load_settings  # noqa: E402
 from sss_locus.experiments.datamodel.terrain import flat_terrain  # noqa: E402
 
 RECT = [[0.0, 0.0], [800.0, 0.0], [800.0, 500.0], [0.0, 500.0]]
@@ -239,7 +240,7 @@ def test_the_area_file_is_recorded_in_the_plan_figures_manifest(tmp_path, monkey
 @pytest.mark.parametrize("doc, message", [
     ("[area]\nvertices_m = [[0, 0], [100, 100], [100, 0], [0, 100]]\n", "not valid"),   # a bow tie
     ("[area]\nvertices_m = [[0, 0], [100, 0]]\n", "at least 3 distinct vertices"),
-    ("[area]\nvertices_m = []\n", "vertices must be"),
+    ("[area]\nvertices_m = []\n", r"area\.vertices_m must be a list of \[x, y\] pairs"),
     ("[area]\nvertices_m = [[0, 0], [5, 0], [5, 5], [0, 5]]\n", "are the vertices in metres"),
     ("[area]\nname = 'x'\n", "exactly one of vertices_m or vertices_lonlat"),
     ("[area]\nvertices_m = [[0, 0], [90, 0], [90, 90]]\norigin_lonlat = [200, 0]\n", "origin_lonlat"),
@@ -273,7 +274,7 @@ def test_bad_design_inputs_are_refused_before_work(tmp_path):
         sd.design(auv, area, "flat", grid={"headings_deg": [0.0]}, n_features=20)
     with pytest.raises(ValueError, match="no water depth: give the area file a water_depth_m"):
         sd.design(auv, area_from_vertices(RECT), "flat", grid=SMALL_GRID, n_features=20)
-    with pytest.raises(ValueError, match=r"test must be a number of metres in \(0, 12000\]"):
+    with pytest.raises(ValueError, match=r"test must be a finite number in \(0\.0, 12000\.0\]; got -3\.0"):
         deep(area, -3.0)
 
 
@@ -384,7 +385,8 @@ def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
     """A 260 m x 200 m area is inside one swath of either platform: a plan of main lines only
     runs one line over it, and the whole chapter's computation (search and
     scoring under noise) completes (it raised IndexError in the reconstruction of a one-line plan)."""
-    from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+    from sss_locus.experiments.datamodel.noise_model import load_noise_model
+    from sss_locus.experiments.passes.pass_noise import load_pass_noise
     from sss_locus.experiments.survey_design import scoring
     from sss_locus.experiments.survey_design.joint import plan_joint_errors
 
@@ -444,7 +446,8 @@ def test_scores_drop_medians_of_fewer_than_30_features_and_intervals_come_from_t
     and the interval of every plan is the t interval of its per-seed medians, computed here."""
     from scipy import stats
 
-    from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+    from sss_locus.experiments.datamodel.noise_model import load_noise_model
+    from sss_locus.experiments.passes.pass_noise import load_pass_noise
     from sss_locus.experiments.survey_design import scoring
 
     area = deep(area_from_vertices([[0, 0], [500, 0], [500, 300], [0, 300]], name="bay"))

@@ -13,10 +13,12 @@ import pytest
 
 from sss_locus.experiments.survey_design import front as sd
 from sss_locus.experiments.adjustment import NavigationPriors, Sightings, adjust, map_errors
-from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+from sss_locus.experiments.datamodel.noise_model import load_noise_model
+from sss_locus.experiments.passes.pass_noise import load_pass_noise
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.survey_design.area import area_from_vertices, with_water_depth
-from sss_locus.experiments.survey_design.plans import Plan, flown, load_settings
+from sss_locus.experiments.survey_design.plans import Plan, flown
+from sss_locus.experiments.survey_design.settings import load_settings
 from sss_locus.experiments.survey_design import scoring
 from sss_locus.experiments.survey_design.joint import JOINT_METRICS, plan_joint_errors
 

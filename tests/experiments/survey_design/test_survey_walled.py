@@ -15,7 +15,8 @@ shapely = pytest.importorskip("shapely")
 pytest.importorskip("pyproj")
 
 from sss_locus.experiments.survey_design.area import load_area  # noqa: E402
-from sss_locus.experiments.survey_design.plans import Plan, load_settings  # noqa: E402
+from sss_locus.experiments.survey_design.plans import Plan  # noqa: E402
+from sss_locus.experiments.survey_design.settings import load_settings  # noqa: E402
 from sss_locus.experiments.survey_design.route import turn_misfits  # noqa: E402
 from sss_locus.pipeline.publish.missions import mission_files  # noqa: E402
 
@@ -92,7 +93,7 @@ def test_a_turn_that_cannot_fit_is_named_and_joined_inside_the_water(tmp_path):
 @pytest.mark.parametrize("navigable, extra, message", [
     ([[20, 20], [520, 0], [520, 260], [0, 460]], "", r"the navigable water must contain the area; \d+ m\^2 of the area"),
     (BASIN, "water_beyond_m = 5.0\n", "give one of navigable_m, navigable_lonlat or water_beyond_m"),
-    (BASIN, "wall_clearance_m = -1\n", r"wall_clearance_m must be a number of metres in \[0, 1000\]"),
+    (BASIN, "wall_clearance_m = -1\n", r"area\.wall_clearance_m must be a finite number in \[0\.0, 1000\.0\]; got -1"),
     ([[0, 0], [520, 460], [520, 0], [0, 460]], "", "not valid"),
 ])
 def test_bad_navigable_water_is_refused_in_one_line(tmp_path, navigable, extra, message):

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from sss_locus.experiments.noise.study import NoiseModel
+from sss_locus.experiments.datamodel.noise_model import NoiseModel
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.datamodel.envelopes import load_envelope
 from sss_locus.geometry.three_view_points import ThreeViewStatus

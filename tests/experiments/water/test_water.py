@@ -16,8 +16,8 @@ from sss_locus.experiments.datamodel.envelopes import OffsetModel, load_envelope
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.pose_space.study import PoseSpaceSpec, sample_pose_space
 from sss_locus.experiments.survey_passes.study import simulate_passes
-from sss_locus.experiments.datamodel.water_column import WaterColumn, crop_effect, deepest_feature_m
-from sss_locus.experiments.water.study import crop_effects, default_conditions, pass2_above_surface_share
+from sss_locus.experiments.datamodel.water_column import WaterColumn, deepest_feature_m
+from sss_locus.experiments.water.study import crop_effect, crop_effects, default_conditions, pass2_above_surface_share
 
 
 def test_off_by_default_keeps_the_spec_key():

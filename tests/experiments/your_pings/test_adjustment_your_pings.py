@@ -11,7 +11,7 @@ import pytest
 
 from adjustment_sim import simulate
 from sss_locus.experiments.adjustment import map_errors
-from sss_locus.experiments.noise.study import load_pass_noise
+from sss_locus.experiments.passes.pass_noise import load_pass_noise
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.your_pings.study import run
 from sss_locus.experiments.your_pings.files import against_truth

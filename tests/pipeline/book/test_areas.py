@@ -195,7 +195,7 @@ BAD_AREAS = {  # file name, contents, what the one-line refusal says
     "bowtie.toml": ("[area]\nvertices_m = [[0, 0], [900, 400], [900, 0], [0, 400]]\n", "the polygon is not valid"),
     "nodepth.toml": ("[area]\nvertices_m = [[0, 0], [400, 0], [400, 200], [0, 200]]\n", "no water depth"),
     "baddepth.toml": ("[area]\nvertices_m = [[0, 0], [400, 0], [400, 200], [0, 200]]\nwater_depth_m = -4\n",
-                      "water_depth_m must be a number of metres in (0, 12000]"),
+                      "area.water_depth_m must be a finite number in (0.0, 12000.0]; got -4"),
     "bowtie.geojson": ('{"type": "Polygon", "coordinates": [[[-70.67, 41.51], [-70.66, 41.52], [-70.66, 41.51], '
                        '[-70.67, 41.52], [-70.67, 41.51]]]}', "the polygon is not valid"),
     "missing.toml": (None, "does not exist"),

@@ -173,7 +173,7 @@ def test_noise_advice_finding_states_its_conditions_and_agrees_with_its_flags():
 
 
 def test_noise_advice_texts_keep_the_headline_keys_and_name_every_level():
-    from sss_locus.experiments.noise.study import NoiseModel
+    from sss_locus.experiments.datamodel.noise_model import NoiseModel
     from sss_locus.report.noise.figures import advice_texts, scale_text
 
     v = {"holds": False, "ends": 3.0, "oblique": 2.0, "perpendicular": 1.0}

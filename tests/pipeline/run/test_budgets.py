@@ -91,7 +91,7 @@ def test_the_estimate_bounds_the_measured_5_km_benchmark(key, search_s, scoring_
     scoring (the boat's scoring converges fast and is over-estimated up to 100 times)."""
     from sss_locus.experiments.datamodel.platforms import load_platform
     from sss_locus.experiments.survey_design.area import area_from_vertices, with_water_depth
-    from sss_locus.experiments.survey_design.plans import load_settings
+    from sss_locus.experiments.survey_design.settings import load_settings
 
     area = with_water_depth(area_from_vertices([[0, 0], [5000, 0], [5000, 5000], [0, 5000]], name="sq"), 30.0, "t")
     p = dict(get_entry("survey_design").resolve("book"))
