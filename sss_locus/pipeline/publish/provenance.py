@@ -43,7 +43,11 @@ def package_version() -> str:
 
 
 def git_commit(repo: Path | None = None) -> str:
-    """Commit hash of the checkout, with ``+dirty`` when tracked files are modified."""
+    """Commit hash of the checkout, with ``+dirty`` when tracked files are modified; ``"unknown"``
+    for an installed package (no checkout: git is not asked, or a virtual environment inside the
+    user's own repository would report that repository's commit)."""
+    if repo is None and not paths.IN_CHECKOUT:
+        return "unknown"
     repo = paths.REPO_ROOT if repo is None else repo
     try:
         commit = subprocess.run(
