@@ -112,7 +112,8 @@ def test_a_chapter_runs_from_any_folder_over_a_data_directory(installed, tmp_pat
     their SHA-256, and no git commit (the environment lies in the user's own repository)."""
     python, sss_locus = installed
     package = Path(subprocess.run([str(python), "-c", "import sss_locus.paths as p; print(p.PACKAGE_DIR)"],
-                                  capture_output=True, text=True, check=True, timeout=120).stdout.strip())
+                                  cwd=tmp_path, capture_output=True, text=True, check=True, timeout=120).stdout.strip())
+    assert package.is_relative_to(python.parent.parent)  # the installed package, not the checkout
 
     def package_files():
         return {f for f in package.rglob("*") if "__pycache__" not in f.parts}
@@ -126,6 +127,9 @@ def test_a_chapter_runs_from_any_folder_over_a_data_directory(installed, tmp_pat
     bad = subprocess.run([str(sss_locus), "run", "concept", "--data-dir", "nowhere"], cwd=tmp_path,
                          capture_output=True, text=True, timeout=120, env=_user_environment())
     assert bad.returncode == 2 and bad.stderr == "sss-locus run: error: --data-dir nowhere does not exist\n"
+    inside = subprocess.run([str(sss_locus), "run", "concept"], cwd=package, capture_output=True, text=True,
+                            timeout=120, env=_user_environment())
+    assert inside.returncode == 2 and "lies inside the installed package" in inside.stderr, inside.stderr
     ran = subprocess.run([str(sss_locus), "run", "concept", "--profile", "quick", "--name", "mine"], cwd=tmp_path,
                          capture_output=True, text=True, timeout=600,
                          env=_user_environment(SSS_LOCUS_DATA_DIR=str(mine)))

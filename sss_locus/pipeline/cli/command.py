@@ -288,15 +288,19 @@ def _cache(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_cache_folder() -> None:
-    """The result cache must be a folder this process can write (or create), before any work;
-    neither it nor the build area may lie inside the installed package."""
-    from sss_locus.pipeline.run.preflight import check_writable
-
+def _check_outside_package() -> None:
+    """Neither the build area nor the result cache may lie inside the installed package (they
+    default to the working folder there), before any work."""
     for folder, setting in ((paths.build_dir(), paths.BUILD_DIR_ENV), (paths.cache_dir(), paths.CACHE_DIR_ENV)):
         if not paths.IN_CHECKOUT and folder.resolve().is_relative_to(paths.PACKAGE_DIR):
             raise ValueError(f"{folder} lies inside the installed package {paths.PACKAGE_DIR}: start sss-locus "
                              f"in a folder of your own (or set {setting})")
+
+
+def _check_cache_folder() -> None:
+    """The result cache must be a folder this process can write (or create), before any work."""
+    from sss_locus.pipeline.run.preflight import check_writable
+
     given = paths.cache_dir() != paths.work_root() / ".cache"  # set by $SSS_LOCUS_CACHE_DIR
     check_writable(paths.cache_dir(), f"result cache ({paths.CACHE_DIR_ENV})" if given else "result cache")
 
@@ -308,6 +312,8 @@ def main(argv: list[str] | None = None) -> int:
     handler = {"run": _run, "book": _book, "params": _params, "list": _list, "cache": _cache,
                "answer": _answer, "xtf": _xtf}[args.command]
     try:
+        if args.command in ("run", "book", "answer", "cache"):
+            _check_outside_package()
         if args.command in ("run", "answer") or (args.command == "book" and not args.no_run) or \
                 (args.command == "cache" and args.prune):
             _check_cache_folder()
