@@ -24,6 +24,8 @@ from pathlib import Path
 import pytest
 
 from sss_locus import paths
+from sss_locus.pipeline.run.registry import load_registry
+from sss_locus.pipeline.run.runner import resolve_parameters
 
 #: What ``pip wheel`` reads: the metadata, setup.py and the folders that go into the wheel.
 PACKAGED = ("pyproject.toml", "setup.py", "MANIFEST.in", "README.md", "LICENSE", "sss_locus", "data", "notebooks",
@@ -81,15 +83,23 @@ def test_the_wheel_carries_the_shipped_files_as_in_the_checkout_and_finds_them(i
             "from sss_locus.pipeline.book import bookbuild\n"
             "print(sss_locus.__file__); print(p.IN_CHECKOUT); print(p.REPO_ROOT)\n"
             "print(load_registry()['planning'].source_relative)\n"
-            "print(bookbuild.stage())")
+            "print(bookbuild.stage())\n"
+            "from sss_locus.pipeline.run.runner import resolve_parameters\n"  # the worked examples' files
+            "for name in ('your_pings', 'survey_design'):\n"
+            "    print(json.dumps(resolve_parameters(load_registry()[name], 'quick', {}, from_text=True)))")
     out = subprocess.run([str(python), "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=120,
                          env=_user_environment())
     assert out.returncode == 0, out.stderr[-3000:]
-    where, in_checkout, root, planning, staged = out.stdout.splitlines()
+    where, in_checkout, root, planning, staged, pings, design = out.stdout.splitlines()
     assert not Path(where).is_relative_to(paths.REPO_ROOT) and in_checkout == "False"
     assert Path(root) == Path(where).parent / "_shipped"  # inside the installed package
     assert _digests(Path(root)) == _digests(paths.REPO_ROOT) and "book/intro.md" in _digests(Path(root))
     assert planning == "notebooks/planning.ipynb"  # as a checkout's manifests name it
+    for name, installed_values in (("your_pings", pings), ("survey_design", design)):  # found, named as in a checkout
+        assert json.loads(installed_values) == json.loads(json.dumps(
+            resolve_parameters(load_registry()[name], "quick", {}, from_text=True)))
+    assert json.loads(design)["area"] == "data/examples/survey_area.toml"
+    assert json.loads(design)["area_sha256"] == _sha256(paths.DATA_DIR / "examples" / "survey_area.toml")
     assert Path(staged) == tmp_path / "_build" / "source"  # the book stages into the working folder
     assert (Path(staged) / "_toc.yml").read_bytes() == paths.TOC_FILE.read_bytes()
     assert (Path(staged) / "book" / "references.bib").read_bytes() == (paths.BOOK_DIR / "references.bib").read_bytes()

@@ -288,10 +288,11 @@ def _cache(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_outside_package() -> None:
-    """Neither the build area nor the result cache may lie inside the installed package (they
-    default to the working folder there), before any work."""
-    for folder, setting in ((paths.build_dir(), paths.BUILD_DIR_ENV), (paths.cache_dir(), paths.CACHE_DIR_ENV)):
+def _check_outside_package(command: str) -> None:
+    """Neither the build area (``run``, ``book``) nor the result cache may lie inside the installed
+    package (they default to the working folder there), before any work."""
+    folders = [(paths.build_dir(), paths.BUILD_DIR_ENV)] if command in ("run", "book") else []
+    for folder, setting in [*folders, (paths.cache_dir(), paths.CACHE_DIR_ENV)]:
         if not paths.IN_CHECKOUT and folder.resolve().is_relative_to(paths.PACKAGE_DIR):
             raise ValueError(f"{folder} lies inside the installed package {paths.PACKAGE_DIR}: start sss-locus "
                              f"in a folder of your own (or set {setting})")
@@ -313,7 +314,7 @@ def main(argv: list[str] | None = None) -> int:
                "answer": _answer, "xtf": _xtf}[args.command]
     try:
         if args.command in ("run", "book", "answer", "cache"):
-            _check_outside_package()
+            _check_outside_package(args.command)
         if args.command in ("run", "answer") or (args.command == "book" and not args.no_run) or \
                 (args.command == "cache" and args.prune):
             _check_cache_folder()
