@@ -116,3 +116,19 @@ def test_an_installed_packages_run_key_follows_its_installed_libraries(monkeypat
     new = environment(("numpy", "2.4.1"), ("scipy", "1.16.0"))
     assert new[0] != old[0] and new[1] != old[1] and in_checkout[0] not in (old[0], new[0])
     provenance.installed_distributions_sha256.cache_clear()
+
+
+def test_a_book_without_its_sources_is_refused_in_one_line_before_any_run(tmp_path, monkeypatch, capsys):
+    """An installed package built without the book's sources: ``sss-locus book`` names them and
+    where it looked, and runs nothing."""
+    from sss_locus.pipeline.cli import command
+
+    monkeypatch.setattr(paths, "IN_CHECKOUT", False)
+    monkeypatch.setattr(paths, "CONFIG_FILE", tmp_path / "_shipped" / "_config.yml")
+    monkeypatch.setattr(paths, "BOOK_DIR", tmp_path / "_shipped" / "book")
+    monkeypatch.setenv(paths.BUILD_DIR_ENV, str(tmp_path / "build"))
+    monkeypatch.setenv(paths.CACHE_DIR_ENV, str(tmp_path / "cache"))
+    assert command.main(["book", "--profile", "quick"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "the book's sources _config.yml, book/ are missing from the installed package" in err
+    assert not (tmp_path / "build").exists()
