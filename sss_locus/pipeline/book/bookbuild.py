@@ -301,9 +301,10 @@ def check_sources_and_tools() -> None:
     missing = [p.name for p in (paths.CONFIG_FILE, paths.TOC_FILE) if not p.is_file()]
     missing += [] if (paths.BOOK_DIR / FRONT_PAGE).is_file() else [paths.BOOK_DIR.name + "/"]
     if missing:
-        where = "the checkout" if paths.IN_CHECKOUT else "the installed package (a wheel built without them)"
+        where = ("the checkout" if paths.IN_CHECKOUT else "the installed package (a wheel built without them)")
+        advice = "" if paths.IN_CHECKOUT else ": build the book from a checkout of the repository"
         raise FileNotFoundError(f"the book's sources {', '.join(missing)} are missing from {where}, "
-                                f"{paths.REPO_ROOT}: build the book from a checkout of the repository")
+                                f"{paths.REPO_ROOT}{advice}")
     tools = [name for name in ("jupyter-book", MATHJAX_DIST, "plotly", "papermill") if not _installed(name)]
     if tools:
         raise RuntimeError(f"building the book needs {', '.join(tools)} (the package's book extra: "

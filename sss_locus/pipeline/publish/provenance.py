@@ -89,7 +89,7 @@ def environment_sha256() -> str:
     """What identifies the software environment a run's key holds: in a checkout the SHA-256 of
     ``environment.lock`` (:func:`lock_sha256`); an installed package has no lock, so the SHA-256 of
     the installed distributions' names and versions (an upgraded library makes its runs stale, as
-    an edited lock does in a checkout). Computed once per process."""
+    an edited lock does in a checkout; listed once per process)."""
     if paths.IN_CHECKOUT:
         return lock_sha256()
     return installed_distributions_sha256()
