@@ -6,14 +6,17 @@ the constants (or call :func:`build_dir`) from here.
 Layout
 ------
 ``REPO_ROOT``
-    The repository checkout (the folder holding ``pyproject.toml``); only the book's own sources
-    (``book/``, ``_config.yml``, ``_toc.yml``, ``environment.lock``, ``CITATION.cff``) need it.
+    The repository checkout (the folder holding ``pyproject.toml``). An installed package (no
+    checkout, :data:`IN_CHECKOUT` false) has the project's shipped files as package data laid out
+    the same way, ``sss_locus/_shipped/`` (``data/``, ``notebooks/``, ``book/``, ``_config.yml``,
+    ``_toc.yml``, ``CITATION.cff``; see ``setup.py``), found with :mod:`importlib.resources`,
+    and that folder is ``REPO_ROOT``: every path below, and a shipped file's public name
+    (``data/platforms.toml``), is the same in both. Only ``environment.lock`` is not shipped (it
+    pins the checkout's environment, not an installed one's).
 ``DATA_DIR``
-    Committed inputs with their sources (``data/``); an installed package (no checkout,
-    :data:`IN_CHECKOUT` false) has them as package data, ``sss_locus/_shipped/data``.
+    Committed inputs with their sources (``data/``).
 ``NOTEBOOKS_DIR`` / ``REGISTRY_FILE``
-    Notebook sources, committed without outputs, and ``notebooks/registry.toml`` listing them
-    (installed: ``sss_locus/_shipped/notebooks``).
+    Notebook sources, committed without outputs, and ``notebooks/registry.toml`` listing them.
 ``BOOK_DIR``
     The book's own pages and ``references.bib`` (``book/``).
 ``build_dir()``
@@ -55,21 +58,21 @@ from pathlib import Path
 from typing import Any
 
 PACKAGE_DIR: Path = Path(__file__).resolve().parent
-REPO_ROOT: Path = PACKAGE_DIR.parent
 #: Whether the package runs from a source checkout (``pyproject.toml`` and ``data/`` beside it),
-#: not from an installed wheel. Only the book's own sources need the checkout.
-IN_CHECKOUT: bool = (REPO_ROOT / "pyproject.toml").is_file() and (REPO_ROOT / "data").is_dir()
+#: not from an installed wheel.
+IN_CHECKOUT: bool = (PACKAGE_DIR.parent / "pyproject.toml").is_file() and (PACKAGE_DIR.parent / "data").is_dir()
 
 
-def _shipped(name: str) -> Path:
-    """The installed copy of the checkout's ``name/`` folder (package data, see ``setup.py``)."""
+def _shipped_root() -> Path:
+    """The installed copy of the checkout's shipped files (package data, see ``setup.py``)."""
     from importlib.resources import files
 
-    return Path(str(files("sss_locus") / "_shipped" / name))
+    return Path(str(files("sss_locus") / "_shipped"))
 
 
-DATA_DIR: Path = REPO_ROOT / "data" if IN_CHECKOUT else _shipped("data")
-NOTEBOOKS_DIR: Path = REPO_ROOT / "notebooks" if IN_CHECKOUT else _shipped("notebooks")
+REPO_ROOT: Path = PACKAGE_DIR.parent if IN_CHECKOUT else _shipped_root()
+DATA_DIR: Path = REPO_ROOT / "data"
+NOTEBOOKS_DIR: Path = REPO_ROOT / "notebooks"
 REGISTRY_FILE: Path = NOTEBOOKS_DIR / "registry.toml"
 BOOK_DIR: Path = REPO_ROOT / "book"
 CONFIG_FILE: Path = REPO_ROOT / "_config.yml"
@@ -80,6 +83,9 @@ CITATION_FILE: Path = REPO_ROOT / "CITATION.cff"
 #: The user's settings of the build area and the cache (read by :mod:`sss_locus.pipeline.run.context`).
 BUILD_DIR_ENV = "SSS_LOCUS_BUILD_DIR"
 CACHE_DIR_ENV = "SSS_LOCUS_CACHE_DIR"
+#: The user's data directory of the ``sss-locus`` commands (``--data-dir``'s default): a folder of
+#: TOML files in the schema of ``data/*.toml``, layered over the shipped data.
+DATA_DIR_ENV = "SSS_LOCUS_DATA_DIR"
 
 #: Folder names inside the build area (also used in ``_toc.yml`` and ``_config.yml``).
 SOURCE_SUBDIR = "source"

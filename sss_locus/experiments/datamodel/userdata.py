@@ -98,6 +98,48 @@ def _origin(message: str, inputs: DataInputs) -> str:
     return ""
 
 
+def directory_files(folder: str | Path, what: str = "data directory") -> list[Path]:
+    """The data files of a user's data directory: its ``*.toml`` files, in name order.
+
+    A data directory (``sss-locus --data-dir DIR`` or ``$SSS_LOCUS_DATA_DIR``) is a folder of
+    files in the schema of ``data/*.toml``, layered over the shipped data exactly as if each were
+    given with ``--data`` (name order, before the ``--data`` files: later ones win). Hidden
+    files and sub-folders are not read.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        The directory (``~`` expanded).
+    what : str
+        How the error names it (e.g. ``"data directory (SSS_LOCUS_DATA_DIR)"``).
+
+    Returns
+    -------
+    list of pathlib.Path
+        Absolute paths of its TOML files, sorted by name; never empty.
+
+    Raises
+    ------
+    ValueError
+        In one line naming ``folder``: it does not exist, is not a folder, cannot be read, or
+        holds no ``.toml`` file.
+    """
+    path = Path(folder).expanduser()
+    if not str(folder).strip():
+        raise ValueError(f"{what} is empty: give a folder of TOML data files")
+    if not path.exists():
+        raise ValueError(f"{what} {path} does not exist")
+    if not path.is_dir():
+        raise ValueError(f"{what} {path} is not a folder (give a single file with --data)")
+    try:
+        found = sorted(p.resolve() for p in path.iterdir() if p.suffix == ".toml" and not p.name.startswith("."))
+    except OSError as exc:
+        raise ValueError(f"{what} {path} cannot be read ({exc.strerror or exc})") from None
+    if not found:
+        raise ValueError(f"{what} {path} holds no .toml file (it takes TOML files in the schema of data/*.toml)")
+    return found
+
+
 def use(data_files: Iterable[str | Path] = (), data_set: Iterable[str] = ()) -> DataInputs:
     """Validate and activate user data for this process (a notebook calls this with its
     ``data_files`` and ``data_set`` parameters); return the active :class:`DataInputs`.

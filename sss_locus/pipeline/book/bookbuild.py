@@ -293,6 +293,32 @@ def check_executed(allow_failed: bool = False) -> dict[str, str]:
     return failed
 
 
+def check_sources_and_tools() -> None:
+    """Refuse, in one line and before any notebook runs, a book that cannot be built here: its
+    sources (``_config.yml``, ``_toc.yml``, ``book/``: the checkout's, or the installed package's
+    copies, :data:`sss_locus.paths.REPO_ROOT`) or Jupyter Book and the site's local assets (the
+    package's ``book`` extra) missing."""
+    missing = [p.name for p in (paths.CONFIG_FILE, paths.TOC_FILE) if not p.is_file()]
+    missing += [] if (paths.BOOK_DIR / FRONT_PAGE).is_file() else [paths.BOOK_DIR.name + "/"]
+    if missing:
+        where = ("the checkout" if paths.IN_CHECKOUT else "the installed package (a wheel built without them)")
+        advice = "" if paths.IN_CHECKOUT else ": build the book from a checkout of the repository"
+        raise FileNotFoundError(f"the book's sources {', '.join(missing)} are missing from {where}, "
+                                f"{paths.REPO_ROOT}{advice}")
+    tools = [name for name in ("jupyter-book", MATHJAX_DIST, "plotly", "papermill") if not _installed(name)]
+    if tools:
+        raise RuntimeError(f"building the book needs {', '.join(tools)} (the package's book extra: "
+                           "pip install 'sss-locus[book]')")
+
+
+def _installed(distribution: str) -> bool:
+    try:
+        metadata.distribution(distribution)
+    except metadata.PackageNotFoundError:
+        return False
+    return distribution != "jupyter-book" or Path(sys.executable).with_name("jupyter-book").is_file()
+
+
 def build(log=print) -> Path:
     """Check the executed copies, stage and build the site with ``jupyter-book build -W -n
     --keep-going --all``; return index.html.

@@ -65,7 +65,9 @@ def _entry(m: dict[str, Any]) -> list[str]:
         f"<p>{_file_links(m)}</p>",
         "",
         f"Parameters: {params}; {_seed_text(m['seed'])}; commit `{provenance.short_commit(m['git_commit'])}`; "
-        f"sss-locus {m['package_version']}; environment.lock `{m['lock_sha256'][:12]}`; "
+        f"sss-locus {m['package_version']}; "
+        + (f"environment.lock `{m['lock_sha256'][:12]}`; " if m["lock_sha256"] != "missing"
+           else "no environment.lock; ") +
         f"run {m['run_time_utc']}.",
         "",
         f"Data: {_data_line(m)}",

@@ -20,6 +20,14 @@ reproduction and every named area, whatever --name says); --replace-reproduction
 
 Every parameter value is checked (type, range, allowed values, memory) before a kernel starts.
 A failing notebook is reported in one line (cell and error); add --verbose for the traceback.
+
+Where things are: the notebooks and the shipped data come from the checkout, or from the installed
+package (sss_locus/_shipped/, shown by `sss-locus list`). Results go to the build area _build/ (the
+executed copies in _build/source/executed/, figures and tables in _build/source/_extra/figures/,
+the site in _build/html/; _build/NAME with --name) and the result cache to .cache/: in the
+checkout, else in the folder the command is started in, never into the installed package
+(SSS_LOCUS_BUILD_DIR and SSS_LOCUS_CACHE_DIR move them). Your data: --data FILE, --data-dir DIR
+(or SSS_LOCUS_DATA_DIR: a folder of such files) and --set, layered over the shipped data.
 """
 
 from __future__ import annotations
@@ -40,6 +48,9 @@ def _data_arguments(parser: argparse.ArgumentParser) -> None:
                         help="your data file (schema of data/*.toml): its sonars, platforms, envelopes, "
                         "offset_models, noise, terrain and survey tables add to or override the shipped ones by key "
                         "(repeatable; validated before any notebook starts)")
+    parser.add_argument("--data-dir", metavar="DIR", default=os.environ.get(paths.DATA_DIR_ENV) or None,
+                        help="your data directory: every DIR/*.toml is read as if given with --data (name "
+                        f"order, before the --data files; default: ${paths.DATA_DIR_ENV} when set)")
     parser.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE", dest="set_values",
                         help="override one data value, e.g. platforms.auv.transducers.port.tilt_deg=15 "
                         "(repeatable; recorded as a user override)")
@@ -51,7 +62,11 @@ def _data_inputs(args: argparse.Namespace):
     see the user's keys)."""
     from sss_locus.experiments.datamodel import userdata
 
-    inputs = userdata.use(args.data, args.set_values)
+    files = list(args.data)
+    if args.data_dir is not None:
+        given = args.data_dir != os.environ.get(paths.DATA_DIR_ENV)  # else read from the environment
+        files[:0] = userdata.directory_files(args.data_dir, "--data-dir" if given else paths.DATA_DIR_ENV)
+    inputs = userdata.use(files, args.set_values)
     for flag in userdata.hardware_flags(inputs):  # possible, but probably a mistake
         print(f"sss-locus {args.command}: warning: {flag}", file=sys.stderr)
     return inputs
@@ -68,6 +83,7 @@ def _area_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="sss-locus", description=__doc__.split("\n")[0],
+                                     epilog=__doc__.split("\n\n", 1)[1],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
 
@@ -130,8 +146,13 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _run(args: argparse.Namespace) -> int:
+    from importlib.util import find_spec
+
     from sss_locus.pipeline.run.runner import resolve_parameters, run_notebook
 
+    if find_spec("papermill") is None or find_spec("ipykernel") is None:
+        raise RuntimeError("running a chapter needs papermill and ipykernel (the package's book extra: "
+                           "pip install 'sss-locus[book]')")
     data = _data_inputs(args)
     entry = get_entry(args.notebook)
     overrides = _overrides(args.parameter)
@@ -168,6 +189,7 @@ def _book(args: argparse.Namespace) -> int:
     from sss_locus.pipeline.run.runner import is_up_to_date, run_many
 
     start = time.perf_counter()
+    bookbuild.check_sources_and_tools()
     entries = load_registry()
     failure = None
     if not args.no_run:
@@ -249,6 +271,8 @@ def _xtf(args: argparse.Namespace) -> int:
 def _list(_: argparse.Namespace) -> int:
     for entry in load_registry().values():
         print(f"{entry.name:20s} {entry.source_relative:35s} profiles: {', '.join(entry.profiles)}")
+    print(f"notebooks: {paths.NOTEBOOKS_DIR}")
+    print(f"shipped data: {paths.DATA_DIR} (copy a file from there to start your own --data file)")
     print(f"build area: {paths.build_dir()}")
     return 0
 
@@ -262,6 +286,16 @@ def _cache(args: argparse.Namespace) -> int:
     if args.prune:
         print(f"pruned {report['removed']} entries/temporary files, {report['freed'] / 1e6:.1f} MB")
     return 0
+
+
+def _check_outside_package(command: str) -> None:
+    """Neither the build area (``run``, ``book``) nor the result cache may lie inside the installed
+    package (they default to the working folder there), before any work."""
+    folders = [(paths.build_dir(), paths.BUILD_DIR_ENV)] if command in ("run", "book") else []
+    for folder, setting in [*folders, (paths.cache_dir(), paths.CACHE_DIR_ENV)]:
+        if not paths.IN_CHECKOUT and folder.resolve().is_relative_to(paths.PACKAGE_DIR):
+            raise ValueError(f"{folder} lies inside the installed package {paths.PACKAGE_DIR}: start sss-locus "
+                             f"in a folder of your own (or set {setting})")
 
 
 def _check_cache_folder() -> None:
@@ -279,6 +313,8 @@ def main(argv: list[str] | None = None) -> int:
     handler = {"run": _run, "book": _book, "params": _params, "list": _list, "cache": _cache,
                "answer": _answer, "xtf": _xtf}[args.command]
     try:
+        if args.command in ("run", "book", "answer", "cache"):
+            _check_outside_package(args.command)
         if args.command in ("run", "answer") or (args.command == "book" and not args.no_run) or \
                 (args.command == "cache" and args.prune):
             _check_cache_folder()

@@ -8,6 +8,7 @@ Every function returns a string and never raises: outside a git checkout the com
 
 from __future__ import annotations
 
+import functools
 import hashlib
 from typing import Any
 import subprocess
@@ -43,7 +44,11 @@ def package_version() -> str:
 
 
 def git_commit(repo: Path | None = None) -> str:
-    """Commit hash of the checkout, with ``+dirty`` when tracked files are modified."""
+    """Commit hash of the checkout, with ``+dirty`` when tracked files are modified; ``"unknown"``
+    for an installed package (no checkout: git is not asked, or a virtual environment inside the
+    user's own repository would report that repository's commit)."""
+    if repo is None and not paths.IN_CHECKOUT:
+        return "unknown"
     repo = paths.REPO_ROOT if repo is None else repo
     try:
         commit = subprocess.run(
@@ -78,6 +83,26 @@ def file_sha256(path: Path) -> str:
 def lock_sha256() -> str:
     """SHA-256 of ``environment.lock``: identifies the exact software environment."""
     return file_sha256(paths.LOCK_FILE)
+
+
+def environment_sha256() -> str:
+    """What identifies the software environment a run's key holds: in a checkout the SHA-256 of
+    ``environment.lock`` (:func:`lock_sha256`); an installed package has no lock, so the SHA-256 of
+    the installed distributions' names and versions (an upgraded library makes its runs stale, as
+    an edited lock does in a checkout; listed once per process)."""
+    if paths.IN_CHECKOUT:
+        return lock_sha256()
+    return installed_distributions_sha256()
+
+
+@functools.cache
+def installed_distributions_sha256() -> str:
+    """SHA-256 of the sorted ``name==version`` of every distribution this Python sees (computed
+    once per process; ``installed_distributions_sha256.cache_clear()`` forgets it)."""
+    from importlib import metadata
+
+    names = sorted({f"{d.metadata['Name']}=={d.version}" for d in metadata.distributions()})
+    return hashlib.sha256("\n".join(names).encode()).hexdigest()
 
 
 def tree_sha256(*roots: Path, patterns: tuple[str, ...] = ("*",)) -> str:

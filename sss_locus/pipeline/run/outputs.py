@@ -146,7 +146,7 @@ def run_key(entry: Any, profile: str, parameters: dict[str, Any]) -> str:
     contents of the user's data files, which :func:`data_read_changed` checks entry by entry."""
     payload = json.dumps(
         {"source": provenance.file_sha256(entry.source), "profile": profile, "parameters": parameters,
-         "code": provenance.code_sha256(), "lock": provenance.lock_sha256()},
+         "code": provenance.code_sha256(), "lock": provenance.environment_sha256()},
         sort_keys=True, default=provenance.json_default,
     )
     return hashlib.sha256(payload.encode()).hexdigest()

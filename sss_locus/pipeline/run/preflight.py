@@ -84,7 +84,9 @@ def _check_outside_builds(path: Path) -> None:
 
 
 def _tracked(path: Path) -> bool:
-    """Whether git tracks ``path`` in the project's repository (False without git)."""
+    """Whether git tracks ``path`` in the project's repository (False without git or checkout)."""
+    if not paths.IN_CHECKOUT:
+        return False
     try:
         relative = path.relative_to(paths.REPO_ROOT)
     except ValueError:

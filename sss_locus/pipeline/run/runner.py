@@ -16,7 +16,8 @@
 * Side runs (``output=``) write the executed copy there and its figures into ``figures/`` beside
   it; they never touch the build area's results.
 * The executed copy records a *run key* (hash of the notebook source, its parameters and
-  profile, the package code and ``data/``, and ``environment.lock``): :func:`is_up_to_date` tells
+  profile, the package code and ``data/``, and ``environment.lock``, or an installed package's
+  installed distributions, :func:`~sss_locus.pipeline.publish.provenance.environment_sha256`): :func:`is_up_to_date` tells
   ``sss-locus book`` that rerunning would reproduce the same result, so it can be skipped.
 """
 

@@ -239,3 +239,63 @@ def test_bad_terrain_input_names_the_key_and_where_it_came_from(tmp_path, text, 
     with pytest.raises(ValueError, match=match):
         userdata.use([user], sets)
     assert userdata.active().is_default
+
+
+# -- a data directory (--data-dir DIR, $SSS_LOCUS_DATA_DIR) -----------------------------------------
+
+def _azimuth(value: float) -> str:
+    return f'[sonars.edgetech_2205.azimuth_deg]\nvalue = {value}\nassumption = "test"\n'
+
+
+def test_a_data_directory_is_its_toml_files_in_name_order_before_the_data_files(tmp_path, monkeypatch, capsys):
+    """Each DIR/*.toml is read as a --data file, by name, before the --data files (later ones win);
+    hidden files, sub-folders and other files are not read (each would be refused if it were)."""
+    from sss_locus.pipeline.cli import command as cli
+
+    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path / "build"))
+    mine = tmp_path / "mine"
+    (mine / "sub").mkdir(parents=True)
+    (mine / "b.toml").write_text(_azimuth(110.0))
+    (mine / "a.toml").write_text(_azimuth(100.0))
+    for bad in (mine / ".a.toml", mine / "sub" / "c.toml", mine / "notes.txt"):
+        bad.write_text("not = [valid")
+    last = tmp_path / "z.toml"
+    last.write_text(_azimuth(120.0))
+    shipped = userdata.document()["sonars"]["edgetech_2205"]["azimuth_deg"]["value"]
+    for argv, files, value in ((["--data-dir", str(mine)], ["a.toml", "b.toml"], 110.0),
+                               (["--data-dir", str(mine), "--data", str(last)], ["a.toml", "b.toml", "z.toml"], 120.0)):
+        code = cli.main(["run", "concept", "--profile", "quick", *argv])  # refused: a user run needs --name
+        err = capsys.readouterr().err
+        assert code == 2 and f"reads data file(s) {', '.join(files)}," in err, err
+        assert [p.rsplit("/", 1)[1] for p in userdata.active().files] == files
+        assert userdata.document()["sonars"]["edgetech_2205"]["azimuth_deg"]["value"] == value != shipped
+    monkeypatch.setenv("SSS_LOCUS_DATA_DIR", str(mine))  # the same from the environment
+    assert cli.main(["run", "concept", "--profile", "quick"]) == 2
+    assert "reads data file(s) a.toml, b.toml," in capsys.readouterr().err
+    assert not (tmp_path / "build").exists()
+
+
+@pytest.mark.parametrize("kind", ["missing", "file", "empty", "from-environment"])
+def test_a_bad_data_directory_is_refused_in_one_line_naming_it(tmp_path, monkeypatch, capsys, kind):
+    from sss_locus.pipeline.cli import command as cli
+
+    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path / "build"))
+    folder = tmp_path / "mine"
+    if kind == "file":
+        folder.write_text(_azimuth(100.0))
+    elif kind in ("empty", "from-environment"):
+        (folder / "sub").mkdir(parents=True)
+        (folder / "sub" / "a.toml").write_text(_azimuth(100.0))  # sub-folders are not read
+        (folder / "README.md").write_text("my data")
+    argv = ["run", "concept", "--profile", "quick"]
+    if kind == "from-environment":
+        monkeypatch.setenv("SSS_LOCUS_DATA_DIR", str(folder))
+    else:
+        argv += ["--data-dir", str(folder)]
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and str(folder) in err, err
+    said = {"missing": "does not exist", "file": "is not a folder", "empty": "holds no .toml file",
+            "from-environment": "holds no .toml file"}[kind]
+    assert said in err and ("SSS_LOCUS_DATA_DIR" if kind == "from-environment" else "--data-dir") in err
+    assert not (tmp_path / "build").exists()

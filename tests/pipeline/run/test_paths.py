@@ -90,3 +90,45 @@ def test_book_output_to_a_file_has_no_colour_codes_and_no_per_file_progress():
     coloured = StagingPathFilter()  # a terminal keeps the colours
     assert [out for line in lines for out in coloured.feed(line)] == [lines[1], lines[3], lines[4]]
     assert all(not ANSI.search(line) for line in kept)
+
+
+def test_an_installed_packages_run_key_follows_its_installed_libraries(monkeypatch):
+    """Outside a checkout there is no environment.lock: the run key holds the installed
+    distributions instead, so upgrading one makes the runs stale (in a checkout: the lock's hash)."""
+    from importlib import metadata
+    from types import SimpleNamespace
+
+    from sss_locus.pipeline.publish import provenance
+    from sss_locus.pipeline.run import outputs
+    from sss_locus.pipeline.run.registry import get_entry
+
+    def environment(*dists):
+        monkeypatch.setattr(metadata, "distributions",
+                            lambda: [SimpleNamespace(metadata={"Name": n}, version=v) for n, v in dists])
+        provenance.installed_distributions_sha256.cache_clear()
+        return outputs.run_key(get_entry("concept"), "quick", {}), provenance.environment_sha256()
+
+    in_checkout = environment(("numpy", "2.4.0"))
+    assert in_checkout[1] == provenance.lock_sha256() != "missing"
+    monkeypatch.setattr(paths, "IN_CHECKOUT", False)
+    old = environment(("numpy", "2.4.0"), ("scipy", "1.16.0"))
+    assert environment(("scipy", "1.16.0"), ("numpy", "2.4.0")) == old  # the same libraries
+    new = environment(("numpy", "2.4.1"), ("scipy", "1.16.0"))
+    assert new[0] != old[0] and new[1] != old[1] and in_checkout[0] not in (old[0], new[0])
+    provenance.installed_distributions_sha256.cache_clear()
+
+
+def test_a_book_without_its_sources_is_refused_in_one_line_before_any_run(tmp_path, monkeypatch, capsys):
+    """An installed package built without the book's sources: ``sss-locus book`` names them and
+    where it looked, and runs nothing."""
+    from sss_locus.pipeline.cli import command
+
+    monkeypatch.setattr(paths, "IN_CHECKOUT", False)
+    monkeypatch.setattr(paths, "CONFIG_FILE", tmp_path / "_shipped" / "_config.yml")
+    monkeypatch.setattr(paths, "BOOK_DIR", tmp_path / "_shipped" / "book")
+    monkeypatch.setenv(paths.BUILD_DIR_ENV, str(tmp_path / "build"))
+    monkeypatch.setenv(paths.CACHE_DIR_ENV, str(tmp_path / "cache"))
+    assert command.main(["book", "--profile", "quick"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "the book's sources _config.yml, book/ are missing from the installed package" in err
+    assert not (tmp_path / "build").exists()
