@@ -221,7 +221,91 @@ def document(inputs: DataInputs | None = None) -> dict[str, Any]:
         doc = merge(doc, user)
     for text in inputs.sets:
         doc = merge(doc, parse_set(text, doc))
-    return doc
+    return mark_changed_names(doc, shipped_document()) if inputs.files or inputs.sets else doc
+
+
+#: The tables whose entries' ``name`` says what a figure shows (a caption or a panel title).
+NAMED_TABLES: tuple[str, ...] = ("sonars", "platforms")
+
+
+def changed_fields(entry: Any, shipped: Any, prefix: str = "") -> list[str]:
+    """Dotted fields of a data entry whose values differ from the shipped entry's, ``name``
+    left out; a number entry compares its ``value`` only (a new source text is no new value).
+
+    Parameters
+    ----------
+    entry, shipped : Any
+        An entry of the merged and of the shipped document (e.g. ``doc["sonars"]["x"]``).
+    prefix : str
+        Prepended to every field (used by the recursion).
+
+    Returns
+    -------
+    list of str
+        E.g. ``["azimuth_deg", "transducers.port.tilt_deg"]``, sorted by key; empty when the
+        values are the shipped ones.
+    """
+    if _is_number_entry(entry) and _is_number_entry(shipped):
+        return [] if entry["value"] == shipped["value"] else [prefix.rstrip(".")]
+    if isinstance(entry, Mapping) and isinstance(shipped, Mapping) and not _is_number_entry(entry) \
+            and not _is_number_entry(shipped):
+        return [f for k in sorted(set(entry) | set(shipped)) if not (k == "name" and not prefix)
+                for f in changed_fields(entry.get(k), shipped.get(k), f"{prefix}{k}.")]
+    return [] if entry == shipped else [prefix.rstrip(".")]
+
+
+def changed_name(shipped_name: str, fields: Iterable[str]) -> str:
+    """A shipped entry's name for an entry whose values a user changed but whose name they kept:
+    ``"<name> (changed: <fields>)"``, so no figure names shipped hardware for other values.
+
+    Parameters
+    ----------
+    shipped_name : str
+        The shipped entry's ``name``.
+    fields : iterable of str
+        The changed fields (:func:`changed_fields`), at least one.
+
+    Returns
+    -------
+    str
+        The marked name.
+    """
+    return f"{shipped_name} (changed: {', '.join(fields)})"
+
+
+def mark_changed_names(doc: Mapping[str, Any], shipped: Mapping[str, Any]) -> dict[str, Any]:
+    """``doc`` with the name of every shipped sonar and platform whose values it changes, but not
+    its name, marked by :func:`changed_name`; a platform also counts its sonar's changes
+    (``"sonar azimuth_deg"``).
+
+    Parameters
+    ----------
+    doc : Mapping
+        A merged data document (shipped data, user files, overrides).
+    shipped : Mapping
+        The shipped document (:func:`shipped_document`).
+
+    Returns
+    -------
+    dict
+        A copy of ``doc``; entries the user renamed, added or left as shipped are unchanged.
+    """
+    out = copy.deepcopy(dict(doc))
+    changed: dict[str, dict[str, list[str]]] = {t: {} for t in NAMED_TABLES}
+    for table in NAMED_TABLES:
+        for key, entry in doc.get(table, {}).items():
+            ship = shipped.get(table, {}).get(key)
+            if isinstance(entry, Mapping) and isinstance(ship, Mapping):
+                changed[table][key] = changed_fields(entry, ship)
+    for key, fields in changed["platforms"].items():
+        sonar = doc["platforms"][key].get("sonar")
+        if isinstance(sonar, str) and sonar == shipped["platforms"][key].get("sonar"):  # a renamed sonar too
+            fields += [f"sonar {f}" for f in changed["sonars"].get(sonar, [])]
+    for table in NAMED_TABLES:
+        for key, fields in changed[table].items():
+            if fields and doc[table][key].get("name") == shipped[table][key].get("name"):
+                out[table][key]["name"] = changed_name(shipped[table][key]["name"], fields)
+    return out
 
 
 def make_inputs(files: Iterable[str | Path] = (), sets: Iterable[str] = ()) -> DataInputs:

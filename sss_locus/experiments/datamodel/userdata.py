@@ -386,6 +386,9 @@ def changed_from_shipped(platform_keys: Iterable[str], inputs: DataInputs | None
     """
     doc, shipped = document(inputs), shipped_document()
     found: list[str] = []
+    marked = {f"{t}.{k}.name" for t in datadoc.NAMED_TABLES for k, e in doc.get(t, {}).items()
+              if k in shipped.get(t, {}) and isinstance(e, dict)
+              and e.get("name", "").startswith(datadoc.changed_name(shipped[t][k].get("name", ""), []).rstrip(")"))}
     for key in platform_keys:
         if key not in shipped.get("platforms", {}):
             found.append(f"platforms.{key}")
@@ -399,4 +402,4 @@ def changed_from_shipped(platform_keys: Iterable[str], inputs: DataInputs | None
     found += _leaf_differences(doc.get("offset_models"), shipped.get("offset_models"), "offset_models")
     for table in tables:
         found += _leaf_differences(doc.get(table), shipped.get(table), table)
-    return list(dict.fromkeys(found))
+    return [f for f in dict.fromkeys(found) if f not in marked]  # a marked name is no change of its own

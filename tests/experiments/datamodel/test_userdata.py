@@ -299,3 +299,44 @@ def test_a_bad_data_directory_is_refused_in_one_line_naming_it(tmp_path, monkeyp
             "from-environment": "holds no .toml file"}[kind]
     assert said in err and ("SSS_LOCUS_DATA_DIR" if kind == "from-environment" else "--data-dir") in err
     assert not (tmp_path / "build").exists()
+
+
+SHIPPED_SONAR = "EdgeTech 2205 (approximation, as in the paper)"
+SHIPPED_AUV = "Torpedo AUV (REMUS-100 / Iver3 class), dual EdgeTech 2205"
+
+
+def test_a_shipped_sonar_with_other_values_is_not_named_as_shipped(tmp_path):
+    # a user's file gives the EdgeTech 2205 entry a 100 deg aperture and keeps its name: every
+    # figure title and caption would otherwise name the shipped sonar for a fan it does not have
+    user = tmp_path / "sonar.toml"
+    user.write_text('[sonars.edgetech_2205.azimuth_deg]\nvalue = 100.0\nassumption = "ours"\n')
+    userdata.use([user])
+    auv = load_platform("auv")
+    assert auv.sonar.azimuth_deg == 100.0
+    assert auv.sonar.name == f"{SHIPPED_SONAR} (changed: azimuth_deg)"
+    assert auv.name == f"{SHIPPED_AUV} (changed: sonar azimuth_deg)"
+    assert "(changed: azimuth_deg), 100° × 0.27°" in userdata.describe_platform("auv")
+    assert load_platform("boat").name == "Surface boat (BlueBoat-class), dual Omniscan 450 SS"  # other sonar
+    # the change is listed once, as the value it is, not again as a change of name
+    assert userdata.changed_from_shipped(["auv"]) == ["sonars.edgetech_2205.azimuth_deg"]
+
+
+def test_a_platform_value_set_on_the_command_line_marks_that_platform_only():
+    userdata.use([], ["platforms.boat.transducers.port.tilt_deg=35"])
+    assert load_platform("boat").name.endswith("(changed: transducers.port.tilt_deg)")
+    assert load_platform("boat").sonar.name == "Cerulean Omniscan 450 SS"  # the sonar is as shipped
+    assert load_platform("auv").name == SHIPPED_AUV
+
+
+def test_a_new_source_for_the_shipped_value_or_a_new_name_is_not_marked(tmp_path):
+    same = tmp_path / "same.toml"
+    same.write_text('[sonars.edgetech_2205.azimuth_deg]\nvalue = 130.0\nsource = "our own datasheet"\n')
+    userdata.use([same])
+    assert load_platform("auv").sonar.name == SHIPPED_SONAR and load_platform("auv").name == SHIPPED_AUV
+    renamed = tmp_path / "renamed.toml"
+    renamed.write_text('[sonars.edgetech_2205]\nname = "Our 2205, wide"\n'
+                       'azimuth_deg = { value = 100.0, assumption = "ours" }\n')
+    userdata.use([renamed])
+    assert load_platform("auv").sonar.name == "Our 2205, wide"
+    assert load_platform("auv").name == f"{SHIPPED_AUV} (changed: sonar azimuth_deg)"
+    assert userdata.changed_from_shipped(["auv"]) == ["sonars.edgetech_2205.azimuth_deg", "sonars.edgetech_2205.name"]
