@@ -24,6 +24,7 @@ from matplotlib.patches import Polygon as PolygonPatch
 
 from sss_locus.experiments.survey_design.coverage import reach_limits_m
 from sss_locus.experiments.survey_design.front import OBJECTIVES
+from sss_locus.experiments.survey_design.scoring import lower_end_cut
 from sss_locus.report.common.style import PAGE_WIDTH_IN, platform_title, themed
 from sss_locus.report.survey_design.map import LEGEND_X, add_graticule, add_scale_bar
 from sss_locus.report.common.text import fmt_ci, fmt_ci_cells, fmt_percent, fmt_sig
@@ -370,10 +371,21 @@ def _depth_levels(depths_m) -> list[float]:
 ERROR_LABELS = {"horizontal": "horizontal", "vertical": "vertical", "shape": "map-shape"}
 
 
+#: Said inside the parentheses of an interval whose lower end was cut at 0
+#: (:func:`~sss_locus.experiments.survey_design.scoring.lower_end_cut`).
+CUT_NOTE = "lower end cut at 0"
+
+
+def _say_cut(text: str, cut: bool) -> str:
+    """``"1.6 (95 % CI 0–3.4)"`` -> ``"1.6 (95 % CI 0–3.4, lower end cut at 0)"`` when ``cut``."""
+    return f"{text[:-1]}, {CUT_NOTE})" if cut and text.endswith(")") else text
+
+
 def error_text(row, name: str = "horizontal") -> str:
     """A plan's mean error ``name`` (of :data:`ERROR_LABELS`) over the seeds with its 95 %
     interval (a row of :func:`~sss_locus.experiments.survey_design.scoring.summarise`), e.g.
-    ``"2.6 (95 % CI 2.4–2.8) m"``; ``"too few features"`` without an interval.
+    ``"2.6 (95 % CI 2.4–2.8) m"``, or ``"1.6 (95 % CI 0–3.4, lower end cut at 0) m"`` where the
+    symmetric interval reached below 0; ``"too few features"`` without an interval.
 
     Parameters
     ----------
@@ -390,7 +402,8 @@ def error_text(row, name: str = "horizontal") -> str:
     """
     if not math.isfinite(row[f"error_{name}_lo_m"]):
         return "too few features"
-    return fmt_ci(row[f"error_{name}_m"], row[f"error_{name}_lo_m"], row[f"error_{name}_hi_m"]) + " m"
+    mean, lo, hi = (row[f"error_{name}{s}_m"] for s in ("", "_lo", "_hi"))
+    return _say_cut(fmt_ci(mean, lo, hi), lower_end_cut(mean, lo, hi)) + " m"
 
 
 def _counts(row) -> str:
@@ -518,7 +531,8 @@ def noise_table_shown(frame: pd.DataFrame) -> pd.DataFrame:
         number (``"search, plan 4"``: several searched plans of one platform are told apart);
         columns ``track_km``, ``covered_twice``, ``horizontal_error_m``, ``vertical_error_m``,
         ``map_shape_error_m`` (text: the mean over the seeds of the median error and its 95 %
-        interval, or ``"—"`` under 30 features), ``seeds`` and ``fewest_features``.
+        interval, saying where its lower end was cut at 0, or ``"—"`` under 30 features),
+        ``seeds`` and ``fewest_features``.
 
     >>> f = pd.DataFrame({"total_m": [8000.0, 7000.0], "covered_twice": [1.0, 1.0], "n_seeds": [5, 5],
     ...     "min_features": [120, 12], "error_horizontal_m": [0.9, float("nan")],
@@ -537,7 +551,8 @@ def noise_table_shown(frame: pd.DataFrame) -> pd.DataFrame:
                         "covered_twice": rows["covered_twice"]})
     for e, label in ERROR_LABELS.items():
         v, lo, hi = (rows[f"error_{e}{s}_m"].to_numpy(float) for s in ("", "_lo", "_hi"))
-        out[f"{label.replace('-', '_')}_error_m"] = fmt_ci_cells(v, lo, hi)
+        out[f"{label.replace('-', '_')}_error_m"] = [
+            _say_cut(text, cut) for text, cut in zip(fmt_ci_cells(v, lo, hi), lower_end_cut(v, lo, hi))]
     out["seeds"] = rows["n_seeds"]
     out["fewest_features"] = rows["min_features"]
     return out.set_index(["platform", "plan"])

@@ -13,7 +13,7 @@ from collections.abc import Sequence
 import pandas as pd
 
 from sss_locus.report.common.text import fmt_percent, fmt_sig
-from sss_locus.report.survey_design.figures import ERROR_LABELS, OBJECTIVE_LABELS
+from sss_locus.report.survey_design.figures import CUT_NOTE, ERROR_LABELS, OBJECTIVE_LABELS
 
 
 def area_note(area, seafloor: str, n_features: int, seed: int) -> str:
@@ -114,7 +114,9 @@ def noise_caption(noise_seeds: Sequence[int], decide_on: str, note: str) -> str:
             f"adjusted jointly over seeds {', '.join(map(str, noise_seeds))}: track length, share of the area seen twice, "
             f"the median horizontal, vertical and map-shape error of the joint estimate (mean over the seeds, 95 % "
             f"interval; decided on: {ERROR_LABELS[decide_on]}), and the fewest features a seed's median used "
-            f"(under 30: left empty). {note}")
+            f"(under 30: left empty). The interval is Student's t over the seeds, symmetric about the mean; where it "
+            f"reaches below 0 its lower end is cut at 0 and the cell says \"{CUT_NOTE}\" (an error is not negative: "
+            f"the cut keeps the interval's coverage, and the rule reads the ends shown). {note}")
 
 
 def crossing_caption(objective: str, note: str) -> str:

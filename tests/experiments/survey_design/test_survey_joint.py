@@ -223,6 +223,45 @@ def test_the_rule_is_decided_on_the_named_error_and_a_plan_under_30_features_is_
         scoring.recommend_under_noise(summary, "3d")
 
 
+def test_an_interval_reaching_below_0_is_cut_there_said_so_and_the_rule_reads_the_ends_shown():
+    """Three seeds of the standard plan's horizontal medians 0.2, 1.5 and 3.1 m: Student's t
+    interval (scipy.stats.t.interval, independent of the package) is symmetric about the mean
+    1.6 m and reaches below 0; the summary's lower end is 0, the upper end scipy's, and the text
+    the reader sees says the end was cut. Plan 1 (0.10-0.14 m) lies wholly below the
+    standard plan's upper end but not below its lower end: not recommended, with the cut ends or
+    without. Plan 2 has a narrow interval above 0: nothing is cut, nothing said."""
+    from scipy import stats
+
+    from sss_locus.report.survey_design.figures import CUT_NOTE, error_text, noise_table_shown
+
+    std = [(0, "standard", 1, 1000.0, 200, 0.2, 0.90), (0, "standard", 2, 1000.0, 200, 1.5, 1.00),
+           (0, "standard", 3, 1000.0, 200, 3.1, 0.95)]
+    one = [(1, "search", 1, 900.0, 200, 0.10, 0.30), (1, "search", 2, 900.0, 200, 0.14, 0.35),
+           (1, "search", 3, 900.0, 200, 0.12, 0.32)]
+    two = [(2, "search", 1, 950.0, 200, 1.0, 0.30), (2, "search", 2, 950.0, 200, 1.1, 0.35),
+           (2, "search", 3, 950.0, 200, 1.2, 0.32)]
+    summary = scoring.summarise(_scores(std + one + two))
+    h = np.array([0.2, 1.5, 3.1])
+    lo, hi = stats.t.interval(0.95, df=2, loc=h.mean(), scale=stats.sem(h))
+    assert lo < 0 < hi  # the case: a symmetric interval of a non-negative error below 0
+    row = summary.loc[0]
+    assert (row.error_horizontal_m, row.error_horizontal_lo_m, row.error_horizontal_hi_m) == pytest.approx(
+        (h.mean(), 0.0, hi))
+    for i, v in ((1, [0.10, 0.14, 0.12]), (2, [1.0, 1.1, 1.2])):  # not cut: scipy's ends
+        assert summary.loc[i, ["error_horizontal_lo_m", "error_horizontal_hi_m"]].tolist() == pytest.approx(
+            stats.t.interval(0.95, df=2, loc=np.mean(v), scale=stats.sem(v)))
+    assert (summary.filter(like="_lo_m") >= 0).all().all()
+    assert error_text(row) == f"1.6 (95 % CI 0–{hi:.2g}, {CUT_NOTE}) m"
+    assert CUT_NOTE not in error_text(summary.loc[1]) and CUT_NOTE not in error_text(summary.loc[2])
+    shown = noise_table_shown(summary.assign(platform="auv").reset_index().set_index(["platform", "kind", "plan_index"]))
+    assert shown.loc[("auv", "standard"), "horizontal_error_m"].endswith(f", {CUT_NOTE})")
+    assert CUT_NOTE not in shown.loc[("auv", "search, plan 1"), "horizontal_error_m"]
+    verdict = scoring.recommend_under_noise(summary, "horizontal")
+    assert (verdict["recommended"], verdict["holds"], verdict["best"]) == (0, False, 1)
+    uncut_holds = summary.loc[1, "error_horizontal_hi_m"] < lo  # the rule on scipy's uncut ends
+    assert verdict["holds"] == uncut_holds == (summary.loc[1, "error_horizontal_hi_m"] < row.error_horizontal_lo_m)
+
+
 def test_the_candidates_are_the_baselines_and_the_leading_eligible_plans_no_longer_than_the_standard():
     plans = pd.DataFrame({"kind": ["standard", "lawnmower", "search", "search", "search", "search", "search"],
                           "total_m": [1000.0, 1000.0, 900.0, 950.0, 1200.0, 800.0, 990.0],
