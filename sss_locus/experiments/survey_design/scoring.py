@@ -172,6 +172,36 @@ def score_plans(platform, area_key: dict, terrain: str, plans: pd.DataFrame, noi
     return pd.DataFrame(rows)
 
 
+def solver_path_shifts(platform, area_key: dict, terrain: str, plans: pd.DataFrame, noise, pass_noise, *, seeds,
+                       n_features: int, grid_m: float) -> pd.DataFrame:
+    """The standard plan's joint estimate solved along a second path on every seed
+    (:func:`~sss_locus.experiments.survey_design.joint.solver_path_shift`): whether the estimates
+    of features seen on only two passes, and the medians the rule reads, depend on the solver.
+
+    Parameters
+    ----------
+    platform, area_key, terrain, plans, noise, pass_noise, seeds, n_features, grid_m
+        As for :func:`score_plans` (``plans``: the search's table, whose ``standard`` row is
+        solved).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per seed: ``seed`` and the counts and shifts (m) of ``solver_path_shift``.
+    """
+    from sss_locus.experiments.survey_design.area import area_from_key
+    from sss_locus.experiments.survey_design.front import make_setting, plan_from_row
+    from sss_locus.experiments.survey_design.joint import solver_path_shift
+
+    area = area_from_key(area_key)
+    plan = plan_from_row(plans[plans.kind == "standard"].iloc[0])
+    rows = []
+    for sd in check_seeds(seeds):
+        s = make_setting(platform, area, terrain, n_features=n_features, seed=sd, grid_m=grid_m)
+        rows.append({"seed": sd, **solver_path_shift(s, plan, noise, pass_noise, seed=sd)})
+    return pd.DataFrame(rows)
+
+
 def summarise(scores: pd.DataFrame) -> pd.DataFrame:
     """Per plan (index ``plan_index``): ``kind``, ``total_m``, ``covered_twice``, ``eligible``,
     ``n_seeds``, ``min_features`` (the fewest features any of its seeds' medians used) and

@@ -18,7 +18,8 @@ from sss_locus.experiments.survey_design.front import (OBJECTIVES, by_crossing_a
 from sss_locus.experiments.survey_design.lines import heading_from_compass_deg
 from sss_locus.experiments.survey_design.plans import load_settings
 from sss_locus.experiments.survey_design.route import turn_misfits
-from sss_locus.experiments.survey_design.scoring import ERRORS, recommend_under_noise, score_plans, summarise
+from sss_locus.experiments.survey_design.scoring import (ERRORS, recommend_under_noise, score_plans, solver_path_shifts,
+                                                         summarise)
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish.missions import mission_files, waypoints
 from sss_locus.pipeline.publish.publish import place, publish
@@ -28,8 +29,8 @@ from sss_locus.report.survey_design.figures import (ERROR_LABELS, OBJECTIVE_LABE
                                                     noise_verdict_sentence, plan_caption, plan_label, plot_front,
                                                     plot_plan, verdict_words, with_compass)
 from sss_locus.report.survey_design.prose import (area_note, best_pairs_sentence, crossing_caption, front_caption,
-                                                  noise_caption, plans_caption, standard_twice_sentence,
-                                                  standard_twice_text)
+                                                  noise_caption, plans_caption, solver_path_sentence,
+                                                  standard_twice_sentence, standard_twice_text)
 
 
 class KEYS:
@@ -50,6 +51,7 @@ __all__ = ["key", "KEYS", "area_note", "best_pairs_sentence", "by_crossing_angle
            "load_noise_model", "load_pass_noise", "load_platform", "load_settings", "Markdown", "mission_files",
            "noise_caption", "noise_table_shown", "noise_verdict_sentence", "OBJECTIVE_LABELS", "OBJECTIVES", "pd",
            "place", "plan_caption", "plan_coverage", "plan_label", "plans_caption", "plot_front", "plot_plan",
-           "publish", "recommend_under_noise", "score_plans", "search_plans", "show_table",
+           "publish", "recommend_under_noise", "score_plans", "search_plans", "show_table", "solver_path_sentence",
+           "solver_path_shifts",
            "standard_twice_sentence", "standard_twice_text", "summarise", "time", "turn_misfits", "use_data",
            "vehicle_depth_m", "verdict_words", "waypoints", "with_compass", "with_water_depth"]

@@ -199,3 +199,35 @@ def best_pairs_sentence(plans: dict[str, pd.DataFrame], platforms: dict) -> str:
              f"on the recommended plan and {fmt_sig(t[t.kind == 'standard'].best_pair_angle_median_deg.iloc[0], 3)}° "
              "on the standard plan" for k, t in plans.items()]
     return "; ".join(pairs) + "."
+
+
+def solver_path_sentence(shifts: dict, platforms: dict) -> str:
+    """What the solver's path changes (:func:`~sss_locus.experiments.survey_design.scoring.solver_path_shifts`),
+    per platform: features of the standard plan that moved to another local minimum when solved
+    with ``dogbox`` instead of ``trf``, how many of them were seen on only two passes, the largest
+    move, and how far the median horizontal error moved.
+
+    Parameters
+    ----------
+    shifts : dict of str to pandas.DataFrame
+        Platform key -> ``solver_path_shifts``' table (one row per seed).
+    platforms : dict
+        Platform key -> platform (its ``name``).
+
+    Returns
+    -------
+    str
+        One sentence per platform; lengths in m and mm.
+    """
+    from sss_locus.experiments.survey_design.joint import MOVED_M
+
+    parts = []
+    for key, t in shifts.items():
+        name, n = platforms[key].name, int(t.n_joint.sum())
+        moved = (f"{int(t.n_moved.sum()):,} of {n:,} feature estimates moved by more than {fmt_sig(MOVED_M, 2)} m "
+                 f"({int(t.n_moved_two_pass.sum()):,} of them of features seen on only two passes, which are "
+                 f"{int(t.n_two_pass.sum()):,} of the {n:,})")
+        parts.append(f"For the {name}, over {len(t)} seeds, {moved}; the largest move was "
+                     f"{fmt_sig(float(t.max_shift_m.max()), 2)} m and the median horizontal error moved by at most "
+                     f"{fmt_sig(1e3 * float(t.horizontal_median_shift_m.max()), 2)} mm.")
+    return " ".join(parts)

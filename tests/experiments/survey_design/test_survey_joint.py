@@ -262,6 +262,54 @@ def test_an_interval_reaching_below_0_is_cut_there_said_so_and_the_rule_reads_th
     assert verdict["holds"] == uncut_holds == (summary.loc[1, "error_horizontal_hi_m"] < row.error_horizontal_lo_m)
 
 
+def test_the_solver_path_check_counts_features_as_a_brute_force_over_its_two_solutions(monkeypatch):
+    """solver_path_shift on constructed solutions (the two solves replaced): 5 features, errors
+    of the trf and dogbox solutions written here; feature 4 not estimated by dogbox. The counts,
+    the largest move and the median shift are recomputed feature by feature."""
+    from sss_locus.experiments.survey_design import joint
+
+    trf = np.array([[0.1, 0.0, 0.0], [0.2, 0.1, 0.0], [1.0, 0.0, 0.5], [0.0, 0.3, 0.0], [9.0, 9.0, 9.0]])
+    dog = trf + np.array([[0.0, 0.0, 0.0], [40.0, 30.0, 0.0], [0.0, 0.0, 0.9], [0.0, 1.2, 0.0], [0.0, 0.0, 0.0]])
+    seen = np.array([[1, 1, 0], [1, 1, 0], [1, 1, 1], [1, 0, 1], [1, 1, 0]], bool)  # passes per feature: 2, 2, 3, 2, 2
+    rows = []
+    for name, e, est in (("trf", trf, [True] * 5), ("dogbox", dog, [True, True, True, True, False])):
+        for f in (4, 2, 0, 3, 1):  # not in feature order
+            rows.append({"feature": f, "estimator": name, "estimated": est[f], "error_x_m": e[f, 0],
+                         "error_y_m": e[f, 1], "error_v_m": e[f, 2], "error_h_m": math.hypot(e[f, 0], e[f, 1])})
+    monkeypatch.setattr(joint, "_joint_tables", lambda *a, **k: (pd.DataFrame(rows), seen))
+    out = joint.solver_path_shift(None, None, None, None, seed=1)
+    moves = [float(np.linalg.norm(dog[f] - trf[f])) for f in range(4)]  # 0, 50, 0.9, 1.2
+    two = [int(seen[f].sum()) == 2 for f in range(4)]
+    h = lambda e: sorted(math.hypot(*e[f, :2]) for f in range(4))  # noqa: E731
+    assert out["n_joint"] == 4 and out["n_two_pass"] == sum(two) == 3
+    assert out["n_moved"] == sum(m > 1.0 for m in moves) == 2
+    assert out["n_moved_two_pass"] == sum(m > 1.0 and t for m, t in zip(moves, two)) == 2
+    assert out["max_shift_m"] == pytest.approx(max(moves)) and max(moves) == pytest.approx(50.0)
+    assert out["horizontal_median_shift_m"] == pytest.approx(abs(np.mean(h(trf)[1:3]) - np.mean(h(dog)[1:3])))
+
+
+def test_the_solver_path_checks_first_solve_is_the_scorings_and_one_minimum_gives_one_answer():
+    """On the chapter's example area (dense: every feature tied to its neighbours) the two methods
+    reach one optimum: no feature moves by a centimetre, and the check estimates the features
+    the scoring's joint estimate estimated."""
+    from sss_locus.experiments.survey_design.area import load_area
+    from sss_locus.experiments.survey_design.front import make_setting, standard_for
+    from sss_locus.experiments.survey_design.joint import solver_path_shift
+    from sss_locus import paths
+
+    area = load_area(str(paths.DATA_DIR / "examples" / "survey_area.toml"))
+    pf = load_platform("boat")
+    s = make_setting(pf, area, "flat", n_features=60, seed=1, grid_m=40.0)
+    plan = standard_for(s)
+    out = solver_path_shift(s, plan, load_noise_model("boat"), load_pass_noise("boat"), seed=1)
+    ref = plan_joint_errors(s, plan, load_noise_model("boat"), load_pass_noise("boat"), seed=1)
+    assert out["n_joint"] == ref["n_joint"] == 60 and out["n_two_pass"] > 0
+    assert out["n_moved"] == 0 and out["max_shift_m"] < 0.01 and out["horizontal_median_shift_m"] < 0.01
+    sightings, priors, start, _ = _simulate(False, 1)
+    with pytest.raises(ValueError, match="method must be one of"):  # lm and exact take no sparse Jacobian
+        adjust(sightings, priors, start, method="lm")
+
+
 def test_the_candidates_are_the_baselines_and_the_leading_eligible_plans_no_longer_than_the_standard():
     plans = pd.DataFrame({"kind": ["standard", "lawnmower", "search", "search", "search", "search", "search"],
                           "total_m": [1000.0, 1000.0, 900.0, 950.0, 1200.0, 800.0, 990.0],
