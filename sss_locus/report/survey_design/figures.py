@@ -420,6 +420,41 @@ SAME_LENGTH = 5e-4
 (the lawn-mower is spaced by bisection to the standard plan's track length)."""
 
 
+def none_as_short(plans: pd.DataFrame) -> str:
+    """Why no searched plan could be recommended, when none was: the rule recommends only an
+    eligible plan no longer than the standard plan; and, where the headings searched are not the
+    standard plan's (which follows the area: its long axis, or the slope), that ``headings_deg``
+    cannot force a heading whose lines make a longer track. ``""`` when some searched plan is
+    eligible and no longer than the standard plan, or none was searched.
+
+    Parameters
+    ----------
+    plans : pandas.DataFrame
+        The search's plans (``kind``, ``eligible``, ``total_m``, ``heading_deg`` in deg
+        counter-clockwise from east, and :func:`plan_label`'s columns).
+
+    Returns
+    -------
+    str
+        One sentence, or ``""``.
+    """
+    search = plans[plans.kind == "search"]
+    std = plans[plans.kind == "standard"].iloc[0]
+    if search.empty or (search.eligible.astype(bool) & (search.total_m <= std.total_m)).any():
+        return ""
+    compass = lambda h: round((90.0 - h) % 180.0) % 180  # noqa: E731  (a line's two directions: one number)
+    searched = sorted({compass(h) for h in search.heading_deg})
+    n_ok = int(search.eligible.astype(bool).sum())
+    text = (f" None of the {len(search)} searched plans could be recommended: {n_ok} of them "
+            f"{'sees' if n_ok == 1 else 'see'} enough of the area twice, and none of those is as short as the "
+            f"standard plan ({plan_label(std)}); the rule recommends only a plan no longer than the standard plan.")
+    if compass(std.heading_deg) not in searched:
+        text += (f" The headings searched (lines at {', '.join(f'{a:03d}°/{a + 180:03d}°' for a in searched)}) are "
+                 "not the standard plan's, which follows the area (its long axis, or the slope): where such lines make "
+                 "a longer track, `headings_deg` cannot force a heading.")
+    return text
+
+
 def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataFrame, platform) -> str:
     """The recommendation with the joint adjustment under the noise model in one or two sentences
     (:func:`sss_locus.experiments.survey_design.scoring.recommend_under_noise`): the deciding
@@ -442,8 +477,13 @@ def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataF
     Returns
     -------
     str
-        One or two sentences; errors in m.
+        One to three sentences; errors in m. Where no searched plan was eligible and as short as
+        the standard plan, the last one says so (:func:`none_as_short`).
     """
+    return _noise_verdict(summary, verdict, plans, platform) + none_as_short(plans)
+
+
+def _noise_verdict(summary: pd.DataFrame, verdict: dict, plans: pd.DataFrame, platform) -> str:
     name, std = platform.name, summary.loc[verdict["standard"]]
     e = verdict["error"]
     what = f"{ERROR_LABELS[e]} error of the joint estimate"

@@ -227,7 +227,9 @@ def solver_path_sentence(shifts: dict, platforms: dict) -> str:
         moved = (f"{int(t.n_moved.sum()):,} of {n:,} feature estimates moved by more than {fmt_sig(MOVED_M, 2)} m "
                  f"({int(t.n_moved_two_pass.sum()):,} of them of features seen on only two passes, which are "
                  f"{int(t.n_two_pass.sum()):,} of the {n:,})")
+        largest = float(t.max_shift_m.max())
+        largest = f"{fmt_sig(largest, 2)} m" if largest >= 1.0 else f"{fmt_sig(1e3 * largest, 2)} mm"
         parts.append(f"For the {name}, over {len(t)} seeds, {moved}; the largest move was "
-                     f"{fmt_sig(float(t.max_shift_m.max()), 2)} m and the median horizontal error moved by at most "
+                     f"{largest} and the median horizontal error moved by at most "
                      f"{fmt_sig(1e3 * float(t.horizontal_median_shift_m.max()), 2)} mm.")
     return " ".join(parts)
