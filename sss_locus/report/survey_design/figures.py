@@ -301,7 +301,8 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
         bx0, by0, bx1, by1 = area.polygon.bounds  # the grid over the area only (it spans more)
         ix = (gx >= bx0 - b.spacing_m) & (gx <= bx1 + b.spacing_m)
         iy = (gy >= by0 - b.spacing_m) & (gy <= by1 + b.spacing_m)
-        cs = ax.contour(gx[ix], gy[iy], b.depth_m[np.ix_(iy, ix)], levels=_depth_levels(b.area_depths_m),
+        depth = np.round(b.depth_m[np.ix_(iy, ix)], CONTOUR_DECIMALS)  # a flat floor on a level: one value
+        cs = ax.contour(gx[ix], gy[iy], depth, levels=_depth_levels(b.area_depths_m),
                         colors="saddlebrown", linewidths=0.6, alpha=0.8, zorder=2)
         inside = PolygonPatch(xy, closed=True, transform=ax.transData)
         cs.set_clip_path(inside)
@@ -355,6 +356,15 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
         labels.append(f"nadir gap (±{nadir_gap_m:.0f} m)")
     ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(LEGEND_X, 1.0), fontsize=9, frameon=False)
     return ax.figure
+
+
+#: Decimals (of a metre) the depth grid is rounded to before its contours are drawn. A flat floor
+#: whose depth is a contour level (a 140 m trench, levels every 20 m) comes out of the grid's
+#: reprojection as 140 m give or take 1e-13 m, and the contour at 140 m then circled each cell of
+#: the floor that came out a hair deeper: small blobs over the whole floor. Rounded to the
+#: millimetre, the floor is exactly the level, which the contour treats as not deeper than it:
+#: the line runs where the depth crosses the level, not around rounding noise.
+CONTOUR_DECIMALS = 3
 
 
 def _depth_levels(depths_m) -> list[float]:
