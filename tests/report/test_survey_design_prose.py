@@ -48,3 +48,33 @@ def test_table_captions_end_with_the_area_note_and_leave_the_files_sentence_to_s
     assert "seeds 1, 2, 3:" in captions["tab-survey-design-noise"]
     assert "decided on: map-shape)" in captions["tab-survey-design-noise"]
     assert "share of features not resolved by three views" in captions["tab-survey-design-crossing"]
+
+
+def test_a_verdict_says_when_no_searched_plan_could_be_recommended_and_why_a_heading_cannot_be_forced():
+    """A search of north-south lines only over an area whose standard plan runs east-west (heading
+    0 deg counter-clockwise from east, compass 090): the searched plans are either not eligible or
+    longer than the standard plan, so the rule cannot recommend any; the verdict says so and names
+    the headings. Searched at the standard plan's own heading, it says the first part only."""
+    from sss_locus.report.survey_design.figures import none_as_short
+
+    plans = pd.DataFrame({"kind": ["standard", "lawnmower", "search", "search", "search"],
+                          "heading_deg": [0.0, 0.0, 90.0, 90.0, 90.0], "total_m": [9600.0, 9600.0, 4300.0, 11800.0, 10200.0],
+                          "eligible": [True, True, False, True, True], "spacing_m": [240.0, 105.0, 240.0, 105.0, 160.0],
+                          "crossing_deg": [0.0, float("nan"), float("nan"), 0.0, 90.0], "cross_spacing_m": [240.0] * 5,
+                          "altitude_m": [30.0] * 5, "pitch_deg": [0.0] * 5})
+    text = none_as_short(plans)
+    assert "None of the 3 searched plans could be recommended: 2 of them see enough of the area twice" in text
+    assert "lines at 000°/180°" in text and "`headings_deg` cannot force a heading" in text
+    assert "090°/270° lines 240 m apart" in text  # the standard plan, by its own label
+    same = plans.assign(heading_deg=0.0)
+    assert none_as_short(same).startswith(" None of the 3") and "cannot force" not in none_as_short(same)
+    shorter = plans.assign(total_m=[9600.0, 9600.0, 4300.0, 9000.0, 10200.0])  # plan 3: eligible, shorter
+    assert none_as_short(shorter) == ""
+    verdict = {"standard": 0, "best": 0, "error": "horizontal", "reason": "the standard plan is the best", "holds": False}
+    summary = pd.DataFrame({"error_horizontal_m": [1.0], "error_horizontal_lo_m": [0.5], "error_horizontal_hi_m": [1.5],
+                            "error_vertical_m": [0.2], "error_vertical_lo_m": [0.1], "error_vertical_hi_m": [0.3],
+                            "error_shape_m": [0.4], "error_shape_lo_m": [0.3], "error_shape_hi_m": [0.5],
+                            "n_seeds": [5], "min_features": [200], "total_m": [9600.0]}, index=[0])
+    from sss_locus.report.survey_design.figures import noise_verdict_sentence
+
+    assert noise_verdict_sentence(summary, verdict, plans, SimpleNamespace(name="AUV")).endswith(text)

@@ -71,6 +71,9 @@ from .model import NavigationPriors, Sightings, corrected_poses
 from .residuals import JointProblem
 
 LOSSES = ("linear", "soft_l1", "huber", "cauchy")
+METHODS = ("trf", "dogbox")
+"""``least_squares``' methods that take the sparse Jacobian with LSMR (``"lm"`` and
+``"exact"`` need a dense one); the adjustment's is ``"trf"``."""
 GATE_FLOOR_M = 10.0
 GATE_SIGMAS = 5.0
 """The default gate (:func:`default_gate_m`): a start (a mosaic) misses a feature's right
@@ -238,7 +241,7 @@ def default_gate_m(sightings: Sightings, priors: NavigationPriors) -> float:
 
 
 def _solve(sightings, priors, start, use, min_passes, estimate_passes, loss, f_scale, hp, hs, ftol, xtol, max_nfev,
-           lsmr_tol=LSMR_TOL):
+           lsmr_tol=LSMR_TOL, method="trf"):
     """One adjustment with the sightings ``use``: returns the problem, ``x``, the residuals, the
     status, message, evaluations and cost."""
     N, P = start.shape[0], priors.n_passes
@@ -253,7 +256,7 @@ def _solve(sightings, priors, start, use, min_passes, estimate_passes, loss, f_s
     # Gauss-Newton from the start first (quadratic loss: a few iterations), then the robust
     # loss from there (started at metres of navigation error, every residual would look like an
     # outlier); lsmr solved tightly, or the weak common-shift direction stops early
-    opts = dict(method="trf", tr_solver="lsmr", x_scale="jac", tr_options=dict(atol=lsmr_tol, btol=lsmr_tol),
+    opts = dict(method=method, tr_solver="lsmr", x_scale="jac", tr_options=dict(atol=lsmr_tol, btol=lsmr_tol),
                 ftol=ftol, xtol=xtol, gtol=1e-10, max_nfev=max_nfev)
     sol = least_squares(prob.residuals, x0, jac=prob.jacobian, loss="linear", **opts)
     nfev = sol.nfev
@@ -267,7 +270,7 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
            estimate_passes: bool = True, loss: str = "soft_l1", f_scale: float = 3.0, gate_m: float | None = None,
            height_prior_m=None, height_sigma_m=None, covariance: bool = True,
            max_nfev: int | None = None, ftol: float = 1e-10, xtol: float = 1e-10,
-           lsmr_tol: float = LSMR_TOL) -> JointAdjustment:
+           lsmr_tol: float = LSMR_TOL, method: str = "trf") -> JointAdjustment:
     """Jointly adjust the features seen on ``min_passes`` or more passes and the passes'
     navigation corrections (module docstring).
 
@@ -309,6 +312,11 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
         ``atol`` and ``btol`` of its LSMR inner solves (default :data:`LSMR_TOL`; the survey
         design's scoring uses a looser one, measured:
         :data:`~sss_locus.experiments.survey_design.joint.SCORING_LSMR_TOL`).
+    method : {"trf", "dogbox"}
+        ``least_squares``' trust-region method (:data:`METHODS`; both with the sparse Jacobian
+        and LSMR). ``"trf"`` is the adjustment's; ``"dogbox"`` takes another path to an optimum,
+        which shows which features' estimates depend on the path
+        (:func:`~sss_locus.experiments.survey_design.joint.solver_path_shift`).
 
     Returns
     -------
@@ -318,7 +326,8 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
     ------
     ValueError
         Naming the argument: shapes that do not match, a pass or feature index out of range,
-        an unknown loss, ``f_scale`` <= 0, ``min_passes`` < 2, ``lsmr_tol`` outside (0, 1).
+        an unknown loss, ``f_scale`` <= 0, ``min_passes`` < 2, ``lsmr_tol`` outside (0, 1), an
+        unknown ``method``.
     """
     N = int(np.asarray(start_m).shape[0]) if np.ndim(start_m) == 2 else -1
     start = as_float_array(start_m, "start_m", tail=(3,))
@@ -332,6 +341,8 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
                          f"got {sightings.pass_index.max()}")
     if loss not in LOSSES:
         raise ValueError(f"loss must be one of {list(LOSSES)}; got {loss!r}")
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {list(METHODS)}; got {method!r}")
     if not (np.isfinite(f_scale) and f_scale > 0):
         raise ValueError(f"f_scale must be a finite number > 0; got {f_scale!r}")
     if isinstance(min_passes, bool) or int(min_passes) != min_passes or min_passes < 2:
@@ -351,7 +362,7 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
     gate = gate_m if gate_m is not None else default_gate_m(sightings, priors)
     use = misses_m(sightings, priors, start, np.zeros((P, 5))) <= gate
     prob, x, fun, status, msg, nfev, cost = _solve(sightings, priors, start, use, min_passes, estimate_passes, loss,
-                                                   f_scale, hp, hs, ftol, xtol, max_nfev, lsmr_tol)
+                                                   f_scale, hp, hs, ftol, xtol, max_nfev, lsmr_tol, method)
     if gate_m != np.inf:  # a sighting gated out at the start but within the gate at the solution comes back
         p_now, c_now = prob.split(x)
         s_now = start.copy()
@@ -360,7 +371,8 @@ def adjust(sightings: Sightings, priors: NavigationPriors, start_m, *, min_passe
         if np.any(again & ~use):
             use = use | again
             prob, x, fun, status, msg, n2, cost = _solve(sightings, priors, s_now, use, min_passes, estimate_passes,
-                                                         loss, f_scale, hp, hs, ftol, xtol, max_nfev, lsmr_tol)
+                                                         loss, f_scale, hp, hs, ftol, xtol, max_nfev, lsmr_tol,
+                                                         method)
             nfev += n2
     seconds = time.perf_counter() - t0
     feats = prob.features

@@ -75,7 +75,7 @@ def _start(inputs: dict) -> np.ndarray:
 
 
 def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS, *, known_association: bool = False,
-                          lsmr_tol: float = LSMR_TOL) -> dict:
+                          lsmr_tol: float = LSMR_TOL, method: str = "trf") -> dict:
     """The estimators ``names`` (of :data:`JOINT_ESTIMATORS`, module docstring) as the ``extra``
     mapping of :func:`~sss_locus.experiments.reconstruction.estimators.reconstruct`, for a sonar of full
     elevation beam width ``elevation_deg``; ``known_association``: the joint solve without the
@@ -92,6 +92,8 @@ def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS, *, known
         Solve without the robust loss and the gate.
     lsmr_tol : float
         LSMR tolerance of the joint solve.
+    method : str
+        ``least_squares``' method of the joint solve (:func:`~sss_locus.experiments.adjustment.adjust`).
 
     Returns
     -------
@@ -125,7 +127,7 @@ def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS, *, known
                                   drift_sigma=pn.drift_sigma_fraction, reference_m=np.zeros((seen.shape[1], 2)))
         robust = {} if not known_association else {"loss": "linear", "gate_m": math.inf}
         res = adjust(s, priors, _start(inputs), covariance=False, max_nfev=JOINT_MAX_EVALUATIONS, lsmr_tol=lsmr_tol,
-                     **robust)
+                     method=method, **robust)
         return res.point_m, res.adjusted & res.success & np.all(np.isfinite(res.point_m), axis=1)
 
     table = {"beam": lambda inputs: run(inputs, False), "joint": lambda inputs: run(inputs, True)}

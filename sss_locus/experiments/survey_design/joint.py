@@ -32,6 +32,13 @@ as in :func:`~sss_locus.experiments.reconstruction.surveys.survey_errors`):
     plan's estimated features (:func:`~sss_locus.experiments.adjustment.map_errors`): what the
     geometry of the lines determines, the absolute shift removed.
 
+**The solver's path** (:func:`solver_path_shift`): a feature seen on only two passes has two
+ranges and two beam-plane angles, and two ranges from two lines meet in two places, so its part
+of the problem can have two local minima; which one the solve ends in depends on the path the
+solver takes (``benchmarks/README.md``: on a sparse 5 km square, ``least_squares``' ``dogbox``,
+``lm`` and ``exact`` land some such features in another minimum tens of metres away). The check
+solves the same sightings again with ``dogbox`` and reports how far each feature moved.
+
 Seeds: ``seed`` draws the features and seafloor (through the setting), the in-beam elevations
 (``10 seed + 2``) and the noise (``10 seed + 3``), so different seeds are independent surveys
 and every plan of one seed meets the same features (common random numbers).
@@ -56,6 +63,9 @@ limit at 1e-10 in every one of the 130-190 trust-region steps; at 1e-8 the scori
 benchmark took 90 instead of 145 CPU s, and every per-seed median of its 10 plans x 5 seeds moved
 by at most 0.45 mm (horizontal 0.11 mm, shape 0.17 mm), with the same features estimated and the
 same verdict (``benchmarks/README.md``, survey design; ``tests/test_survey_joint.py``)."""
+MOVED_M = 1.0
+"""A feature whose two solutions (:func:`solver_path_shift`) lie farther apart than this (m) has
+moved to another local minimum (the solutions of one minimum agree to millimetres)."""
 JOINT_METRICS = ("horizontal", "vertical", "shape")
 """The errors of :func:`plan_joint_errors` (module docstring); columns ``<name>_median_m``."""
 
@@ -84,17 +94,8 @@ def plan_joint_errors(setting, plan, noise, pass_noise, *, seed: int) -> dict:
         was seen on two or more passes), and ``<metric>_median_m`` for each of
         :data:`JOINT_METRICS` (m; NaN when ``n_joint`` is 0).
     """
-    p = setting.platform
-    lines = plan.lines(setting.area)
-    if lines.empty:
-        raise ValueError(f"plan {plan} leaves no line inside the area")
-    views, seen, info = observe_lines(p, setting.terrain, setting.xy, lines, plan.altitude_m, plan.pitch_deg,
-                                      p.fixed_depth, 10 * int(seed) + 2, setting.centre)
-    table = reconstruct(views, seen, info["sensor_height_m"], noise, p.sonar.aperture(), n_views=(3,),
-                        seed=10 * int(seed) + 3, navigation="per_pass", pass_noise=pass_noise,
-                        along_m=info["along_m"], extra=adjustment_estimators(p.sonar.elevation_deg, ("joint",), known_association=True,
-                                                   lsmr_tol=SCORING_LSMR_TOL))
-    joint = table[table.estimator == "joint"]
+    table, seen = _joint_tables(setting, plan, noise, pass_noise, seed, ("trf",))
+    joint = table[table.estimator == "trf"]
     ok = joint.estimated.to_numpy(bool)
     out = {"n_passes": int(seen.shape[1]), "n_seen_twice": int((seen.sum(axis=1) >= 2).sum()),
            "n_joint": int(ok.sum())}
@@ -105,3 +106,54 @@ def plan_joint_errors(setting, plan, noise, pass_noise, *, seed: int) -> dict:
     return {**out, "horizontal_median_m": float(np.median(e["horizontal_m"])),
             "vertical_median_m": float(np.median(np.abs(e["vertical_m"]))),
             "shape_median_m": float(np.median(e["shape_m"]))}
+
+
+def _joint_tables(setting, plan, noise, pass_noise, seed: int, methods):
+    """The plan flown on ``seed`` and adjusted jointly with each ``least_squares`` method of
+    ``methods`` on the same sightings: the reconstruction table (estimators named by their
+    method) and the ``seen`` matrix (features x passes)."""
+    p = setting.platform
+    lines = plan.lines(setting.area)
+    if lines.empty:
+        raise ValueError(f"plan {plan} leaves no line inside the area")
+    views, seen, info = observe_lines(p, setting.terrain, setting.xy, lines, plan.altitude_m, plan.pitch_deg,
+                                      p.fixed_depth, 10 * int(seed) + 2, setting.centre)
+    extra = {m: adjustment_estimators(p.sonar.elevation_deg, ("joint",), known_association=True,
+                                      lsmr_tol=SCORING_LSMR_TOL, method=m)["joint"] for m in methods}
+    table = reconstruct(views, seen, info["sensor_height_m"], noise, p.sonar.aperture(), n_views=(3,),
+                        seed=10 * int(seed) + 3, navigation="per_pass", pass_noise=pass_noise,
+                        along_m=info["along_m"], extra=extra)
+    return table, seen
+
+
+def solver_path_shift(setting, plan, noise, pass_noise, *, seed: int) -> dict:
+    """How far the joint estimate of one plan on one seed moves when the same sightings are
+    solved along another path: ``least_squares``' ``"dogbox"`` against the adjustment's
+    ``"trf"`` (module docstring, :data:`MOVED_M`).
+
+    Parameters
+    ----------
+    setting, plan, noise, pass_noise, seed
+        As for :func:`plan_joint_errors`.
+
+    Returns
+    -------
+    dict
+        ``n_joint`` (features both solves estimated), ``n_two_pass`` (of them, seen on exactly
+        two passes), ``n_moved`` (of them, moved by more than :data:`MOVED_M`), ``n_moved_two_pass``
+        (of those, seen on two passes), ``max_shift_m`` (the largest move, 3-D, m; 0 without
+        features) and ``horizontal_median_shift_m`` (how far the median horizontal error moved,
+        m; NaN without features).
+    """
+    table, seen = _joint_tables(setting, plan, noise, pass_noise, seed, ("trf", "dogbox"))
+    a, b = (table[table.estimator == m].set_index("feature").sort_index() for m in ("trf", "dogbox"))
+    ok = (a.estimated & b.estimated).to_numpy(bool)
+    cols = ["error_x_m", "error_y_m", "error_v_m"]
+    shift = np.linalg.norm(a[cols].to_numpy(float) - b[cols].to_numpy(float), axis=1)[ok]
+    two = (seen.sum(axis=1)[a.index.to_numpy()] == 2)[ok]
+    moved = shift > MOVED_M
+    med = (abs(float(np.median(a.error_h_m.to_numpy(float)[ok])) - float(np.median(b.error_h_m.to_numpy(float)[ok])))
+           if ok.any() else math.nan)
+    return {"n_joint": int(ok.sum()), "n_two_pass": int(two.sum()), "n_moved": int(moved.sum()),
+            "n_moved_two_pass": int((moved & two).sum()), "max_shift_m": float(shift.max()) if ok.any() else 0.0,
+            "horizontal_median_shift_m": med}

@@ -15,6 +15,17 @@ Per plan (:func:`score_plans`, :func:`summarise`): the mean over the seeds of ea
 ``k >= 3`` seeds). A median over fewer than :data:`MIN_FEATURES` features is not computed (NaN:
 too few to be a finding), and a plan with such a seed has no interval.
 
+**The interval's lower end is cut at 0** (:data:`ERROR_FLOOR_M`, a named choice): every error is
+a median of non-negative distances, but Student's t interval is symmetric about the mean, and
+over few seeds (3 at the quick profile) with a wide spread it reaches below 0 (e.g. a mean of
+1.6 m with ``t sd / sqrt(k)`` = 1.8 m). The end is cut, not the interval changed: the true mean
+is ``>= 0``, so an interval contains it exactly when its cut form does (the coverage is the
+t interval's), and the upper end is untouched. The report says so wherever such an interval is
+shown (:func:`lower_end_cut`). The rule below reads the cut ends, the ones the reader sees; it
+decides as it would on the uncut ones, since a plan's upper end (``>= its mean >= 0``) is never
+below a negative lower end. A log-scale interval was not chosen: it is an interval of the
+geometric mean, another quantity than the mean the table reports.
+
 Which plans (:func:`candidates`): the baselines (standard plan, equal-length lawn-mower), the plan
 the noise-free rule picks, and the ``n_scored`` eligible searched plans no longer than the
 standard plan with the smallest noise-free objective (the search's leading candidates: a
@@ -42,6 +53,9 @@ MIN_FEATURES = 30
 """Fewest features a median is taken over (fewer: not a finding, NaN)."""
 ERRORS = {m: f"{m}_median_m" for m in JOINT_METRICS}
 """Error name -> the column of :func:`score_plans` holding its median over a seed's features."""
+ERROR_FLOOR_M = 0.0
+"""The lower end of every error's interval is cut here (m): an error is never negative (module
+docstring)."""
 COUNT = "n_joint"
 """The column of :func:`score_plans` counting the features behind every median of the row."""
 DECIDING_ERROR = "horizontal"
@@ -158,12 +172,43 @@ def score_plans(platform, area_key: dict, terrain: str, plans: pd.DataFrame, noi
     return pd.DataFrame(rows)
 
 
+def solver_path_shifts(platform, area_key: dict, terrain: str, plans: pd.DataFrame, noise, pass_noise, *, seeds,
+                       n_features: int, grid_m: float) -> pd.DataFrame:
+    """The standard plan's joint estimate solved along a second path on every seed
+    (:func:`~sss_locus.experiments.survey_design.joint.solver_path_shift`): whether the estimates
+    of features seen on only two passes, and the medians the rule reads, depend on the solver.
+
+    Parameters
+    ----------
+    platform, area_key, terrain, plans, noise, pass_noise, seeds, n_features, grid_m
+        As for :func:`score_plans` (``plans``: the search's table, whose ``standard`` row is
+        solved).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per seed: ``seed`` and the counts and shifts (m) of ``solver_path_shift``.
+    """
+    from sss_locus.experiments.survey_design.area import area_from_key
+    from sss_locus.experiments.survey_design.front import make_setting, plan_from_row
+    from sss_locus.experiments.survey_design.joint import solver_path_shift
+
+    area = area_from_key(area_key)
+    plan = plan_from_row(plans[plans.kind == "standard"].iloc[0])
+    rows = []
+    for sd in check_seeds(seeds):
+        s = make_setting(platform, area, terrain, n_features=n_features, seed=sd, grid_m=grid_m)
+        rows.append({"seed": sd, **solver_path_shift(s, plan, noise, pass_noise, seed=sd)})
+    return pd.DataFrame(rows)
+
+
 def summarise(scores: pd.DataFrame) -> pd.DataFrame:
     """Per plan (index ``plan_index``): ``kind``, ``total_m``, ``covered_twice``, ``eligible``,
     ``n_seeds``, ``min_features`` (the fewest features any of its seeds' medians used) and
     ``mean_features``, and for each error of :data:`ERRORS` its mean over the seeds with the 95 %
-    interval (``error_<name>_m``, ``error_<name>_lo_m``, ``error_<name>_hi_m``; the mean and the
-    interval NaN where a seed had too few features).
+    interval (``error_<name>_m``, ``error_<name>_lo_m``, ``error_<name>_hi_m``; the lower end cut
+    at :data:`ERROR_FLOOR_M`, :func:`lower_end_cut`; the mean and the interval NaN where a seed
+    had too few features).
 
     Parameters
     ----------
@@ -184,10 +229,32 @@ def summarise(scores: pd.DataFrame) -> pd.DataFrame:
             v = g[col].to_numpy(float)
             ok = bool(np.all(np.isfinite(v)))
             mean = float(np.mean(v)) if ok else math.nan
-            lo, hi = replicate_interval(mean, v) if ok else (math.nan, math.nan)
+            lo, hi = replicate_interval(mean, v, bounds=(ERROR_FLOOR_M, math.inf)) if ok else (math.nan, math.nan)
             row.update({f"error_{name}_m": mean, f"error_{name}_lo_m": float(lo), f"error_{name}_hi_m": float(hi)})
         out.append(row)
     return pd.DataFrame(out).set_index("plan_index")
+
+
+def lower_end_cut(mean, low, high):
+    """Whether an interval of :func:`summarise` had its lower end cut at :data:`ERROR_FLOOR_M`:
+    the symmetric interval ``mean +- h`` reached below it, i.e. ``h = high - mean`` exceeds
+    ``mean - ERROR_FLOOR_M`` (then ``low`` is the floor). False where any value is NaN.
+
+    Parameters
+    ----------
+    mean, low, high : float or array_like
+        An error's mean over the seeds and the ends of its interval (m), as :func:`summarise`
+        gives them.
+
+    Returns
+    -------
+    bool or numpy.ndarray of bool
+        Per interval, whether its lower end was cut.
+    """
+    m, lo, hi = (np.asarray(a, float) for a in (mean, low, high))
+    with np.errstate(invalid="ignore"):
+        cut = (lo == ERROR_FLOOR_M) & (hi - m > m - ERROR_FLOOR_M)
+    return bool(cut) if cut.ndim == 0 else cut
 
 
 def recommend_under_noise(summary: pd.DataFrame, error: str = DECIDING_ERROR) -> dict:

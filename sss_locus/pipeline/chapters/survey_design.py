@@ -17,7 +17,7 @@ from sss_locus.experiments.survey_design.front import (OBJECTIVES, coverage_grid
                                                        plan_coverage, search_grid, search_plans, vehicle_depth_m)
 from sss_locus.experiments.survey_design.settings import load_settings
 from sss_locus.experiments.survey_design.route import turn_misfits
-from sss_locus.experiments.survey_design.scoring import recommend_under_noise, score_plans, summarise
+from sss_locus.experiments.survey_design.scoring import recommend_under_noise, score_plans, solver_path_shifts, summarise
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish.missions import mission_files, waypoints
 from sss_locus.pipeline.publish.publish import place, publish
@@ -26,8 +26,8 @@ from sss_locus.report.common.text import fmt_percent, fmt_sig
 from sss_locus.report.survey_design.figures import (ERROR_LABELS, OBJECTIVE_LABELS, error_text, noise_verdict_sentence,
                                                     plan_caption, plan_label, plot_front, plot_plan, verdict_words)
 from sss_locus.report.survey_design.prose import (area_note, best_pairs_sentence, crossing_caption, front_caption,
-                                                  noise_caption, plans_caption, standard_twice_sentence,
-                                                  standard_twice_text)
+                                                  noise_caption, plans_caption, solver_path_sentence,
+                                                  standard_twice_sentence, standard_twice_text)
 from sss_locus.report.survey_design.tables import (all_plans, crossing_table, noise_table, noise_table_shown,
                                                    plans_table, with_compass)
 
@@ -51,5 +51,5 @@ __all__ = ["all_plans", "area_note", "best_pairs_sentence", "cached", "coverage_
            "noise_caption", "noise_table", "noise_table_shown", "noise_verdict_sentence", "OBJECTIVE_LABELS",
            "OBJECTIVES", "place", "plan_caption", "plan_coverage", "plan_label", "plans_caption", "plans_table",
            "plot_front", "plot_plan", "publish", "recommend_under_noise", "score_plans", "search_grid", "search_plans",
-           "show_table", "standard_twice_sentence", "standard_twice_text", "summarise", "time", "turn_misfits",
+           "show_table", "solver_path_sentence", "solver_path_shifts", "standard_twice_sentence", "standard_twice_text", "summarise", "time", "turn_misfits",
            "use_data", "vehicle_depth_m", "verdict_words", "waypoints", "with_compass", "with_water_depth"]

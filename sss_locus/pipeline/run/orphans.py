@@ -1,5 +1,12 @@
 """Nothing left running or lying around after a run is killed, even by SIGKILL.
 
+* :func:`stop_process_tree` stops the papermill child of an interrupted run (Ctrl-C, SIGTERM,
+  SIGHUP, an exception) together with every process below it: the kernel, which jupyter_client
+  starts in a session of its own (so a signal to papermill's group never reaches it), and the
+  kernel's own children (a Dask ``LocalCluster``'s nannies and workers, a subprocess of a cell).
+  The run removes its staging folder only once they have all ended, so nothing writes into it
+  afterwards. Before, the kernel outlived the run until it noticed its parent was gone (up to a
+  second, longer inside a C call holding the GIL), and its children were never stopped.
 * :func:`die_with_parent` (a ``preexec_fn``) asks Linux to send the papermill child SIGTERM when
   the ``sss-locus run`` process that started it dies (``prctl(PR_SET_PDEATHSIG)``); papermill
   then stops, and the kernel, which polls its parent, exits too. A run killed with SIGKILL
@@ -22,6 +29,7 @@ import re
 import shutil
 import signal
 import sys
+import time
 from pathlib import Path
 
 from sss_locus.pipeline.run.atomic import pid_alive, pid_of_temp
@@ -41,6 +49,92 @@ def die_with_parent() -> None:
         libc.prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
     except (OSError, AttributeError):
         pass
+
+
+#: Seconds the processes of an interrupted run get to end after SIGTERM before SIGKILL.
+STOP_GRACE_S = 10.0
+
+
+def _frozen_tree(pid: int) -> list:
+    """``pid`` and every process below it, each suspended (SIGSTOP) before its children are
+    listed, so none can start another one unseen; ``psutil.Process`` objects (they guard against
+    a reused pid). Processes that end meanwhile are left out."""
+    import psutil
+
+    found: dict[int, psutil.Process] = {}
+    try:
+        todo = [psutil.Process(pid)]
+    except psutil.NoSuchProcess:
+        return []
+    while todo:
+        proc = todo.pop()
+        if proc.pid in found:
+            continue
+        try:
+            proc.suspend()
+            found[proc.pid] = proc
+            todo.extend(proc.children())
+        except psutil.NoSuchProcess:
+            continue
+    return list(found.values())
+
+
+def _ended(proc) -> bool:
+    """The process has exited (a zombie its new parent has not reaped yet counts)."""
+    import psutil
+
+    try:
+        return not proc.is_running() or proc.status() == psutil.STATUS_ZOMBIE
+    except psutil.NoSuchProcess:
+        return True
+
+
+def _signal_all(procs: list, signum: int) -> None:
+    import psutil
+
+    for proc in procs:
+        try:
+            proc.send_signal(signum)
+        except psutil.NoSuchProcess:
+            pass
+
+
+def stop_process_tree(pid: int, grace_s: float = STOP_GRACE_S) -> list[int]:
+    """End the process ``pid`` (a run's papermill child) and every process below it.
+
+    The tree is frozen (:func:`_frozen_tree`), sent SIGTERM, resumed (SIGCONT; a stopped
+    process acts on SIGTERM only once continued) and given ``grace_s`` seconds to end; what is
+    left gets SIGKILL. Returns when every process of the tree has ended (zombies of processes
+    that are not ours count as ended: their new parent reaps them). Call it with SIGINT/SIGTERM/
+    SIGHUP held back, so the tree is never left suspended.
+
+    Parameters
+    ----------
+    pid : int
+        The root of the tree; a pid that no longer exists is a tree of nothing.
+    grace_s : float
+        Seconds between SIGTERM and SIGKILL.
+
+    Returns
+    -------
+    list of int
+        The pids that were signalled, the root first if it was alive.
+    """
+    procs = _frozen_tree(pid)
+    try:
+        _signal_all(procs, signal.SIGTERM)
+    finally:
+        _signal_all(procs, signal.SIGCONT)
+    for stubborn in (False, True):
+        end = time.monotonic() + grace_s
+        while time.monotonic() < end and not all(_ended(p) for p in procs):
+            time.sleep(0.02)
+        left = [p for p in procs if not _ended(p)]
+        if not left:
+            break
+        if not stubborn:
+            _signal_all(left, signal.SIGKILL)
+    return [p.pid for p in procs]
 
 
 def staging_pid(folder: Path) -> int | None:

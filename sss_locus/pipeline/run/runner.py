@@ -9,8 +9,8 @@
   folder (``<build>/tmp/run-...``; a side run's beside its ``--output``) with the kernel's
   connection file in that folder too. Only a run that succeeds replaces the executed copy and
   its figures (:func:`sss_locus.pipeline.run.outputs.commit_run`, under the build area's lock). A run
-  that fails or is interrupted (exception, Ctrl-C, SIGTERM, SIGHUP) kills its papermill child
-  (the kernel exits with its parent), deletes the staging folder and leaves the last good results
+  that fails or is interrupted (exception, Ctrl-C, SIGTERM, SIGHUP) ends its papermill child, the
+  kernel and the kernel's own processes (:func:`.orphans.stop_process_tree`), then deletes the staging folder and leaves the last good results
   untouched; a failed run's notebook is kept as ``<build>/failed/<name>.ipynb`` for reading
   (outside the book source, so it cannot pass as a result).
 * Side runs (``output=``) write the executed copy there and its figures into ``figures/`` beside
@@ -26,7 +26,6 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import signal
 import subprocess
 import sys
 import time
@@ -186,12 +185,9 @@ def _papermill_child(args: Path, log_file: Path) -> int:
         try:
             return child.wait()
         finally:
-            if child.poll() is None:  # we were interrupted: stop papermill (the kernel follows)
-                os.killpg(child.pid, signal.SIGTERM)
-                try:
-                    child.wait(timeout=10)
-                except subprocess.TimeoutExpired:
-                    os.killpg(child.pid, signal.SIGKILL)
+            if child.poll() is None:  # we were interrupted: stop papermill, its kernel and theirs
+                with outputs.signals_held():  # a second Ctrl-C must not leave them suspended
+                    orphans.stop_process_tree(child.pid)
                     child.wait()
 
 
@@ -270,7 +266,8 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
                 outputs.commit_run(staged, staging / "figures", executed, figures,
                                    None if side else entry.source_relative)
     finally:
-        shutil.rmtree(staging, ignore_errors=True)
+        with outputs.signals_held():  # removed whole, even if a second signal comes
+            shutil.rmtree(staging, ignore_errors=True)
     log(f"ran {entry.name} [{profile}] in {time.perf_counter() - start:.1f} s -> {executed}")
     if exported:
         log(f"  figures and tables: {', '.join(exported)} -> {figures}")

@@ -24,6 +24,7 @@ from matplotlib.patches import Polygon as PolygonPatch
 
 from sss_locus.experiments.survey_design.coverage import reach_limits_m
 from sss_locus.experiments.survey_design.front import OBJECTIVES
+from sss_locus.experiments.survey_design.scoring import lower_end_cut
 from sss_locus.report.common.style import PAGE_WIDTH_IN, platform_title, themed
 from sss_locus.report.survey_design.map import LEGEND_X, add_graticule, add_scale_bar
 from sss_locus.report.common.text import fmt_ci, fmt_percent, fmt_sig
@@ -300,7 +301,8 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
         bx0, by0, bx1, by1 = area.polygon.bounds  # the grid over the area only (it spans more)
         ix = (gx >= bx0 - b.spacing_m) & (gx <= bx1 + b.spacing_m)
         iy = (gy >= by0 - b.spacing_m) & (gy <= by1 + b.spacing_m)
-        cs = ax.contour(gx[ix], gy[iy], b.depth_m[np.ix_(iy, ix)], levels=_depth_levels(b.area_depths_m),
+        depth = np.round(b.depth_m[np.ix_(iy, ix)], CONTOUR_DECIMALS)  # a flat floor on a level: one value
+        cs = ax.contour(gx[ix], gy[iy], depth, levels=_depth_levels(b.area_depths_m),
                         colors="saddlebrown", linewidths=0.6, alpha=0.8, zorder=2)
         inside = PolygonPatch(xy, closed=True, transform=ax.transData)
         cs.set_clip_path(inside)
@@ -356,6 +358,15 @@ def plot_plan(area, lines: pd.DataFrame, grid: pd.DataFrame, grid_m: float, nadi
     return ax.figure
 
 
+#: Decimals (of a metre) the depth grid is rounded to before its contours are drawn. A flat floor
+#: whose depth is a contour level (a 140 m trench, levels every 20 m) comes out of the grid's
+#: reprojection as 140 m give or take 1e-13 m, and the contour at 140 m then circled each cell of
+#: the floor that came out a hair deeper: small blobs over the whole floor. Rounded to the
+#: millimetre, the floor is exactly the level, which the contour treats as not deeper than it:
+#: the line runs where the depth crosses the level, not around rounding noise.
+CONTOUR_DECIMALS = 3
+
+
 def _depth_levels(depths_m) -> list[float]:
     """About six round depth contours spanning ``depths_m`` (m)."""
     lo, hi = float(np.min(depths_m)), float(np.max(depths_m))
@@ -370,10 +381,36 @@ def _depth_levels(depths_m) -> list[float]:
 ERROR_LABELS = {"horizontal": "horizontal", "vertical": "vertical", "shape": "map-shape"}
 
 
+#: Said inside the parentheses of an interval whose lower end was cut at 0
+#: (:func:`~sss_locus.experiments.survey_design.scoring.lower_end_cut`).
+CUT_NOTE = "lower end cut at 0"
+
+
+def with_cut_note(text: str, cut: bool) -> str:
+    """An estimate with its interval, saying where the interval's lower end was cut at 0.
+
+    Parameters
+    ----------
+    text : str
+        An estimate with its interval in parentheses (:func:`~sss_locus.report.common.text.fmt_ci`).
+    cut : bool
+        Whether the lower end was cut
+        (:func:`~sss_locus.experiments.survey_design.scoring.lower_end_cut`).
+
+    Returns
+    -------
+    str
+        ``"1.6 (95 % CI 0–3.4)"`` -> ``"1.6 (95 % CI 0–3.4, lower end cut at 0)"`` when ``cut``;
+        ``text`` unchanged otherwise or without a closing parenthesis.
+    """
+    return f"{text[:-1]}, {CUT_NOTE})" if cut and text.endswith(")") else text
+
+
 def error_text(row, name: str = "horizontal") -> str:
     """A plan's mean error ``name`` (of :data:`ERROR_LABELS`) over the seeds with its 95 %
     interval (a row of :func:`~sss_locus.experiments.survey_design.scoring.summarise`), e.g.
-    ``"2.6 (95 % CI 2.4–2.8) m"``; ``"too few features"`` without an interval.
+    ``"2.6 (95 % CI 2.4–2.8) m"``, or ``"1.6 (95 % CI 0–3.4, lower end cut at 0) m"`` where the
+    symmetric interval reached below 0; ``"too few features"`` without an interval.
 
     Parameters
     ----------
@@ -390,7 +427,8 @@ def error_text(row, name: str = "horizontal") -> str:
     """
     if not math.isfinite(row[f"error_{name}_lo_m"]):
         return "too few features"
-    return fmt_ci(row[f"error_{name}_m"], row[f"error_{name}_lo_m"], row[f"error_{name}_hi_m"]) + " m"
+    mean, lo, hi = (row[f"error_{name}{s}_m"] for s in ("", "_lo", "_hi"))
+    return with_cut_note(fmt_ci(mean, lo, hi), lower_end_cut(mean, lo, hi)) + " m"
 
 
 def _counts(row) -> str:
@@ -405,6 +443,41 @@ def _beside(row, decided: str) -> str:
 SAME_LENGTH = 5e-4
 """Tracks whose lengths differ by less than this fraction are "of the same length" in the verdict
 (the lawn-mower is spaced by bisection to the standard plan's track length)."""
+
+
+def none_as_short(plans: pd.DataFrame) -> str:
+    """Why no searched plan could be recommended, when none was: the rule recommends only an
+    eligible plan no longer than the standard plan; and, where the headings searched are not the
+    standard plan's (which follows the area: its long axis, or the slope), that ``headings_deg``
+    cannot force a heading whose lines make a longer track. ``""`` when some searched plan is
+    eligible and no longer than the standard plan, or none was searched.
+
+    Parameters
+    ----------
+    plans : pandas.DataFrame
+        The search's plans (``kind``, ``eligible``, ``total_m``, ``heading_deg`` in deg
+        counter-clockwise from east, and :func:`plan_label`'s columns).
+
+    Returns
+    -------
+    str
+        One sentence, or ``""``.
+    """
+    search = plans[plans.kind == "search"]
+    std = plans[plans.kind == "standard"].iloc[0]
+    if search.empty or (search.eligible.astype(bool) & (search.total_m <= std.total_m)).any():
+        return ""
+    compass = lambda h: round((90.0 - h) % 180.0) % 180  # noqa: E731  (a line's two directions: one number)
+    searched = sorted({compass(h) for h in search.heading_deg})
+    n_ok = int(search.eligible.astype(bool).sum())
+    text = (f" None of the {len(search)} searched plans could be recommended: {n_ok} of them "
+            f"{'sees' if n_ok == 1 else 'see'} enough of the area twice, and none of those is as short as the "
+            f"standard plan ({plan_label(std)}); the rule recommends only a plan no longer than the standard plan.")
+    if compass(std.heading_deg) not in searched:
+        text += (f" The headings searched (lines at {', '.join(f'{a:03d}°/{a + 180:03d}°' for a in searched)}) are "
+                 "not the standard plan's, which follows the area (its long axis, or the slope): where such lines make "
+                 "a longer track, `headings_deg` cannot force a heading.")
+    return text
 
 
 def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataFrame, platform) -> str:
@@ -429,8 +502,13 @@ def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataF
     Returns
     -------
     str
-        One or two sentences; errors in m.
+        One to three sentences; errors in m. Where no searched plan was eligible and as short as
+        the standard plan, the last one says so (:func:`none_as_short`).
     """
+    return _noise_verdict(summary, verdict, plans, platform) + none_as_short(plans)
+
+
+def _noise_verdict(summary: pd.DataFrame, verdict: dict, plans: pd.DataFrame, platform) -> str:
     name, std = platform.name, summary.loc[verdict["standard"]]
     e = verdict["error"]
     what = f"{ERROR_LABELS[e]} error of the joint estimate"

@@ -13,7 +13,7 @@ from collections.abc import Sequence
 import pandas as pd
 
 from sss_locus.report.common.text import fmt_percent, fmt_sig
-from sss_locus.report.survey_design.figures import ERROR_LABELS, OBJECTIVE_LABELS
+from sss_locus.report.survey_design.figures import CUT_NOTE, ERROR_LABELS, OBJECTIVE_LABELS
 
 
 def area_note(area, seafloor: str, n_features: int, seed: int) -> str:
@@ -114,7 +114,9 @@ def noise_caption(noise_seeds: Sequence[int], decide_on: str, note: str) -> str:
             f"adjusted jointly over seeds {', '.join(map(str, noise_seeds))}: track length, share of the area seen twice, "
             f"the median horizontal, vertical and map-shape error of the joint estimate (mean over the seeds, 95 % "
             f"interval; decided on: {ERROR_LABELS[decide_on]}), and the fewest features a seed's median used "
-            f"(under 30: left empty). {note}")
+            f"(under 30: left empty). The interval is Student's t over the seeds, symmetric about the mean; where it "
+            f"reaches below 0 its lower end is cut at 0 and the cell says \"{CUT_NOTE}\" (an error is not negative: "
+            f"the cut keeps the interval's coverage, and the rule reads the ends shown). {note}")
 
 
 def crossing_caption(objective: str, note: str) -> str:
@@ -197,3 +199,37 @@ def best_pairs_sentence(plans: dict[str, pd.DataFrame], platforms: dict) -> str:
              f"on the recommended plan and {fmt_sig(t[t.kind == 'standard'].best_pair_angle_median_deg.iloc[0], 3)}° "
              "on the standard plan" for k, t in plans.items()]
     return "; ".join(pairs) + "."
+
+
+def solver_path_sentence(shifts: dict, platforms: dict) -> str:
+    """What the solver's path changes (:func:`~sss_locus.experiments.survey_design.scoring.solver_path_shifts`),
+    per platform: features of the standard plan that moved to another local minimum when solved
+    with ``dogbox`` instead of ``trf``, how many of them were seen on only two passes, the largest
+    move, and how far the median horizontal error moved.
+
+    Parameters
+    ----------
+    shifts : dict of str to pandas.DataFrame
+        Platform key -> ``solver_path_shifts``' table (one row per seed).
+    platforms : dict
+        Platform key -> platform (its ``name``).
+
+    Returns
+    -------
+    str
+        One sentence per platform; lengths in m and mm.
+    """
+    from sss_locus.experiments.survey_design.joint import MOVED_M
+
+    parts = []
+    for key, t in shifts.items():
+        name, n = platforms[key].name, int(t.n_joint.sum())
+        moved = (f"{int(t.n_moved.sum()):,} of {n:,} feature estimates moved by more than {fmt_sig(MOVED_M, 2)} m "
+                 f"({int(t.n_moved_two_pass.sum()):,} of them of features seen on only two passes, which are "
+                 f"{int(t.n_two_pass.sum()):,} of the {n:,})")
+        largest = float(t.max_shift_m.max())
+        largest = f"{fmt_sig(largest, 2)} m" if largest >= 1.0 else f"{fmt_sig(1e3 * largest, 2)} mm"
+        parts.append(f"For the {name}, over {len(t)} seeds, {moved}; the largest move was "
+                     f"{largest} and the median horizontal error moved by at most "
+                     f"{fmt_sig(1e3 * float(t.horizontal_median_shift_m.max()), 2)} mm.")
+    return " ".join(parts)

@@ -13,9 +13,9 @@ from __future__ import annotations
 import pandas as pd
 
 from sss_locus.experiments.survey_design.front import by_crossing_angle
-from sss_locus.experiments.survey_design.scoring import ERRORS
+from sss_locus.experiments.survey_design.scoring import ERRORS, lower_end_cut
 from sss_locus.report.common.text import fmt_ci_cells
-from sss_locus.report.survey_design.figures import ERROR_LABELS
+from sss_locus.report.survey_design.figures import ERROR_LABELS, with_cut_note
 
 #: Columns of the plans table (:func:`plans_table`) besides ``platform`` and ``kind``.
 PLAN_COLUMNS = ["heading_deg", "spacing_m", "crossing_deg", "cross_spacing_m", "altitude_m", "total_m", "time_h",
@@ -169,7 +169,8 @@ def noise_table_shown(frame: pd.DataFrame) -> pd.DataFrame:
         number (``"search, plan 4"``: several searched plans of one platform are told apart);
         columns ``track_km``, ``covered_twice``, ``horizontal_error_m``, ``vertical_error_m``,
         ``map_shape_error_m`` (text: the mean over the seeds of the median error and its 95 %
-        interval, or ``"—"`` under 30 features), ``seeds`` and ``fewest_features``.
+        interval, saying where its lower end was cut at 0, or ``"—"`` under 30 features),
+        ``seeds`` and ``fewest_features``.
 
     >>> f = pd.DataFrame({"total_m": [8000.0, 7000.0], "covered_twice": [1.0, 1.0], "n_seeds": [5, 5],
     ...     "min_features": [120, 12], "error_horizontal_m": [0.9, float("nan")],
@@ -188,7 +189,8 @@ def noise_table_shown(frame: pd.DataFrame) -> pd.DataFrame:
                         "covered_twice": rows["covered_twice"]})
     for e, label in ERROR_LABELS.items():
         v, lo, hi = (rows[f"error_{e}{s}_m"].to_numpy(float) for s in ("", "_lo", "_hi"))
-        out[f"{label.replace('-', '_')}_error_m"] = fmt_ci_cells(v, lo, hi)
+        out[f"{label.replace('-', '_')}_error_m"] = [
+            with_cut_note(text, cut) for text, cut in zip(fmt_ci_cells(v, lo, hi), lower_end_cut(v, lo, hi))]
     out["seeds"] = rows["n_seeds"]
     out["fewest_features"] = rows["min_features"]
     return out.set_index(["platform", "plan"])

@@ -46,13 +46,14 @@ def joint_sentence(summary: dict) -> str:
             f"the adjustment, a feature's sightings miss it by a median {fmt_sig(summary['joint_misfit_m'])} m (RMS of "
             "range and beam-plane misfits)")
     if np.isfinite(ratio) and ratio >= CLEAR_RATIO:
-        text += (f", {fmt_sig(ratio)} times less: the lines agree that much better about the map's shape (an optimistic "
-                 "measure, since the fitted pass corrections absorb part of any error; the truth, where known, says "
-                 "more).")
+        text += (f": the mosaic's disagreement divided by {fmt_sig(ratio)}. The two are different measures, a spread of positions and a fit's "
+                 "misfit, and the pass corrections were fitted to these same sightings, which absorbs part of any "
+                 "error: the ratio says the lines agree much better about the map's shape, and it is optimistic about "
+                 "by how much; the errors against the truth, where it is known, say more.")
     else:
-        text += (f": not clearly less than the mosaic's (less than {fmt_sig(CLEAR_RATIO)} times; the sightings may not "
-                 "share a navigation error per pass that the adjustment could remove, or too few features tie the "
-                 "passes together).")
+        text += (f": not clearly smaller than the mosaic's disagreement (the ratio of the two is under "
+                 f"{fmt_sig(CLEAR_RATIO)}; the sightings may not share a navigation error per pass that the adjustment "
+                 "could remove, or too few features tie the passes together).")
     text += (f" What no range can see stays unobservable: a common shift of every pass and feature together, held "
              f"only by the navigation priors (1-sigma {fmt_sig(summary['common_shift_sigma_m'])} m per axis); the "
              "absolute positions are no better than the navigation, only their shape is.")

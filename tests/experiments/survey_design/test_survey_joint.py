@@ -225,6 +225,93 @@ def test_the_rule_is_decided_on_the_named_error_and_a_plan_under_30_features_is_
         scoring.recommend_under_noise(summary, "3d")
 
 
+def test_an_interval_reaching_below_0_is_cut_there_said_so_and_the_rule_reads_the_ends_shown():
+    """Three seeds of the standard plan's horizontal medians 0.2, 1.5 and 3.1 m: Student's t
+    interval (scipy.stats.t.interval, independent of the package) is symmetric about the mean
+    1.6 m and reaches below 0; the summary's lower end is 0, the upper end scipy's, and the text
+    the reader sees says the end was cut. Plan 1 (0.10-0.14 m) lies wholly below the
+    standard plan's upper end but not below its lower end: not recommended, with the cut ends or
+    without. Plan 2 has a narrow interval above 0: nothing is cut, nothing said."""
+    from scipy import stats
+
+    from sss_locus.report.survey_design.figures import CUT_NOTE, error_text, noise_table_shown
+
+    std = [(0, "standard", 1, 1000.0, 200, 0.2, 0.90), (0, "standard", 2, 1000.0, 200, 1.5, 1.00),
+           (0, "standard", 3, 1000.0, 200, 3.1, 0.95)]
+    one = [(1, "search", 1, 900.0, 200, 0.10, 0.30), (1, "search", 2, 900.0, 200, 0.14, 0.35),
+           (1, "search", 3, 900.0, 200, 0.12, 0.32)]
+    two = [(2, "search", 1, 950.0, 200, 1.0, 0.30), (2, "search", 2, 950.0, 200, 1.1, 0.35),
+           (2, "search", 3, 950.0, 200, 1.2, 0.32)]
+    summary = scoring.summarise(_scores(std + one + two))
+    h = np.array([0.2, 1.5, 3.1])
+    lo, hi = stats.t.interval(0.95, df=2, loc=h.mean(), scale=stats.sem(h))
+    assert lo < 0 < hi  # the case: a symmetric interval of a non-negative error below 0
+    row = summary.loc[0]
+    assert (row.error_horizontal_m, row.error_horizontal_lo_m, row.error_horizontal_hi_m) == pytest.approx(
+        (h.mean(), 0.0, hi))
+    for i, v in ((1, [0.10, 0.14, 0.12]), (2, [1.0, 1.1, 1.2])):  # not cut: scipy's ends
+        assert summary.loc[i, ["error_horizontal_lo_m", "error_horizontal_hi_m"]].tolist() == pytest.approx(
+            stats.t.interval(0.95, df=2, loc=np.mean(v), scale=stats.sem(v)))
+    assert (summary.filter(like="_lo_m") >= 0).all().all()
+    assert error_text(row) == f"1.6 (95 % CI 0–{hi:.2g}, {CUT_NOTE}) m"
+    assert CUT_NOTE not in error_text(summary.loc[1]) and CUT_NOTE not in error_text(summary.loc[2])
+    shown = noise_table_shown(summary.assign(platform="auv").reset_index().set_index(["platform", "kind", "plan_index"]))
+    assert shown.loc[("auv", "standard"), "horizontal_error_m"].endswith(f", {CUT_NOTE})")
+    assert CUT_NOTE not in shown.loc[("auv", "search, plan 1"), "horizontal_error_m"]
+    verdict = scoring.recommend_under_noise(summary, "horizontal")
+    assert (verdict["recommended"], verdict["holds"], verdict["best"]) == (0, False, 1)
+    uncut_holds = summary.loc[1, "error_horizontal_hi_m"] < lo  # the rule on scipy's uncut ends
+    assert verdict["holds"] == uncut_holds == (summary.loc[1, "error_horizontal_hi_m"] < row.error_horizontal_lo_m)
+
+
+def test_the_solver_path_check_counts_features_as_a_brute_force_over_its_two_solutions(monkeypatch):
+    """solver_path_shift on constructed solutions (the two solves replaced): 5 features, errors
+    of the trf and dogbox solutions written here; feature 4 not estimated by dogbox. The counts,
+    the largest move and the median shift are recomputed feature by feature."""
+    from sss_locus.experiments.survey_design import joint
+
+    trf = np.array([[0.1, 0.0, 0.0], [0.2, 0.1, 0.0], [1.0, 0.0, 0.5], [0.0, 0.3, 0.0], [9.0, 9.0, 9.0]])
+    dog = trf + np.array([[0.0, 0.0, 0.0], [40.0, 30.0, 0.0], [0.0, 0.0, 0.9], [0.0, 1.2, 0.0], [0.0, 0.0, 0.0]])
+    seen = np.array([[1, 1, 0], [1, 1, 0], [1, 1, 1], [1, 0, 1], [1, 1, 0]], bool)  # passes per feature: 2, 2, 3, 2, 2
+    rows = []
+    for name, e, est in (("trf", trf, [True] * 5), ("dogbox", dog, [True, True, True, True, False])):
+        for f in (4, 2, 0, 3, 1):  # not in feature order
+            rows.append({"feature": f, "estimator": name, "estimated": est[f], "error_x_m": e[f, 0],
+                         "error_y_m": e[f, 1], "error_v_m": e[f, 2], "error_h_m": math.hypot(e[f, 0], e[f, 1])})
+    monkeypatch.setattr(joint, "_joint_tables", lambda *a, **k: (pd.DataFrame(rows), seen))
+    out = joint.solver_path_shift(None, None, None, None, seed=1)
+    moves = [float(np.linalg.norm(dog[f] - trf[f])) for f in range(4)]  # 0, 50, 0.9, 1.2
+    two = [int(seen[f].sum()) == 2 for f in range(4)]
+    h = lambda e: sorted(math.hypot(*e[f, :2]) for f in range(4))  # noqa: E731
+    assert out["n_joint"] == 4 and out["n_two_pass"] == sum(two) == 3
+    assert out["n_moved"] == sum(m > 1.0 for m in moves) == 2
+    assert out["n_moved_two_pass"] == sum(m > 1.0 and t for m, t in zip(moves, two)) == 2
+    assert out["max_shift_m"] == pytest.approx(max(moves)) and max(moves) == pytest.approx(50.0)
+    assert out["horizontal_median_shift_m"] == pytest.approx(abs(np.mean(h(trf)[1:3]) - np.mean(h(dog)[1:3])))
+
+
+def test_the_solver_path_checks_first_solve_is_the_scorings_and_one_minimum_gives_one_answer():
+    """On the chapter's example area (dense: every feature tied to its neighbours) the two methods
+    reach one optimum: no feature moves by a centimetre, and the check estimates the features
+    the scoring's joint estimate estimated."""
+    from sss_locus.experiments.survey_design.area import load_area
+    from sss_locus.experiments.survey_design.front import make_setting, standard_for
+    from sss_locus.experiments.survey_design.joint import solver_path_shift
+    from sss_locus import paths
+
+    area = load_area(str(paths.DATA_DIR / "examples" / "survey_area.toml"))
+    pf = load_platform("boat")
+    s = make_setting(pf, area, "flat", n_features=60, seed=1, grid_m=40.0)
+    plan = standard_for(s)
+    out = solver_path_shift(s, plan, load_noise_model("boat"), load_pass_noise("boat"), seed=1)
+    ref = plan_joint_errors(s, plan, load_noise_model("boat"), load_pass_noise("boat"), seed=1)
+    assert out["n_joint"] == ref["n_joint"] == 60 and out["n_two_pass"] > 0
+    assert out["n_moved"] == 0 and out["max_shift_m"] < 0.01 and out["horizontal_median_shift_m"] < 0.01
+    sightings, priors, start, _ = _simulate(False, 1)
+    with pytest.raises(ValueError, match="method must be one of"):  # lm and exact take no sparse Jacobian
+        adjust(sightings, priors, start, method="lm")
+
+
 def test_the_candidates_are_the_baselines_and_the_leading_eligible_plans_no_longer_than_the_standard():
     plans = pd.DataFrame({"kind": ["standard", "lawnmower", "search", "search", "search", "search", "search"],
                           "total_m": [1000.0, 1000.0, 900.0, 950.0, 1200.0, 800.0, 990.0],

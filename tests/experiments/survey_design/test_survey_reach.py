@@ -175,3 +175,23 @@ def test_the_reach_window_is_where_swath_m_gives_a_swath(key):
             except ValueError:
                 swath = False
             assert swath == (low < alt < high), (side, alt, low, high)
+
+
+def test_depth_contours_run_along_the_trench_walls_not_around_its_flat_floor(trench):
+    """The trench's floor (140 m) is one of the contour levels (every 20 m). Every contour the map
+    draws lies on a wall of the trench, where the depth crosses the levels (within two cells, the
+    grid's reprojection and the frame's convergence allowed for), and none over the floor: the
+    floor, reprojected, came out within 1e-13 m of 140 m, and the contour at 140 m circled every
+    cell of it a hair deeper."""
+    from sss_locus.experiments.survey_design.front import load_area_bathymetry
+
+    area, _ = trench
+    boat, cov = _boat_coverage(area)
+    fig = plot_plan(area, LINE, cov["grid"], cov["grid_m"], 0.0, boat, "t", bathymetry=load_area_bathymetry(area))
+    contours = [c for c in fig.axes[0].collections if isinstance(c, matplotlib.contour.ContourSet)]
+    assert len(contours) == 1
+    east = np.concatenate([p.vertices[:, 0] for p in contours[0].get_paths() if len(p.vertices)])
+    assert east.size  # the walls are drawn
+    off_wall = np.minimum(np.abs(east - TRENCH_E[0]), np.abs(east - TRENCH_E[1]))
+    assert off_wall.max() <= 2 * CELL_M, f"a contour {off_wall.max():.0f} m from the trench's walls"
+    plt.close(fig)

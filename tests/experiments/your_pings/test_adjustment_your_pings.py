@@ -16,6 +16,7 @@ from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.your_pings.study import run
 from sss_locus.experiments.your_pings.files import against_truth
 from sss_locus.experiments.your_pings.joint import infer_passes, joint_estimate, with_joint
+from sss_locus.report.common.text import fmt_sig
 from sss_locus.report.your_pings.joint import joint_sentence
 
 
@@ -77,7 +78,11 @@ def test_joint_estimate_of_a_users_csv_beats_the_mosaic_shape_and_says_so(survey
     # the page's sentence: the shape is clearly better, and the common shift is stated
     s = joint.summary
     assert s["shape_ratio"] >= 1.5 and np.isfinite(s["common_shift_sigma_m"])
-    assert "times less" in joint_sentence(s) and "unobservable" in joint_sentence(s)
+    text = joint_sentence(s)
+    assert "unobservable" in text and "times less" not in text  # a ratio said as a division, not "N times less"
+    ratio = s["mosaic_disagreement_m"] / s["joint_misfit_m"]  # the two medians the sentence prints, divided here
+    assert f"the mosaic's disagreement divided by {fmt_sig(ratio)}." in text
+    assert "different measures" in text and "optimistic" in text  # what the ratio compares, and its bias
     # the pass table: one row per pass, heading biases (clockwise) recovered within 3 sigma
     p = joint.passes
     assert len(p) == len(sv.reference)

@@ -31,12 +31,15 @@ from sss_locus.pipeline.run.registry import NotebookEntry, load_registry  # noqa
 from sss_locus.pipeline.run.runner import NotebookFailed, run_notebook  # noqa: E402
 
 PARAMETERS = ("n: int = 3   # points [1, 1000]\nfail = False\nsleep_s = 0.0   # seconds to wait [0, 600]\n"
-              "marker = ''\n")
+              "marker = ''\ngrandchild_marker = ''\n")
 BODY = """\
-import os, time
+import os, subprocess, sys, time
 import matplotlib.pyplot as plt
 import pandas as pd
 from sss_locus.pipeline.publish.publish import publish
+if grandchild_marker:  # a process of the kernel's own, as a Dask worker would be
+    worker = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(600)"])
+    open(grandchild_marker, "w").write(str(worker.pid))
 if marker:
     open(marker, "w").write(str(os.getpid()))
 time.sleep(sleep_s)
@@ -118,16 +121,26 @@ def _pid_gone(pid: int, timeout: float = 20.0) -> bool:
     return False
 
 
+def _stopped(pid: int) -> bool:
+    """The process ``pid`` has ended (a zombie waiting for its new parent to reap it counts)."""
+    psutil = pytest.importorskip("psutil")
+    try:
+        return psutil.Process(pid).status() == psutil.STATUS_ZOMBIE
+    except psutil.NoSuchProcess:
+        return True
+
+
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
 def test_interrupted_run_leaves_nothing_and_keeps_the_last_good_results(area, entry, tmp_path, signum):
     run_notebook(entry, "book", {"n": 4}, log=quiet)
     good = snapshot(area)
-    marker = tmp_path / "kernel.pid"
+    marker, worker = tmp_path / "kernel.pid", tmp_path / "worker.pid"
     # Ctrl-C as a terminal delivers it: a command started in the background of a non-interactive
     # shell (`make test &`, nohup) inherits SIGINT *ignored* and Python then keeps ignoring it,
     # which is what the user asked for there; give the driver the default disposition back
     child = subprocess.Popen(
-        [sys.executable, "-c", DRIVER, str(entry.source), json.dumps({"sleep_s": 120, "marker": str(marker), "n": 9})],
+        [sys.executable, "-c", DRIVER, str(entry.source), json.dumps({"sleep_s": 120, "marker": str(marker), "n": 9,
+                                                  "grandchild_marker": str(worker)})],
         env=os.environ.copy(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
@@ -138,12 +151,18 @@ def test_interrupted_run_leaves_nothing_and_keeps_the_last_good_results(area, en
         time.sleep(0.5)
         child.send_signal(signum)
         _, err = child.communicate(timeout=60)
+        # gone when the run has returned, not a moment later (the kernel's own poll of its parent
+        # took up to a second, and the kernel's children were never stopped)
+        kernel_stopped, worker_stopped = _stopped(int(marker.read_text())), _stopped(int(worker.read_text()))
     finally:
         if child.poll() is None:
             child.kill()
+        if worker.exists() and not _stopped(int(worker.read_text())):  # the old code's orphan
+            os.kill(int(worker.read_text()), signal.SIGKILL)
     assert child.returncode != 0
     assert "Traceback" in err  # the driver has no CLI around it; the exception reached the top
-    assert _pid_gone(int(marker.read_text())), "the kernel outlived the interrupted run"
+    assert kernel_stopped, "the kernel outlived the interrupted run"
+    assert worker_stopped, "a process the kernel started outlived the interrupted run"
     assert snapshot(area) == good
     assert leftovers(area) == []
     assert not (area / "failed" / "tiny.ipynb").exists()  # nothing that looks like a result
