@@ -445,6 +445,12 @@ SAME_LENGTH = 5e-4
 (the lawn-mower is spaced by bisection to the standard plan's track length)."""
 
 
+def _line_compass_deg(heading_deg: float) -> int:
+    """A line's compass heading, its two directions as one number in [0, 180) (deg clockwise
+    from north; ``heading_deg`` counter-clockwise from east)."""
+    return round((90.0 - heading_deg) % 180.0) % 180
+
+
 def none_as_short(plans: pd.DataFrame) -> str:
     """Why no searched plan could be recommended, when none was: the rule recommends only an
     eligible plan no longer than the standard plan; and, where the headings searched are not the
@@ -467,13 +473,12 @@ def none_as_short(plans: pd.DataFrame) -> str:
     std = plans[plans.kind == "standard"].iloc[0]
     if search.empty or (search.eligible.astype(bool) & (search.total_m <= std.total_m)).any():
         return ""
-    compass = lambda h: round((90.0 - h) % 180.0) % 180  # noqa: E731  (a line's two directions: one number)
-    searched = sorted({compass(h) for h in search.heading_deg})
+    searched = sorted({_line_compass_deg(h) for h in search.heading_deg})
     n_ok = int(search.eligible.astype(bool).sum())
     text = (f" None of the {len(search)} searched plans could be recommended: {n_ok} of them "
             f"{'sees' if n_ok == 1 else 'see'} enough of the area twice, and none of those is as short as the "
             f"standard plan ({plan_label(std)}); the rule recommends only a plan no longer than the standard plan.")
-    if compass(std.heading_deg) not in searched:
+    if _line_compass_deg(std.heading_deg) not in searched:
         text += (f" The headings searched (lines at {', '.join(f'{a:03d}°/{a + 180:03d}°' for a in searched)}) are "
                  "not the standard plan's, which follows the area (its long axis, or the slope): where such lines make "
                  "a longer track, `headings_deg` cannot force a heading.")

@@ -360,7 +360,8 @@ def test_the_verdict_sentence_says_whether_the_interval_excludes_the_standard_pl
 
     pf = load_platform("auv")
     plans = pd.DataFrame({"heading_deg": [0.0, 90.0], "spacing_m": [240.0, 200.0], "crossing_deg": [0.0, math.nan],
-                          "cross_spacing_m": [240.0, 200.0], "altitude_m": [21.0, 21.0], "pitch_deg": [0.0, 0.0]})
+                          "cross_spacing_m": [240.0, 200.0], "altitude_m": [21.0, 21.0], "pitch_deg": [0.0, 0.0],
+                          "kind": ["standard", "search"], "eligible": [True, True], "total_m": [1000.0, 900.0]})
     std = (0, "standard", 1000.0, True, 3.0, 2.8, 3.2)
     for row, holds in (((1, "search", 900.0, True, 2.9, 2.6, 3.0), False), ((1, "search", 900.0, True, 2.0, 1.8, 2.2), True)):
         summary = _summary([std, row])
@@ -468,7 +469,7 @@ def test_scores_drop_medians_of_fewer_than_30_features_and_intervals_come_from_t
         v = g.shape_median_m.to_numpy()
         if np.all(np.isfinite(v)):
             half = stats.t.ppf(0.975, 2) * v.std(ddof=1) / math.sqrt(3)
-            assert summary.loc[i, "error_shape_lo_m"] == pytest.approx(v.mean() - half)
+            assert summary.loc[i, "error_shape_lo_m"] == pytest.approx(max(0.0, v.mean() - half))  # cut at 0
             assert summary.loc[i, "error_shape_hi_m"] == pytest.approx(v.mean() + half)
         else:
             assert math.isnan(summary.loc[i, "error_shape_lo_m"])
