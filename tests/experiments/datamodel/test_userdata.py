@@ -239,3 +239,30 @@ def test_bad_terrain_input_names_the_key_and_where_it_came_from(tmp_path, text, 
     with pytest.raises(ValueError, match=match):
         userdata.use([user], sets)
     assert userdata.active().is_default
+
+
+def _example_without(tmp_path, *sections):
+    """The worked example with its ``[<section>.my_auv]`` tables cut out."""
+    kept, skipping = [], False
+    for line in EXAMPLE.read_text().splitlines():
+        if line.startswith("["):
+            skipping = any(line.startswith(f"[{s}.my_auv") for s in sections)
+        if not skipping:
+            kept.append(line)
+    path = tmp_path / "no_tables.toml"
+    path.write_text("\n".join(kept) + "\n")
+    return path
+
+
+def test_a_platform_without_its_noise_or_envelope_table_is_named_with_the_missing_table(tmp_path):
+    from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+
+    userdata.use([_example_without(tmp_path, "noise", "envelopes")])
+    assert "my_auv" in load_platforms()  # the platform itself is there
+    for load, table, schema in ((load_pass_noise, "noise", "noise.toml"), (load_noise_model, "noise", "noise.toml"),
+                                (load_envelope, "envelopes", "survey.toml")):
+        with pytest.raises(ValueError) as info:
+            load("my_auv")
+        message = str(info.value)  # not "platform_key must be one of ['auv', 'boat']" of a key that exists
+        assert f"no [{table}.my_auv] table" in message and f"data/{schema}" in message, message
+        assert "'auv'" in message and "'boat'" in message
