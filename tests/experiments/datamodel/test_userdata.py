@@ -249,7 +249,7 @@ def _example_without(tmp_path, *sections):
             skipping = any(line.startswith(f"[{s}.my_auv") for s in sections)
         if not skipping:
             kept.append(line)
-    path = tmp_path / "no_tables.toml"
+    path = tmp_path / f"no_{'_'.join(sections)}.toml"
     path.write_text("\n".join(kept) + "\n")
     return path
 
@@ -266,3 +266,25 @@ def test_a_platform_without_its_noise_or_envelope_table_is_named_with_the_missin
         message = str(info.value)  # not "platform_key must be one of ['auv', 'boat']" of a key that exists
         assert f"no [{table}.my_auv] table" in message and f"data/{schema}" in message, message
         assert "'auv'" in message and "'boat'" in message
+
+
+def test_a_chapter_that_reads_a_missing_table_refuses_the_platform_before_it_runs(tmp_path, monkeypatch, capsys):
+    from sss_locus.pipeline.cli import command as cli
+    from sss_locus.pipeline.run.registry import get_entry
+
+    data = _example_without(tmp_path, "noise")  # platform and envelope, no noise model
+    userdata.use([data])
+    assert get_entry("pose_space").resolve("quick", {"platforms": ["my_auv"]})["platforms"] == ["my_auv"]
+    assert get_entry("planning").resolve("quick", {"platforms": ["my_auv"]})["platforms"] == ["my_auv"]
+    for chapter in ("survey_design", "noise", "three_views", "reconstruction"):  # they read [noise.my_auv]
+        with pytest.raises(ValueError, match=r"no \[noise\.my_auv\] table .*data/noise\.toml"):
+            get_entry(chapter).resolve("quick", {"platforms": ["my_auv"]})
+    userdata.use([_example_without(tmp_path, "envelopes")])
+    for chapter in ("planning", "survey_passes", "water", "noise"):  # they read [envelopes.my_auv]
+        with pytest.raises(ValueError, match=r"no \[envelopes\.my_auv\] table .*data/survey\.toml"):
+            get_entry(chapter).resolve("quick", {"platforms": ["my_auv"]})
+    userdata.use()
+    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path / "build"))
+    code = cli.main(["run", "survey_design", "--data", str(data), "-p", "platforms", '["my_auv"]', "--name", "mine"])
+    assert code == 2 and "no [noise.my_auv] table" in capsys.readouterr().err  # not 47 s into cell 3
+    assert not (tmp_path / "build").exists()
