@@ -17,8 +17,9 @@ Physical rules (:func:`check_hardware`)
     * a name the figures cannot draw (control characters, emoji and other pictographs).
 
     :func:`hardware_warnings` flags, without refusing, a transducer tilt that looks like radians
-    (``0 < |tilt_deg| < pi/2`` with a fractional part) and a sonar fan of at most ``pi`` "degrees"
-    whose beam alone does not meet the radians rule.
+    (``0 < |tilt_deg| < pi/2`` with a fractional part), a sonar fan of at most ``pi`` "degrees"
+    whose beam alone does not meet the radians rule, and a fan in degrees with a beam narrower
+    than :data:`RADIANS_BEAM_DEG` (the beam alone in radians).
 """
 
 from __future__ import annotations
@@ -102,6 +103,13 @@ def check_hardware(platforms: Mapping[str, Any], envelopes: Mapping[str, Any]) -
                 "out of reach (rule: altitude_max_m < max_range_m)")
 
 
+#: An along-track beam (``elevation_deg``) narrower than this many degrees is flagged (not
+#: refused) as a likely radian value: it is the radian value of a 2 deg beam, while sidescan beams
+#: are about 0.1 deg and wider (typical data-sheet figures, recalled): a 0.035 deg beam needs an
+#: array about 1,600 wavelengths long (2.7 m at 900 kHz, 24 m at 100 kHz).
+RADIANS_BEAM_DEG = math.radians(2.0)
+
+
 def hardware_warnings(platforms: Mapping[str, Any]) -> list[str]:
     """Values that are possible but look like a mistake (one line each; see the module docstring).
 
@@ -121,6 +129,9 @@ def hardware_warnings(platforms: Mapping[str, Any]) -> list[str]:
         if sonar.azimuth_deg <= RADIANS_FAN_DEG:
             found.append(f"sonars.{key}.azimuth_deg = {sonar.azimuth_deg:g} looks like radians (a "
                          f"{math.degrees(sonar.azimuth_deg):.4g} deg fan?); apertures are FULL angles in degrees")
+        elif sonar.elevation_deg < RADIANS_BEAM_DEG:  # the fan in degrees, its beam alone in radians
+            found.append(f"sonars.{key}.elevation_deg = {sonar.elevation_deg:g} looks like radians (a "
+                         f"{math.degrees(sonar.elevation_deg):.3g} deg beam?); apertures are FULL angles in degrees")
     for key, p in platforms.items():
         for side, t in p.transducers.items():
             tilt = abs(t.tilt_deg)
