@@ -224,7 +224,17 @@ def _from_text(param: Parameter, text: str) -> Any:
             raise ParameterError(f"parameter {param.name!r} = {text!r}: {word.group(0)!r} is not a number here; "
                                  f"every number must be finite{_allowed(param)}") from None
         raise ParameterError(f"parameter {param.name!r} = {text!r}: expected a value of type "
-                             f"{param.type}{_allowed(param)}") from None
+                             f"{param.type}{_allowed(param)}{_quoting_hint(param, text)}") from None
+
+
+def _quoting_hint(param: Parameter, text: str) -> str:
+    """How to write a list of strings for the shell, when ``text`` looks like one whose quotes the
+    shell removed (``-p platforms ["my_auv"]`` arrives as ``[my_auv]``), or a bare name."""
+    words = re.fullmatch(r"\s*\[?\s*([A-Za-z_][\w.-]*(?:\s*,\s*[A-Za-z_][\w.-]*)*)\s*\]?\s*", text)
+    if param.type != "list" or not words:
+        return ""
+    items = ", ".join(f'"{w.strip()}"' for w in words.group(1).split(","))
+    return f"; quote each item and the whole list for the shell: -p {param.name} '[{items}]'"
 
 
 def _not_finite(word: str):
