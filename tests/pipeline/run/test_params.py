@@ -108,6 +108,13 @@ def test_a_list_whose_quotes_the_shell_removed_gets_the_command_that_keeps_them(
     assert get_entry("pose_space").resolve("quick", {"platforms": again}, from_text=True)["platforms"] == wanted
 
 
+def test_a_misspelt_notebook_or_profile_gets_the_closest_one():
+    with pytest.raises(ValueError, match=r"unknown notebook 'pose_spaec' \(did you mean 'pose_space'\?\); registered"):
+        get_entry("pose_spaec")
+    with pytest.raises(ParameterError, match=r"no profile 'quik' \(did you mean 'quick'\?\); profiles: book, quick"):
+        get_entry("pose_space").resolve("quik", {})
+
+
 def test_an_unknown_name_gets_the_closest_one():
     with pytest.raises(ParameterError, match="no parameter 'n_sampels' \\(did you mean 'n_samples'\\?\\)"):
         get_entry("pose_space").resolve("quick", {"n_sampels": "5"}, from_text=True)
