@@ -10,7 +10,9 @@ description with the unit. Two markers add what a type cannot say:
 :class:`DataKeys`
     ``Annotated[str, DataKeys("platforms")]``: a key of a data table (``platforms``, ``sonars``,
     ``envelopes``, ``noise``) of ``data/`` merged with the active user data (``--data``,
-    ``--set``; :mod:`sss_locus.experiments.datamodel.userdata`), read when the value is checked.
+    ``--set``; :mod:`sss_locus.experiments.datamodel.userdata`), read when the value is checked;
+    ``DataKeys("platforms", ("noise",))`` also needs the key's ``[noise.<key>]`` table, which the
+    chapter reads (``EnvelopedPlatforms``, ``NoisyPlatforms``, ``EnvelopedNoisyPlatforms``).
 :class:`MemoryPerUnit`
     ``Annotated[int, MemoryPerUnit(2.8e3)]``: the bytes one unit of the value costs (measured
     or estimated); the value times that must stay within :func:`memory_budget`, so a run that
