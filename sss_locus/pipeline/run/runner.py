@@ -267,6 +267,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
             studies.drop_skipped(staged)  # a study no platform of the run can fly: a note, not its cells
             paperinputs.adapt_prose(staged, record["paper_inputs"])
             with outputs.build_lock() if not side else _nothing():
+                removed = [] if side else sorted(set(outputs.labels_of(figures, entry.source_relative)) - set(exported))
                 outputs.commit_run(staged, staging / "figures", executed, figures,
                                    None if side else entry.source_relative)
     finally:
@@ -274,6 +275,9 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     log(f"ran {entry.name} [{profile}] in {time.perf_counter() - start:.1f} s -> {executed}")
     if exported:
         log(f"  figures and tables: {', '.join(exported)} -> {figures}")
+    if removed:  # one executed copy per chapter and build area: its earlier figures go with it
+        log(f"  removed (this chapter's previous run in this build area drew them, this one does not): "
+            f"{', '.join(removed)}")
     return executed
 
 
