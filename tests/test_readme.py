@@ -75,3 +75,22 @@ def test_the_chapters_user_run_commands_name_their_area():
                 found.append(command)
                 assert "--name" in command, f"{path.name}: {command}"
     assert len(found) >= 2, found  # the chapters do give such commands
+
+
+def test_the_own_hardware_commands_start_from_an_environment_a_make_target_builds_alone():
+    """The "< 1 min" answer must not wait for the whole book: the README and the book's pages
+    activate ``.venv`` after a ``make`` target that exists and builds only the environment, and
+    the data file's tables are named (a platform without its noise table is refused by most
+    chapters)."""
+    makefile = (paths.REPO_ROOT / "Makefile").read_text(encoding="utf-8")
+    lines = _lines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("## ") and "own sonar" in line)
+    section = "\n".join(lines[start:start + 15])
+    assert "noise.toml" in section and "survey.toml" in section
+    pages = [section] + [(paths.BOOK_DIR / name).read_text(encoding="utf-8") for name in ("your_hardware.md", "rerun.md")]
+    for text in pages:
+        first = text.index("source .venv/bin/activate")
+        near = text[max(0, first - 120):first + 120]
+        assert "make venv" in near and "after make book or make test" not in near, near
+    assert re.search(r"^venv:\s*\$\(STAMP\)\s*$", makefile, re.M)  # the target builds .venv and nothing else
+    assert re.search(r"^test:.*\n\t.*pytest", makefile, re.M) and re.search(r"^book:", makefile, re.M)

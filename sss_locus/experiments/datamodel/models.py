@@ -430,8 +430,35 @@ def entry(tables: Mapping[str, Any], section: str, key: str) -> Any:
         ``tables[key]``.
     """
     if key not in tables:
-        raise ValueError(f"platform_key must be one of {sorted(tables)}; got {key!r}{suggestion(key, tables)}")
+        raise ValueError(missing_table(section, key, tables))
     return tables[key]
+
+
+#: The shipped file whose schema each per-platform section follows (for the messages).
+SECTION_FILES = {"platforms": "platforms.toml", "sonars": "platforms.toml", "envelopes": "survey.toml",
+                 "noise": "noise.toml"}
+
+
+def missing_table(section: str, key: str, tables: Any) -> str:
+    """The one-line message for a platform ``key`` without a ``[<section>.<key>]`` table.
+
+    Parameters
+    ----------
+    section : str
+        The section (``envelopes``, ``noise`` ...).
+    key : str
+        The platform's key.
+    tables : iterable of str
+        The keys the section has (shipped data and the active user data).
+
+    Returns
+    -------
+    str
+        Names the missing table, the keys the section has and the file whose schema to follow.
+    """
+    where = f" (schema of data/{SECTION_FILES[section]})" if section in SECTION_FILES else ""
+    return (f"no [{section}.{key}] table in data/ or the --data files: add one to your data file{where}; "
+            f"[{section}] has {', '.join(map(repr, sorted(tables))) or 'no tables'}")
 
 
 def provenance(table: BaseModel, path: str) -> dict[str, str]:

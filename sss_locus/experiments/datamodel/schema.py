@@ -17,8 +17,11 @@ Physical rules (:func:`check_hardware`)
     * a name the figures cannot draw (control characters, emoji and other pictographs).
 
     :func:`hardware_warnings` flags, without refusing, a transducer tilt that looks like radians
-    (``0 < |tilt_deg| < pi/2`` with a fractional part) and a sonar fan of at most ``pi`` "degrees"
-    whose beam alone does not meet the radians rule.
+    (``0 < |tilt_deg| < pi/2`` with a fractional part), a sonar fan of at most ``pi`` "degrees"
+    whose beam alone does not meet the radians rule, and a fan in degrees with a beam narrower
+    than :data:`RADIANS_BEAM_DEG` (the beam alone in radians); given the survey envelopes, one
+    whose highest altitude is below :data:`LOW_ALTITUDE_FRACTION` of the sonar's range (a range
+    in mm or cm).
 """
 
 from __future__ import annotations
@@ -102,13 +105,29 @@ def check_hardware(platforms: Mapping[str, Any], envelopes: Mapping[str, Any]) -
                 "out of reach (rule: altitude_max_m < max_range_m)")
 
 
-def hardware_warnings(platforms: Mapping[str, Any]) -> list[str]:
+#: An along-track beam (``elevation_deg``) narrower than this many degrees is flagged (not
+#: refused) as a likely radian value: it is the radian value of a 2 deg beam, while sidescan beams
+#: are about 0.1 deg and wider (typical data-sheet figures, recalled): a 0.035 deg beam needs an
+#: array about 1,600 wavelengths long (2.7 m at 900 kHz, 24 m at 100 kHz).
+RADIANS_BEAM_DEG = math.radians(2.0)
+
+
+#: A survey envelope whose highest altitude is below this fraction of the sonar's range is
+#: flagged (not refused): survey altitudes are about 5-20 % of the range setting (the shipped
+#: envelopes' rule of thumb, ``data/survey.toml``), and a range in mm or cm lands far below 1 %.
+LOW_ALTITUDE_FRACTION = 0.01
+
+
+def hardware_warnings(platforms: Mapping[str, Any], envelopes: Mapping[str, Any] | None = None) -> list[str]:
     """Values that are possible but look like a mistake (one line each; see the module docstring).
 
     Parameters
     ----------
     platforms : Mapping of str to Platform
         Platforms by key.
+    envelopes : Mapping of str to SurveyEnvelope, optional
+        Survey envelopes by platform key: one whose ``altitude_max_m`` is below
+        :data:`LOW_ALTITUDE_FRACTION` of its sonar's ``max_range_m`` is flagged.
 
     Returns
     -------
@@ -121,12 +140,21 @@ def hardware_warnings(platforms: Mapping[str, Any]) -> list[str]:
         if sonar.azimuth_deg <= RADIANS_FAN_DEG:
             found.append(f"sonars.{key}.azimuth_deg = {sonar.azimuth_deg:g} looks like radians (a "
                          f"{math.degrees(sonar.azimuth_deg):.4g} deg fan?); apertures are FULL angles in degrees")
+        elif sonar.elevation_deg < RADIANS_BEAM_DEG:  # the fan in degrees, its beam alone in radians
+            found.append(f"sonars.{key}.elevation_deg = {sonar.elevation_deg:g} looks like radians (a "
+                         f"{math.degrees(sonar.elevation_deg):.3g} deg beam?); apertures are FULL angles in degrees")
     for key, p in platforms.items():
         for side, t in p.transducers.items():
             tilt = abs(t.tilt_deg)
             if 0 < tilt < math.pi / 2 and not float(tilt).is_integer():
                 found.append(f"platforms.{key}.transducers.{side}.tilt_deg = {t.tilt_deg:g} looks like "
                              f"radians (a look-down of {math.degrees(t.tilt_deg):.3g} deg?); tilts are in degrees")
+        env = (envelopes or {}).get(key)
+        if env is not None and env.altitude_max_m < LOW_ALTITUDE_FRACTION * p.sonar.max_range_m:
+            found.append(f"envelopes.{key}.altitude_max_m = {env.altitude_max_m:g} m is "
+                         f"{100 * env.altitude_max_m / p.sonar.max_range_m:.2g} % of sonars.{p.sonar.key}.max_range_m = "
+                         f"{p.sonar.max_range_m:g} m (survey altitudes are about 5-20 % of the range): is the range "
+                         "in mm or cm? max_range_m is in metres")
     return found + [line for _, line in fan_warnings(platforms)]
 
 

@@ -179,11 +179,13 @@ def hardware_flags(inputs: DataInputs | None = None) -> list[str]:
     list of str
         Warning lines naming the data entry; empty for the shipped data.
     """
-    platforms = parse_platforms(document(inputs))
+    doc = document(inputs)
+    platforms = parse_platforms(doc)
+    envelopes = {key: parse_envelope(doc, key) for key in doc.get("envelopes", {}) if key in platforms}
     shipped = {kind for kind, _ in schema.fan_warnings(parse_platforms(datadoc.shipped_document()))}
     user_fans = {line for kind, line in schema.fan_warnings(platforms) if kind not in shipped}
     all_fans = {line for _, line in schema.fan_warnings(platforms)}
-    return [line for line in schema.hardware_warnings(platforms) if line not in all_fans or line in user_fans]
+    return [line for line in schema.hardware_warnings(platforms, envelopes) if line not in all_fans or line in user_fans]
 
 
 def resolved_values(platform_keys: Iterable[str], inputs: DataInputs | None = None, *,

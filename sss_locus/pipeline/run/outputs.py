@@ -66,6 +66,12 @@ def _manifests_of(folder: Path, notebook: str | None) -> dict[str, dict[str, Any
             if notebook is None or m.get("notebook") == notebook}
 
 
+def labels_of(folder: Path, notebook: str) -> list[str]:
+    """The labels of the figures and tables in ``folder`` whose manifests name ``notebook`` (its
+    source path): what a commit of that notebook's next run replaces or removes."""
+    return sorted(_manifests_of(folder, notebook)) if folder.is_dir() else []
+
+
 def _remove_figure(swap: transaction.FileSwap, folder: Path, manifest: dict[str, Any],
                    keep: set[str] = frozenset()) -> None:
     if not keep:

@@ -10,7 +10,9 @@ description with the unit. Two markers add what a type cannot say:
 :class:`DataKeys`
     ``Annotated[str, DataKeys("platforms")]``: a key of a data table (``platforms``, ``sonars``,
     ``envelopes``, ``noise``) of ``data/`` merged with the active user data (``--data``,
-    ``--set``; :mod:`sss_locus.experiments.datamodel.userdata`), read when the value is checked.
+    ``--set``; :mod:`sss_locus.experiments.datamodel.userdata`), read when the value is checked;
+    ``DataKeys("platforms", ("noise",))`` also needs the key's ``[noise.<key>]`` table, which the
+    chapter reads (``EnvelopedPlatforms``, ``NoisyPlatforms``, ``EnvelopedNoisyPlatforms``).
 :class:`MemoryPerUnit`
     ``Annotated[int, MemoryPerUnit(2.8e3)]``: the bytes one unit of the value costs (measured
     or estimated); the value times that must stay within :func:`memory_budget`, so a run that
@@ -57,19 +59,29 @@ class DataKeys:
     """Marker: a string must be a key of the data table ``table`` (shipped data and user data)."""
 
     table: str
+    #: Other tables the chapter reads for the same key (``("envelopes", "noise")``): a key
+    #: without one of them is refused before the run, naming the missing table.
+    needs: tuple[str, ...] = ()
 
-    def keys(self) -> tuple[str, ...]:
+    def keys(self, table: str | None = None) -> tuple[str, ...]:
         """The table's current keys (``data/`` merged with ``--data`` and ``--set``)."""
         from sss_locus.experiments.datamodel import userdata
 
-        return tuple(userdata.document().get(self.table, {}))
+        return tuple(userdata.document().get(table or self.table, {}))
 
     def describe(self) -> str:
-        return f"a key of [{self.table}] in data/ and --data files: one of " + ", ".join(map(repr, self.keys()))
+        needs = "".join(f" with a [{t}.<key>] table" for t in self.needs)
+        return f"a key of [{self.table}] in data/ and --data files{needs}: one of " + ", ".join(
+            map(repr, [k for k in self.keys() if all(k in self.keys(t) for t in self.needs)]))
 
     def _check(self, value: str) -> str:
+        from sss_locus.experiments.datamodel.models import missing_table
+
         if value not in self.keys():
             raise ValueError(f"is not allowed: {self.describe()}")
+        for table in self.needs:
+            if value not in self.keys(table):
+                raise ValueError(f"is a platform this chapter cannot run: {missing_table(table, value, self.keys(table))}")
         return value
 
     def __get_pydantic_core_schema__(self, source: Any, handler: Any) -> core_schema.CoreSchema:
@@ -98,6 +110,13 @@ class MemoryPerUnit:
 
 #: Common fields: the platforms a chapter runs for (data keys, at least one).
 Platforms = Annotated[list[Annotated[str, DataKeys("platforms")]], Field(min_length=1)]
+#: ... for a chapter that also reads their survey envelopes (``[envelopes.<key>]``),
+EnvelopedPlatforms = Annotated[list[Annotated[str, DataKeys("platforms", ("envelopes",))]], Field(min_length=1)]
+#: ... their noise models (``[noise.<key>]``),
+NoisyPlatforms = Annotated[list[Annotated[str, DataKeys("platforms", ("noise",))]], Field(min_length=1)]
+#: ... or both.
+EnvelopedNoisyPlatforms = Annotated[list[Annotated[str, DataKeys("platforms", ("envelopes", "noise"))]],
+                                    Field(min_length=1)]
 #: A random seed (numpy's ``SeedSequence`` accepts any, the runs use 32 bits).
 Seed = Annotated[int, Field(ge=0, le=4_294_967_295)]
 DATA_FILES_DOC = "user data files (TOML, schema of data/*.toml) merged into data/; set by --data"

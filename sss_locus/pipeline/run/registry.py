@@ -224,7 +224,17 @@ def _from_text(param: Parameter, text: str) -> Any:
             raise ParameterError(f"parameter {param.name!r} = {text!r}: {word.group(0)!r} is not a number here; "
                                  f"every number must be finite{_allowed(param)}") from None
         raise ParameterError(f"parameter {param.name!r} = {text!r}: expected a value of type "
-                             f"{param.type}{_allowed(param)}") from None
+                             f"{param.type}{_allowed(param)}{_quoting_hint(param, text)}") from None
+
+
+def _quoting_hint(param: Parameter, text: str) -> str:
+    """How to write a list of strings for the shell, when ``text`` looks like one whose quotes the
+    shell removed (``-p platforms ["my_auv"]`` arrives as ``[my_auv]``), or a bare name."""
+    words = re.fullmatch(r"\s*\[?\s*([A-Za-z_][\w.-]*(?:\s*,\s*[A-Za-z_][\w.-]*)*)\s*\]?\s*", text)
+    if param.type != "list" or not words:
+        return ""
+    items = ", ".join(f'"{w.strip()}"' for w in words.group(1).split(","))
+    return f"; quote each item and the whole list for the shell: -p {param.name} '[{items}]'"
 
 
 def _not_finite(word: str):
@@ -261,8 +271,7 @@ def validate_parameters(
             if renamed in spec:
                 raise ParameterError(f"notebook {notebook!r}: parameter {name!r} is now {renamed!r} "
                                      f"({spec[renamed].describe()})")
-            close = difflib.get_close_matches(name, list(spec), n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            hint = _closest(name, spec)
             listing = "\n".join("  " + p.describe() for p in spec.values()) or "  (none)"
             raise ParameterError(f"notebook {notebook!r} has no parameter {name!r}{hint}\n"
                                  f"Valid parameters of {notebook!r}:\n{listing}")
@@ -314,7 +323,8 @@ class NotebookEntry:
         """Full parameter values for a run: defaults, then the profile, then ``overrides``."""
         if profile not in self.profiles:
             raise ParameterError(
-                f"notebook {self.name!r} has no profile {profile!r}; profiles: {', '.join(self.profiles)}"
+                f"notebook {self.name!r} has no profile {profile!r}{_closest(profile, self.profiles)}; "
+                f"profiles: {', '.join(self.profiles)}"
             )
         spec, model = self.parameters(), self.model()
         values = {name: p.default for name, p in spec.items()}
@@ -399,4 +409,11 @@ def get_entry(name: str, registry_file: Path | None = None) -> NotebookEntry:
     for entry in entries.values():
         if entry.source_relative == name or entry.source.name == Path(name).name:
             return entry
-    raise ValueError(f"unknown notebook {name!r}; registered notebooks: {', '.join(entries) or '(none)'}")
+    raise ValueError(f"unknown notebook {name!r}{_closest(name, entries)}; registered notebooks: "
+                     f"{', '.join(entries) or '(none)'}")
+
+
+def _closest(name: str, known) -> str:
+    """``" (did you mean 'x'?)"`` for the known name nearest ``name``, or ``""``."""
+    close = difflib.get_close_matches(str(name), list(known), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""

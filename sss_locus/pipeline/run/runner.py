@@ -263,6 +263,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
             _label_injected_cell(staged, profile, parameters, record)
             studies.drop_skipped(staged)  # a study no platform of the run can fly: a note, not its cells
             with outputs.build_lock() if not side else _nothing():
+                removed = [] if side else sorted(set(outputs.labels_of(figures, entry.source_relative)) - set(exported))
                 outputs.commit_run(staged, staging / "figures", executed, figures,
                                    None if side else entry.source_relative)
     finally:
@@ -271,6 +272,9 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     log(f"ran {entry.name} [{profile}] in {time.perf_counter() - start:.1f} s -> {executed}")
     if exported:
         log(f"  figures and tables: {', '.join(exported)} -> {figures}")
+    if removed:  # one executed copy per chapter and build area: its earlier figures go with it
+        log(f"  removed (this chapter's previous run in this build area drew them, this one does not): "
+            f"{', '.join(removed)}")
     return executed
 
 

@@ -340,3 +340,52 @@ def test_a_new_source_for_the_shipped_value_or_a_new_name_is_not_marked(tmp_path
     assert load_platform("auv").sonar.name == "Our 2205, wide"
     assert load_platform("auv").name == f"{SHIPPED_AUV} (changed: sonar azimuth_deg)"
     assert userdata.changed_from_shipped(["auv"]) == ["sonars.edgetech_2205.azimuth_deg", "sonars.edgetech_2205.name"]
+
+
+def _example_without(tmp_path, *sections):
+    """The worked example with its ``[<section>.my_auv]`` tables cut out."""
+    kept, skipping = [], False
+    for line in EXAMPLE.read_text().splitlines():
+        if line.startswith("["):
+            skipping = any(line.startswith(f"[{s}.my_auv") for s in sections)
+        if not skipping:
+            kept.append(line)
+    path = tmp_path / f"no_{'_'.join(sections)}.toml"
+    path.write_text("\n".join(kept) + "\n")
+    return path
+
+
+def test_a_platform_without_its_noise_or_envelope_table_is_named_with_the_missing_table(tmp_path):
+    from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+
+    userdata.use([_example_without(tmp_path, "noise", "envelopes")])
+    assert "my_auv" in load_platforms()  # the platform itself is there
+    for load, table, schema in ((load_pass_noise, "noise", "noise.toml"), (load_noise_model, "noise", "noise.toml"),
+                                (load_envelope, "envelopes", "survey.toml")):
+        with pytest.raises(ValueError) as info:
+            load("my_auv")
+        message = str(info.value)  # not "platform_key must be one of ['auv', 'boat']" of a key that exists
+        assert f"no [{table}.my_auv] table" in message and f"data/{schema}" in message, message
+        assert "'auv'" in message and "'boat'" in message
+
+
+def test_a_chapter_that_reads_a_missing_table_refuses_the_platform_before_it_runs(tmp_path, monkeypatch, capsys):
+    from sss_locus.pipeline.cli import command as cli
+    from sss_locus.pipeline.run.registry import get_entry
+
+    data = _example_without(tmp_path, "noise")  # platform and envelope, no noise model
+    userdata.use([data])
+    assert get_entry("pose_space").resolve("quick", {"platforms": ["my_auv"]})["platforms"] == ["my_auv"]
+    assert get_entry("planning").resolve("quick", {"platforms": ["my_auv"]})["platforms"] == ["my_auv"]
+    for chapter in ("survey_design", "noise", "three_views", "reconstruction"):  # they read [noise.my_auv]
+        with pytest.raises(ValueError, match=r"no \[noise\.my_auv\] table .*data/noise\.toml"):
+            get_entry(chapter).resolve("quick", {"platforms": ["my_auv"]})
+    userdata.use([_example_without(tmp_path, "envelopes")])
+    for chapter in ("planning", "survey_passes", "water", "noise"):  # they read [envelopes.my_auv]
+        with pytest.raises(ValueError, match=r"no \[envelopes\.my_auv\] table .*data/survey\.toml"):
+            get_entry(chapter).resolve("quick", {"platforms": ["my_auv"]})
+    userdata.use()
+    monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path / "build"))
+    code = cli.main(["run", "survey_design", "--data", str(data), "-p", "platforms", '["my_auv"]', "--name", "mine"])
+    assert code == 2 and "no [noise.my_auv] table" in capsys.readouterr().err  # not 47 s into cell 3
+    assert not (tmp_path / "build").exists()

@@ -197,3 +197,56 @@ def test_a_survey_moved_across_the_antimeridian_gives_the_same_features(tmp_path
     assert list(moved["nview_status"]) == list(home["nview_status"])
     np.testing.assert_allclose(moved["flat_spread_m"], home["flat_spread_m"], atol=1e-6)
     np.testing.assert_allclose(moved["locus_length_m"], home["locus_length_m"], atol=1e-6)
+
+
+def _header_command(path):
+    """The ``sss-locus ...`` command a data file's header comment documents, as arguments."""
+    import shlex
+
+    lines = [ln[1:].strip() for ln in path.read_text(encoding="utf-8").splitlines() if ln.startswith("#")]
+    start = next(i for i, ln in enumerate(lines) if ln.startswith("sss-locus "))
+    text = lines[start]
+    while text.endswith("\\"):
+        start += 1
+        text = text[:-1] + " " + lines[start]
+    return shlex.split(text)[1:]
+
+
+def test_the_real_recordings_documented_command_passes_every_check_before_the_kernel(capsys, monkeypatch, build_area):
+    # the command in iver2.toml's header failed in cell 3 (no [noise.iver2] for the joint adjustment)
+    from sss_locus.experiments.datamodel import userdata
+    from sss_locus.experiments.noise.study import load_pass_noise
+
+    real = paths.REPO_ROOT / "data" / "examples" / "your_pings" / "real"
+    started = []
+    monkeypatch.setattr(runner, "_execute", lambda *a, **k: started.append(a))
+    monkeypatch.chdir(paths.REPO_ROOT)  # the command's paths are relative to the checkout
+    try:
+        args = _header_command(real / "iver2.toml")
+        assert args[:2] == ["run", "your_pings"] and "--data" in args
+        cli.main(args)
+        assert started, capsys.readouterr().err  # every check passed; the kernel would start
+        userdata.use([real / "iver2.toml"])
+        assert load_pass_noise("iver2").pass_offset_sigma_m > 0
+    finally:
+        userdata.use()
+
+
+def test_a_sightings_platform_without_a_noise_model_is_refused_before_the_kernel(tmp_path):
+    from sss_locus.experiments.datamodel import userdata
+
+    mine = tmp_path / "mine.toml"
+    example = (paths.REPO_ROOT / "data" / "examples" / "my_auv.toml").read_text(encoding="utf-8")
+    mine.write_text(example.split("[noise.my_auv]")[0], encoding="utf-8")  # the platform, no noise model
+    header, rows = _rows()
+    at = header.index("platform")
+    sightings = _write(tmp_path, header, [[*r[:at], "my_auv", *r[at + 1:]] for r in rows], name="mine.csv")
+    userdata.use([mine], ["sonars.narrow_fan_450.max_range_m=200"])  # the example's ranges reach 141 m
+    try:
+        with pytest.raises(ValueError) as info:
+            resolve_parameters(get_entry("your_pings"), "quick", {"observations": str(sightings), "truth": '""'},
+                               from_text=True)
+    finally:
+        userdata.use()
+    text = str(info.value)
+    assert text.startswith("-p observations mine.csv: no [noise.my_auv] table") and "data/noise.toml" in text, text

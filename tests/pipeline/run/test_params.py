@@ -94,6 +94,27 @@ def test_choices_lengths_and_element_types_are_refused_in_one_line(notebook, nam
     assert fragment in str(info.value) and "\n" not in str(info.value)
 
 
+@pytest.mark.parametrize("typed", ['-p platforms ["auv","boat"]', "-p platforms [auv,boat]", "-p platforms auv"])
+def test_a_list_whose_quotes_the_shell_removed_gets_the_command_that_keeps_them(typed):
+    import shlex
+
+    arrived = shlex.split(typed)[2]  # what the shell hands the command: no double quotes left
+    with pytest.raises(ParameterError) as info:
+        get_entry("pose_space").resolve("quick", {"platforms": arrived}, from_text=True)
+    hint = str(info.value).split("for the shell: ")[-1]
+    assert hint.startswith("-p platforms '") and "\n" not in str(info.value), info.value
+    again = shlex.split(hint)[2]  # the suggested command, through the shell
+    wanted = ["auv"] if typed.endswith("auv") else ["auv", "boat"]
+    assert get_entry("pose_space").resolve("quick", {"platforms": again}, from_text=True)["platforms"] == wanted
+
+
+def test_a_misspelt_notebook_or_profile_gets_the_closest_one():
+    with pytest.raises(ValueError, match=r"unknown notebook 'pose_spaec' \(did you mean 'pose_space'\?\); registered"):
+        get_entry("pose_spaec")
+    with pytest.raises(ParameterError, match=r"no profile 'quik' \(did you mean 'quick'\?\); profiles: book, quick"):
+        get_entry("pose_space").resolve("quik", {})
+
+
 def test_an_unknown_name_gets_the_closest_one():
     with pytest.raises(ParameterError, match="no parameter 'n_sampels' \\(did you mean 'n_samples'\\?\\)"):
         get_entry("pose_space").resolve("quick", {"n_sampels": "5"}, from_text=True)

@@ -89,6 +89,25 @@ def test_apertures_in_radians_are_refused_and_a_tilt_in_radians_is_flagged():
     assert len(flags) == 1 and "tilt_deg" in flags[0] and "25.5 deg" in flags[0]
 
 
+def test_a_range_in_millimetres_is_flagged_against_the_survey_altitude():
+    # a 40 m range written as 40000 (mm) with a 2-6 m survey altitude passed silently
+    mm = userdata.make_inputs([], ["sonars.edgetech_2205.max_range_m=150000"])
+    userdata.validate(mm)  # flagged, not refused
+    flags = userdata.hardware_flags(mm)
+    assert len(flags) == 1 and "envelopes.auv.altitude_max_m = 30 m is 0.02 %" in flags[0], flags
+    assert "max_range_m = 150000 m" in flags[0] and "mm or cm" in flags[0]
+    assert userdata.hardware_flags(userdata.make_inputs([], ["sonars.edgetech_2205.max_range_m=2999"])) == []
+
+
+def test_a_beam_alone_in_radians_beside_a_fan_in_degrees_is_flagged():
+    # a 60 deg x 0.25 deg sonar written with the beam in radians (0.0044) passed silently
+    beam = userdata.make_inputs([], [f"sonars.edgetech_2205.elevation_deg={math.radians(0.27)}"])
+    userdata.validate(beam)  # flagged, not refused
+    flags = userdata.hardware_flags(beam)
+    assert len(flags) == 1 and "sonars.edgetech_2205.elevation_deg" in flags[0] and "0.27 deg beam" in flags[0], flags
+    assert userdata.hardware_flags(userdata.make_inputs([], ["sonars.edgetech_2205.elevation_deg=0.1"])) == []
+
+
 def test_the_command_refuses_a_typo_before_any_notebook(tmp_path, monkeypatch, capsys):
     monkeypatch.setenv("SSS_LOCUS_BUILD_DIR", str(tmp_path / "build"))
     code = cli.main(["run", "concept", "--set", "platforms.auv.transducers.port.tilt_dge=45"])

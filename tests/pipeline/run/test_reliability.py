@@ -170,6 +170,28 @@ def test_interrupted_run_leaves_nothing_and_keeps_the_last_good_results(area, en
 
 # -- 2. side runs --------------------------------------------------------------------------------
 
+def test_a_rerun_that_no_longer_draws_a_figure_says_it_removed_it(area, tmp_path):
+    # a chapter run for platform A, then for B in the same build area, silently removed A's
+    # figures (README: "never touches another's figures"); the command now names them
+    first = NotebookEntry("tiny", tiny_notebook(tmp_path, "fig-tiny-rov9"), "executed/tiny.ipynb",
+                          {"book": {}, "quick": {}})
+    lines = []
+    run_notebook(first, "book", {"n": 4}, log=lines.append)
+    assert not any("removed" in line for line in lines)
+    figures = area / "source" / "_extra" / "figures"
+    assert (figures / "fig-tiny-rov9.png").is_file()
+    second = NotebookEntry("tiny", tiny_notebook(tmp_path, "fig-tiny-boat"), "executed/tiny.ipynb",
+                           {"book": {}, "quick": {}})  # the same chapter, now drawing another label
+    lines = []
+    run_notebook(second, "book", {"n": 4}, log=lines.append)
+    removed = [line for line in lines if "removed" in line]
+    assert not (figures / "fig-tiny-rov9.png").exists() and (figures / "fig-tiny-boat.png").is_file()
+    assert len(removed) == 1 and removed[0].rstrip().endswith(": fig-tiny-rov9"), lines
+    lines = []
+    run_notebook(second, "book", {"n": 5}, log=lines.append)  # same labels again: nothing removed
+    assert not any("removed" in line for line in lines)
+
+
 def test_side_run_never_writes_into_the_build_area(area, entry, tmp_path):
     run_notebook(entry, "book", log=quiet)
     good = snapshot(area)

@@ -9,13 +9,13 @@ from typing import Annotated
 
 from pydantic import Field
 
-from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, NotebookParams, Platforms, Seed
+from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, EnvelopedNoisyPlatforms, NotebookParams, Seed
 
 
 class Params(NotebookParams):
     """The parameters of ``noise.ipynb``, their defaults and what each allows."""
 
-    platforms: Platforms = Field(
+    platforms: EnvelopedNoisyPlatforms = Field(
         ["auv", "boat"], description='keys of data/platforms.toml, data/survey.toml, data/noise.toml')
     n_per_angle: int = Field(200, ge=1, le=100_000, description='pass pairs per crossing angle')
     fine_step_deg: float = Field(2.0, gt=0.0, le=90.0, description='crossing-angle step up to fine_max_deg')

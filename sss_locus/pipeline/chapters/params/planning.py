@@ -9,13 +9,13 @@ from typing import Annotated
 
 from pydantic import Field
 
-from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, NotebookParams, Platforms, Seed
+from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, EnvelopedPlatforms, NotebookParams, Seed
 
 
 class Params(NotebookParams):
     """The parameters of ``planning.ipynb``, their defaults and what each allows."""
 
-    platforms: Platforms = Field(["boat", "auv"], description='keys of data/platforms.toml and data/survey.toml')
+    platforms: EnvelopedPlatforms = Field(["boat", "auv"], description='keys of data/platforms.toml and data/survey.toml')
     offset_models: list[str] = Field(
         ["independent", "matched:10:same"], min_length=1, description='"independent" or "matched:<jitter_m>:<side_rule>"')
     n_per_angle: list[Annotated[int, Field(ge=3, le=1_000_000)]] = Field(

@@ -9,13 +9,13 @@ from typing import Annotated, Literal
 
 from pydantic import Field
 
-from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, NotebookParams, Platforms, Seed
+from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, EnvelopedNoisyPlatforms, NotebookParams, Seed
 
 
 class Params(NotebookParams):
     """The parameters of ``reconstruction.ipynb``, their defaults and what each allows."""
 
-    platforms: Platforms = Field(
+    platforms: EnvelopedNoisyPlatforms = Field(
         ["auv", "boat"], description='keys of data/platforms.toml, data/survey.toml, data/noise.toml')
     n_features: int = Field(200, ge=10, le=20_000, description='features per survey')
     n_seeds: int = Field(20, ge=3, le=1000, description='independent simulated surveys per case')

@@ -9,13 +9,13 @@ from typing import Annotated, Literal
 
 from pydantic import Field
 
-from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, NotebookParams, Platforms, Seed
+from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, NoisyPlatforms, NotebookParams, Seed
 
 
 class Params(NotebookParams):
     """The parameters of ``survey_design.ipynb``, their defaults and what each allows."""
 
-    platforms: Platforms = Field(["boat", "auv"], description='keys of data/platforms.toml with a [mission] table')
+    platforms: NoisyPlatforms = Field(["boat", "auv"], description='keys of data/platforms.toml with a [mission] table')
     area: str = Field(
         "data/examples/survey_area.toml", description='survey area file: TOML (vertices_m or vertices_lonlat; optional navigable water, bathymetry grid) or GeoJSON')
     area_sha256: str = Field("", description='set by the runner: SHA-256 of the area file')

@@ -9,13 +9,13 @@ from typing import Annotated
 
 from pydantic import Field
 
-from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, NotebookParams, Platforms, Seed
+from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, EnvelopedPlatforms, NotebookParams, Seed
 
 
 class Params(NotebookParams):
     """The parameters of ``survey_passes.ipynb``, their defaults and what each allows."""
 
-    platforms: Platforms = Field(["boat", "auv"], description='keys of data/platforms.toml and data/survey.toml')
+    platforms: EnvelopedPlatforms = Field(["boat", "auv"], description='keys of data/platforms.toml and data/survey.toml')
     n_per_angle: int = Field(
         8000, ge=1, le=1_000_000, description='accepted pass pairs per crossing angle (main figure)')
     seed: Seed = Field(1, description='random seed')

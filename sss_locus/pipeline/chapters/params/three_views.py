@@ -9,13 +9,13 @@ from typing import Annotated
 
 from pydantic import Field
 
-from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, NotebookParams, Platforms, Seed
+from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, EnvelopedNoisyPlatforms, NotebookParams, Seed
 
 
 class Params(NotebookParams):
     """The parameters of ``three_views.ipynb``, their defaults and what each allows."""
 
-    platforms: Platforms = Field(
+    platforms: EnvelopedNoisyPlatforms = Field(
         ["auv", "boat"], description='keys of data/platforms.toml (and data/survey.toml, data/noise.toml)')
     n_per_pattern: int = Field(4000, ge=1, le=1_000_000, description='configurations per platform and pattern')
     sweep_step_deg: float = Field(

@@ -9,13 +9,13 @@ from typing import Annotated
 
 from pydantic import Field
 
-from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, NotebookParams, Platforms, Seed
+from sss_locus.pipeline.run.params import DATA_FILES_DOC, DATA_SET_DOC, EnvelopedPlatforms, NotebookParams, Seed
 
 
 class Params(NotebookParams):
     """The parameters of ``water.ipynb``, their defaults and what each allows."""
 
-    platforms: Platforms = Field(["auv", "boat"], description='keys of data/platforms.toml')
+    platforms: EnvelopedPlatforms = Field(["auv", "boat"], description='keys of data/platforms.toml')
     n_samples: int = Field(200_000, ge=1000, le=5_000_000, description='pose-space samples per run')
     n_per_angle: int = Field(1000, ge=1, le=1_000_000, description='survey pass pairs per crossing angle')
     crossing_step_deg: float = Field(10.0, gt=0.0, le=90.0, description='crossing-angle step of the survey passes')
