@@ -148,7 +148,7 @@ def check_files(parameters: dict) -> None:
             table, _ = read_checked(path, missing_attitude=parameters["missing_attitude"],
                                     range_sigma_m=parameters["range_sigma_m"],
                                     **{k: parameters[k] for k in ("sample_order", "towfish") if k in parameters})
-            from sss_locus.experiments.noise.study import load_pass_noise
+            from sss_locus.experiments.passes.pass_noise import load_pass_noise
 
             for key in table["platform"].unique():  # the joint adjustment reads each platform's [noise.<key>]
                 load_pass_noise(str(key))

@@ -356,7 +356,8 @@ def _example_without(tmp_path, *sections):
 
 
 def test_a_platform_without_its_noise_or_envelope_table_is_named_with_the_missing_table(tmp_path):
-    from sss_locus.experiments.noise.study import load_noise_model, load_pass_noise
+    from sss_locus.experiments.datamodel.noise_model import load_noise_model
+    from sss_locus.experiments.passes.pass_noise import load_pass_noise
 
     userdata.use([_example_without(tmp_path, "noise", "envelopes")])
     assert "my_auv" in load_platforms()  # the platform itself is there

@@ -215,7 +215,7 @@ def _header_command(path):
 def test_the_real_recordings_documented_command_passes_every_check_before_the_kernel(capsys, monkeypatch, build_area):
     # the command in iver2.toml's header failed in cell 3 (no [noise.iver2] for the joint adjustment)
     from sss_locus.experiments.datamodel import userdata
-    from sss_locus.experiments.noise.study import load_pass_noise
+    from sss_locus.experiments.passes.pass_noise import load_pass_noise
 
     real = paths.REPO_ROOT / "data" / "examples" / "your_pings" / "real"
     started = []
