@@ -10,7 +10,8 @@ time**, and then ``make book`` for both at the same time, so both meet the same 
 Per run: wall time, CPU time (user + system) of the ``make`` process and every descendant it
 waited for (``os.wait4``'s resource usage of the child), exit code, pytest's counts (the summary
 line ``== 3312 passed, 1 skipped in 812.3s ==``), the load average sampled every 5 s, and for the
-book, each executed notebook's papermill duration. The environment is ``CI=true`` (as ``.ci/run``:
+book, each notebook's wall time (the build's ``ran NAME [book] in S s`` lines; the book runs two
+notebooks at a time) and papermill's duration of each executed notebook. The environment is ``CI=true`` (as ``.ci/run``:
 a skipped test fails the run). The two runs share no writable place: each clone has its own
 ``_build/``, ``.cache/``, ``.venv/`` and, per run, its own ``TMPDIR`` (pytest's ``tmp_path``,
 ``tempfile``), ``XDG_CACHE_HOME``/``XDG_CONFIG_HOME``/``XDG_DATA_HOME`` (Chromium's profile,
@@ -19,6 +20,7 @@ fontconfig), ``MPLCONFIGDIR``, ``IPYTHONDIR`` and ``JUPYTER_*_DIR`` under ``<wor
     python benchmarks/bench_build.py 1ca624e main                  # both targets (an hour or more)
     python benchmarks/bench_build.py 1ca624e main --only test
     python benchmarks/bench_build.py 1ca624e main --workdir /tmp/bb --json /tmp/bb/result.json
+    python benchmarks/bench_build.py --table test.json book.json   # one table from two runs
 
 It prints a Markdown table (per target and revision: wall s, CPU s, exit code, tests passed) with
 the ratios after/before, and writes the same to a JSON file (``<workdir>/bench_build.json``
@@ -79,6 +81,27 @@ def parse_pytest_summary(text: str) -> dict | None:
     return counts
 
 
+#: ``sss-locus book``'s line for each executed notebook, e.g. ``ran noise [book] in 176.0 s -> ...``.
+RAN = re.compile(r"^ran (?P<name>\S+) \[(?P<profile>[\w-]+)\] in (?P<secs>[\d.]+) s\b", re.M)
+
+
+def parse_book_log(text: str) -> dict:
+    """Wall seconds of each notebook a ``make book`` log says it ran (``ran NAME [PROFILE] in S s``).
+
+    Parameters
+    ----------
+    text : str
+        A ``make book`` log.
+
+    Returns
+    -------
+    dict
+        Notebook name -> seconds, in the order the log lists them (a notebook ran twice keeps its
+        last time); empty when the log names none (taken from the cache, or the build failed early).
+    """
+    return {m.group("name"): float(m.group("secs")) for m in RAN.finditer(text)}
+
+
 def ratio(after: float | None, before: float | None) -> float | None:
     """``after / before``, or None when either is missing or ``before`` is not positive."""
     if after is None or before is None or before <= 0:
@@ -113,6 +136,17 @@ def table(result: dict) -> str:
         cpu = ratio(phase["runs"][after]["cpu_s"], phase["runs"][before]["cpu_s"])
         lines.append(f"| make {target} | **after / before** | **{_fmt(wall, '.2f')}** | **{_fmt(cpu, '.2f')}** | | | | | |")
     return "\n".join(lines)
+
+
+def merge_results(results: list[dict]) -> dict:
+    """One result from several runs of the same two revisions (e.g. ``--only test`` and
+    ``--only book``): the first one's fields, each target's phase from the last run that has it."""
+    if len({tuple(r["revisions"].values()) for r in results}) != 1:
+        raise SystemExit("bench_build: the result files compare different revisions")
+    merged = dict(results[0], phases={})
+    for r in results:
+        merged["phases"].update(r["phases"])
+    return merged
 
 
 def _git(repo: Path, *args: str) -> str:
@@ -212,14 +246,21 @@ def notebook_durations(clone: Path) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("before", help="the earlier revision (e.g. 1ca624e)")
-    p.add_argument("after", help="the later revision (e.g. main)")
+    p.add_argument("before", nargs="?", help="the earlier revision (e.g. 1ca624e)")
+    p.add_argument("after", nargs="?", help="the later revision (e.g. main)")
     p.add_argument("--only", choices=TARGETS, help="run only this target")
     p.add_argument("--workdir", type=Path, default=None,
                    help="where the clones go, outside every repository as in CI (default: "
                         "<tmp>/sss-locus-bench-build; each revision's folder is emptied first)")
     p.add_argument("--json", type=Path, default=None, help="result file (default: <workdir>/bench_build.json)")
+    p.add_argument("--table", type=Path, nargs="+", metavar="JSON",
+                   help="print the table of earlier result files (their targets merged) and run nothing")
     args = p.parse_args(argv)
+    if args.table:
+        print(table(merge_results([json.loads(f.read_text()) for f in args.table])))
+        return 0
+    if not (args.before and args.after):
+        p.error("give the two revisions: BEFORE AFTER")
 
     repo = Path(_git(Path(__file__).resolve().parent, "rev-parse", "--show-toplevel"))
     shared = (repo.parent / "shared").resolve()
@@ -242,7 +283,7 @@ def main(argv: list[str] | None = None) -> int:
               "machine": f"{_platform.node()}, {os.cpu_count()} cores, {_platform.processor() or _platform.machine()}",
               "python": sys.version.split()[0], "labels": list(labels),
               "revisions": revs, "names": {"before": args.before, "after": args.after},
-              "venv": {}, "phases": {}, "notebooks": {}}
+              "venv": {}, "phases": {}, "notebooks": {}, "papermill": {}}
 
     jobs = {}
     for label in labels:
@@ -263,7 +304,9 @@ def main(argv: list[str] | None = None) -> int:
             r["tests"] = parse_pytest_summary(Path(r["log"]).read_text(errors="replace")) if target == "test" else None
         result["phases"][target] = phase
         if target == "book":
-            result["notebooks"] = {label: notebook_durations(jobs[label][0]) for label in labels}
+            result["notebooks"] = {label: parse_book_log(Path(phase["runs"][label]["log"]).read_text(errors="replace"))
+                                   for label in labels}
+            result["papermill"] = {label: notebook_durations(jobs[label][0]) for label in labels}
         (args.json or workdir / "bench_build.json").write_text(json.dumps(result, indent=2))
 
     print()

@@ -94,3 +94,25 @@ def test_notebook_durations(tmp_path):
     (tmp_path / "_build" / "runs" / "plain.ipynb").write_text(json.dumps({"metadata": {}}))
     (tmp_path / "_build" / "broken.ipynb").write_text("{not json")
     assert bench.notebook_durations(tmp_path) == {"_build/runs/noise.ipynb": 61.3}
+
+
+def test_book_log_notebook_times():
+    log = ("start concept [book] at 21:55:48 UTC\n"
+           "ran concept [book] in 35.4 s -> /x/_build/source/executed/concept.ipynb\n"
+           "  figures and tables: fig-concept -> /x\n"
+           "ran pose_space [book] in 885.7 s -> /x/pose_space.ipynb\n"
+           "  5/12 notebooks done, 579 s elapsed\n"
+           "ran survey_design [quick] in 12 s -> /x/survey_design.ipynb\n")
+    assert bench.parse_book_log(log) == {"concept": 35.4, "pose_space": 885.7, "survey_design": 12.0}
+    assert bench.parse_book_log("Built in 1900 s. Open the book:\n") == {}
+
+
+def test_results_of_two_runs_merge_into_one_table():
+    revs = {"before": "a" * 40, "after": "b" * 40}
+    test_run = {"labels": ["before", "after"], "revisions": revs,
+                "phases": {"test": {"runs": {"before": _run(1, 10.0, passed=5), "after": _run(1, 20.0, passed=6)}, "load": None}}}
+    book_run = dict(test_run, phases={"book": {"runs": {"before": _run(1, 40.0), "after": _run(1, 30.0)}, "load": None}})
+    rows = [r for r in bench.table(bench.merge_results([test_run, book_run])).splitlines() if "after / before" in r]
+    assert ["**2.00**" in rows[0], "**0.75**" in rows[1]] == [True, True]
+    with pytest.raises(SystemExit, match="different revisions"):
+        bench.merge_results([test_run, dict(book_run, revisions={"before": "c" * 40, "after": "b" * 40})])
