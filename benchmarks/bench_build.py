@@ -232,9 +232,10 @@ def run_side_by_side(jobs: dict, target: str, logdir: Path, sample_s: float = 5.
 
 
 def notebook_durations(clone: Path) -> dict:
-    """Papermill's wall time of each executed notebook under ``<clone>/_build`` (seconds)."""
+    """Papermill's wall time of each executed notebook of the book, ``<clone>/_build/source/executed``
+    (seconds; the build copies them to other folders too)."""
     out = {}
-    for nb in sorted((clone / "_build").rglob("*.ipynb")):
+    for nb in sorted((clone / "_build" / "source" / "executed").glob("*.ipynb")):
         try:
             meta = json.loads(nb.read_text()).get("metadata", {}).get("papermill", {})
         except (OSError, ValueError):

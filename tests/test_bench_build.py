@@ -89,11 +89,14 @@ def test_the_two_runs_share_no_cache(tmp_path, monkeypatch):
 
 
 def test_notebook_durations(tmp_path):
-    (tmp_path / "_build" / "runs").mkdir(parents=True)
-    (tmp_path / "_build" / "runs" / "noise.ipynb").write_text(json.dumps({"metadata": {"papermill": {"duration": 61.26}}}))
-    (tmp_path / "_build" / "runs" / "plain.ipynb").write_text(json.dumps({"metadata": {}}))
-    (tmp_path / "_build" / "broken.ipynb").write_text("{not json")
-    assert bench.notebook_durations(tmp_path) == {"_build/runs/noise.ipynb": 61.3}
+    executed = tmp_path / "_build" / "source" / "executed"
+    executed.mkdir(parents=True)
+    (executed / "noise.ipynb").write_text(json.dumps({"metadata": {"papermill": {"duration": 61.26}}}))
+    (executed / "plain.ipynb").write_text(json.dumps({"metadata": {}}))
+    (executed / "broken.ipynb").write_text("{not json")
+    (tmp_path / "_build" / "html").mkdir()
+    (tmp_path / "_build" / "html" / "noise.ipynb").write_text(json.dumps({"metadata": {"papermill": {"duration": 61.26}}}))
+    assert bench.notebook_durations(tmp_path) == {"_build/source/executed/noise.ipynb": 61.3}
 
 
 def test_book_log_notebook_times():
