@@ -11,8 +11,8 @@ Per run: wall time, CPU time (user + system) of the ``make`` process and every d
 waited for (``os.wait4``'s resource usage of the child), exit code, pytest's counts (the summary
 line ``== 3312 passed, 1 skipped in 812.3s ==``), the load average sampled every 5 s, and for the
 book, each notebook's wall time (the build's ``ran NAME [book] in S s`` lines; the book runs two
-notebooks at a time) and papermill's duration of each executed notebook. The environment is ``CI=true`` (as ``.ci/run``:
-a skipped test fails the run). The two runs share no writable place: each clone has its own
+notebooks at a time) and papermill's duration of each executed notebook. The environment is
+``CI=true`` (as ``.ci/run``: a skipped test fails the run). The two runs share no writable place: each clone has its own
 ``_build/``, ``.cache/``, ``.venv/`` and, per run, its own ``TMPDIR`` (pytest's ``tmp_path``,
 ``tempfile``), ``XDG_CACHE_HOME``/``XDG_CONFIG_HOME``/``XDG_DATA_HOME`` (Chromium's profile,
 fontconfig), ``MPLCONFIGDIR``, ``IPYTHONDIR`` and ``JUPYTER_*_DIR`` under ``<workdir>/<label>/home``.
