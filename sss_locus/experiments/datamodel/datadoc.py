@@ -214,14 +214,18 @@ def document(inputs: DataInputs | None = None) -> dict[str, Any]:
         The merged document; the shipped one for default inputs.
     """
     inputs = _ACTIVE if inputs is None else inputs
-    doc = shipped_document()
+    shipped = doc = shipped_document()
     for path in inputs.files:
         user = read_toml(path)
         check_user_document(user, str(path))
         doc = merge(doc, user)
+    named = doc  # the entries as named: shipped ones as shipped, a user's as their file has them
     for text in inputs.sets:
         doc = merge(doc, parse_set(text, doc))
-    return mark_changed_names(doc, shipped_document()) if inputs.files or inputs.sets else doc
+    if not (inputs.files or inputs.sets):
+        return doc
+    reference = {t: {**named.get(t, {}), **shipped.get(t, {})} for t in NAMED_TABLES}
+    return mark_changed_names(doc, reference)
 
 
 #: The tables whose entries' ``name`` says what a figure shows (a caption or a panel title).
@@ -274,21 +278,24 @@ def changed_name(shipped_name: str, fields: Iterable[str]) -> str:
 
 
 def mark_changed_names(doc: Mapping[str, Any], shipped: Mapping[str, Any]) -> dict[str, Any]:
-    """``doc`` with the name of every shipped sonar and platform whose values it changes, but not
-    its name, marked by :func:`changed_name`; a platform also counts its sonar's changes
-    (``"sonar azimuth_deg"``).
+    """``doc`` with the name of every sonar and platform whose values differ from the reference
+    entry of the same key, but whose name does not, marked by :func:`changed_name`; a platform
+    also counts its sonar's changes (``"sonar azimuth_deg"``).
 
     Parameters
     ----------
     doc : Mapping
         A merged data document (shipped data, user files, overrides).
     shipped : Mapping
-        The shipped document (:func:`shipped_document`).
+        The reference entries by table (:data:`NAMED_TABLES`): the shipped ones, and for an
+        entry a user's file adds, that entry as the file names it (so a ``--set`` that changes
+        it marks its name too).
 
     Returns
     -------
     dict
-        A copy of ``doc``; entries the user renamed, added or left as shipped are unchanged.
+        A copy of ``doc``; entries renamed, without a reference, or as their reference are
+        unchanged.
     """
     out = copy.deepcopy(dict(doc))
     changed: dict[str, dict[str, list[str]]] = {t: {} for t in NAMED_TABLES}

@@ -390,3 +390,14 @@ def test_a_chapter_that_reads_a_missing_table_refuses_the_platform_before_it_run
     code = cli.main(["run", "survey_design", "--data", str(data), "-p", "platforms", '["my_auv"]', "--name", "mine"])
     assert code == 2 and "no [noise.my_auv] table" in capsys.readouterr().err  # not 47 s into cell 3
     assert not (tmp_path / "build").exists()
+
+
+def test_a_users_own_platform_changed_on_the_command_line_is_not_named_as_their_file_has_it(tmp_path):
+    # the user's own name says "20° tilt"; a --set of 30° must not leave a figure title saying 20°
+    user = tmp_path / "rov.toml"
+    text = EXAMPLE.read_text()
+    user.write_text(text)
+    userdata.use([user], ["platforms.my_auv.transducers.port.tilt_deg=30"])
+    shipped_name = load_platforms()["my_auv"].name  # marked
+    userdata.use([user])
+    assert load_platform("my_auv").name + " (changed: transducers.port.tilt_deg)" == shipped_name
