@@ -55,7 +55,7 @@ def test_a_verdict_says_when_no_searched_plan_could_be_recommended_and_why_a_hea
     0 deg counter-clockwise from east, compass 090): the searched plans are either not eligible or
     longer than the standard plan, so the rule cannot recommend any; the verdict says so and names
     the headings. Searched at the standard plan's own heading, it says the first part only."""
-    from sss_locus.report.survey_design.figures import none_as_short
+    from sss_locus.report.survey_design.prose import none_as_short
 
     plans = pd.DataFrame({"kind": ["standard", "lawnmower", "search", "search", "search"],
                           "heading_deg": [0.0, 0.0, 90.0, 90.0, 90.0], "total_m": [9600.0, 9600.0, 4300.0, 11800.0, 10200.0],
@@ -75,6 +75,6 @@ def test_a_verdict_says_when_no_searched_plan_could_be_recommended_and_why_a_hea
                             "error_vertical_m": [0.2], "error_vertical_lo_m": [0.1], "error_vertical_hi_m": [0.3],
                             "error_shape_m": [0.4], "error_shape_lo_m": [0.3], "error_shape_hi_m": [0.5],
                             "n_seeds": [5], "min_features": [200], "total_m": [9600.0]}, index=[0])
-    from sss_locus.report.survey_design.figures import noise_verdict_sentence
+    from sss_locus.report.survey_design.prose import noise_verdict_sentence
 
     assert noise_verdict_sentence(summary, verdict, plans, SimpleNamespace(name="AUV")).endswith(text)

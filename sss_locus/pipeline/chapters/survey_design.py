@@ -23,11 +23,11 @@ from sss_locus.pipeline.publish.missions import mission_files, waypoints
 from sss_locus.pipeline.publish.publish import place, publish
 from sss_locus.pipeline.run.cache import cached
 from sss_locus.report.common.text import fmt_percent, fmt_sig
-from sss_locus.report.survey_design.figures import (ERROR_LABELS, OBJECTIVE_LABELS, error_text, noise_verdict_sentence,
-                                                    plan_caption, plan_label, plot_front, plot_plan, verdict_words)
-from sss_locus.report.survey_design.prose import (area_note, best_pairs_sentence, crossing_caption, front_caption,
-                                                  noise_caption, plans_caption, solver_path_sentence,
-                                                  standard_twice_sentence, standard_twice_text)
+from sss_locus.report.survey_design.figures import OBJECTIVE_LABELS, plot_front, plot_plan
+from sss_locus.report.survey_design.prose import (area_note, best_pairs_sentence, crossing_caption, ERROR_LABELS,
+                                                  error_text, front_caption, noise_caption, noise_verdict_sentence,
+                                                  plan_caption, plan_label, plans_caption, solver_path_sentence,
+                                                  standard_twice_sentence, standard_twice_text, verdict_words)
 from sss_locus.report.survey_design.tables import (all_plans, crossing_table, noise_table, noise_table_shown,
                                                    plans_table, with_compass)
 
@@ -36,7 +36,7 @@ class KEYS:
     """The glue keys (and figure labels) this chapter fills by :func:`~sss_locus.pipeline.chapters.common.key`;
     ``{platform}`` takes a data key."""
 
-    std_error = "sd-{platform}-std-error"  # the standard plan's deciding error of the joint estimate, with its interval (report.survey_design.figures.error_text)
+    std_error = "sd-{platform}-std-error"  # the standard plan's deciding error of the joint estimate, with its interval (report.survey_design.prose.error_text)
     best_error = "sd-{platform}-best-error"  # the same for the best plan no longer than the standard plan ("no estimate" without one)
     std_features = "sd-{platform}-std-features"  # the fewest features a seed's median used, standard plan
     best_features = "sd-{platform}-best-features"  # the same for the best plan ("no" without one)

@@ -15,7 +15,7 @@ import pandas as pd
 from sss_locus.experiments.survey_design.front import by_crossing_angle
 from sss_locus.experiments.survey_design.scoring import ERRORS, lower_end_cut
 from sss_locus.report.common.text import fmt_ci_cells
-from sss_locus.report.survey_design.figures import ERROR_LABELS, with_cut_note
+from sss_locus.report.survey_design.prose import ERROR_LABELS, with_cut_note
 
 #: Columns of the plans table (:func:`plans_table`) besides ``platform`` and ``kind``.
 PLAN_COLUMNS = ["heading_deg", "spacing_m", "crossing_deg", "cross_spacing_m", "altitude_m", "total_m", "time_h",

@@ -331,7 +331,7 @@ def test_the_plan_caption_names_the_mission_files_the_depth_and_why_some_are_mis
     """An area in metres without an origin gets the CSV only (the others need longitude/latitude);
     a vehicle without ArduPilot gets no ArduPilot mission: the plan's caption says which files are
     beside it and why the others are not, and the water depth it used and where it came from."""
-    from sss_locus.report.survey_design.figures import plan_caption
+    from sss_locus.report.survey_design.prose import plan_caption
 
     pf = load_platform("auv")
     row = pd.Series(dict(heading_deg=0.0, spacing_m=120.0, crossing_deg=math.nan, cross_spacing_m=120.0,
@@ -356,7 +356,7 @@ def test_the_plan_caption_names_the_mission_files_the_depth_and_why_some_are_mis
 
 def test_the_verdict_sentence_says_whether_the_interval_excludes_the_standard_plans():
     from sss_locus.experiments.survey_design.scoring import recommend_under_noise
-    from sss_locus.report.survey_design.figures import noise_verdict_sentence, verdict_words
+    from sss_locus.report.survey_design.prose import noise_verdict_sentence, verdict_words
 
     pf = load_platform("auv")
     plans = pd.DataFrame({"heading_deg": [0.0, 90.0], "spacing_m": [240.0, 200.0], "crossing_deg": [0.0, math.nan],
@@ -529,7 +529,7 @@ def test_a_boats_altitude_is_printed_as_the_water_depth_it_is():
     """A boat over 8.5 m of water flies at altitude 8.5 m (altitude = water depth): the plan's
     label read "altitude 8 m" (rounded half to even) beside "water depth 8.5 m", as if the boat
     sat half a metre deep; whole metres stay whole."""
-    from sss_locus.report.survey_design.figures import plan_label
+    from sss_locus.report.survey_design.prose import plan_label
 
     row = dict(heading_deg=0.0, spacing_m=192.0, crossing_deg=0.0, cross_spacing_m=192.0, altitude_m=8.5, pitch_deg=0.0)
     assert plan_label(row).endswith("; altitude 8.5 m")

@@ -234,7 +234,7 @@ def test_an_interval_reaching_below_0_is_cut_there_said_so_and_the_rule_reads_th
     without. Plan 2 has a narrow interval above 0: nothing is cut, nothing said."""
     from scipy import stats
 
-    from sss_locus.report.survey_design.figures import CUT_NOTE, error_text
+    from sss_locus.report.survey_design.prose import CUT_NOTE, error_text
     from sss_locus.report.survey_design.tables import noise_table_shown
 
     std = [(0, "standard", 1, 1000.0, 200, 0.2, 0.90), (0, "standard", 2, 1000.0, 200, 1.5, 1.00),

@@ -24,7 +24,8 @@ from sss_locus.experiments.survey_design import front as sd  # noqa: E402
 from sss_locus.experiments.survey_design.area import load_area  # noqa: E402
 from sss_locus.experiments.survey_design.coverage import coverage  # noqa: E402
 from sss_locus.experiments.survey_design.lines import LINE_COLUMNS  # noqa: E402
-from sss_locus.report.survey_design.figures import OUT_OF_REACH, plan_caption, plot_plan  # noqa: E402
+from sss_locus.report.survey_design.figures import OUT_OF_REACH, plot_plan  # noqa: E402
+from sss_locus.report.survey_design.prose import plan_caption  # noqa: E402
 
 ORIGIN = (-111.811, 40.234)
 UTM = "EPSG:32612"

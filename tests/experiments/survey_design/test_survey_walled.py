@@ -108,7 +108,7 @@ def test_the_plan_caption_names_the_navigable_water_its_clearance_and_the_turns_
     import pandas as pd
 
     from sss_locus.experiments.datamodel.platforms import load_platform
-    from sss_locus.report.survey_design.figures import plan_caption
+    from sss_locus.report.survey_design.prose import plan_caption
 
     area = load_area(_area_file(tmp_path))
     row = pd.Series(dict(heading_deg=0.0, spacing_m=120.0, crossing_deg=math.nan, cross_spacing_m=120.0,
