@@ -11,6 +11,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from sss_locus.report.survey_passes import curve_findings as sp
 from sss_locus.report.three_views import findings as pf
 from sss_locus.report.pose_space import findings as ps
 from sss_locus.report.common.text import fmt_percent, plain_label
@@ -61,7 +62,7 @@ def _curve(angles, medians):
 def test_curve_shape_of_an_oblique_peak_with_short_ends():
     g = np.arange(0.0, 181.0, 5.0)
     m = np.exp(-((g - 20.0) / 10.0) ** 2) + 0.01  # the paper's shape: sharp peak at 20 degrees
-    s = pf.curve_shape(_curve(g, m), 20.0, 0.25, 0.5)
+    s = sp.curve_shape(_curve(g, m), 20.0, 0.25, 0.5)
     assert s["where"] == "oblique" and s["ends_preferred"]
     assert s["ends_ratio"] == pytest.approx(m[-1] / m[0])
     avoid = s["bands"][s["bands"]["kind"] == "avoid"]
@@ -72,7 +73,7 @@ def test_curve_shape_of_an_oblique_peak_with_short_ends():
 def test_curve_shape_of_a_cross_line_peak_with_a_long_reciprocal():
     g = np.arange(0.0, 181.0, 5.0)
     m = np.sin(np.radians(g)) + np.where(g > 170, 2.0, 0.1)  # the 180 degree end is long
-    s = pf.curve_shape(_curve(g, m), 90.0, 0.25, 0.5)
+    s = sp.curve_shape(_curve(g, m), 90.0, 0.25, 0.5)
     assert s["where"] == "cross" and not s["ends_preferred"]
 
 
@@ -98,7 +99,7 @@ def _cur(g, m, peak_deg, side="random", mis_peak_deg=None, tried=(100, 100), acc
 def test_curve_finding_quotes_the_curve_and_its_bands():
     g = np.arange(0.0, 181.0, 10.0)
     m = 1.0 + 9.0 * np.sin(np.radians(g))  # 1 m at both ends, 10 m at 90 degrees
-    text = pf.curve_finding(_cur(g, m, 90.0), 0.25, 0.5)
+    text = sp.curve_finding(_cur(g, m, 90.0), 0.25, 0.5)
     assert "is 1.0 m (95 % CI 0.90–1.1 m) at a repeat pass" in text and "is 10 m (95 % CI 9.0–11 m) at 90°" in text
     assert "near a cross-line" in text
     assert "both fall in the preferred bands" in text and "about equally short" in text
@@ -110,12 +111,12 @@ def test_curve_finding_quotes_the_curve_and_its_bands():
 def test_curve_finding_quotes_the_misalignment_and_the_rejected_draws():
     g = np.arange(0.0, 181.0, 10.0)
     m = 1.0 + 9.0 * np.sin(np.radians(g))
-    text = pf.curve_finding(_cur(g, m, 90.0, mis_peak_deg=80.0, tried=(100, 100), accepted=(90, 100)), 0.25, 0.5)
+    text = sp.curve_finding(_cur(g, m, 90.0, mis_peak_deg=80.0, tried=(100, 100), accepted=(90, 100)), 0.25, 0.5)
     assert "rank correlation with the median length over the grid is 1.00" in text  # the same curve
     assert "largest median is at 80° (interval 75–85°)" in text
     assert "5 % were rejected" in text and "at most 10 % at any one angle" in text  # 10 of 200; 10 of 100
     long_end = _cur(g, np.where(g == 180, 2.0, m), 90.0)  # 180 degrees twice as long as 0 degrees
-    assert "though not equally short" in pf.curve_finding(long_end, 0.25, 0.5)
+    assert "though not equally short" in sp.curve_finding(long_end, 0.25, 0.5)
 
 
 def test_shorter_finding_counts_the_angles_where_a_platform_is_shorter():
@@ -123,26 +124,26 @@ def test_shorter_finding_counts_the_angles_where_a_platform_is_shorter():
     a, b = 1.0 + np.sin(np.radians(g)), 2.0 + np.sin(np.radians(g))
     curves = {"boat": _cur(g, b, 90.0), "auv": _cur(g, a, 90.0)}
     titles = {"boat": "the boat", "auv": "the AUV"}
-    assert pf.shorter_finding(curves, titles) == "the AUV's median locus is shorter than the boat's at every crossing angle."
+    assert sp.shorter_finding(curves, titles) == "the AUV's median locus is shorter than the boat's at every crossing angle."
     b2 = b.copy()
     b2[:3] = 0.5  # the boat shorter at the first three angles only
-    assert "at 16 of 19 crossing angles" in pf.shorter_finding({"boat": _cur(g, b2, 90.0), "auv": _cur(g, a, 90.0)},
+    assert "at 16 of 19 crossing angles" in sp.shorter_finding({"boat": _cur(g, b2, 90.0), "auv": _cur(g, a, 90.0)},
                                                                 titles)
-    assert pf.shorter_finding({"auv": _cur(g, a, 90.0)}, titles) == ""
+    assert sp.shorter_finding({"auv": _cur(g, a, 90.0)}, titles) == ""
 
 
 def test_offset_models_finding_names_the_models_with_an_oblique_peak():
     g = np.arange(0.0, 181.0, 10.0)
     curves = {"independent": _cur(g, g, 90.0), "matched same": _cur(g, g, 20.0, side="same", mis_peak_deg=10.0)}
-    text = pf.offset_models_finding(curves)
+    text = sp.offset_models_finding(curves)
     assert "independent: 90° (85–95°; misalignment 90°); matched same: 20° (15–25°; misalignment 10°)" in text
     assert "appears with matched same (matched same: an interval that holds the paper's ≈20°)" in text
     assert "points to passes planned around the feature on the same side" in text
     curves["matched random"] = _cur(g, g, 30.0, side="random")  # an oblique peak with random sides
-    text = pf.offset_models_finding(curves)
+    text = sp.offset_models_finding(curves)
     assert "appears with matched same and matched random" in text and "same side" not in text
     assert "interval that holds" in text and "matched random: an interval" not in text  # 25-35 misses 20
-    assert "no offset model puts the peak" in pf.offset_models_finding({"independent": _cur(g, g, 90.0)})
+    assert "no offset model puts the peak" in sp.offset_models_finding({"independent": _cur(g, g, 90.0)})
 
 
 def _ratio_rows(ratios, lo, hi):
@@ -157,38 +158,38 @@ def _depth(ratio, lo, hi, norm=(0.9, 0.8, 1.0)):
 
 def test_pitch_depth_finding_judges_effects_by_their_intervals():
     pitch = _ratio_rows([1.0, 1.02, 0.99, 1.5, 0.6], [0.95, 0.97, 0.9, 1.3, 0.5], [1.05, 1.08, 1.1, 1.7, 0.7])
-    text = pf.pitch_depth_finding(pitch, _depth(0.7, 0.6, 0.8), [5.0, 10.0, 15.0], (30.0, 80.0))
+    text = sp.pitch_depth_finding(pitch, _depth(0.7, 0.6, 0.8), [5.0, 10.0, 15.0], (30.0, 80.0))
     assert "no clear effect at any level, as the mirror symmetry requires" in text and "0 % (95 % CI -5 % to +5 %) at ±5°" in text
     assert "+50 %" in text and "-40 %" in text and "opposite sign, set by the turn direction" in text
     assert "at 30 m instead of 7.5 m" in text and "-30 %" in text and "flying higher shortens the locus" in text
     assert "per unit range no clear change, so it is the change of range" in text  # norm interval holds 1
-    assert "not merely" in pf.pitch_depth_finding(pitch, _depth(0.7, 0.6, 0.8, (0.8, 0.7, 0.9)), [5, 10, 15], (30, 80))
-    assert "flying higher lengthens" in pf.pitch_depth_finding(pitch, _depth(1.3, 1.2, 1.4), [5, 10, 15], (30, 80))
-    assert ": no clear effect." in pf.pitch_depth_finding(pitch, _depth(1.0, 0.9, 1.1), [5, 10, 15], (30, 80))
+    assert "not merely" in sp.pitch_depth_finding(pitch, _depth(0.7, 0.6, 0.8, (0.8, 0.7, 0.9)), [5, 10, 15], (30, 80))
+    assert "flying higher lengthens" in sp.pitch_depth_finding(pitch, _depth(1.3, 1.2, 1.4), [5, 10, 15], (30, 80))
+    assert ": no clear effect." in sp.pitch_depth_finding(pitch, _depth(1.0, 0.9, 1.1), [5, 10, 15], (30, 80))
     pitch.loc[0, ["ratio", "ratio_ci_low", "ratio_ci_high"]] = [1.2, 1.1, 1.3]
     pitch.loc[4, ["ratio", "ratio_ci_low", "ratio_ci_high"]] = [1.2, 1.1, 1.3]
-    text = pf.pitch_depth_finding(pitch, None, [5.0, 10.0, 15.0], (30.0, 80.0))
+    text = sp.pitch_depth_finding(pitch, None, [5.0, 10.0, 15.0], (30.0, 80.0))
     assert "at 1 of 3 levels the interval excludes 0 %, though the mirror symmetry allows no effect" in text
     assert "clear effects of the same sign either way" in text and "altitude" not in text
     pitch.loc[4, ["ratio", "ratio_ci_low", "ratio_ci_high"]] = [1.0, 0.9, 1.1]
-    assert "no clear effect turning toward starboard" in pf.pitch_depth_finding(pitch, None, [5, 10, 15], (30, 80))
+    assert "no clear effect turning toward starboard" in sp.pitch_depth_finding(pitch, None, [5, 10, 15], (30, 80))
 
 
 def test_survey_summary_names_the_shape_the_models_and_the_study():
     g = np.arange(0.0, 181.0, 10.0)
     m = 1.0 + 9.0 * np.sin(np.radians(g))
     models = {"matched same": _cur(g, m, 20.0, side="same"), "matched opposite": _cur(g, m, 100.0)}
-    text = pf.survey_summary(_cur(g, m, 90.0), models, 0.25, 0.5)
+    text = sp.survey_summary(_cur(g, m, 90.0), models, 0.25, 0.5)
     assert "peaks at 90° (near a cross-line" in text and "repeat and anti-parallel passes give the shortest loci" in text
     assert "appears with matched same, so the shape of the curve is set by an offset model" in text
     assert "pitch" not in text
-    text = pf.survey_summary(_cur(g, m, 20.0), {"matched opposite": models["matched opposite"]}, 0.25, 0.5)
+    text = sp.survey_summary(_cur(g, m, 20.0), {"matched opposite": models["matched opposite"]}, 0.25, 0.5)
     assert "(at a moderate oblique angle" in text and "No other offset model shown" in text
     pitch = _ratio_rows([1.0, 1.0, 1.5, 0.6], [0.9, 0.9, 1.3, 0.5], [1.1, 1.1, 1.7, 0.7])
-    text = pf.survey_summary(_cur(g, m, 90.0), models, 0.25, 0.5, (pitch, _depth(0.7, 0.6, 0.8)))
+    text = sp.survey_summary(_cur(g, m, 90.0), models, 0.25, 0.5, (pitch, _depth(0.7, 0.6, 0.8)))
     assert "the sign of its pitch changes nothing" in text and "flying higher above the feature shortens the locus (-30 %" in text
     pitch.loc[1, ["ratio_ci_low", "ratio_ci_high"]] = [1.05, 1.2]
-    assert "changes the median at some levels" in pf.survey_summary(_cur(g, m, 90.0), models, 0.25, 0.5,
+    assert "changes the median at some levels" in sp.survey_summary(_cur(g, m, 90.0), models, 0.25, 0.5,
                                                                       (pitch, _depth(0.7, 0.6, 0.8)))
 
 

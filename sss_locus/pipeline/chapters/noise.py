@@ -27,10 +27,9 @@ from sss_locus.experiments.passes.view_sets import views_from_survey, draw_patte
 from sss_locus.pipeline.run.cache import cached
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
-from sss_locus.report.survey_passes.findings import noise_advice_findings
 from sss_locus.report.noise.findings import (answer_finding, breakdown_finding, check_finding, crop_finding,
-                                             guide_sentence, offset_models_finding, range_floor_finding,
-                                             summary_finding)
+                                             guide_sentence, noise_advice_findings, offset_models_finding,
+                                             range_floor_finding, summary_finding)
 from sss_locus.report.pose_space.findings import findings_markdown, platform_title
 from sss_locus.report.noise.figures import (level_label, plot_noise_curves, curve_frames, advice_texts, scale_text,
                                             plot_breakdown, plot_check)

@@ -20,8 +20,8 @@ from sss_locus.experiments.survey_passes.verdicts import near_end_check, peak_ag
 from sss_locus.pipeline.run.cache import cached
 from sss_locus.pipeline.chapters.common import key, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
-from sss_locus.report.three_views.findings import (curve_finding, offset_models_finding, skipped_study_note,
-                                                   pitch_depth_finding, shorter_finding, survey_summary)
+from sss_locus.report.survey_passes.curve_findings import (curve_finding, offset_models_finding, pitch_depth_finding,
+                                                          shorter_finding, skipped_study_note, survey_summary)
 from sss_locus.report.pose_space.findings import findings_markdown, platform_title
 from sss_locus.report.survey_passes.figures import (plot_fig5, describe_setup, describe_offset_model, curve_texts,
                                                     peak_table, plot_offset_models, offset_models_bimodal_note,

@@ -295,3 +295,23 @@ def plain_label(quantity: str) -> str:
     for tex, uni in (("\\psi", "ψ"), ("\\phi", "φ"), ("\\theta", "θ"), ("_1", "₁"), ("_2", "₂")):
         text = text.replace(tex, uni)
     return text
+
+
+def join_and(items: list[str]) -> str:
+    """Items joined by commas and a last "and" (by semicolons when an item holds a comma).
+
+    Parameters
+    ----------
+    items : list of str
+        At least one item.
+
+    Returns
+    -------
+    str
+        ``"a"``, ``"a and b"``, ``"a, b and c"``, or ``"a, x; b and c"`` when an item holds a comma.
+
+    >>> join_and(["a"]), join_and(["a", "b", "c"]), join_and(["a, x", "b"])
+    ('a', 'a, b and c', 'a, x and b')
+    """
+    sep = "; " if any("," in i for i in items) else ", "
+    return items[0] if len(items) == 1 else sep.join(items[:-1]) + " and " + items[-1]

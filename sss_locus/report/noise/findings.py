@@ -18,6 +18,7 @@ from sss_locus.experiments.stats.replicates import median_with_interval
 from sss_locus.experiments.survey_passes.planning import peak_angle, planning_bands
 from sss_locus.experiments.survey_passes.verdicts import advice_verdict
 from sss_locus.report.common.text import fmt_bands, fmt_interval, fmt_sig
+from sss_locus.report.survey_passes.findings import verdict_word
 
 ANGLES = (0.0, 90.0, 180.0)
 """The crossing angles quoted: a repeat pass, a cross-line and an anti-parallel pass (deg)."""
@@ -346,3 +347,57 @@ def summary_finding(curves: Mapping[str, pd.DataFrame], table: pd.DataFrame, hea
             + ("the band sets the size of a fix" if ratio > 1 else "the locus length sets the size of a fix")
             + f"; {dominant} errors dominate the band; attitude errors alone leave the computed locus empty in "
             f"{100 * att:.0f} % of the draws.")
+
+
+NOISE_WORDS = ("Survives", "Survives in part", "Does not survive")
+"""Verdict words of the paper's advice with noise (beyond the paper: it has no noise claim)."""
+
+
+def noise_advice_findings(prefix: str, verdicts: Mapping[tuple[str, str, float], Mapping[str, float]],
+                          model_labels: Mapping[str, str], empty_share: Mapping[str, float],
+                          oblique_band_deg: tuple[float, float] = (10.0, 40.0)) -> dict[str, str]:
+    """The paper's crossing-angle advice with measurement noise, from computed flags, with the
+    conditions under which it was tested.
+
+    Parameters
+    ----------
+    prefix : str
+        Start of both glue keys.
+    verdicts : mapping (platform key, offset-model spec, noise scale) -> dict
+        :func:`~sss_locus.experiments.survey_passes.verdicts.advice_verdict` on the median extent (its
+        ``holds`` flag decides).
+    model_labels : mapping spec -> str
+        Display label of each offset model.
+    empty_share : mapping platform key -> float
+        Mean share of noisy draws with an empty computed locus at the headline level.
+    oblique_band_deg : (float, float)
+        The oblique band (deg) the ends are compared with, as the verdicts were computed.
+
+    Returns
+    -------
+    dict of str
+        ``<prefix>-advice-finding`` (the sentence) and ``<prefix>-advice-finding-verdict``
+        (:data:`NOISE_WORDS` of the same flags).
+    """
+    if not verdicts:
+        raise ValueError("noise_advice_findings needs at least one verdict")
+    groups: dict[tuple[str, float], dict[bool, list[str]]] = {}
+    for (key, spec, scale), v in verdicts.items():
+        groups.setdefault((spec, scale), {True: [], False: []})[bool(v["holds"])].append(key)
+    clauses = []
+    for (spec, scale), by in groups.items():
+        said = [f"{word} for {' and '.join(by[flag])}" for flag, word in ((True, "holds"), (False, "fails")) if by[flag]]
+        clauses.append(f"offsets {model_labels[spec]}, every standard deviation ×{scale:g}: {', '.join(said)}")
+    flags = [bool(v["holds"]) for v in verdicts.values()]
+    lo, hi = oblique_band_deg
+    empty = " / ".join(f"{100 * e:.0f} % ({k})" for k, e in empty_share.items())
+    out = {f"{prefix}-advice-finding-verdict": verdict_word(flags, NOISE_WORDS)}
+    out[f"{prefix}-advice-finding"] = (
+        f"Tested on the median extent (the worse end, 0° or 180°, no worse than the median over {lo:g}°–{hi:g}° "
+        f"and than 90°), the advice holds in {sum(flags)} of {len(flags)} cases: {'; '.join(clauses)}. "
+        f"Conditions: errors independent between the two passes (errors common "
+        f"to both would cancel and are left out); each level multiplies every standard deviation of "
+        f"the platform's noise model at once, the range error as well as position and attitude; and the extent "
+        f"combines the band width with the noise-free locus length, while the locus computed from the noisy "
+        f"measurements is empty in {empty} of the draws at the headline level.")
+    return out

@@ -153,7 +153,7 @@ def test_near_end_finding_and_verdict_agree_for_every_pattern_of_flags():
 
 
 def test_noise_advice_finding_states_its_conditions_and_agrees_with_its_flags():
-    from sss_locus.report.survey_passes.findings import NOISE_WORDS, noise_advice_findings
+    from sss_locus.report.noise.findings import NOISE_WORDS, noise_advice_findings
 
     labels = {"independent": "independent", "matched:10:same": "matched ±10 m, same side"}
     cases = [(k, spec, s) for k in ("auv", "boat") for spec in labels for s in (1.0, 0.1)]
