@@ -251,7 +251,7 @@ def test_a_planted_violation_is_reported(tmp_path):
 
 #: Test files that stay at the top of ``tests/``: project-wide checks and test support.
 TOP_TESTS = {"test_layers.py", "test_readme.py", "test_docstrings.py", "test_metadata.py",
-             "test_first_hour.py", "test_installed.py", "test_bench_build.py"}
+             "test_first_hour.py", "test_installed.py", "test_bench_build.py", "test_compare_quick_outputs.py"}
 
 
 def test_tests_follow_the_rooms():

@@ -159,6 +159,10 @@ def main(argv: list[str] | None = None) -> int:
         new = outputs_of_ref(args.against)
     elif args.build:
         new = extract(args.build)
+        if not new["notebooks"]:  # nothing compared is no evidence of "identical"
+            print(f"compare_quick_outputs: --build {args.build} holds no executed notebook "
+                  "(expected <build>/source/executed/*.ipynb)", file=sys.stderr)
+            return 2
         old = {"csv": {k: v for k, v in old["csv"].items() if k in new["csv"]},
                "notebooks": {k: v for k, v in old["notebooks"].items() if k in new["notebooks"]}}
     else:
