@@ -111,6 +111,20 @@ def read_header(path: Path, data: bytes):
     return header, channels
 
 
+def _check_channel_count(path: Path, pos: int, ping, channels) -> None:
+    """A ping's ``NumChansToFollow`` within the file header's sonar channels, or one line."""
+    if not 1 <= ping.NumChansToFollow <= len(channels):
+        raise ObservationError(f"{path.name} byte {pos}: ping {ping.PingNumber} has NumChansToFollow "
+                               f"{ping.NumChansToFollow}; the file header declares {len(channels)} sonar channel(s)")
+
+
+def _check_length(path: Path, pos: int, start, start_size: int) -> None:
+    """A packet's ``NumBytesThisRecord`` at least its packet start, or one line."""
+    if start.NumBytesThisRecord < start_size:
+        raise ObservationError(f"{path.name} byte {pos}: packet of {start.NumBytesThisRecord} bytes "
+                               f"(NumBytesThisRecord), shorter than its {start_size}-byte packet start")
+
+
 def _sonar_packet(path: Path, data: bytes, pos: int, end: int, header, channels):
     """One sonar packet (bytes ``pos:end``) as ``pyxtf``'s ping header with ``ping_chan_headers``
     and ``data`` (one array per channel) and ``offset`` (its byte in the file)."""
@@ -120,9 +134,7 @@ def _sonar_packet(path: Path, data: bytes, pos: int, end: int, header, channels)
         raise ObservationError(f"{path.name} byte {pos}: sonar packet of {end - pos} bytes (NumBytesThisRecord), "
                                f"shorter than its {hsize}-byte ping header")
     ping = pyxtf.XTFPingHeader.from_buffer_copy(data[pos:pos + hsize])
-    if not 1 <= ping.NumChansToFollow <= len(channels):
-        raise ObservationError(f"{path.name} byte {pos}: ping {ping.PingNumber} has NumChansToFollow "
-                               f"{ping.NumChansToFollow}; the file header declares {len(channels)} sonar channel(s)")
+    _check_channel_count(path, pos, ping, channels)
     ping.ping_chan_headers, ping.data, ping.offset = [], [], pos
     at = pos + hsize
     for k in range(ping.NumChansToFollow):
@@ -181,15 +193,11 @@ def _cut_packet(path: Path, data: bytes, pos: int, header, channels) -> tuple[in
     if have < start_size:
         return start_size - have, False
     start = pyxtf.XTFPacketStart.from_buffer_copy(data[pos:pos + start_size])
-    if start.NumBytesThisRecord < start_size:
-        raise ObservationError(f"{path.name} byte {pos}: packet of {start.NumBytesThisRecord} bytes "
-                               f"(NumBytesThisRecord), shorter than its {start_size}-byte packet start")
+    _check_length(path, pos, start, start_size)
     hsize, csize = ctypes.sizeof(pyxtf.XTFPingHeader), ctypes.sizeof(pyxtf.XTFPingChanHeader)
     if start.HeaderType == _SONAR and have >= hsize:  # what is there must agree with the file header
         ping = pyxtf.XTFPingHeader.from_buffer_copy(data[pos:pos + hsize])
-        if not 1 <= ping.NumChansToFollow <= len(channels):
-            raise ObservationError(f"{path.name} byte {pos}: ping {ping.PingNumber} has NumChansToFollow "
-                                   f"{ping.NumChansToFollow}; the file header declares {len(channels)} sonar channel(s)")
+        _check_channel_count(path, pos, ping, channels)
         at, end = pos + hsize, pos + start.NumBytesThisRecord
         for k in range(ping.NumChansToFollow):
             if at + csize > len(data):
@@ -254,9 +262,7 @@ def read_pings(path) -> tuple[object, dict[int, object]]:
         if start.MagicNumber != 0xFACE:
             raise ObservationError(f"{path.name} byte {pos}: not an XTF packet (no 0xFACE)")
         end = pos + start.NumBytesThisRecord
-        if start.NumBytesThisRecord < start_size:
-            raise ObservationError(f"{path.name} byte {pos}: packet of {start.NumBytesThisRecord} bytes "
-                                   f"(NumBytesThisRecord), shorter than its {start_size}-byte packet start")
+        _check_length(path, pos, start, start_size)
         if start.HeaderType == _SONAR:
             try:
                 ping = _sonar_packet(path, data, pos, end, header, channels)
