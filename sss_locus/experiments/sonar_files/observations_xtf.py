@@ -140,7 +140,8 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse", range_
         One row per sighting: the sightings columns (positions as recorded, degrees or metres;
         slant range from the sample, m) plus ``xtf_file``, ``ping``, ``channel``,
         ``sample_stored``, ``sample_order``, ``sample_order_how``, ``xtf_layback_m``,
-        ``layback_from``, ``position_read_as``.
+        ``layback_from``, ``position_read_as``; ``attrs["xtf_truncated"]`` lists the one-line
+        warning of each XTF file cut short (only its complete pings were read).
 
     Raises
     ------
@@ -189,6 +190,8 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse", range_
         if values["ping"] not in pings:
             known = sorted(pings)
             span = f"its pings run {known[0]} to {known[-1]}" if known else "it has no sonar pings"
+            if header.truncation:
+                span += f"; {header.truncation.message()}"
             raise ObservationError(f"{src} line {line}, column ping: ping {values['ping']} is not in {name} ({span})")
         ping = pings[values["ping"]]
         ch = values["channel"]
@@ -240,7 +243,9 @@ def read_xtf_sightings(matches_path, *, missing_attitude: str = "refuse", range_
     table = pd.DataFrame(rows, dtype=object)
     table.attrs.update(raw.attrs)
     out = parse_sightings(table, src, missing_attitude=missing_attitude, range_sigma_m=range_sigma_m)
-    return pd.concat([out, pd.DataFrame(extra, index=out.index)], axis=1)
+    out = pd.concat([out, pd.DataFrame(extra, index=out.index)], axis=1)
+    out.attrs["xtf_truncated"] = [h.truncation.message() for h, _ in files.values() if h.truncation]
+    return out
 
 
 def ping_time_s(ping) -> float:
@@ -367,6 +372,34 @@ def read_observations(path, **kw) -> pd.DataFrame:
     if {"file", "ping"} <= cols:
         return read_xtf_sightings(path, **kw)
     return read_sightings(path, **{k: v for k, v in kw.items() if k not in ("sample_order", "towfish")})
+
+
+def observation_warnings(path) -> list[str]:
+    """The one-line warnings of the XTF files an observations file names that are cut short
+    (:func:`~sss_locus.experiments.sonar_files.xtf_packets.truncation_note`): only their complete
+    pings are read. ``[]`` for a sightings CSV or whole files; a file that cannot be read is left to
+    the reader's one-line error.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The observations file.
+
+    Returns
+    -------
+    list of str
+        One warning per truncated XTF file, in the order the matches file names them.
+    """
+    from sss_locus.experiments.sonar_files.xtf_packets import truncation_note
+
+    out = []
+    for f in observation_files(path)[1:]:
+        try:
+            note = truncation_note(f)
+        except ObservationError:
+            continue
+        out += [note] if note else []
+    return out
 
 
 def observation_files(path) -> list[Path]:

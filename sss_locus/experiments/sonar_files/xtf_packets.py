@@ -15,11 +15,19 @@ each starting with ``0xFACE`` and its length (``NumBytesThisRecord``). A sonar p
 channel header and ``NumSamples`` samples of the channel's ``BytesPerSample`` (``SampleFormat``
 where set). Other packets are skipped. A ``PingNumber`` repeated in one file is refused (a
 reader keyed by it would silently keep only one of the pings).
+
+A recording cut short (logging stopped, a full disk) ends inside its last packet: when that
+packet starts as a packet does (``0xFACE``, a length at least its packet start, a sonar ping
+header and channel headers that agree with the file header as far as they go) and only its end
+is missing, the complete pings before it are read and the file header's ``truncation`` says
+what was lost (:class:`Truncation`, one line). A corrupt packet in the middle, a bad magic
+number, or a file with no complete ping are still refused.
 """
 
 from __future__ import annotations
 
 import ctypes
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -103,6 +111,20 @@ def read_header(path: Path, data: bytes):
     return header, channels
 
 
+def _check_channel_count(path: Path, pos: int, ping, channels) -> None:
+    """A ping's ``NumChansToFollow`` within the file header's sonar channels, or one line."""
+    if not 1 <= ping.NumChansToFollow <= len(channels):
+        raise ObservationError(f"{path.name} byte {pos}: ping {ping.PingNumber} has NumChansToFollow "
+                               f"{ping.NumChansToFollow}; the file header declares {len(channels)} sonar channel(s)")
+
+
+def _check_length(path: Path, pos: int, start, start_size: int) -> None:
+    """A packet's ``NumBytesThisRecord`` at least its packet start, or one line."""
+    if start.NumBytesThisRecord < start_size:
+        raise ObservationError(f"{path.name} byte {pos}: packet of {start.NumBytesThisRecord} bytes "
+                               f"(NumBytesThisRecord), shorter than its {start_size}-byte packet start")
+
+
 def _sonar_packet(path: Path, data: bytes, pos: int, end: int, header, channels):
     """One sonar packet (bytes ``pos:end``) as ``pyxtf``'s ping header with ``ping_chan_headers``
     and ``data`` (one array per channel) and ``offset`` (its byte in the file)."""
@@ -112,9 +134,7 @@ def _sonar_packet(path: Path, data: bytes, pos: int, end: int, header, channels)
         raise ObservationError(f"{path.name} byte {pos}: sonar packet of {end - pos} bytes (NumBytesThisRecord), "
                                f"shorter than its {hsize}-byte ping header")
     ping = pyxtf.XTFPingHeader.from_buffer_copy(data[pos:pos + hsize])
-    if not 1 <= ping.NumChansToFollow <= len(channels):
-        raise ObservationError(f"{path.name} byte {pos}: ping {ping.PingNumber} has NumChansToFollow "
-                               f"{ping.NumChansToFollow}; the file header declares {len(channels)} sonar channel(s)")
+    _check_channel_count(path, pos, ping, channels)
     ping.ping_chan_headers, ping.data, ping.offset = [], [], pos
     at = pos + hsize
     for k in range(ping.NumChansToFollow):
@@ -138,10 +158,69 @@ def _sonar_packet(path: Path, data: bytes, pos: int, end: int, header, channels)
     return ping
 
 
+@dataclass(frozen=True)
+class Truncation:
+    """A file that ends inside its last packet: ``file`` (name), ``offset`` (byte where the
+    incomplete packet starts), ``missing_bytes`` (bytes it lacks; a lower bound when its
+    length field itself is cut, ``length_known`` False), ``n_pings`` (complete pings read)."""
+
+    file: str
+    offset: int
+    missing_bytes: int
+    length_known: bool
+    n_pings: int
+
+    def message(self) -> str:
+        """The one-line warning (file, byte offset, bytes missing, pings read).
+
+        Returns
+        -------
+        str
+            One line, starting with the file's name.
+        """
+        missing = f"{self.missing_bytes}" if self.length_known else f"at least {self.missing_bytes}"
+        return (f"{self.file} is truncated: the packet at byte {self.offset} is incomplete ({missing} bytes "
+                f"missing); read the {self.n_pings} complete pings before it, the rest of the recording is lost")
+
+
+def _cut_packet(path: Path, data: bytes, pos: int, header, channels) -> tuple[int, bool]:
+    """The bytes missing from the packet at ``pos`` that runs past the end of ``data``, and
+    whether its length is known; a packet that does not start as one is refused (one line)."""
+    pyxtf, _ = _structures()
+    have, start_size = len(data) - pos, ctypes.sizeof(pyxtf.XTFPacketStart)
+    if have >= 2 and int.from_bytes(data[pos:pos + 2], "little") != 0xFACE:
+        raise ObservationError(f"{path.name} byte {pos}: not an XTF packet (no 0xFACE)")
+    if have < start_size:
+        return start_size - have, False
+    start = pyxtf.XTFPacketStart.from_buffer_copy(data[pos:pos + start_size])
+    _check_length(path, pos, start, start_size)
+    hsize, csize = ctypes.sizeof(pyxtf.XTFPingHeader), ctypes.sizeof(pyxtf.XTFPingChanHeader)
+    if start.HeaderType == _SONAR and have >= hsize:  # what is there must agree with the file header
+        ping = pyxtf.XTFPingHeader.from_buffer_copy(data[pos:pos + hsize])
+        _check_channel_count(path, pos, ping, channels)
+        at, end = pos + hsize, pos + start.NumBytesThisRecord
+        for k in range(ping.NumChansToFollow):
+            if at + csize > len(data):
+                break
+            chan = pyxtf.XTFPingChanHeader.from_buffer_copy(data[at:at + csize])
+            at += csize + (int(chan.NumSamples) or int(header.ChanInfo[k].Reserved)) * channels[k][1].itemsize
+            if at > end:
+                raise ObservationError(f"{path.name} byte {pos}: ping {ping.PingNumber}'s channel {k} runs past the end "
+                                       f"of its packet (byte {end}): a corrupt packet, not a recording cut short")
+        else:  # every channel is there: a packet following its samples means a corrupt length
+            if at + 2 <= len(data) and int.from_bytes(data[at:at + 2], "little") == 0xFACE:
+                raise ObservationError(f"{path.name} byte {pos}: ping {ping.PingNumber}'s NumBytesThisRecord "
+                                       f"{start.NumBytesThisRecord} runs past the end of the file, but its channels "
+                                       f"end at byte {at} where another packet starts: a corrupt length")
+    return pos + start.NumBytesThisRecord - len(data), True
+
+
 def read_pings(path) -> tuple[object, dict[int, object]]:
     """The file header and the sonar pings by ``PingNumber`` of one XTF file (``pyxtf``
     structures; each ping with ``ping_chan_headers``, ``data`` and its byte ``offset``), in file
-    order. Anything malformed is refused (:class:`ObservationError`) naming the file and byte.
+    order. Anything malformed is refused (:class:`ObservationError`) naming the file and byte; a
+    file cut short inside its last packet gives the complete pings before it, and the header's
+    ``truncation`` (a :class:`Truncation`, else ``None``) says what was lost.
 
     Parameters
     ----------
@@ -151,14 +230,14 @@ def read_pings(path) -> tuple[object, dict[int, object]]:
     Returns
     -------
     header : pyxtf.XTFFileHeader
-        The file header.
+        The file header, with ``truncation`` (:class:`Truncation` or ``None``).
     pings : dict
         ``PingNumber`` -> ping, in file order (empty for a file without sonar pings).
 
     Raises
     ------
     ObservationError
-        A missing file or a malformed packet, naming the byte.
+        A missing file, a malformed packet, or a cut file without a complete ping, naming the byte.
     """
     pyxtf, _ = _structures()
     problem = missing_file(path, "XTF file")  # empty path, directory, device, FIFO, missing
@@ -167,22 +246,23 @@ def read_pings(path) -> tuple[object, dict[int, object]]:
     path = Path(path)
     data = path.read_bytes()
     header, channels = read_header(path, data)
+    header.truncation = None
     pings: dict[int, object] = {}
     start_size = ctypes.sizeof(pyxtf.XTFPacketStart)
     pos = ctypes.sizeof(pyxtf.XTFFileHeader)
     while pos < len(data):
-        if pos + start_size > len(data):
-            raise ObservationError(f"{path.name}: truncated at byte {len(data)}: packet at byte {pos} has no complete header")
-        start = pyxtf.XTFPacketStart.from_buffer_copy(data[pos:pos + start_size])
+        start = pyxtf.XTFPacketStart.from_buffer_copy(data[pos:pos + start_size].ljust(start_size, b"\0"))
+        if pos + start_size > len(data) or pos + start.NumBytesThisRecord > len(data):
+            missing, known = _cut_packet(path, data, pos, header, channels)
+            if not pings:
+                raise ObservationError(f"{path.name}: truncated at byte {len(data)}: the packet at byte {pos} is "
+                                       f"incomplete and no complete sonar ping precedes it")
+            header.truncation = Truncation(path.name, pos, missing, known, len(pings))
+            break
         if start.MagicNumber != 0xFACE:
             raise ObservationError(f"{path.name} byte {pos}: not an XTF packet (no 0xFACE)")
         end = pos + start.NumBytesThisRecord
-        if start.NumBytesThisRecord < start_size:
-            raise ObservationError(f"{path.name} byte {pos}: packet of {start.NumBytesThisRecord} bytes "
-                                   f"(NumBytesThisRecord), shorter than its {start_size}-byte packet start")
-        if end > len(data):
-            raise ObservationError(f"{path.name}: truncated at byte {len(data)}: the packet at byte {pos} "
-                                   f"needs {start.NumBytesThisRecord} bytes")
+        _check_length(path, pos, start, start_size)
         if start.HeaderType == _SONAR:
             try:
                 ping = _sonar_packet(path, data, pos, end, header, channels)
@@ -197,6 +277,24 @@ def read_pings(path) -> tuple[object, dict[int, object]]:
             pings[number] = ping
         pos = end
     return header, pings
+
+
+def truncation_note(path) -> str:
+    """The one-line warning of an XTF file cut short (:class:`Truncation`), ``""`` for a whole
+    file (a malformed file raises the reader's one-line error).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The XTF file.
+
+    Returns
+    -------
+    str
+        The warning, or ``""``.
+    """
+    header, _ = read_pings(path)
+    return header.truncation.message() if header.truncation else ""
 
 
 def channel_types(header) -> list[int]:

@@ -22,7 +22,9 @@ def summary(path, sample_order: str = "detect") -> dict:
     ``time_last_s`` (seconds of the day), ``altitude_zero`` (pings with altitude 0),
     ``n_positions`` (distinct recorded sensor positions), ``layback_m``
     (min, max), ``layback_from``, ``layback_bad`` (pings whose ``Layback`` is negative or not a
-    number: the reader refuses them), and ``channels``: per channel ``channel``, ``type``, ``side``,
+    number: the reader refuses them), ``truncated`` (the one-line warning of a file cut short
+    inside its last packet, whose complete pings alone are summarised; ``""`` for a whole file), ``truncated_at`` (the
+    byte where its incomplete packet starts, else ``None``), and ``channels``: per channel ``channel``, ``type``, ``side``,
     ``n_samples`` (min, max), ``range_m`` (min, max), ``order`` and ``order_how`` (or
     ``order_error``, the reason the order cannot be detected).
 
@@ -38,7 +40,7 @@ def summary(path, sample_order: str = "detect") -> dict:
     -------
     dict
         The keys above; a file without sonar pings has only ``file``, ``sonar``, ``recorder``,
-        ``nav_units``, ``n_pings`` (0) and ``channels`` (empty).
+        ``nav_units``, ``n_pings`` (0), ``channels`` (empty), ``truncated`` and ``truncated_at``.
     """
     header, pings = read_pings(path)  # the path as given: an empty one is not the current folder
     path = Path(path)
@@ -46,7 +48,9 @@ def summary(path, sample_order: str = "detect") -> dict:
     out = {"file": path.name, "sonar": header.SonarName.decode("latin-1", "replace").strip("\x00 "),
            "recorder": header.RecordingProgramName.decode("latin-1", "replace").strip("\x00 "),
            "nav_units": NAV_UNITS.get(int(header.NavUnits), f"{header.NavUnits} (not supported)"),
-           "n_pings": len(pings), "channels": []}
+           "n_pings": len(pings), "channels": [],
+           "truncated": header.truncation.message() if header.truncation else "",
+           "truncated_at": header.truncation.offset if header.truncation else None}
     if not pings:
         return out
     times = np.array([ping_time_s(p) for p in pings.values()])

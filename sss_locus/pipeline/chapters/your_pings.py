@@ -11,7 +11,7 @@ import pandas as pd
 
 from sss_locus.experiments.passes.pass_noise import load_pass_noise
 from sss_locus.experiments.sonar_files.observations import LocalFrame
-from sss_locus.experiments.sonar_files.observations_xtf import observation_files
+from sss_locus.experiments.sonar_files.observations_xtf import observation_files, observation_warnings
 from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.sonar_files.xtf_summary import summary as xtf_summary, waterfall_data
 from sss_locus.experiments.your_pings.study import run
@@ -30,7 +30,7 @@ from sss_locus.report.your_pings.real import (marks, read_hits, waterfall_captio
 
 __all__ = ["against_truth", "feature_panels", "geojson_text", "glue", "HTML", "joint_estimate",
            "joint_sentence", "load_pass_noise", "load_platform", "LocalFrame", "map_caption", "Markdown",
-           "marks", "observation_files", "offline_html", "one_pass_text", "page_data_words",
+           "marks", "observation_files", "observation_warnings", "offline_html", "one_pass_text", "page_data_words",
            "passes_caption", "passes_shown", "Path", "pd", "plan_view", "positions_table", "publish",
            "read_hits", "read_truth", "REPO_ROOT", "run", "show_table", "summary_sentence", "use_data",
            "view_3d", "waterfall", "waterfall_caption", "waterfall_data", "with_joint", "xtf_summary"]

@@ -264,7 +264,11 @@ def _answer(args: argparse.Namespace) -> int:
 def _xtf(args: argparse.Namespace) -> int:
     from sss_locus.pipeline.cli.xtfinfo import summary_lines
 
-    print("\n".join(summary_lines(args.file, args.sample_order)))
+    lines = summary_lines(args.file, args.sample_order)
+    print("\n".join(lines))
+    for line in lines:  # a file cut short: the user sees it where errors go, too
+        if line.startswith("warning: "):
+            print(f"sss-locus xtf: {line}", file=sys.stderr)
     return 0
 
 

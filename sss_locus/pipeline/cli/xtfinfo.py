@@ -28,6 +28,8 @@ def summary_lines(path, sample_order: str = "detect") -> list[str]:
                   + (f" ({s['ping_gaps']} numbers missing)" if s["ping_gaps"] else "")
                   + f"; time {_clock(s['time_first_s'])} to {_clock(s['time_last_s'])} "
                   f"({s['time_last_s'] - s['time_first_s']:.1f} s)")
+    if s["truncated"]:  # the caller prints it on stderr too
+        lines.append(f"warning: {s['truncated']}")
     if s["altitude_zero"]:
         lines.append(f"{s['altitude_zero']} ping(s) with altitude 0 (SensorPrimaryAltitude): do not match those")
     lines.append("layback: " + (f"{_span(s['layback_m'], '{:.3g}')} m (from {', '.join(s['layback_from'])})"

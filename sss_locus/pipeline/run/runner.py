@@ -125,6 +125,7 @@ def _label_injected_cell(executed: Path, profile: str, parameters: dict[str, Any
                 for f in extra["data"]["files"]:  # the page names a user's file, not where it sits
                     source = source.replace(json.dumps(f["path"])[1:-1], paths.public_path(f["path"]))
                 header += "".join(f"# data override: {o}\n" for o in extra["data"]["overrides"])
+            header += "".join(f"# warning: {w}\n" for w in extra.get("warnings", []))  # a user's file read in part
             for value in parameters.values():  # a user's area, sightings or truth file, by its name
                 if isinstance(value, str) and os.path.isabs(value):
                     source = source.replace(json.dumps(value)[1:-1], paths.public_path(value))
@@ -213,6 +214,9 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
     notebook's ``data_files``/``data_set`` parameters.
     """
     parameters = resolve_parameters(entry, profile, overrides, from_text=from_text, data=data)
+    warnings = userfiles.file_warnings(parameters)  # a user's file read in part: said now and recorded
+    for line in warnings:
+        print(f"sss-locus: warning: {line}", file=sys.stderr)
     side = output is not None
     executed = preflight.check_side_output(output, entry) if side else entry.executed_path()
     figures = executed.parent / paths.FIGURES_SUBDIR if side else paths.figures_dir()
@@ -250,7 +254,7 @@ def run_notebook(entry: NotebookEntry, profile: str = "book", overrides: dict[st
                     exc.args = (f"{exc.args[0]}; the failed notebook is kept in {kept}",)
                 raise
             exported = sorted(m["label"] for m in export.load_manifests(staging / "figures", export.KINDS))
-            record = {"run_key": key, "figures": exported}
+            record = {"run_key": key, "figures": exported, **({"warnings": warnings} if warnings else {})}
             if "data_files" in parameters:
                 from sss_locus.experiments.datamodel import userdata
 

@@ -57,6 +57,18 @@ def observation_parameters(path: str, truth: str | None = None) -> dict[str, str
     return out
 
 
+def file_warnings(parameters: dict) -> list[str]:
+    """The one-line warnings of a run's user files that are read only in part: each XTF file
+    of the ``observations`` cut short inside its last packet (its complete pings are read;
+    :func:`~sss_locus.experiments.sonar_files.observations_xtf.observation_warnings`). ``[]``
+    for a run without observations."""
+    from sss_locus.experiments.sonar_files.observations_xtf import observation_warnings
+
+    if "observations_sha256" not in parameters or not parameters.get("observations"):
+        return []
+    return observation_warnings(paths.REPO_ROOT / parameters["observations"])
+
+
 def area_parameters(path: str) -> dict[str, str]:
     """A notebook's ``area`` file (the survey-design chapter's polygon, TOML or GeoJSON), found
     like the observations (relative to the current directory, else to the repository), and

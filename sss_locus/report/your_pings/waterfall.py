@@ -58,5 +58,6 @@ def waterfall(path, *, marks: pd.DataFrame | None = None, sample_order: str = "d
                 ax.annotate(str(r.label), (r.sample, r.ping), xytext=(6, -10), textcoords="offset points", color="tab:red",
                             fontsize=8.5, bbox=dict(fc="white", alpha=0.75, lw=0, pad=1))
     axes[0, 0].set_ylabel("ping (PingNumber)")
-    fig.suptitle(f"{info['file']}: {info['n_pings']} pings", fontsize=9.5)
+    cut = f" (truncated at byte {info['truncated_at']}: its complete pings)" if info["truncated"] else ""
+    fig.suptitle(f"{info['file']}: {info['n_pings']} pings{cut}", fontsize=9.5)
     return fig, (marks if marks is not None else pd.DataFrame(columns=["channel", "ping", "sample", "label"]))

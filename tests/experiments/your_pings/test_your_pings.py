@@ -191,7 +191,10 @@ def test_malformed_xtf_refused_in_one_line(tmp_path, auv):
     (tmp_path / "s.xtf").write_bytes(data[:-100])
     with pytest.raises(ob.ObservationError) as err:
         ox.read_xtf_sightings(tmp_path / "m.csv")
-    assert f"s.xtf: truncated at byte {len(data) - 100}: the packet at byte" in str(err.value)
+    # a file cut inside its last packet is now read up to it: the sighting of the lost ping is refused,
+    # saying the file is cut short, where it was cut and how much is missing (it was refused whole)
+    assert "ping 12 is not in s.xtf (its pings run 0 to 11; s.xtf is truncated: the packet at byte" in str(err.value)
+    assert "(100 bytes missing); read the 12 complete pings before it" in str(err.value)
     assert "\n" not in str(err.value)
 
 
