@@ -1,5 +1,5 @@
 """A new user's trial (a 900 kHz ROV over a 3 km L-shaped block of Bedford Basin with an island
-hole; their files, unchanged, in ``data/trial_rov9.toml`` and ``data/trial_bedford.toml``): on
+hole; their files, unchanged, in ``tests/data/trial/rov9.toml`` and ``bedford.toml``): on
 seed 3 the standard plan saw every feature on two or more passes, yet its joint estimate had
 none, because the solve stopped on the reconstruction chapter's evaluation limit (400) while
 one feature still moved along a narrow valley between its two minima (it converges at 624)."""
@@ -20,12 +20,12 @@ from sss_locus.experiments.survey_design.front import make_setting
 from sss_locus.experiments.survey_design.joint import plan_joint_errors
 from sss_locus.experiments.survey_design.plans import standard_plan
 
-DATA = Path(__file__).parent / "data"
+DATA = Path(__file__).parents[2] / "data" / "trial"
 
 
 @pytest.fixture
 def rov9():
-    userdata.use([str(DATA / "trial_rov9.toml")], [])
+    userdata.use([str(DATA / "rov9.toml")], [])
     try:
         yield load_platform("rov9"), load_noise_model("rov9"), load_pass_noise("rov9")
     finally:
@@ -38,7 +38,7 @@ def test_the_standard_plan_estimates_every_feature_it_saw_twice_on_the_trial_see
     (an invariant of the estimator), and its horizontal error is of the order of the USBL's
     2 m per-pass offset, not a lost seed (old code: 0 features, NaN errors)."""
     pf, noise, pn = rov9
-    area = load_area(DATA / "trial_bedford.toml")
+    area = load_area(DATA / "bedford.toml")
     s = make_setting(pf, area, "flat", n_features=60, seed=3, grid_m=40.0)
     plan = standard_plan(pf, area, s.terrain, s.settings, s.heights_m)
     ev = plan_joint_errors(s, plan, noise, pn, seed=3)
