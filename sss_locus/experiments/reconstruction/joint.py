@@ -75,7 +75,8 @@ def _start(inputs: dict) -> np.ndarray:
 
 
 def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS, *, known_association: bool = False,
-                          lsmr_tol: float = LSMR_TOL, method: str = "trf") -> dict:
+                          lsmr_tol: float = LSMR_TOL, method: str = "trf",
+                          max_evaluations: int = JOINT_MAX_EVALUATIONS) -> dict:
     """The estimators ``names`` (of :data:`JOINT_ESTIMATORS`, module docstring) as the ``extra``
     mapping of :func:`~sss_locus.experiments.reconstruction.estimators.reconstruct`, for a sonar of full
     elevation beam width ``elevation_deg``; ``known_association``: the joint solve without the
@@ -94,6 +95,9 @@ def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS, *, known
         LSMR tolerance of the joint solve.
     method : str
         ``least_squares``' method of the joint solve (:func:`~sss_locus.experiments.adjustment.adjust`).
+    max_evaluations : int
+        Evaluation limit of each phase of the joint solve (default :data:`JOINT_MAX_EVALUATIONS`);
+        a solve that stops on it estimates no feature.
 
     Returns
     -------
@@ -126,7 +130,7 @@ def adjustment_estimators(elevation_deg: float, names=JOINT_ESTIMATORS, *, known
                                   heading_sigma_deg=pn.pass_heading_bias_sigma_deg,
                                   drift_sigma=pn.drift_sigma_fraction, reference_m=np.zeros((seen.shape[1], 2)))
         robust = {} if not known_association else {"loss": "linear", "gate_m": math.inf}
-        res = adjust(s, priors, _start(inputs), covariance=False, max_nfev=JOINT_MAX_EVALUATIONS, lsmr_tol=lsmr_tol,
+        res = adjust(s, priors, _start(inputs), covariance=False, max_nfev=int(max_evaluations), lsmr_tol=lsmr_tol,
                      method=method, **robust)
         return res.point_m, res.adjusted & res.success & np.all(np.isfinite(res.point_m), axis=1)
 

@@ -11,9 +11,10 @@ inclusion fence shrunk by the turn radius and outside every hole grown by the tu
 :func:`scipy.sparse.csgraph.dijkstra`); a straight leg when that is already free.
 
 Fences (:func:`fences`): in open water the **inclusion fence** is the area's outer ring joined
-with every line and U-turn of the track, grown by ``R + margin_m`` (room for the vehicle's own
-turns and for the transits; a line segment that lies apart, beyond a notch, joined to the rest
-by a corridor as wide along the shortest way), its outer ring simplified to at most
+with every line and U-turn of the track and the water between the area and every leg outside
+it, grown by ``R + margin_m`` (room for the vehicle's own turns and for the transits; no slit
+between the area's edge and a line run outside it; a line segment that lies apart, beyond a
+notch, joined to the rest by a corridor as wide along the shortest way), its outer ring simplified to at most
 ``max_vertices`` vertices while still containing it. When the area gives navigable water
 (:meth:`~sss_locus.experiments.survey_design.area.SurveyArea.water`: ``navigable_m`` or
 ``water_beyond_m``), the track keeps the area's ``wall_clearance_m`` off its edge and its holes
@@ -79,7 +80,8 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
     else:
         grow = turn_radius_m + margin_m  # each piece grown on its own, then joined: fast, and no closer
         grown = shapely.union_all([outer.buffer(grow, join_style="mitre"),
-                                   *shapely.buffer(shapely.get_parts(legs), grow, cap_style="square", join_style="mitre")])
+                                   *shapely.buffer(shapely.get_parts(legs), grow, cap_style="square", join_style="mitre"),
+                                   *_to_area(outer, legs)])
         parts = sorted(getattr(grown, "geoms", [grown]), key=lambda g: g.area, reverse=True)
         main = parts[0]
         for part in parts[1:]:  # a line's segment beyond a notch, apart from the rest: bridged, never dropped
@@ -96,6 +98,22 @@ def fences(area, legs, turn_radius_m: float, *, margin_m: float = 5.0, max_verti
             break
         tol *= 1.5
     return fence, [shapely.Polygon(r) for r in area.polygon.interiors]
+
+
+def _to_area(outer, legs) -> list:
+    """The water between the area and every piece of ``legs`` outside it: per piece, the convex
+    hull of it and the points of the area's outline nearest its ends. A line run half a spacing
+    outside the area's edge and joined to the rest only by its U-turns would otherwise leave a
+    slit in the fence between it and the edge, open at one end and as long as the line (a
+    10 m x 3 km slit on a 900 kHz ROV's plan whose first line ran 32 m off the edge)."""
+    import shapely
+
+    out = []
+    for piece in shapely.get_parts(shapely.line_merge(legs.difference(outer))):
+        ends = shapely.points(np.asarray(piece.coords)[[0, -1]])
+        near = shapely.get_coordinates(shapely.shortest_line(ends, outer.exterior))[1::2]
+        out.append(shapely.MultiPoint(np.vstack([np.asarray(piece.coords), near])).convex_hull)
+    return out
 
 
 def _water_fence(outline, legs, clearance_m: float, max_vertices: int):

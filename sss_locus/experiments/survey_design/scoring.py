@@ -205,7 +205,9 @@ def solver_path_shifts(platform, area_key: dict, terrain: str, plans: pd.DataFra
 def summarise(scores: pd.DataFrame) -> pd.DataFrame:
     """Per plan (index ``plan_index``): ``kind``, ``total_m``, ``covered_twice``, ``eligible``,
     ``n_seeds``, ``min_features`` (the fewest features any of its seeds' medians used) and
-    ``mean_features``, and for each error of :data:`ERRORS` its mean over the seeds with the 95 %
+    ``mean_features``, with ``scores``' ``seed`` and ``n_seen_twice``: ``fewest_seed`` (that
+    seed) and ``fewest_seen_twice`` (the features the plan saw on two or more passes on it: more
+    than ``min_features`` when the joint solve did not converge), and for each error of :data:`ERRORS` its mean over the seeds with the 95 %
     interval (``error_<name>_m``, ``error_<name>_lo_m``, ``error_<name>_hi_m``; the lower end cut
     at :data:`ERROR_FLOOR_M`, :func:`lower_end_cut`; the mean and the interval NaN where a seed
     had too few features).
@@ -225,6 +227,9 @@ def summarise(scores: pd.DataFrame) -> pd.DataFrame:
         row = {"plan_index": i, "kind": g.kind.iloc[0], "total_m": float(g.total_m.mean()),
                "covered_twice": float(g.covered_twice.mean()), "eligible": bool(g.eligible.iloc[0]),
                "n_seeds": len(g), "min_features": int(g[COUNT].min()), "mean_features": float(g[COUNT].mean())}
+        if {"seed", "n_seen_twice"} <= set(g.columns):  # why the fewest were so few (the report's words)
+            few = g.loc[g[COUNT].idxmin()]
+            row.update(fewest_seed=int(few["seed"]), fewest_seen_twice=int(few["n_seen_twice"]))
         for name, col in ERRORS.items():
             v = g[col].to_numpy(float)
             ok = bool(np.all(np.isfinite(v)))

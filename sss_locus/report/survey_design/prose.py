@@ -9,10 +9,11 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+import numpy as np
 import pandas as pd
 
 from sss_locus.experiments.survey_design.coverage import reach_limits_m
-from sss_locus.experiments.survey_design.scoring import lower_end_cut
+from sss_locus.experiments.survey_design.scoring import MIN_FEATURES, lower_end_cut
 from sss_locus.report.common.text import fmt_ci, fmt_percent, fmt_sig
 from sss_locus.report.survey_design.figures import OBJECTIVE_LABELS
 
@@ -312,7 +313,7 @@ def plan_caption(platform, area, area_file: str, row, cov: dict, files, *, water
             f"{water_depth_m:.3g} m ({depth_source}); " + (
                 f"lines run past the area by their swath's reach and a run-in of {row.run_m:.0f} m; "
                 if area.water() is None else
-                f"lines, run-ins, turns and transits stay in the navigable water ("
+                "lines, run-ins, turns and transits stay in the navigable water ("
                 + ("its navigable outline" if area.navigable_wkt else f"{area.water_beyond_m:g} m past the area's edge")
                 + f"), {area.clearance_m:g} m off its edge and holes, line ends pulled back where a turn needs room; "
                 "the inclusion fence (red dashed) never reaches past it; ")
@@ -496,13 +497,49 @@ def noise_verdict_sentence(summary: pd.DataFrame, verdict: dict, plans: pd.DataF
     return _noise_verdict(summary, verdict, plans, platform) + none_as_short(plans)
 
 
+def too_few_sentence(row) -> str:
+    """Why a plan's joint estimate had too few features on some seed, in a surveyor's words: how
+    many features the plan saw on two or more passes on that seed (a feature seen on one pass is
+    not tied to a second one, so it is not estimated), and whether the adjustment lost the
+    others (it stopped on its evaluation limit before converging: none estimated).
+
+    Parameters
+    ----------
+    row : pandas.Series
+        A plan's row of :func:`~sss_locus.experiments.survey_design.scoring.summarise`
+        (``min_features``; ``fewest_seed`` and ``fewest_seen_twice`` when the scores had them).
+
+    Returns
+    -------
+    str
+        One sentence, starting in lower case.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> too_few_sentence(pd.Series({"min_features": 0, "fewest_seed": 3, "fewest_seen_twice": 60})).split(",")[0]
+    'on seed 3 the plan saw 60 features on two or more passes'
+    """
+    n, least = int(row["min_features"]), f"fewer than the {MIN_FEATURES} a median is taken over"
+    if not np.isfinite(row.get("fewest_seed", np.nan)):
+        return f"some seed gave the plan's joint estimate only {n:,} features, {least}."
+    seed, twice = int(row["fewest_seed"]), int(row["fewest_seen_twice"])
+    if twice < MIN_FEATURES:
+        return (f"on seed {seed} the plan saw only {twice:,} features on two or more passes ({least}; a feature "
+                "seen on one pass only is not tied to a second pass, so the joint adjustment does not estimate it).")
+    if n == 0:
+        return (f"on seed {seed} the plan saw {twice:,} features on two or more passes, but the joint adjustment did "
+                "not converge within its evaluation limit, so it estimated none of them.")
+    return (f"on seed {seed} the plan saw {twice:,} features on two or more passes, but the joint adjustment "
+            f"estimated only {n:,} of them, {least}.")
+
+
 def _noise_verdict(summary: pd.DataFrame, verdict: dict, plans: pd.DataFrame, platform) -> str:
     name, std = platform.name, summary.loc[verdict["standard"]]
     e = verdict["error"]
     what = f"{ERROR_LABELS[e]} error of the joint estimate"
     if verdict["reason"] == "too few features":
-        return (f"For the {name}, some seed gave the standard plan's joint estimate fewer than 30 features (fewest "
-                f"{int(std.min_features)}): its errors are not findings and the standard plan is kept.")
+        return f"For the {name}, {too_few_sentence(std)} Its errors are not findings and the standard plan is kept."
     if verdict["reason"] == "the standard plan is the best":
         return (f"For the {name}, no plan as short as the standard plan has a smaller mean {what}: the standard plan "
                 f"({error_text(std, e)}; {_beside(std, e)}; {_counts(std)}) is kept.")

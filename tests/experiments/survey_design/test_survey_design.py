@@ -376,10 +376,45 @@ def test_the_verdict_sentence_says_whether_the_interval_excludes_the_standard_pl
     few = _summary([(0, "standard", 1000.0, True, np.nan, np.nan, np.nan), (1, "search", 900.0, True, 2.0, 1.8, 2.2)])
     few.loc[0, "min_features"] = 29
     text = noise_verdict_sentence(few, recommend_under_noise(few), plans, pf)
-    assert "fewer than 30 features (fewest 29)" in text and "not findings" in text
+    assert "only 29 features, fewer than the 30 a median is taken over" in text and "not findings" in text
     same = _summary([std, (1, "lawnmower", 1000.0 * (1 - 7.1e-8), True, 2.9, 2.6, 3.0)])
     text = noise_verdict_sentence(same, recommend_under_noise(same), plans, pf)
     assert "on a track of the same length (within 0.05 %)" in text and "e-0" not in text  # not "7.1e-06 % shorter"
+
+
+def test_a_seed_of_too_few_features_is_explained_by_what_the_plan_saw_twice():
+    """Constructed scores of three seeds (the new user's ROV trial: on seed 3 the standard plan
+    saw all 60 features on two or more passes and its joint estimate had none, the solve stopped
+    on its evaluation limit; the chapter said only "fewer than 30 features (fewest 0)"). The
+    verdict names the seed, how many features the plan saw twice there and why they are missing;
+    a seed where the plan itself saw too few twice says so instead."""
+    from sss_locus.experiments.survey_design import scoring
+    from sss_locus.report.survey_design.prose import noise_verdict_sentence
+
+    pf = load_platform("auv")
+    plans = pd.DataFrame({"heading_deg": [0.0, 90.0], "spacing_m": [240.0, 200.0], "crossing_deg": [0.0, math.nan],
+                          "cross_spacing_m": [240.0, 200.0], "altitude_m": [21.0, 21.0], "pitch_deg": [0.0, 0.0],
+                          "kind": ["standard", "lawnmower"], "eligible": [True, True], "total_m": [1000.0, 1000.0]})
+
+    def scores(std_joint, std_twice):
+        rows = []
+        for k, sd in enumerate((1, 2, 3)):
+            for i, kind, n, twice in ((0, "standard", std_joint[k], std_twice[k]), (1, "lawnmower", 60, 60)):
+                err = 1.0 + 0.1 * sd if n >= scoring.MIN_FEATURES else math.nan
+                rows.append({"plan_index": i, "kind": kind, "seed": sd, "total_m": 1000.0, "covered_twice": 1.0,
+                             "eligible": True, "n_passes": 100, "n_seen_twice": twice, "n_joint": n,
+                             **{c: err for c in scoring.ERRORS.values()}})
+        return scoring.summarise(pd.DataFrame(rows))
+
+    lost = scores((60, 60, 0), (60, 60, 60))
+    assert (lost.loc[0, "fewest_seed"], lost.loc[0, "fewest_seen_twice"], lost.loc[0, "min_features"]) == (3, 60, 0)
+    text = noise_verdict_sentence(lost, scoring.recommend_under_noise(lost), plans, pf)
+    assert "on seed 3 the plan saw 60 features on two or more passes" in text
+    assert "did not converge within its evaluation limit, so it estimated none of them" in text
+    assert "fewest 0" not in text and "not findings" in text
+    sparse = scores((60, 12, 60), (60, 12, 60))
+    text = noise_verdict_sentence(sparse, scoring.recommend_under_noise(sparse), plans, pf)
+    assert "on seed 2 the plan saw only 12 features on two or more passes" in text and "converge" not in text
 
 
 def test_an_area_that_fits_one_line_gets_one_line_and_the_chapter_runs():
