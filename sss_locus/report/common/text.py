@@ -3,14 +3,15 @@
 Every number the book states in prose goes through one of these functions, so the same kind of
 number reads the same way on every page: significant figures (:func:`fmt_sig`), a median with its
 interval (:func:`fmt_interval`), fractions as percentages (:func:`fmt_percent`), ratios as
-changes (:func:`fmt_change`), crossing-angle bands (:func:`fmt_bands`) and quantity names
-(:func:`plain_label`).
+changes (:func:`fmt_change`), crossing-angle bands (:func:`fmt_bands`), quantity names
+(:func:`plain_label`), counted nouns (:func:`count_noun`), lists (:func:`and_list`) and which
+platforms a run holds beside the paper's (:func:`run_platforms_md`).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import pandas as pd
 
@@ -295,3 +296,95 @@ def plain_label(quantity: str) -> str:
     for tex, uni in (("\\psi", "ψ"), ("\\phi", "φ"), ("\\theta", "θ"), ("_1", "₁"), ("_2", "₂")):
         text = text.replace(tex, uni)
     return text
+
+
+def count_noun(n: int, singular: str, plural: str | None = None) -> str:
+    """A count with its noun in the right number: ``"1 pass"``, ``"3 passes"``.
+
+    Parameters
+    ----------
+    n : int
+        The count.
+    singular : str
+        The noun for one.
+    plural : str, optional
+        The noun for any other count; ``singular + "s"`` when not given.
+
+    Returns
+    -------
+    str
+        The count (with thousands separators) and the noun.
+
+    Examples
+    --------
+    >>> count_noun(1, "pass", "passes"), count_noun(0, "seed"), count_noun(12000, "sample")
+    ('1 pass', '0 seeds', '12,000 samples')
+    """
+    return f"{n:,} {singular if n == 1 else (plural or singular + 's')}"
+
+
+def and_list(items: Sequence[str]) -> str:
+    """Items joined by commas and a last "and" (by semicolons when an item holds a comma).
+
+    Parameters
+    ----------
+    items : sequence of str
+        At least one item.
+
+    Returns
+    -------
+    str
+        The list as text.
+
+    Examples
+    --------
+    >>> and_list(["a"]), and_list(["a", "b"]), and_list(["a", "b", "c"]), and_list(["a, b", "c"])
+    ('a', 'a and b', 'a, b and c', 'a, b and c')
+    """
+    items = list(items)
+    sep = "; " if any("," in i for i in items) else ", "
+    return items[0] if len(items) == 1 else sep.join(items[:-1]) + " and " + items[-1]
+
+
+def run_platforms_md(keys: Sequence[str], paper_keys: Sequence[str]) -> str:
+    """Which platforms a run holds, said against the paper's: the words a chapter puts in brackets
+    after "for each platform of this run" (Markdown, data keys in code quotes).
+
+    It names the paper's platforms as included only when the run holds them, names the run's
+    others, and says which of the paper's the run does not hold.
+
+    Parameters
+    ----------
+    keys : sequence of str
+        The run's platform keys (the chapter's ``platforms``, or a subset such as its surface
+        vessels).
+    paper_keys : sequence of str
+        The paper's platform keys of the same kind (the default of the chapter's ``platforms``).
+
+    Returns
+    -------
+    str
+        The phrase; ``"none"`` for a run without platforms of that kind.
+
+    Examples
+    --------
+    >>> run_platforms_md(["auv", "boat"], ["auv", "boat"])
+    "the paper's `auv` and `boat`"
+    >>> run_platforms_md(["rov9"], ["auv", "boat"])
+    "`rov9`; the paper's `auv` and `boat` are not in this run"
+    >>> run_platforms_md(["boat", "rov9"], ["auv", "boat"])
+    "`boat` and `rov9`; the paper's `auv` is not in this run"
+    >>> run_platforms_md(["auv", "boat", "rov9"], ["auv", "boat"])
+    "the paper's `auv` and `boat`, and `rov9`"
+    """
+    def code(ks: Sequence[str]) -> str:
+        return and_list([f"`{k}`" for k in ks])
+
+    missing, added = [k for k in paper_keys if k not in keys], [k for k in keys if k not in paper_keys]
+    if not keys:
+        return "none" if not paper_keys else f"none; the paper's {code(paper_keys)} {'is' if len(paper_keys) == 1 else 'are'} not in this run"
+    if not paper_keys:
+        return code(keys)
+    if missing:
+        return f"{code(keys)}; the paper's {code(missing)} {'is' if len(missing) == 1 else 'are'} not in this run"
+    return f"the paper's {code(paper_keys)}" + (f", and {code(added)}" if added else "")

@@ -16,7 +16,7 @@ import pandas as pd
 from sss_locus.experiments.survey_passes.planning import planning_bands
 from sss_locus.experiments.datamodel.platforms import provenance_table
 from sss_locus.experiments.three_views.patterns import cells_within, share_interval
-from sss_locus.report.common.text import fmt_bands, fmt_change, fmt_interval, fmt_percent, fmt_sig
+from sss_locus.report.common.text import and_list, fmt_bands, fmt_change, fmt_interval, fmt_percent, fmt_sig
 from sss_locus.report.survey_passes.figures import curve_texts
 from sss_locus.report.three_views.figures import share_text, sweep_texts
 
@@ -184,11 +184,11 @@ def offset_models_finding(curves: Mapping[str, object]) -> str:
                 f"at a moderate oblique angle (below {OBLIQUE_MAX_DEG:g}°), the paper's shape.")
     sides = {label: c.offset_model.side_rule for label, c in curves.items()}
     text = (f"the median length peaks (95 % bootstrap interval) at {listed}; the paper's shape, a peak at a "
-            f"moderate oblique angle (below {OBLIQUE_MAX_DEG:g}°), appears with " + _and(oblique))
+            f"moderate oblique angle (below {OBLIQUE_MAX_DEG:g}°), appears with " + and_list(oblique))
     near = [label for label in oblique if curves[label].peak["locus_length_m"]["ci_low_deg"] <= PAPER_PEAK_DEG
             <= curves[label].peak["locus_length_m"]["ci_high_deg"]]
     if near:
-        text += f" ({_and(near)}: an interval that holds the paper's ≈{PAPER_PEAK_DEG:g}°)"
+        text += f" ({and_list(near)}: an interval that holds the paper's ≈{PAPER_PEAK_DEG:g}°)"
     if len(oblique) < len(curves) and all(sides[label] == "same" for label in oblique):
         text += (", each with pass 2 planned on the same side of the vehicle as pass 1: the paper's curve points to "
                  "passes planned around the feature on the same side, a choice it does not state")
@@ -213,7 +213,7 @@ def _levels_clause(pitch: pd.DataFrame, levels_deg) -> str:
             f"at {clear} of {len(both)} levels the interval excludes 0 %, though the mirror symmetry allows no effect "
             "(a 95 % interval misses the true value once in 20)")
     return ("with both passes pitched, nose-up against nose-down changes the median locus length by "
-            + _and([f"{t} at ±{p:g}°" for (t, _), p in zip(both, levels_deg)]) + f": {said}")
+            + and_list([f"{t} at ±{p:g}°" for (t, _), p in zip(both, levels_deg)]) + f": {said}")
 
 
 def _turn_clause(port, stbd) -> str:
@@ -227,7 +227,7 @@ def _turn_clause(port, stbd) -> str:
                        "feature is on, not by the pitch alone")
     if a and b:
         return text + ": clear effects of the same sign either way"
-    return text + ": no clear effect turning toward " + _and([s for s, f in (("port", a), ("starboard", b)) if not f])
+    return text + ": no clear effect turning toward " + and_list([s for s, f in (("port", a), ("starboard", b)) if not f])
 
 
 def _depth_clause(depth: pd.DataFrame) -> str:
@@ -314,7 +314,7 @@ def survey_summary(cur, models: Mapping[str, object], prefer_below: float, avoid
     text = (f"with the main offset model the median length peaks at {pk['angle_deg']:.0f}° ({_WHERE[s['where']]}); "
             + ("repeat and anti-parallel passes give the shortest loci" if s["ends_preferred"] else
                "repeat and anti-parallel passes are not both among the shortest")
-            + ". " + ("A peak at a moderate oblique angle appears with " + _and(oblique)
+            + ". " + ("A peak at a moderate oblique angle appears with " + and_list(oblique)
                       + (", so the shape of the curve is set by an offset model the paper does not state"
                          if s["where"] != "oblique" else "") if oblique else
                       "No other offset model shown puts the peak at a moderate oblique angle")
@@ -361,16 +361,16 @@ def closure_finding(summary: pd.DataFrame, intervals: Mapping[str, Mapping[str, 
     rows = list(summary.itertuples())
 
     def each(col: str, fmt=None) -> str:
-        return _and([(fmt or (lambda r: share_text(getattr(r, col), r.n)))(r) for r in rows])
+        return and_list([(fmt or (lambda r: share_text(getattr(r, col), r.n)))(r) for r in rows])
 
     def med(col: str, unit: str) -> str:
-        return _and([fmt_interval(intervals[r.pattern][col], unit) for r in rows])
+        return and_list([fmt_interval(intervals[r.pattern][col], unit) for r in rows])
     el, az = summary["ambiguous_no_elevation"].sum(), summary["ambiguous_no_azimuth"].sum()
     bound = ("the elevation bound" if el > az else "the azimuth and range bounds" if az > el else
              "either bound alike")
     best = summary.loc[summary["error_per_cm_median_m"].idxmin()]
     worst = summary.loc[summary["error_per_cm_median_m"].idxmax()]
-    text = ("resolved to one point in " + _and([f"{share_text(r.resolved, r.n)} ({r.pattern})" for r in rows])
+    text = ("resolved to one point in " + and_list([f"{share_text(r.resolved, r.n)} ({r.pattern})" for r in rows])
             + " of the configurations, a two-fold ambiguity remaining in " + each("ambiguous")
             + ("" if not (summary["none"] > 0).any() else ", none left in " + each("none"))
             + ". With the elevation bound of every aperture lifted, " + each("ambiguous_no_elevation")
@@ -414,12 +414,6 @@ def fan_top_clause(fan_deg: float, tilt_deg: float) -> str:
         f"the top of the fan is {-top:g}° below the horizontal"
 
 
-def _and(items: list[str]) -> str:
-    """Items joined by commas and a last "and" (by semicolons when an item holds a comma)."""
-    sep = "; " if any("," in i for i in items) else ", "
-    return items[0] if len(items) == 1 else sep.join(items[:-1]) + " and " + items[-1]
-
-
 def tilt_finding(rows: pd.DataFrame, platform) -> str:
     """The three-view tilt check of one surface platform in words, for any platform (the paper's
     boat included): the one source of this paragraph (CONTRIBUTING.md, "One source per sentence").
@@ -447,12 +441,12 @@ def tilt_finding(rows: pd.DataFrame, platform) -> str:
     first = rows[rows["tilt_deg"] == tilts[0]]
     text = (f"With its transducers tilted {tilts[0]:g}° {fan_top_clause(platform.sonar.azimuth_deg, tilts[0])}: "
             "the feature is resolved in "
-            + _and([f"{share_text(r.resolved, r.n)} ({r.pattern})" for r in first.itertuples()])
+            + and_list([f"{share_text(r.resolved, r.n)} ({r.pattern})" for r in first.itertuples()])
             + " of the configurations, a two-fold ambiguity remaining in "
-            + _and([share_text(r.ambiguous, r.n) for r in first.itertuples()]))
+            + and_list([share_text(r.ambiguous, r.n) for r in first.itertuples()]))
     for tilt in tilts[1:]:
         g = rows[rows["tilt_deg"] == tilt]
-        text += f"; at {tilt:g}° the shares resolved are " + _and([share_text(r.resolved, r.n) for r in g.itertuples()])
+        text += f"; at {tilt:g}° the shares resolved are " + and_list([share_text(r.resolved, r.n) for r in g.itertuples()])
     text += "."
     intervals = {(r.pattern, r.tilt_deg): share_interval(int(round(r.resolved * r.n)), int(r.n))
                  for r in rows.itertuples()}
