@@ -22,7 +22,7 @@ from sss_locus.pipeline.chapters.common import key, paper_platforms, show_table,
 from sss_locus.pipeline.publish.publish import publish, place
 from sss_locus.report.pose_space.findings import (findings_markdown, platform_title, drivers_finding,
                                                   panels_finding, choices_finding, reading_finding, fan_finding,
-                                                  hotspot_finding, pose_summary)
+                                                  hotspot_finding, pose_summary, yaw0_text)
 from sss_locus.report.pose_space.figures import (scatter_subset, plot_sensitivity, plot_heatmaps,
                                                  seed_stability_table, check_row, reading_texts, fan_texts,
                                                  hotspot_texts, metric_texts)
@@ -60,4 +60,4 @@ __all__ = ["paper_platforms", "run_platforms_md", "key", "KEYS", "batch_medians"
            "plot_heatmaps", "plot_sensitivity", "pose_summary", "PoseSpaceSpec", "publish",
            "reading_effect", "reading_finding", "reading_texts", "sample_geometry", "sample_pose_space",
            "scatter_subset", "seed_stability_table", "show_table", "spearman_table", "time",
-           "two_view_locus", "use_data", "with_derived"]
+           "two_view_locus", "use_data", "with_derived", "yaw0_text"]

@@ -18,6 +18,18 @@ import pandas as pd
 from sss_locus.experiments.stats.significant import round_sig
 from sss_locus.report.common.style import QUANTITY_LABELS
 
+NO_VALUE = "not computable from this run's samples"
+"""What :func:`fmt_ci` says of an estimate that is not a finite number."""
+
+NO_CI = "no 95 % CI: it could not be computed from this run's samples"
+"""What :func:`fmt_ci` says by default in place of an interval whose ends are not finite."""
+
+NO_BATCH_CI = ("no 95 % CI: too few samples, some replicate batches have no sample where it is "
+               "measured")
+"""In place of a replicate-batch interval (:func:`~sss_locus.experiments.stats.replicates.replicate_interval`)
+whose ends are not finite: the statistic is undefined in at least one batch, i.e. a batch has no
+sample in a bin or subset the statistic needs."""
+
 
 def fmt_sig(x: float, digits: int = 2) -> str:
     """``x`` to ``digits`` significant figures, e.g. ``fmt_sig(0.012345) == "0.012"``.
@@ -76,12 +88,13 @@ def interval_digits(low: float, high: float, digits: int = 2, most: int = 4) -> 
     return d
 
 
-def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> str:
+def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2, no_ci: str | None = None) -> str:
     """A median and its 95 % interval: ``"3.1 m (95 % CI 2.9–3.4 m)"``, with more significant
     figures where ``digits`` would print both ends alike (:func:`interval_digits`).
 
     ``estimate`` holds ``median``, ``ci_low`` and ``ci_high``; a degree sign is written without a
-    space (``"20° (95 % CI 18°–22°)"``).
+    space (``"20° (95 % CI 18°–22°)"``). A median that is not finite reads :data:`NO_VALUE`, an
+    interval whose ends are not finite ``no_ci`` (default :data:`NO_CI`).
 
     Parameters
     ----------
@@ -91,6 +104,8 @@ def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> s
         Unit written after each number (``"m"``, ``"°"``, ...).
     digits : int
         The fewest significant figures.
+    no_ci : str, optional
+        Said instead of the interval when an end is not finite (default :data:`NO_CI`).
 
     Returns
     -------
@@ -105,15 +120,22 @@ def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> s
     '0.181 m (95 % CI 0.179–0.183 m)'
     """
     sep = "" if unit == "°" else " "
+    if not math.isfinite(estimate["median"]):
+        return NO_VALUE
+    if not (math.isfinite(estimate["ci_low"]) and math.isfinite(estimate["ci_high"])):
+        return f"{fmt_sig(estimate['median'], digits)}{sep}{unit} ({no_ci or NO_CI})"
     digits = interval_digits(estimate["ci_low"], estimate["ci_high"], digits)
     lo, hi = fmt_sig(estimate["ci_low"], digits), fmt_sig(estimate["ci_high"], digits)
     return f"{fmt_sig(estimate['median'], digits)}{sep}{unit} (95 % CI {lo}–{hi}{sep}{unit})"
 
 
-def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool = False) -> str:
+def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool = False,
+           no_ci: str = NO_CI) -> str:
     """A ratio or share with its 95 % interval, each to ``digits`` significant figures, or more
     where the ends would print alike (:func:`interval_digits`); with ``percent`` the numbers are
-    percentages (a share of 0 with an interval of 0 reads ``"0 %"``).
+    percentages (a share of 0 with an interval of 0 reads ``"0 %"``). An interval whose ends are
+    not finite is replaced by ``no_ci`` (in brackets), an estimate that is not finite by
+    :data:`NO_VALUE`: no ``"nan"`` or ``"n/a–n/a"`` reaches the text.
 
     Parameters
     ----------
@@ -125,11 +147,14 @@ def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool
         The fewest significant figures.
     percent : bool
         Print the numbers as percentages (times 100, with ``" %"``).
+    no_ci : str
+        Said instead of the interval when an end is not finite: why it is missing
+        (:data:`NO_CI`, :data:`NO_BATCH_CI`).
 
     Returns
     -------
     str
-        The estimate and its interval.
+        The estimate and its interval, or the estimate and ``no_ci``, or :data:`NO_VALUE`.
 
     Examples
     --------
@@ -137,8 +162,14 @@ def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool
     ('4.2 (95 % CI 4.1–4.2)', '2.12 (95 % CI 2.10–2.14)', '0.88 % (95 % CI 0.85–0.91 %)')
     >>> fmt_ci(0.0, 0.0, 0.0, percent=True)
     '0 %'
+    >>> fmt_ci(0.46, float("nan"), float("nan"), no_ci="no 95 % CI: too few samples")
+    '0.46 (no 95 % CI: too few samples)'
     """
     scale, unit = (100.0, " %") if percent else (1.0, "")
+    if not math.isfinite(value):
+        return NO_VALUE
+    if not (math.isfinite(low) and math.isfinite(high)):
+        return f"{fmt_sig(scale * value, digits)}{unit} ({no_ci})"
     if percent and value == low == high == 0:
         return "0 %"
     digits = interval_digits(scale * low, scale * high, digits)

@@ -27,7 +27,7 @@ from sss_locus.experiments.survey_design.front import OBJECTIVES
 from sss_locus.experiments.survey_design.scoring import lower_end_cut
 from sss_locus.report.common.style import PAGE_WIDTH_IN, platform_title, themed
 from sss_locus.report.survey_design.map import LEGEND_X, add_graticule, add_scale_bar
-from sss_locus.report.common.text import fmt_ci, fmt_percent, fmt_sig
+from sss_locus.report.common.text import count_noun, fmt_ci, fmt_percent, fmt_sig
 
 OBJECTIVE_LABELS = {"locus": "median best-pair locus length (m)",
                     "three_view": "share of features not resolved by three views",
@@ -432,7 +432,7 @@ def error_text(row, name: str = "horizontal") -> str:
 
 
 def _counts(row) -> str:
-    return f"{int(row.n_seeds)} seeds, at least {int(row.min_features):,} features each"
+    return f"{count_noun(int(row.n_seeds), 'seed')}, at least {count_noun(int(row.min_features), 'feature')} each"
 
 
 def _beside(row, decided: str) -> str:
