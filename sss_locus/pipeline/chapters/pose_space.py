@@ -26,7 +26,7 @@ from sss_locus.report.pose_space.findings import (findings_markdown, platform_ti
 from sss_locus.report.pose_space.figures import (scatter_subset, plot_sensitivity, plot_heatmaps,
                                                  seed_stability_table, check_row, reading_texts, fan_texts,
                                                  hotspot_texts, metric_texts)
-from sss_locus.report.common.text import plain_label, fmt_ci, fmt_span, run_platforms_md
+from sss_locus.report.common.text import plain_label, fmt_span, run_platforms_md
 
 
 class KEYS:
@@ -54,7 +54,7 @@ class KEYS:
 
 __all__ = ["paper_platforms", "run_platforms_md", "key", "KEYS", "batch_medians", "batches", "bin_window", "cached", "check_row", "choices_finding",
            "claim_metrics", "drivers_finding", "fan_finding", "fan_share_removed", "fan_texts",
-           "findings_markdown", "fmt_ci", "fmt_span", "glue", "heatmaps", "hotspot_check",
+           "findings_markdown", "fmt_span", "glue", "heatmaps", "hotspot_check",
            "hotspot_finding", "hotspot_texts", "load_platform", "map_intervals", "Markdown",
            "metric_texts", "np", "panels_finding", "pd", "place", "plain_label", "platform_title",
            "plot_heatmaps", "plot_sensitivity", "pose_summary", "PoseSpaceSpec", "publish",
