@@ -104,9 +104,33 @@ def key(template: str, **fields: Any) -> str:
     return out
 
 
+def paper_platforms(chapter: str) -> list[str]:
+    """The paper's platforms of a chapter: the default of its ``platforms`` parameter
+    (:mod:`sss_locus.pipeline.chapters.params`), for
+    :func:`~sss_locus.report.common.text.run_platforms_md`.
+
+    Parameters
+    ----------
+    chapter : str
+        The notebook's name (``"pose_space"``).
+
+    Returns
+    -------
+    list of str
+        Platform keys; empty for a chapter without a ``platforms`` parameter.
+
+    >>> paper_platforms("pose_space")
+    ['auv', 'boat']
+    """
+    from importlib import import_module
+
+    field = import_module(f"sss_locus.pipeline.chapters.params.{chapter}").Params.model_fields.get("platforms")
+    return list(field.default) if field is not None else []
+
+
 def templates(keys: type) -> dict[str, str]:
     """The templates a facade's ``KEYS`` class declares (attribute name -> template)."""
     return {k: v for k, v in vars(keys).items() if not k.startswith("_") and isinstance(v, str)}
 
 
-__all__ = ["key", "show_table", "templates", "use_data"]
+__all__ = ["key", "paper_platforms", "show_table", "templates", "use_data"]

@@ -25,7 +25,7 @@ from sss_locus.experiments.three_views.patterns import PATTERNS
 from sss_locus.experiments.survey_passes.verdicts import advice_verdict
 from sss_locus.experiments.passes.view_sets import views_from_survey, draw_pattern
 from sss_locus.pipeline.run.cache import cached
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
+from sss_locus.pipeline.chapters.common import key, paper_platforms, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
 from sss_locus.report.noise.findings import (answer_finding, breakdown_finding, check_finding, crop_finding,
                                              guide_sentence, noise_advice_findings, offset_models_finding,
@@ -34,7 +34,7 @@ from sss_locus.report.pose_space.findings import findings_markdown, platform_tit
 from sss_locus.report.noise.figures import (level_label, plot_noise_curves, curve_frames, advice_texts, scale_text,
                                             plot_breakdown, plot_check)
 from sss_locus.report.common.tables import readable_table
-from sss_locus.report.common.text import fmt_interval, fmt_bands, fmt_sig
+from sss_locus.report.common.text import fmt_interval, fmt_bands, fmt_sig, run_platforms_md
 
 
 class KEYS:
@@ -63,7 +63,7 @@ class KEYS:
     three_lost = "nz-{platform}-three-lost"  # share of three-view draws lost
 
 
-__all__ = ["key", "KEYS", "advice_texts", "answer_finding", "breakdown_finding", "check_finding", "crop_finding",
+__all__ = ["paper_platforms", "run_platforms_md", "key", "KEYS", "advice_texts", "answer_finding", "breakdown_finding", "check_finding", "crop_finding",
            "findings_markdown", "guide_sentence", "Markdown", "offset_models_finding", "platform_title",
            "range_floor_finding", "summary_finding", "advice_verdict", "Aperture", "cached", "crossing_angle_grid", "curve_frames",
            "curve_summary", "draw_pattern", "first_order", "fmt_bands", "fmt_interval", "fmt_sig",

@@ -18,15 +18,15 @@ from sss_locus.experiments.pose_space.claims import map_intervals, claim_metrics
 from sss_locus.experiments.pose_space.study import PoseSpaceSpec, sample_pose_space, sample_geometry
 from sss_locus.experiments.pose_space.stats import with_derived, spearman_table, heatmaps
 from sss_locus.pipeline.run.cache import cached
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
+from sss_locus.pipeline.chapters.common import key, paper_platforms, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish, place
 from sss_locus.report.pose_space.findings import (findings_markdown, platform_title, drivers_finding,
                                                   panels_finding, choices_finding, reading_finding, fan_finding,
-                                                  hotspot_finding, pose_summary)
+                                                  hotspot_finding, pose_summary, yaw0_text)
 from sss_locus.report.pose_space.figures import (scatter_subset, plot_sensitivity, plot_heatmaps,
                                                  seed_stability_table, check_row, reading_texts, fan_texts,
                                                  hotspot_texts, metric_texts)
-from sss_locus.report.common.text import plain_label, fmt_ci, fmt_span
+from sss_locus.report.common.text import plain_label, fmt_span, run_platforms_md
 
 
 class KEYS:
@@ -52,12 +52,12 @@ class KEYS:
     depth_same_top = "ps-depth-{platform}-same-top"  # whether the top quantity is the main run's
 
 
-__all__ = ["key", "KEYS", "batch_medians", "batches", "bin_window", "cached", "check_row", "choices_finding",
+__all__ = ["paper_platforms", "run_platforms_md", "key", "KEYS", "batch_medians", "batches", "bin_window", "cached", "check_row", "choices_finding",
            "claim_metrics", "drivers_finding", "fan_finding", "fan_share_removed", "fan_texts",
-           "findings_markdown", "fmt_ci", "fmt_span", "glue", "heatmaps", "hotspot_check",
+           "findings_markdown", "fmt_span", "glue", "heatmaps", "hotspot_check",
            "hotspot_finding", "hotspot_texts", "load_platform", "map_intervals", "Markdown",
            "metric_texts", "np", "panels_finding", "pd", "place", "plain_label", "platform_title",
            "plot_heatmaps", "plot_sensitivity", "pose_summary", "PoseSpaceSpec", "publish",
            "reading_effect", "reading_finding", "reading_texts", "sample_geometry", "sample_pose_space",
            "scatter_subset", "seed_stability_table", "show_table", "spearman_table", "time",
-           "two_view_locus", "use_data", "with_derived"]
+           "two_view_locus", "use_data", "with_derived", "yaw0_text"]

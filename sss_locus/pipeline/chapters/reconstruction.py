@@ -21,14 +21,14 @@ from sss_locus.experiments.reconstruction.surveys import (survey_cases, layout_w
 from sss_locus.experiments.reconstruction.slope_error import slope_views
 from sss_locus.experiments.survey_design.settings import load_settings
 from sss_locus.experiments.datamodel.terrain import load_terrain_config
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
+from sss_locus.pipeline.chapters.common import key, paper_platforms, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
 from sss_locus.report.pose_space.findings import findings_markdown, platform_title
 from sss_locus.report.reconstruction.findings import comparisons_finding, errors_finding, models_finding, slope_finding
 from sss_locus.report.reconstruction.figures import (spacing_label, plot_sweep, METRIC_LABELS, plot_slope,
                                                      plot_views, verdict_sentence, ESTIMATORS, comparison_word,
                                                      with_intervals, height_sentence)
-from sss_locus.report.common.text import fmt_ci, fmt_percent, fmt_sig
+from sss_locus.report.common.text import fmt_ci, fmt_percent, fmt_sig, run_platforms_md
 
 
 class KEYS:
@@ -43,7 +43,7 @@ class KEYS:
     terrain = "rc-{setting}"  # a terrain or survey setting: corr-len, area, cross-spacing
 
 
-__all__ = ["key", "KEYS", "adjustment_estimators", "comparisons_finding", "errors_finding", "findings_markdown",
+__all__ = ["paper_platforms", "run_platforms_md", "key", "KEYS", "adjustment_estimators", "comparisons_finding", "errors_finding", "findings_markdown",
            "models_finding", "platform_title", "slope_finding", "comparison_word", "ESTIMATORS", "fmt_ci", "fmt_percent", "fmt_sig",
            "glue", "height_sentence", "layout_with_spacing", "load_envelope",
            "load_noise_model", "load_pass_noise", "load_platform", "load_settings", "load_terrain_config",

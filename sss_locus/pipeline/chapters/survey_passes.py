@@ -18,7 +18,8 @@ from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.survey_passes.study import simulate_passes
 from sss_locus.experiments.survey_passes.verdicts import near_end_check, peak_agreement
 from sss_locus.pipeline.run.cache import cached
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
+from sss_locus.report.common.text import run_platforms_md
+from sss_locus.pipeline.chapters.common import key, paper_platforms, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
 from sss_locus.report.survey_passes.curve_findings import (curve_finding, offset_models_finding, pitch_depth_finding,
                                                           shorter_finding, skipped_study_note, survey_summary)
@@ -42,7 +43,7 @@ class KEYS:
     paper_band = "sp-{platform}-paper-band"  # the paper's avoid band (deg)
 
 
-__all__ = ["key", "KEYS", "band_samples", "cached", "crossing_angle_curve", "crossing_angle_grid", "curve_finding",
+__all__ = ["paper_platforms", "run_platforms_md", "key", "KEYS", "band_samples", "cached", "crossing_angle_curve", "crossing_angle_grid", "curve_finding",
            "curve_texts", "describe_offset_model", "describe_setup", "findings_markdown", "glue",
            "key_caption", "load_envelope", "load_platform", "Markdown", "median_ratio",
            "model_tag", "near_end_caption", "near_end_check", "near_end_texts", "offset_model_table",

@@ -17,11 +17,11 @@ from sss_locus.experiments.datamodel.platforms import load_platform
 from sss_locus.experiments.three_views.patterns import (PATTERNS, three_view_table, heading_sweep,
                                                         median_intervals)
 from sss_locus.experiments.passes.view_sets import draw_pattern
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
+from sss_locus.pipeline.chapters.common import key, paper_platforms, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
 from sss_locus.report.three_views.findings import closure_finding, pattern_ranking, tilt_markdown, sweep_finding
 from sss_locus.report.pose_space.findings import findings_markdown, platform_title
-from sss_locus.report.common.text import fmt_interval
+from sss_locus.report.common.text import fmt_interval, run_platforms_md
 from sss_locus.report.three_views.figures import (plot_patterns, PATTERN_TAGS, share_text, plot_heading_sweep,
                                                   sweep_texts)
 
@@ -41,7 +41,7 @@ class KEYS:
     sweep = "tv-{platform}-{text}"  # a text of report.three_views.figures.sweep_texts (its name)
 
 
-__all__ = ["key", "KEYS", "closure_finding", "draw_pattern", "findings_markdown", "fmt_interval", "glue", "heading_sweep",
+__all__ = ["paper_platforms", "run_platforms_md", "key", "KEYS", "closure_finding", "draw_pattern", "findings_markdown", "fmt_interval", "glue", "heading_sweep",
            "load_envelope", "load_noise_model", "load_platform", "Markdown",
            "median_intervals", "NoiseModel", "np", "pattern_ranking", "PATTERN_TAGS", "PATTERNS", "pd",
            "platform_title", "plot_heading_sweep", "plot_patterns", "publish", "share_text", "show_table",

@@ -17,7 +17,8 @@ from sss_locus.experiments.survey_passes.study import simulate_passes
 from sss_locus.experiments.datamodel.water_column import deepest_feature_m
 from sss_locus.experiments.water.study import default_conditions, crop_effects, pass2_above_surface_share
 from sss_locus.pipeline.run.cache import cached
-from sss_locus.pipeline.chapters.common import key, show_table, use_data
+from sss_locus.report.common.text import run_platforms_md
+from sss_locus.pipeline.chapters.common import key, paper_platforms, show_table, use_data
 from sss_locus.pipeline.publish.publish import publish
 from sss_locus.report.pose_space.findings import findings_markdown, platform_title
 from sss_locus.report.water.findings import seafloor_finding, subset_finding, surface_finding, water_summary
@@ -33,7 +34,7 @@ class KEYS:
     deepest = "wa-{platform}-deepest-m"  # deepest feature the platform's geometry reaches (m)
 
 
-__all__ = ["key", "KEYS", "cached", "findings_markdown", "Markdown", "platform_title", "seafloor_finding",
+__all__ = ["paper_platforms", "run_platforms_md", "key", "KEYS", "cached", "findings_markdown", "Markdown", "platform_title", "seafloor_finding",
            "subset_finding", "surface_finding", "water_summary", "crop_caption", "effects_caption", "seafloor_caption", "crop_effects", "deepest_feature_m", "default_conditions", "effect_table",
            "effect_texts", "glue", "load_envelope", "load_platform", "np", "OffsetModel",
            "pass2_above_surface_share", "plot_crop_effects", "publish", "sample_pose_space", "show_table",

@@ -3,19 +3,32 @@
 Every number the book states in prose goes through one of these functions, so the same kind of
 number reads the same way on every page: significant figures (:func:`fmt_sig`), a median with its
 interval (:func:`fmt_interval`), fractions as percentages (:func:`fmt_percent`), ratios as
-changes (:func:`fmt_change`), crossing-angle bands (:func:`fmt_bands`) and quantity names
-(:func:`plain_label`).
+changes (:func:`fmt_change`), crossing-angle bands (:func:`fmt_bands`), quantity names
+(:func:`plain_label`), counted nouns (:func:`count_noun`), lists (:func:`and_list`) and which
+platforms a run holds beside the paper's (:func:`run_platforms_md`).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import pandas as pd
 
 from sss_locus.experiments.stats.significant import round_sig
 from sss_locus.report.common.style import QUANTITY_LABELS
+
+NO_VALUE = "not computable from this run's samples"
+"""What :func:`fmt_ci` says of an estimate that is not a finite number."""
+
+NO_CI = "no 95 % CI: it could not be computed from this run's samples"
+"""What :func:`fmt_ci` says by default in place of an interval whose ends are not finite."""
+
+NO_BATCH_CI = ("no 95 % CI: too few samples, some replicate batches have no sample where it is "
+               "measured")
+"""In place of a replicate-batch interval (:func:`~sss_locus.experiments.stats.replicates.replicate_interval`)
+whose ends are not finite: the statistic is undefined in at least one batch, i.e. a batch has no
+sample in a bin or subset the statistic needs."""
 
 
 def fmt_sig(x: float, digits: int = 2) -> str:
@@ -75,12 +88,13 @@ def interval_digits(low: float, high: float, digits: int = 2, most: int = 4) -> 
     return d
 
 
-def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> str:
+def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2, no_ci: str | None = None) -> str:
     """A median and its 95 % interval: ``"3.1 m (95 % CI 2.9–3.4 m)"``, with more significant
     figures where ``digits`` would print both ends alike (:func:`interval_digits`).
 
     ``estimate`` holds ``median``, ``ci_low`` and ``ci_high``; a degree sign is written without a
-    space (``"20° (95 % CI 18°–22°)"``).
+    space (``"20° (95 % CI 18°–22°)"``). A median that is not finite reads :data:`NO_VALUE`, an
+    interval whose ends are not finite ``no_ci`` (default :data:`NO_CI`).
 
     Parameters
     ----------
@@ -90,6 +104,8 @@ def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> s
         Unit written after each number (``"m"``, ``"°"``, ...).
     digits : int
         The fewest significant figures.
+    no_ci : str, optional
+        Said instead of the interval when an end is not finite (default :data:`NO_CI`).
 
     Returns
     -------
@@ -104,15 +120,22 @@ def fmt_interval(estimate: Mapping[str, float], unit: str, digits: int = 2) -> s
     '0.181 m (95 % CI 0.179–0.183 m)'
     """
     sep = "" if unit == "°" else " "
+    if not math.isfinite(estimate["median"]):
+        return NO_VALUE
+    if not (math.isfinite(estimate["ci_low"]) and math.isfinite(estimate["ci_high"])):
+        return f"{fmt_sig(estimate['median'], digits)}{sep}{unit} ({no_ci or NO_CI})"
     digits = interval_digits(estimate["ci_low"], estimate["ci_high"], digits)
     lo, hi = fmt_sig(estimate["ci_low"], digits), fmt_sig(estimate["ci_high"], digits)
     return f"{fmt_sig(estimate['median'], digits)}{sep}{unit} (95 % CI {lo}–{hi}{sep}{unit})"
 
 
-def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool = False) -> str:
+def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool = False,
+           no_ci: str = NO_CI) -> str:
     """A ratio or share with its 95 % interval, each to ``digits`` significant figures, or more
     where the ends would print alike (:func:`interval_digits`); with ``percent`` the numbers are
-    percentages (a share of 0 with an interval of 0 reads ``"0 %"``).
+    percentages (a share of 0 with an interval of 0 reads ``"0 %"``). An interval whose ends are
+    not finite is replaced by ``no_ci`` (in brackets), an estimate that is not finite by
+    :data:`NO_VALUE`: no ``"nan"`` or ``"n/a–n/a"`` reaches the text.
 
     Parameters
     ----------
@@ -124,11 +147,14 @@ def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool
         The fewest significant figures.
     percent : bool
         Print the numbers as percentages (times 100, with ``" %"``).
+    no_ci : str
+        Said instead of the interval when an end is not finite: why it is missing
+        (:data:`NO_CI`, :data:`NO_BATCH_CI`).
 
     Returns
     -------
     str
-        The estimate and its interval.
+        The estimate and its interval, or the estimate and ``no_ci``, or :data:`NO_VALUE`.
 
     Examples
     --------
@@ -136,8 +162,14 @@ def fmt_ci(value: float, low: float, high: float, digits: int = 2, percent: bool
     ('4.2 (95 % CI 4.1–4.2)', '2.12 (95 % CI 2.10–2.14)', '0.88 % (95 % CI 0.85–0.91 %)')
     >>> fmt_ci(0.0, 0.0, 0.0, percent=True)
     '0 %'
+    >>> fmt_ci(0.46, float("nan"), float("nan"), no_ci="no 95 % CI: too few samples")
+    '0.46 (no 95 % CI: too few samples)'
     """
     scale, unit = (100.0, " %") if percent else (1.0, "")
+    if not math.isfinite(value):
+        return NO_VALUE
+    if not (math.isfinite(low) and math.isfinite(high)):
+        return f"{fmt_sig(scale * value, digits)}{unit} ({no_ci})"
     if percent and value == low == high == 0:
         return "0 %"
     digits = interval_digits(scale * low, scale * high, digits)
@@ -297,21 +329,93 @@ def plain_label(quantity: str) -> str:
     return text
 
 
-def join_and(items: list[str]) -> str:
+def count_noun(n: int, singular: str, plural: str | None = None) -> str:
+    """A count with its noun in the right number: ``"1 pass"``, ``"3 passes"``.
+
+    Parameters
+    ----------
+    n : int
+        The count.
+    singular : str
+        The noun for one.
+    plural : str, optional
+        The noun for any other count; ``singular + "s"`` when not given.
+
+    Returns
+    -------
+    str
+        The count (with thousands separators) and the noun.
+
+    Examples
+    --------
+    >>> count_noun(1, "pass", "passes"), count_noun(0, "seed"), count_noun(12000, "sample")
+    ('1 pass', '0 seeds', '12,000 samples')
+    """
+    return f"{n:,} {singular if n == 1 else (plural or singular + 's')}"
+
+
+def and_list(items: Sequence[str]) -> str:
     """Items joined by commas and a last "and" (by semicolons when an item holds a comma).
 
     Parameters
     ----------
-    items : list of str
+    items : sequence of str
         At least one item.
 
     Returns
     -------
     str
-        ``"a"``, ``"a and b"``, ``"a, b and c"``, or ``"a, x; b and c"`` when an item holds a comma.
+        The list as text.
 
-    >>> join_and(["a"]), join_and(["a", "b", "c"]), join_and(["a, x", "b"])
-    ('a', 'a, b and c', 'a, x and b')
+    Examples
+    --------
+    >>> and_list(["a"]), and_list(["a", "b"]), and_list(["a", "b", "c"]), and_list(["a, b", "c"])
+    ('a', 'a and b', 'a, b and c', 'a, b and c')
     """
+    items = list(items)
     sep = "; " if any("," in i for i in items) else ", "
     return items[0] if len(items) == 1 else sep.join(items[:-1]) + " and " + items[-1]
+
+
+def run_platforms_md(keys: Sequence[str], paper_keys: Sequence[str]) -> str:
+    """Which platforms a run holds, said against the paper's: the words a chapter puts in brackets
+    after "for each platform of this run" (Markdown, data keys in code quotes).
+
+    It names the paper's platforms as included only when the run holds them, names the run's
+    others, and says which of the paper's the run does not hold.
+
+    Parameters
+    ----------
+    keys : sequence of str
+        The run's platform keys (the chapter's ``platforms``, or a subset such as its surface
+        vessels).
+    paper_keys : sequence of str
+        The paper's platform keys of the same kind (the default of the chapter's ``platforms``).
+
+    Returns
+    -------
+    str
+        The phrase; ``"none"`` for a run without platforms of that kind.
+
+    Examples
+    --------
+    >>> run_platforms_md(["auv", "boat"], ["auv", "boat"])
+    "the paper's `auv` and `boat`"
+    >>> run_platforms_md(["rov9"], ["auv", "boat"])
+    "`rov9`; the paper's `auv` and `boat` are not in this run"
+    >>> run_platforms_md(["boat", "rov9"], ["auv", "boat"])
+    "`boat` and `rov9`; the paper's `auv` is not in this run"
+    >>> run_platforms_md(["auv", "boat", "rov9"], ["auv", "boat"])
+    "the paper's `auv` and `boat`, and `rov9`"
+    """
+    def code(ks: Sequence[str]) -> str:
+        return and_list([f"`{k}`" for k in ks])
+
+    missing, added = [k for k in paper_keys if k not in keys], [k for k in keys if k not in paper_keys]
+    if not keys:
+        return "none" if not paper_keys else f"none; the paper's {code(paper_keys)} {'is' if len(paper_keys) == 1 else 'are'} not in this run"
+    if not paper_keys:
+        return code(keys)
+    if missing:
+        return f"{code(keys)}; the paper's {code(missing)} {'is' if len(missing) == 1 else 'are'} not in this run"
+    return f"the paper's {code(paper_keys)}" + (f", and {code(added)}" if added else "")

@@ -25,7 +25,7 @@ from matplotlib.ticker import MaxNLocator
 from sss_locus.experiments.pose_space.stats import HEATMAP_PANELS, TARGETS, median_grid
 from sss_locus.report.common.style import PAGE_WIDTH_IN, QUANTITY_LABELS, SMALL_FONT_PT, get_axis, themed, upward_heatmap
 from sss_locus.report.pose_space.findings import fmt_rho
-from sss_locus.report.common.text import fmt_ci, fmt_interval, fmt_sig, fmt_span, plain_label
+from sss_locus.report.common.text import NO_BATCH_CI, fmt_ci, fmt_interval, fmt_sig, fmt_span, plain_label
 
 PANEL_TITLES = {
     "a": "(a) range vs range", "b": "(b) azimuth vs azimuth", "c": "(c) elevation vs elevation",
@@ -328,7 +328,7 @@ def printed_metric(name: str, metrics: Mapping[str, float | str]) -> tuple[str, 
         return plain_label(v), "text", v
     if f"{name}_ci_low" in metrics:
         lo, hi = float(metrics[f"{name}_ci_low"]), float(metrics[f"{name}_ci_high"])
-        return fmt_ci(v, lo, hi, percent=name.endswith("_fraction")), "interval", (lo, hi)
+        return fmt_ci(v, lo, hi, percent=name.endswith("_fraction"), no_ci=NO_BATCH_CI), "interval", (lo, hi)
     base = name[:-len("_deg")]
     if name.endswith("_deg") and f"{base}_lo_deg" in metrics:
         lo, hi = float(metrics[f"{base}_lo_deg"]), float(metrics[f"{base}_hi_deg"])
@@ -493,10 +493,22 @@ def _heatmap_rows(key: str, a: Mapping, b: Mapping, sa: str, sb: str) -> list[di
     return rows
 
 
+NO_CI_CELL = "none: too few samples (a replicate batch has no sample in a yaw bin the ratio uses)"
+"""The modelling-choice table's cell for a yaw-0 interval that could not be computed."""
+
+
+def _ci_cell(low: float, high: float) -> tuple[float, float] | str:
+    """An interval's ends to 3 decimals for a table cell, or :data:`NO_CI_CELL` when one is not finite."""
+    if not (np.isfinite(low) and np.isfinite(high)):
+        return NO_CI_CELL
+    return (round(low, 3), round(high, 3))
+
+
 def check_row(run: str, metrics: Mapping[str, float | str]) -> dict:
     """One row of the modelling-choice table: the headline claim metrics of one run, with the
     hotspot's peak region (bins whose median is within the interval of the largest, as spans of
-    bin centres and whether one has equal azimuths) and the interval of the yaw dip.
+    bin centres and whether one has equal azimuths) and the interval of the yaw dip (its ends, or
+    :data:`NO_CI_CELL` when a replicate batch leaves it undefined).
 
     Parameters
     ----------
@@ -523,8 +535,7 @@ def check_row(run: str, metrics: Mapping[str, float | str]) -> dict:
                                             round(m["azimuth_region_theta2_hi_deg"])),
             "hotspot region at equal azimuths": bool(m["azimuth_region_equal"]),
             "yaw 0 / peak": m["yaw_near0_over_peak_ratio"],
-            "yaw 0 / peak CI": (round(m["yaw_near0_over_peak_ratio_ci_low"], 3),
-                                round(m["yaw_near0_over_peak_ratio_ci_high"], 3)),
+            "yaw 0 / peak CI": _ci_cell(m["yaw_near0_over_peak_ratio_ci_low"], m["yaw_near0_over_peak_ratio_ci_high"]),
             "fragmented (port-port)": m["multi_arc_fraction"]}
 
 

@@ -13,7 +13,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
-from sss_locus.report.common.text import fmt_ci, fmt_sig, fmt_span, plain_label
+from sss_locus.report.common.text import NO_BATCH_CI, fmt_ci, fmt_sig, fmt_span, plain_label
 
 RAW, NORM = "locus_length_m", "locus_length_normalized"
 """The two targets of :func:`~sss_locus.experiments.pose_space.stats.spearman_table`."""
@@ -183,7 +183,7 @@ def drivers_finding(rho: pd.DataFrame, top: int = 3) -> str:
 
 
 def _ci(m: Mapping[str, float], name: str, percent: bool = False) -> str:
-    return fmt_ci(m[name], m[f"{name}_ci_low"], m[f"{name}_ci_high"], percent=percent)
+    return fmt_ci(m[name], m[f"{name}_ci_low"], m[f"{name}_ci_high"], percent=percent, no_ci=NO_BATCH_CI)
 
 
 def _span(m: Mapping[str, float], name: str) -> str:
@@ -236,6 +236,28 @@ def panels_finding(metrics: Mapping[str, float], azimuth_map: pd.DataFrame | Non
         f"{_ci(m, 'multi_arc_fraction', percent=True)} of its port–port loci are fragmented (more than one arc).")
 
 
+def yaw0_text(row: Mapping) -> str:
+    """The yaw-0 dip of one modelling-choice row with its interval, or why it has none.
+
+    Parameters
+    ----------
+    row : mapping
+        A row of :func:`~sss_locus.report.pose_space.figures.check_row`: ``"yaw 0 / peak"`` and
+        ``"yaw 0 / peak CI"`` (the interval's ends, or the words of a missing interval).
+
+    Returns
+    -------
+    str
+        E.g. ``"0.27 (95 % CI 0.050–0.48)"``, or the ratio with :data:`~sss_locus.report.common.text.NO_BATCH_CI`.
+
+    >>> yaw0_text({"yaw 0 / peak": 0.46, "yaw 0 / peak CI": "none: too few samples"})
+    '0.46 (no 95 % CI: too few samples, some replicate batches have no sample where it is measured)'
+    """
+    ci = row["yaw 0 / peak CI"]
+    lo, hi = ci if isinstance(ci, tuple) else (float("nan"), float("nan"))
+    return fmt_ci(row["yaw 0 / peak"], lo, hi, no_ci=NO_BATCH_CI)
+
+
 def choices_finding(main: Mapping[str, float], checks: pd.DataFrame, key: str,
                     above: tuple[float, float] | None = None) -> str:
     """How the open modelling choices change one platform's headline numbers: the one source of
@@ -271,7 +293,7 @@ def choices_finding(main: Mapping[str, float], checks: pd.DataFrame, key: str,
         parts.append(f"{row['run'][len(key) + 2:]}: {plain_label(row['top normalised'])} first "
                      f"(misalignment ρ {fmt_rho(row['rho misalignment (norm.)'])}; hotspot region θ₁ {fmt_span(a1, b1)}, "
                      f"θ₂ {fmt_span(a2, b2)}, {'with' if row['hotspot region at equal azimuths'] else 'without'} equal "
-                     f"azimuths; median near yaw 0 {fmt_ci(row['yaw 0 / peak'], *row['yaw 0 / peak CI'])} of the peak)")
+                     f"azimuths; median near yaw 0 {yaw0_text(row)} of the peak)")
     text = (f"main run: {plain_label(str(main['top_norm']))} first (misalignment ρ "
             f"{fmt_rho(main['norm_elevation_misalignment_deg_rho'])}, hotspot "
             f"({main['azimuth_peak_theta1_deg']:.0f}°, {main['azimuth_peak_theta2_deg']:.0f}°)); "
@@ -368,7 +390,7 @@ def hotspot_finding(check: Mapping[str, float]) -> str:
     c = check
     verdict = ("its targeted interval lies above the runner-up, so the bin is still the peak" if c["still_peak"]
                else "its targeted interval does not lie above the runner-up, so the peak bin is not settled")
-    runner = (fmt_ci(c["runner_up_median"], c["runner_up_ci_low"], c["runner_up_ci_high"]).replace(" (", " m (", 1)
+    runner = (fmt_ci(c["runner_up_median"], c["runner_up_ci_low"], c["runner_up_ci_high"], no_ci=NO_BATCH_CI).replace(" (", " m (", 1)
               .replace(")", " m)") if "runner_up_ci_low" in c else f"{fmt_sig(c['runner_up_median'], 2)} m")
     return (f"the peak bin ({c['x_mid']:.0f}°, {c['y_mid']:.0f}°) holds {c['count']:,.0f} samples of the main run "
             f"(median {fmt_sig(c['median'], 2)} m); {c['target_count']:,.0f} targeted samples give "

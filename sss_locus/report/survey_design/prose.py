@@ -14,7 +14,7 @@ import pandas as pd
 
 from sss_locus.experiments.survey_design.coverage import reach_limits_m
 from sss_locus.experiments.survey_design.scoring import MIN_FEATURES, lower_end_cut
-from sss_locus.report.common.text import fmt_ci, fmt_percent, fmt_sig
+from sss_locus.report.common.text import count_noun, fmt_ci, fmt_percent, fmt_sig
 from sss_locus.report.survey_design.figures import OBJECTIVE_LABELS
 
 
@@ -39,7 +39,7 @@ def area_note(area, seafloor: str, n_features: int, seed: int) -> str:
         E.g. ``"Area file data/examples/survey_area.toml (SHA-256 0123456789ab), flat seafloor,
         200 features, seed 1."``
     """
-    return f"Area file {area.source} (SHA-256 {area.sha256[:12]}), {seafloor} seafloor, {n_features:,} features, seed {seed}."
+    return f"Area file {area.source} (SHA-256 {area.sha256[:12]}), {seafloor} seafloor, {count_noun(n_features, 'feature')}, seed {seed}."
 
 
 def plans_caption(area_name: str, note: str) -> str:
@@ -87,7 +87,7 @@ def front_caption(objective: str, area_name: str, seafloor: str, n_features: int
         The caption.
     """
     return (f"Track flown (lines, turns, transits and the return to the start) against the {OBJECTIVE_LABELS[objective]} for every plan "
-            f"searched over {area_name} ({seafloor} seafloor, {n_features:,} features); hollow: fewer "
+            f"searched over {area_name} ({seafloor} seafloor, {count_noun(n_features, 'feature')}); hollow: fewer "
             "of the area seen twice than the standard plan; the line joins the Pareto front; the circle marks the "
             f"recommended plan, decided with the joint adjustment under the noise model on the {ERROR_LABELS[decide_on]} "
             "error (the standard plan unless a plan's interval excludes it), "
@@ -231,7 +231,7 @@ def solver_path_sentence(shifts: dict, platforms: dict) -> str:
                  f"{int(t.n_two_pass.sum()):,} of the {n:,})")
         largest = float(t.max_shift_m.max())
         largest = f"{fmt_sig(largest, 2)} m" if largest >= 1.0 else f"{fmt_sig(1e3 * largest, 2)} mm"
-        parts.append(f"For the {name}, over {len(t)} seeds, {moved}; the largest move was "
+        parts.append(f"For the {name}, over {count_noun(len(t), 'seed')}, {moved}; the largest move was "
                      f"{largest} and the median horizontal error moved by at most "
                      f"{fmt_sig(1e3 * float(t.horizontal_median_shift_m.max()), 2)} mm.")
     return " ".join(parts)
@@ -416,7 +416,7 @@ def error_text(row, name: str = "horizontal") -> str:
 
 
 def _counts(row) -> str:
-    return f"{int(row.n_seeds)} seeds, at least {int(row.min_features):,} features each"
+    return f"{count_noun(int(row.n_seeds), 'seed')}, at least {count_noun(int(row.min_features), 'feature')} each"
 
 
 def _beside(row, decided: str) -> str:

@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from sss_locus.experiments.survey_passes.planning import planning_bands
-from sss_locus.report.common.text import fmt_bands, fmt_change, fmt_sig, join_and
+from sss_locus.report.common.text import and_list, fmt_bands, fmt_change, fmt_sig
 from sss_locus.report.survey_passes.figures import curve_texts
 
 
@@ -185,11 +185,11 @@ def offset_models_finding(curves: Mapping[str, object]) -> str:
                 f"at a moderate oblique angle (below {OBLIQUE_MAX_DEG:g}°), the paper's shape.")
     sides = {label: c.offset_model.side_rule for label, c in curves.items()}
     text = (f"the median length peaks (95 % bootstrap interval) at {listed}; the paper's shape, a peak at a "
-            f"moderate oblique angle (below {OBLIQUE_MAX_DEG:g}°), appears with " + join_and(oblique))
+            f"moderate oblique angle (below {OBLIQUE_MAX_DEG:g}°), appears with " + and_list(oblique))
     near = [label for label in oblique if curves[label].peak["locus_length_m"]["ci_low_deg"] <= PAPER_PEAK_DEG
             <= curves[label].peak["locus_length_m"]["ci_high_deg"]]
     if near:
-        text += f" ({join_and(near)}: an interval that holds the paper's ≈{PAPER_PEAK_DEG:g}°)"
+        text += f" ({and_list(near)}: an interval that holds the paper's ≈{PAPER_PEAK_DEG:g}°)"
     if len(oblique) < len(curves) and all(sides[label] == "same" for label in oblique):
         text += (", each with pass 2 planned on the same side of the vehicle as pass 1: the paper's curve points to "
                  "passes planned around the feature on the same side, a choice it does not state")
@@ -214,7 +214,7 @@ def _levels_clause(pitch: pd.DataFrame, levels_deg) -> str:
             f"at {clear} of {len(both)} levels the interval excludes 0 %, though the mirror symmetry allows no effect "
             "(a 95 % interval misses the true value once in 20)")
     return ("with both passes pitched, nose-up against nose-down changes the median locus length by "
-            + join_and([f"{t} at ±{p:g}°" for (t, _), p in zip(both, levels_deg)]) + f": {said}")
+            + and_list([f"{t} at ±{p:g}°" for (t, _), p in zip(both, levels_deg)]) + f": {said}")
 
 
 def _turn_clause(port, stbd) -> str:
@@ -228,7 +228,7 @@ def _turn_clause(port, stbd) -> str:
                        "feature is on, not by the pitch alone")
     if a and b:
         return text + ": clear effects of the same sign either way"
-    return text + ": no clear effect turning toward " + join_and([s for s, f in (("port", a), ("starboard", b)) if not f])
+    return text + ": no clear effect turning toward " + and_list([s for s, f in (("port", a), ("starboard", b)) if not f])
 
 
 def _depth_clause(depth: pd.DataFrame) -> str:
@@ -315,7 +315,7 @@ def survey_summary(cur, models: Mapping[str, object], prefer_below: float, avoid
     text = (f"with the main offset model the median length peaks at {pk['angle_deg']:.0f}° ({_WHERE[s['where']]}); "
             + ("repeat and anti-parallel passes give the shortest loci" if s["ends_preferred"] else
                "repeat and anti-parallel passes are not both among the shortest")
-            + ". " + ("A peak at a moderate oblique angle appears with " + join_and(oblique)
+            + ". " + ("A peak at a moderate oblique angle appears with " + and_list(oblique)
                       + (", so the shape of the curve is set by an offset model the paper does not state"
                          if s["where"] != "oblique" else "") if oblique else
                       "No other offset model shown puts the peak at a moderate oblique angle")

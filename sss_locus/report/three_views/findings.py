@@ -16,7 +16,7 @@ import pandas as pd
 
 from sss_locus.experiments.datamodel.platforms import provenance_table
 from sss_locus.experiments.three_views.patterns import cells_within, share_interval
-from sss_locus.report.common.text import fmt_interval, fmt_sig, join_and
+from sss_locus.report.common.text import and_list, fmt_interval, fmt_sig
 from sss_locus.report.three_views.figures import share_text, sweep_texts
 
 
@@ -50,16 +50,16 @@ def closure_finding(summary: pd.DataFrame, intervals: Mapping[str, Mapping[str, 
     rows = list(summary.itertuples())
 
     def each(col: str, fmt=None) -> str:
-        return join_and([(fmt or (lambda r: share_text(getattr(r, col), r.n)))(r) for r in rows])
+        return and_list([(fmt or (lambda r: share_text(getattr(r, col), r.n)))(r) for r in rows])
 
     def med(col: str, unit: str) -> str:
-        return join_and([fmt_interval(intervals[r.pattern][col], unit) for r in rows])
+        return and_list([fmt_interval(intervals[r.pattern][col], unit) for r in rows])
     el, az = summary["ambiguous_no_elevation"].sum(), summary["ambiguous_no_azimuth"].sum()
     bound = ("the elevation bound" if el > az else "the azimuth and range bounds" if az > el else
              "either bound alike")
     best = summary.loc[summary["error_per_cm_median_m"].idxmin()]
     worst = summary.loc[summary["error_per_cm_median_m"].idxmax()]
-    text = ("resolved to one point in " + join_and([f"{share_text(r.resolved, r.n)} ({r.pattern})" for r in rows])
+    text = ("resolved to one point in " + and_list([f"{share_text(r.resolved, r.n)} ({r.pattern})" for r in rows])
             + " of the configurations, a two-fold ambiguity remaining in " + each("ambiguous")
             + ("" if not (summary["none"] > 0).any() else ", none left in " + each("none"))
             + ". With the elevation bound of every aperture lifted, " + each("ambiguous_no_elevation")
@@ -130,12 +130,12 @@ def tilt_finding(rows: pd.DataFrame, platform) -> str:
     first = rows[rows["tilt_deg"] == tilts[0]]
     text = (f"With its transducers tilted {tilts[0]:g}° {fan_top_clause(platform.sonar.azimuth_deg, tilts[0])}: "
             "the feature is resolved in "
-            + join_and([f"{share_text(r.resolved, r.n)} ({r.pattern})" for r in first.itertuples()])
+            + and_list([f"{share_text(r.resolved, r.n)} ({r.pattern})" for r in first.itertuples()])
             + " of the configurations, a two-fold ambiguity remaining in "
-            + join_and([share_text(r.ambiguous, r.n) for r in first.itertuples()]))
+            + and_list([share_text(r.ambiguous, r.n) for r in first.itertuples()]))
     for tilt in tilts[1:]:
         g = rows[rows["tilt_deg"] == tilt]
-        text += f"; at {tilt:g}° the shares resolved are " + join_and([share_text(r.resolved, r.n) for r in g.itertuples()])
+        text += f"; at {tilt:g}° the shares resolved are " + and_list([share_text(r.resolved, r.n) for r in g.itertuples()])
     text += "."
     intervals = {(r.pattern, r.tilt_deg): share_interval(int(round(r.resolved * r.n)), int(r.n))
                  for r in rows.itertuples()}

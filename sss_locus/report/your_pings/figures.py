@@ -20,7 +20,7 @@ from matplotlib.patches import Ellipse
 
 from sss_locus.experiments.your_pings.views import ONE_SIGHTING, excluded_sentence
 from sss_locus.report.common.style import PAGE_WIDTH_IN, platform_title
-from sss_locus.report.common.text import fmt_sig
+from sss_locus.report.common.text import count_noun, fmt_sig
 
 ESTIMATES = {"flat": ("flat seafloor, mean of the sightings", "black", "s"),
              "two_view": ("two views, best pair (non-empty locus only)", "tab:orange", "^"),
@@ -284,7 +284,8 @@ def map_caption(n_sightings: int, *, known: bool, synthetic: bool, geojson: bool
     files = ("every feature's results (`--features.csv`), every sighting (`--sightings.csv`), the loci's "
              "points (`--locus.csv`)")
     return (("**Synthetic example** (made by the project's simulator over a known seafloor). " if synthetic else "")
-            + f"Left: the sensor at each of the {n_sightings} sightings and each feature's estimates (grid "
+            + "Left: the sensor at " + (f"each of the {n_sightings} sightings" if n_sightings != 1 else "the one sighting")
+            + " and each feature's estimates (grid "
             "east/north of the local frame): the flat-seafloor mean, the two-view point (of the best pair's "
             "locus, where non-empty, the point nearest the flat mean), the N-view position and, where the "
             "chapter computed it, the joint adjustment's (features and the passes' navigation estimated "
@@ -346,7 +347,7 @@ def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
     st = f["nview_status"].value_counts()
     nonempty = f["locus_arcs"] > 0
     once = int((f["n_sightings"] == 1).sum())
-    parts = [f"{len(f)} features from {len(res.sightings)} sightings"]
+    parts = [f"{count_noun(len(f), 'feature')} from {count_noun(len(res.sightings), 'sighting')}"]
     if once:
         parts.append(f"{once} seen once ({ONE_SIGHTING}: a flat-seafloor position only)")
     if (f["n_sightings"] >= 3).any():
@@ -369,7 +370,7 @@ def summary_sentence(res, errors: pd.DataFrame | None = None) -> str:
         med = errors.groupby("estimator", sort=False).agg(h=("error_h_m", "median"), v=("error_up_m", lambda x: x.abs().median()),
                                                           n=("feature", "size"))
         text += " Against the truth, median horizontal / vertical errors: " + "; ".join(
-            f"{ESTIMATES[k][0].split(',')[0].split(':')[0]} {fmt_sig(r.h)} m / {fmt_sig(r.v)} m ({int(r.n)} features)"
+            f"{ESTIMATES[k][0].split(',')[0].split(':')[0]} {fmt_sig(r.h)} m / {fmt_sig(r.v)} m ({count_noun(int(r.n), 'feature')})"
             for k, r in med.iterrows()) + "."
         closest = med["h"].idxmin()
         text += (f" Closest to the truth horizontally in this run: {ESTIMATES[closest][0].split(',')[0].split(':')[0]}"

@@ -7,7 +7,7 @@ import numpy as np
 import pandas as pd
 
 from sss_locus.experiments.your_pings.joint import JUMP_ACROSS_M, TURN_DEG
-from sss_locus.report.common.text import fmt_sig
+from sss_locus.report.common.text import count_noun, fmt_sig
 
 MANY_FLAGGED = 0.1
 """Above this share of flagged sightings the page questions the noise model, not the matches."""
@@ -35,10 +35,12 @@ def joint_sentence(summary: dict) -> str:
     """
     n, P = summary["n_adjusted"], summary["n_passes"]
     if n == 0:
-        return (f"No feature was seen on two or more of the {P} passes, so there is no joint estimate: a range and a "
+        seen = ("The sightings form one pass, so no feature was seen on two passes" if P == 1 else
+                f"No feature was seen on two or more of the {P} passes")
+        return (f"{seen}, so there is no joint estimate: a range and a "
                 "beam-plane angle from one pass leave a feature anywhere on a circle.")
     ratio = summary["shape_ratio"]
-    text = (f"The joint adjustment estimated {n} features seen on two or more passes together with the navigation "
+    text = (f"The joint adjustment estimated {count_noun(n, 'feature')} seen on two or more passes together with the navigation "
             f"corrections of the {P} passes"
             + ("" if summary["success"] else " (the solver stopped on its evaluation limit: treat it with care)")
             + f". In the mosaic, a feature's flat-seafloor positions lie a median {fmt_sig(summary['mosaic_disagreement_m'])} m "
@@ -90,12 +92,15 @@ def passes_caption(n_passes: int, names: str, platform_name: str, *, synthetic: 
         The caption.
     """
     return (("Synthetic example (made by the project's simulator). " if synthetic else "")
-            + f"Each of the {n_passes} passes of {names} ({platform_name}), found from the sightings (a new pass where "
+            + (f"Each of the {n_passes} passes" if n_passes != 1 else "The one pass")
+            + f" of {names} ({platform_name}), found from the sightings (a new pass where "
             f"the heading turns by more than {fmt_sig(TURN_DEG)} deg or the track jumps more than "
             f"{fmt_sig(JUMP_ACROSS_M)} m across): its file lines, sightings and grid "
             "heading, and the navigation correction the joint adjustment estimated (true minus navigated: east and "
-            "north offset, heading bias clockwise) with its 1-sigma. The offsets' common part is held by the priors "
-            "only (see the text).")
+            "north offset, heading bias clockwise) with its 1-sigma. "
+            + ("The offsets' common part is held by the priors only (see the text)." if n_passes != 1 else
+               "With one pass, its offsets are the common shift of the whole survey, which no range can see: they "
+               "are held by the priors only (see the text)."))
 
 
 def passes_shown(passes: pd.DataFrame) -> pd.DataFrame:
