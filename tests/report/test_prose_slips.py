@@ -126,7 +126,7 @@ def test_survey_design_sentences_with_one_feature_and_one_seed():
     _clean(sdp.area_note(_Area(), "flat", 1, 1))
     assert "1 feature," in sdp.area_note(_Area(), "flat", 1, 1)
     assert "200 features" in sdp.area_note(_Area(), "flat", 200, 1)
-    from sss_locus.report.survey_design.figures import _counts
+    from sss_locus.report.survey_design.prose import _counts
 
     row = type("Row", (), {"n_seeds": 1, "min_features": 1})()
     assert _counts(row) == "1 seed, at least 1 feature each"
