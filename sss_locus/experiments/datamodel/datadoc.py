@@ -274,7 +274,27 @@ def changed_name(shipped_name: str, fields: Iterable[str]) -> str:
     str
         The marked name.
     """
-    return f"{shipped_name} (changed: {', '.join(fields)})"
+    return f"{shipped_name}{CHANGED_MARK}{', '.join(fields)})"
+
+
+#: What :func:`changed_name` puts between a shipped name and the fields changed.
+CHANGED_MARK = " (changed: "
+
+
+def is_changed_name(name: str, shipped_name: str) -> bool:
+    """Whether ``name`` is ``shipped_name`` marked by :func:`changed_name`.
+
+    Parameters
+    ----------
+    name, shipped_name : str
+        An entry's name in the merged data and in the shipped data.
+
+    Returns
+    -------
+    bool
+        True for ``"<shipped_name> (changed: ...)"``.
+    """
+    return name.startswith(shipped_name + CHANGED_MARK) and name.endswith(")")
 
 
 def mark_changed_names(doc: Mapping[str, Any], shipped: Mapping[str, Any]) -> dict[str, Any]:

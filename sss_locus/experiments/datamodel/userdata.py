@@ -390,7 +390,7 @@ def changed_from_shipped(platform_keys: Iterable[str], inputs: DataInputs | None
     found: list[str] = []
     marked = {f"{t}.{k}.name" for t in datadoc.NAMED_TABLES for k, e in doc.get(t, {}).items()
               if k in shipped.get(t, {}) and isinstance(e, dict)
-              and e.get("name", "").startswith(datadoc.changed_name(shipped[t][k].get("name", ""), []).rstrip(")"))}
+              and datadoc.is_changed_name(e.get("name", ""), shipped[t][k].get("name", ""))}
     for key in platform_keys:
         if key not in shipped.get("platforms", {}):
             found.append(f"platforms.{key}")
